@@ -1,0 +1,50 @@
+#include "Components/MPM/Contact/Contact.h"
+
+#include <algorithm>
+
+namespace anode {
+
+Contact Contact::fromInput(const PSNode& mpmMaterials, int numMaterials) {
+  Contact c;
+  const auto blocks = mpmMaterials.children("contact");
+  if (blocks.size() > 1) blocks[1].fail("only one <contact> block is supported");
+  for (int m = 0; m < numMaterials; ++m) c.materials.push_back(m);
+  if (blocks.empty()) return c;
+  const PSNode contact = blocks[0];
+  const std::string type = contact.get<std::string>("type", "null");
+  if (const PSNode list = contact.child("materials")) {
+    c.materials.clear();
+    for (int m : list.value<std::vector<int>>()) {
+      // Uintah's inputs list [0,1] even for one material; indices beyond the materials are inert.
+      if (m < 0) list.fail("<materials> holds a negative material index");
+      if (m < numMaterials) c.materials.push_back(m);
+    }
+  }
+  if (type == "null") return c;
+  if (type != "single_velocity")
+    contact.requireChild("type").fail("contact type \"" + type + "\" is not supported; accepted: null, single_velocity");
+  c.type = Type::SingleVelocity;
+  c.exchangeInterpolated = contact.get<int>("OneOrTwoStep", 2) == 2;
+  const int exclude = contact.get<int>("ExcludeMaterial", -999);
+  if (exclude != -999) c.materials.erase(std::remove(c.materials.begin(), c.materials.end(), exclude), c.materials.end());
+  return c;
+}
+
+void Contact::exchange(std::vector<GridFields>& fields, std::vector<Vec3> GridFields::*velocity) const {
+  if (type == Type::Null || materials.size() < 2) return;
+  const long nodes = static_cast<long>(fields[materials[0]].mass.size());
+#pragma omp parallel for schedule(static)
+  for (long n = 0; n < nodes; ++n) {
+    double mass = 0;
+    Vec3 momentum = Vec3::Zero();
+    for (int m : materials) {
+      mass += fields[m].mass[n];
+      momentum += fields[m].mass[n] * (fields[m].*velocity)[n];
+    }
+    if (mass <= 0) continue;
+    const Vec3 common = momentum / mass;
+    for (int m : materials) (fields[m].*velocity)[n] = common;
+  }
+}
+
+}  // namespace anode

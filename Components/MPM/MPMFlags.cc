@@ -1,0 +1,91 @@
+#include "Components/MPM/MPMFlags.h"
+
+namespace anode {
+
+namespace {
+
+// A boolean flag whose `true` asks for a feature this code does not have.
+void rejectIfTrue(const PSNode& mpm, const char* tag, const std::string& feature) {
+  if (const PSNode n = mpm.child(tag))
+    if (n.value<bool>()) n.unsupported("<" + std::string(tag) + ">true: " + feature);
+}
+
+void readAMR(const PSNode& root) {
+  const PSNode amr = root.child("AMR");
+  if (!amr) return;
+  if (const PSNode lock = amr.child("useLockStep"))
+    if (!lock.value<bool>()) lock.fail("<useLockStep> must be true for amrmpm");
+  if (const PSNode regridder = amr.child("Regridder")) {
+    if (regridder.get<int>("max_levels", 1) > 1)
+      regridder.requireChild("max_levels").unsupported("adaptive refinement with several levels");
+    regridder.markSubtreeUsed();
+  }
+  // Refinement thresholds drive particle splitting, which <refine_particles> switches on.
+  amr.acceptInert("MPM");
+}
+
+}  // namespace
+
+MPMFlags MPMFlags::fromInput(const PSNode& root) {
+  const PSNode component = root.requireChild("SimulationComponent");
+  const std::string type = component.requireAttribute("type");
+  if (type != "amrmpm" && type != "mpm")
+    component.fail("SimulationComponent type=\"" + type + "\" is not supported; accepted: amrmpm, mpm");
+  if (type == "amrmpm" && !root.child("AMR"))
+    component.fail("type=\"amrmpm\" requires an <AMR> block with <useLockStep>true</useLockStep>");
+  readAMR(root);
+  root.acceptInert("Meta");
+
+  MPMFlags f;
+  if (const PSNode constants = root.child("PhysicalConstants")) {
+    f.gravity = constants.require<Vec3>("gravity");
+    constants.acceptInert("reference_pressure");
+  }
+  const PSNode mpm = root.child("MPM");
+  if (!mpm) return f;
+
+  const std::string integrator = mpm.get<std::string>("time_integrator", "explicit");
+  if (integrator != "explicit")
+    mpm.requireChild("time_integrator")
+        .fail("time_integrator \"" + integrator + "\" is not supported; accepted: explicit");
+
+  const std::string interp = mpm.get<std::string>("interpolator", "linear");
+  if (interp == "linear") {
+    f.interpolator = InterpolatorKind::Linear;
+  } else if (interp == "gimp") {
+    f.interpolator = InterpolatorKind::GIMP;
+  } else if (interp == "cpdi" || interp == "fast_cpdi") {
+    f.interpolator = InterpolatorKind::CPDI;
+  } else if (interp == "cpti" || interp == "3rdorderBS" || interp == "4thorderBS") {
+    mpm.requireChild("interpolator").fail("interpolator \"" + interp + "\" is not supported; accepted: linear, gimp, cpdi");
+  } else {
+    mpm.requireChild("interpolator").fail("unknown interpolator \"" + interp + "\"; accepted: linear, gimp, cpdi");
+  }
+  if (const PSNode lcrit = mpm.child("cpdi_lcrit"))
+    if (lcrit.value<double>() < 1e10) lcrit.unsupported("CPDI corner limiting <cpdi_lcrit>");
+
+  rejectIfTrue(mpm, "do_scalar_diffusion", "scalar (lithium) diffusion");
+  rejectIfTrue(mpm, "refine_particles", "particle splitting");
+  rejectIfTrue(mpm, "DoPressureStabilization", "pressure stabilization");
+  rejectIfTrue(mpm, "do_auto_cycle_bc", "automatic flux cycling");
+  rejectIfTrue(mpm, "with_gauss_solver", "the Gauss (electric potential) solver");
+  rejectIfTrue(mpm, "artificial_viscosity", "artificial viscosity");
+  rejectIfTrue(mpm, "axisymmetric", "axisymmetric MPM");
+  rejectIfTrue(mpm, "UseGradientEnhancedVelocityProjection", "gradient-enhanced velocity projection");
+  // Load curves matter only to flux boundary conditions, which carry their own checks.
+  for (const char* inert : {"use_load_curves", "auto_cycle_use_minmax", "auto_cycle_max",
+                            "auto_cycle_min", "withColor"})
+    mpm.acceptInert(inert);
+
+  f.minimumSubcyclesForF = mpm.get<int>("minimum_subcycles_for_F", 1);
+  if (f.minimumSubcyclesForF < 1)
+    mpm.requireChild("minimum_subcycles_for_F").unsupported("matrix-exponential F update (value < 1)");
+  f.minimumMassForAcc = mpm.get<double>("minimum_mass_for_acc", 0.0);
+  f.minimumParticleMass = mpm.get<double>("minimum_particle_mass", 3e-15);
+  f.artificialDampingCoeff = mpm.get<double>("artificial_damping_coeff", 0.0);
+  if (f.artificialDampingCoeff < 0)
+    mpm.requireChild("artificial_damping_coeff").fail("<artificial_damping_coeff> must be >= 0");
+  return f;
+}
+
+}  // namespace anode

@@ -1,0 +1,21 @@
+// Options of the <MPM> block (UINTAH_UPS.md §2.4) and <PhysicalConstants>.
+#pragma once
+
+#include "Components/MPM/Interpolator.h"
+#include "Core/ProblemSpec/ProblemSpec.h"
+
+namespace anode {
+
+struct MPMFlags {
+  InterpolatorKind interpolator = InterpolatorKind::Linear;
+  int minimumSubcyclesForF = 1;
+  double minimumMassForAcc = 0.0;
+  double minimumParticleMass = 3e-15;
+  double artificialDampingCoeff = 0.0;
+  Vec3 gravity = Vec3::Zero();
+
+  // Reads <MPM>, <PhysicalConstants> and checks <SimulationComponent> and <AMR>.
+  static MPMFlags fromInput(const PSNode& root);
+};
+
+}  // namespace anode

@@ -1,0 +1,127 @@
+#include "Components/MPM/Materials/ConstitutiveModels/RFElasticPlastic.h"
+
+#include <cmath>
+
+#include "Core/Math/PolarDecomposition.h"
+
+namespace anode {
+
+std::unique_ptr<RFElasticPlastic> RFElasticPlastic::fromInput(const PSNode& node) {
+  const double K = node.require<double>("bulk_modulus");
+  if (!(K > 0)) node.requireChild("bulk_modulus").fail("<bulk_modulus> must be positive");
+  const double G = node.require<double>("shear_modulus");
+  if (!(G > 0)) node.requireChild("shear_modulus").fail("<shear_modulus> must be positive");
+  // Swelling couples to concentration, which a later stage of the code adds; without diffusion
+  // the coefficient has nothing to act on.
+  node.acceptInert("volume_expansion_coeff");
+  for (const char* inert :
+       {"initial_material_temperature", "taylor_quinney_coeff", "coeff_thermal_expansion",
+        "critical_stress", "tolerance", "useModifiedEOS", "check_TEPLA_failure_criterion",
+        "do_melting", "check_max_stress_failure", "compute_specific_heat",
+        "plastic_convergence_algo"})
+    node.acceptInert(inert);
+
+  if (const PSNode shear = node.child("shear_modulus_model")) {
+    if (shear.requireAttribute("type") != "constant_shear")
+      shear.fail("shear_modulus_model type=\"" + *shear.attribute("type") +
+                 "\" is not supported; accepted: constant_shear");
+    shear.markSubtreeUsed();
+  }
+  if (const PSNode dev = node.child("deviatoric_stress_model")) {
+    if (dev.requireAttribute("type") != "hypoElastic")
+      dev.fail("deviatoric_stress_model type=\"" + *dev.attribute("type") +
+               "\" is not supported; accepted: hypoElastic");
+    dev.markSubtreeUsed();
+  }
+  // default_hypo is this code's default (UINTAH_UPS.md P2: Uintah builds default_hyper when the
+  // tag is absent; see docs/differences-from-uintah.md).
+  if (const PSNode eos = node.child("equation_of_state")) {
+    const std::string type = eos.requireAttribute("type");
+    if (type == "default_hyper")
+      eos.fail("equation_of_state type=\"default_hyper\" is not supported; use default_hypo");
+    if (type != "default_hypo")
+      eos.fail("equation_of_state type=\"" + type + "\" is not supported; accepted: default_hypo");
+    eos.markSubtreeUsed();
+  }
+
+  std::optional<FlowModel> flow;
+  const PSNode flowNode = node.child("flow_model");
+  const PSNode yield = node.child("yield_condition");
+  if (flowNode) {
+    flow = FlowModel::fromInput(flowNode);
+    if (!yield) node.fail("<flow_model> requires <yield_condition type=\"vonMises\">");
+  }
+  if (yield) {
+    if (yield.requireAttribute("type") != "vonMises")
+      yield.fail("yield_condition type=\"" + *yield.attribute("type") +
+                 "\" is not supported; accepted: vonMises");
+    if (!flowNode) yield.fail("<yield_condition> requires a <flow_model>");
+    yield.markSubtreeUsed();
+  }
+  return std::make_unique<RFElasticPlastic>(K, G, flow);
+}
+
+void RFElasticPlastic::initializeState(ParticleSet& p) const {
+  if (!canYield()) return;
+  p.plasticStrain.assign(p.count(), 0.0);
+  p.plasticStrainRate.assign(p.count(), 0.0);
+}
+
+Mat3 RFElasticPlastic::updateStress(const Mat3& stress, const Mat3& Fold, const Mat3& Fnew,
+                                    const Mat3& L, double dt, double& ep, double& epdot) const {
+  const Mat3 I = Mat3::Identity();
+  // Unrotate the rate of deformation and the stress with R of the old F (Eqs. 26-29).
+  const Mat3 Rold = rotationOf(Fold);
+  const Mat3 D = 0.5 * (L + L.transpose());
+  const Mat3 Dbar = Rold.transpose() * D * Rold;
+  const Mat3 sigmaBar = Rold.transpose() * stress * Rold;
+
+  // Hypoelastic trial (Eqs. 31, 37-38): deviatoric and volumetric parts separately.
+  const double trD = Dbar.trace();
+  const Mat3 Ddev = Dbar - trD / 3.0 * I;
+  const double mean = sigmaBar.trace() / 3.0;
+  Mat3 s = sigmaBar - mean * I + 2.0 * G_ * dt * Ddev;
+
+  if (flow_) {
+    // Radial return to the von Mises surface (Eqs. 34-35).
+    const double sNorm = s.norm();
+    const double sqrt23 = std::sqrt(2.0 / 3.0);
+    if (std::sqrt(1.5) * sNorm > flow_->flowStress(ep)) {
+      double dgamma = 0;
+      for (int iter = 0; iter < 50; ++iter) {
+        const double e = ep + sqrt23 * dgamma;
+        const double g = sNorm - sqrt23 * flow_->flowStress(e) - 2.0 * G_ * dgamma;
+        const double dg = -2.0 / 3.0 * flow_->hardeningModulus(e) - 2.0 * G_;
+        const double step = g / dg;
+        dgamma -= step;
+        if (std::abs(step) <= 1e-15 * sNorm / G_) break;
+      }
+      dgamma = std::max(dgamma, 0.0);
+      s *= 1.0 - 2.0 * G_ * dgamma / sNorm;
+      ep += sqrt23 * dgamma;
+      epdot = sqrt23 * dgamma / dt;
+    } else {
+      epdot = 0;
+    }
+  }
+  // default_hypo equation of state: p_{n+1} = p_n + K tr(D) dt (Eq. 38, volumetric part).
+  const Mat3 sigmaBarNew = s + (mean + K_ * trD * dt) * I;
+  // Rotate back with R of the new F (Eq. 39).
+  const Mat3 Rnew = rotationOf(Fnew);
+  return Rnew * sigmaBarNew * Rnew.transpose();
+}
+
+void RFElasticPlastic::computeStressTensor(ParticleSet& p, const std::vector<Mat3>& L,
+                                           const std::vector<Mat3>& Fnew, double dt) const {
+  const long n = static_cast<long>(p.count());
+  double unused = 0, unusedRate = 0;
+#pragma omp parallel for schedule(static) firstprivate(unused, unusedRate)
+  for (long i = 0; i < n; ++i) {
+    double& ep = canYield() ? p.plasticStrain[i] : unused;
+    double& epdot = canYield() ? p.plasticStrainRate[i] : unusedRate;
+    p.stress[i] = updateStress(p.stress[i], p.F[i], Fnew[i], L[i], dt, ep, epdot);
+    p.F[i] = Fnew[i];
+  }
+}
+
+}  // namespace anode

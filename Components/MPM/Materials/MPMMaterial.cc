@@ -1,0 +1,75 @@
+#include "Components/MPM/Materials/MPMMaterial.h"
+
+#include "Core/Geometry/ParticleFill.h"
+
+namespace anode {
+
+namespace {
+
+// Adds the particles of one <geom_object> (UINTAH_UPS.md §3.1).
+void addGeomObject(const PSNode& geom, const Grid& grid, double density, GeometryPieceFactory& pieces,
+                   int64_t& nextId, ParticleSet& p) {
+  auto piece = std::make_shared<UnionPiece>();
+  for (const PSNode& c : geom.children())
+    if (GeometryPieceFactory::isPieceTag(c.name())) piece->pieces.push_back(pieces.create(c));
+  if (piece->pieces.empty()) geom.fail("<geom_object> needs a geometry piece (box, cylinder, sphere, ...)");
+
+  const PSNode resNode = geom.requireChild("res");
+  const Vec3i res = resNode.value<Vec3i>();
+  if ((res.array() < 1).any()) resNode.fail("<res> needs at least one particle per cell in each direction");
+  const Vec3 velocity = geom.require<Vec3>("velocity");
+  // Temperature, colour and volume fraction change nothing in isothermal single-field MPM;
+  // concentration matters only with diffusion.
+  for (const char* inert : {"temperature", "color", "volumeFraction", "concentration"})
+    geom.acceptInert(inert);
+  if (const PSNode levels = geom.child("numLevelsParticleFilling"))
+    if (levels.value<int>() != 1) levels.unsupported("multi-level particle filling");
+  for (const char* affine : {"affineTransformation_A0", "affineTransformation_A1",
+                             "affineTransformation_A2", "affineTransformation_b"})
+    if (const PSNode a = geom.child(affine)) a.unsupported("affine transformation of the particle lattice");
+
+  const std::vector<Vec3> xs = fillParticles(grid, *piece, res);
+  if (xs.empty()) geom.fail("<geom_object> places no particle: its pieces contain no particle position of the grid");
+  const Mat3 size = res.cast<double>().cwiseInverse().asDiagonal();
+  const double v0 = size.determinant() * grid.dx.prod();
+  for (const Vec3& x : xs) {
+    p.id.push_back(nextId++);
+    p.x.push_back(x);
+    p.velocity.push_back(velocity);
+    p.displacement.push_back(Vec3::Zero());
+    p.mass.push_back(density * v0);
+    p.volume.push_back(v0);
+    p.F.push_back(Mat3::Identity());
+    p.stress.push_back(Mat3::Zero());
+    p.size.push_back(size);
+  }
+}
+
+}  // namespace
+
+MPMMaterial MPMMaterial::fromInput(const PSNode& node, const Grid& grid, const MPMFlags& flags,
+                                   GeometryPieceFactory& pieces, int64_t& nextId) {
+  MPMMaterial m;
+  m.name = node.attribute("name").value_or("");
+  m.density = node.require<double>("density");
+  if (!(m.density > 0)) node.requireChild("density").fail("<density> must be positive");
+  for (const char* inert : {"thermal_conductivity", "specific_heat", "melt_temp", "room_temp", "C_p",
+                            "do_conc_reduction", "diffusion_model"})
+    node.acceptInert(inert);
+  if (const PSNode rigid = node.child("is_rigid"))
+    if (rigid.value<bool>()) rigid.unsupported("rigid materials <is_rigid>");
+  m.model = createConstitutiveModel(node.requireChild("constitutive_model"));
+
+  const auto geoms = node.children("geom_object");
+  if (geoms.empty()) node.fail("<material> needs at least one <geom_object>");
+  for (const PSNode& g : geoms) addGeomObject(g, grid, m.density, pieces, nextId, m.particles);
+  if (m.particles.mass.front() <= flags.minimumParticleMass)
+    node.requireChild("density").fail("particle mass " + std::to_string(m.particles.mass.front()) +
+                                       " is at or below <minimum_particle_mass> " +
+                                       std::to_string(flags.minimumParticleMass) +
+                                       " (Uintah deletes such particles)");
+  m.model->initializeState(m.particles);
+  return m;
+}
+
+}  // namespace anode

@@ -1,0 +1,28 @@
+// Particle state of one material, stored as structure-of-arrays. Plasticity arrays exist only for
+// materials that can yield.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "Core/Math/Types.h"
+
+namespace anode {
+
+struct ParticleSet {
+  std::vector<int64_t> id;           // p.particleID, stable for the run
+  std::vector<Vec3> x;               // p.x
+  std::vector<Vec3> velocity;        // p.velocity
+  std::vector<Vec3> displacement;    // p.displacement
+  std::vector<double> mass;          // p.mass (constant)
+  std::vector<double> volume;        // p.volume = mass/rho0 * det F
+  std::vector<Mat3> F;               // p.deformationMeasure
+  std::vector<Mat3> stress;          // p.stress (Cauchy, lab frame)
+  std::vector<Mat3> size;            // p.size: reference domain edge vectors in grid-cell units
+  std::vector<double> plasticStrain;      // p.plasticStrain (yielding materials only)
+  std::vector<double> plasticStrainRate;  // p.plasticStrainRate (yielding materials only)
+
+  size_t count() const { return x.size(); }
+};
+
+}  // namespace anode

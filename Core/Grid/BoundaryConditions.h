@@ -1,0 +1,25 @@
+// Grid-face boundary conditions of <Grid><BoundaryConditions> (UINTAH_UPS.md §2.10).
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include "Core/Math/Types.h"
+#include "Core/ProblemSpec/ProblemSpec.h"
+
+namespace anode {
+
+struct FaceBC {
+  int axis = 0;       // 0, 1, 2 for x, y, z
+  int side = 0;       // 0 for the minus face, 1 for the plus face
+  int material = -1;  // -1 for id="all"
+  enum class Kind { Symmetric, VelocityDirichlet } kind = Kind::Symmetric;
+  Vec3 velocity = Vec3::Zero();
+
+  bool appliesTo(int matl) const { return material < 0 || material == matl; }
+};
+
+// Reads every <Face>; `numMaterials` bounds the id attribute.
+std::vector<FaceBC> readFaceBCs(const PSNode& gridNode, int numMaterials);
+
+}  // namespace anode

@@ -1,0 +1,16 @@
+// Polar decomposition F = R U (paper Eq. 26): R proper orthogonal, U symmetric positive definite.
+#pragma once
+
+#include "Core/Math/Types.h"
+
+namespace anode {
+
+// Requires det F > 0. Scaled Newton iteration (Higham 1986), converged to round-off.
+Mat3 rotationOf(const Mat3& F);
+
+struct PolarDecomposition {
+  Mat3 R, U;
+};
+PolarDecomposition polarDecompose(const Mat3& F);
+
+}  // namespace anode

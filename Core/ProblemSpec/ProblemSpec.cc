@@ -1,0 +1,275 @@
+#include "Core/ProblemSpec/ProblemSpec.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cstdlib>
+#include <fstream>
+#include <functional>
+#include <sstream>
+#include <stdexcept>
+
+namespace anode {
+
+namespace {
+
+std::string trim(const std::string& s) {
+  const auto first = s.find_first_not_of(" \t\r\n");
+  if (first == std::string::npos) return "";
+  const auto last = s.find_last_not_of(" \t\r\n");
+  return s.substr(first, last - first + 1);
+}
+
+double parseDouble(const std::string& raw) {
+  const std::string s = trim(raw);
+  if (s.empty()) throw std::invalid_argument("expected a number, found nothing");
+  char* end = nullptr;
+  const double v = std::strtod(s.c_str(), &end);
+  if (end != s.c_str() + s.size()) throw std::invalid_argument("expected a number, found '" + s + "'");
+  return v;
+}
+
+int parseInt(const std::string& raw) {
+  const std::string s = trim(raw);
+  if (s.empty()) throw std::invalid_argument("expected an integer, found nothing");
+  char* end = nullptr;
+  const long v = std::strtol(s.c_str(), &end, 10);
+  if (end != s.c_str() + s.size()) throw std::invalid_argument("expected an integer, found '" + s + "'");
+  if (v < -2147483647L || v > 2147483647L) throw std::invalid_argument("integer out of range: " + s);
+  return static_cast<int>(v);
+}
+
+// "[a, b, ...]" -> its fields.
+std::vector<std::string> splitList(const std::string& raw) {
+  const std::string s = trim(raw);
+  if (s.size() < 2 || s.front() != '[' || s.back() != ']')
+    throw std::invalid_argument("expected a list [a, b, ...], found '" + s + "'");
+  std::vector<std::string> fields;
+  std::stringstream in(s.substr(1, s.size() - 2));
+  std::string field;
+  while (std::getline(in, field, ',')) fields.push_back(field);
+  return fields;
+}
+
+// "[a, b, c]" -> three fields.
+std::vector<std::string> splitVector(const std::string& raw) {
+  const std::string s = trim(raw);
+  const auto fields = splitList(s);
+  if (fields.size() != 3)
+    throw std::invalid_argument("expected a vector of 3 components [a, b, c], found '" + s + "'");
+  return fields;
+}
+
+}  // namespace
+
+template <>
+double parseValue<double>(const std::string& text) {
+  return parseDouble(text);
+}
+template <>
+int parseValue<int>(const std::string& text) {
+  return parseInt(text);
+}
+template <>
+std::string parseValue<std::string>(const std::string& text) {
+  return trim(text);
+}
+template <>
+bool parseValue<bool>(const std::string& text) {
+  std::string s = trim(text);
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
+  if (s == "true") return true;
+  if (s == "false") return false;
+  throw std::invalid_argument("expected true or false, found '" + trim(text) + "'");
+}
+template <>
+Vec3 parseValue<Vec3>(const std::string& text) {
+  const auto f = splitVector(text);
+  return Vec3(parseDouble(f[0]), parseDouble(f[1]), parseDouble(f[2]));
+}
+template <>
+Vec3i parseValue<Vec3i>(const std::string& text) {
+  const auto f = splitVector(text);
+  return Vec3i(parseInt(f[0]), parseInt(f[1]), parseInt(f[2]));
+}
+
+template <>
+std::vector<int> parseValue<std::vector<int>>(const std::string& text) {
+  std::vector<int> out;
+  for (const auto& f : splitList(text)) out.push_back(parseInt(f));
+  return out;
+}
+
+// ---- PSNode ----
+
+std::string PSNode::name() const { return e_ ? e_->Name() : ""; }
+int PSNode::line() const { return e_ ? e_->GetLineNum() : 0; }
+const std::string& PSNode::file() const { return spec_->file(); }
+
+PSNode PSNode::child(const char* tag) const {
+  const tinyxml2::XMLElement* c = e_->FirstChildElement(tag);
+  if (c) spec_->markUsed(c);
+  return PSNode(c, spec_);
+}
+
+PSNode PSNode::requireChild(const char* tag) const {
+  PSNode c = child(tag);
+  if (!c) fail("<" + name() + "> requires a <" + std::string(tag) + "> tag");
+  return c;
+}
+
+std::vector<PSNode> PSNode::children(const char* tag) const {
+  std::vector<PSNode> out;
+  for (const auto* c = e_->FirstChildElement(tag); c; c = c->NextSiblingElement(tag)) {
+    spec_->markUsed(c);
+    out.emplace_back(c, spec_);
+  }
+  return out;
+}
+
+std::string PSNode::text() const {
+  // Concatenate all text children: comments may sit between pieces of a value.
+  std::string s;
+  for (const auto* n = e_->FirstChild(); n; n = n->NextSibling())
+    if (const auto* t = n->ToText()) s += t->Value();
+  return s;
+}
+
+template <class T>
+T PSNode::value() const {
+  try {
+    return parseValue<T>(text());
+  } catch (const std::invalid_argument& err) {
+    fail("<" + name() + ">: " + err.what());
+  }
+}
+
+template <class T>
+std::optional<T> PSNode::find(const char* tag) const {
+  const PSNode c = child(tag);
+  if (!c) return std::nullopt;
+  return c.value<T>();
+}
+
+template <class T>
+T PSNode::require(const char* tag) const {
+  return requireChild(tag).value<T>();
+}
+
+template <class T>
+T PSNode::get(const char* tag, const T& fallback) const {
+  return find<T>(tag).value_or(fallback);
+}
+
+std::optional<std::string> PSNode::attribute(const char* attr) const {
+  const char* v = e_->Attribute(attr);
+  if (!v) return std::nullopt;
+  return trim(v);
+}
+
+std::string PSNode::requireAttribute(const char* attr) const {
+  auto v = attribute(attr);
+  if (!v) fail("<" + name() + "> requires the attribute " + attr + "=\"...\"");
+  return *v;
+}
+
+void PSNode::acceptInert(const char* tag) const {
+  for (const auto& c : children(tag)) c.markSubtreeUsed();
+}
+
+void PSNode::markSubtreeUsed() const {
+  std::function<void(const tinyxml2::XMLElement*)> mark = [&](const tinyxml2::XMLElement* e) {
+    spec_->markUsed(e);
+    for (const auto* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) mark(c);
+  };
+  mark(e_);
+}
+
+void PSNode::fail(const std::string& message) const { throw InputError(file(), line(), message); }
+
+void PSNode::unsupported(const std::string& message) const {
+  if (!spec_->ignoreUnsupported())
+    fail(message + " (not supported; --ignore-unsupported runs without it)");
+  spec_->warn(file() + ":" + std::to_string(line()) + ": " + message +
+              " (not supported; ignored because of --ignore-unsupported)");
+}
+
+template double PSNode::value<double>() const;
+template int PSNode::value<int>() const;
+template bool PSNode::value<bool>() const;
+template std::string PSNode::value<std::string>() const;
+template Vec3 PSNode::value<Vec3>() const;
+template Vec3i PSNode::value<Vec3i>() const;
+template std::vector<int> PSNode::value<std::vector<int>>() const;
+#define ANODE_INSTANTIATE(T)                                                \
+  template T PSNode::require<T>(const char*) const;                         \
+  template T PSNode::get<T>(const char*, const T&) const;                   \
+  template std::optional<T> PSNode::find<T>(const char*) const;
+ANODE_INSTANTIATE(double)
+ANODE_INSTANTIATE(int)
+ANODE_INSTANTIATE(bool)
+ANODE_INSTANTIATE(std::string)
+ANODE_INSTANTIATE(Vec3)
+ANODE_INSTANTIATE(Vec3i)
+ANODE_INSTANTIATE(std::vector<int>)
+#undef ANODE_INSTANTIATE
+
+// ---- ProblemSpec ----
+
+ProblemSpec::ProblemSpec(const std::string& name, bool ignoreUnsupported, int)
+    : file_(name), ignoreUnsupported_(ignoreUnsupported) {}
+
+ProblemSpec::ProblemSpec(const std::string& file, bool ignoreUnsupported)
+    : ProblemSpec(file, ignoreUnsupported, 0) {
+  std::ifstream probe(file);
+  if (!probe) throw InputError(file, 0, "cannot open the input file");
+  parse(doc_.LoadFile(file.c_str()));
+}
+
+std::unique_ptr<ProblemSpec> ProblemSpec::fromText(const std::string& text, const std::string& name,
+                                                   bool ignoreUnsupported) {
+  std::unique_ptr<ProblemSpec> spec(new ProblemSpec(name, ignoreUnsupported, 0));
+  spec->parse(spec->doc_.Parse(text.c_str(), text.size()));
+  return spec;
+}
+
+void ProblemSpec::parse(tinyxml2::XMLError status) {
+  if (status != tinyxml2::XML_SUCCESS) {
+    const char* what = doc_.ErrorStr();
+    throw InputError(file_, doc_.ErrorLineNum(),
+                     std::string("malformed XML: ") + (what ? what : "parse error"));
+  }
+  const auto* r = doc_.RootElement();
+  if (!r) throw InputError(file_, 1, "the input holds no XML element");
+  if (std::string(r->Name()) != "Uintah_specification")
+    throw InputError(file_, r->GetLineNum(),
+                     "the root element must be <Uintah_specification>, found <" +
+                         std::string(r->Name()) + ">");
+}
+
+PSNode ProblemSpec::root() {
+  auto* r = doc_.RootElement();
+  markUsed(r);
+  return PSNode(r, this);
+}
+
+void ProblemSpec::checkAllUsed() const {
+  std::vector<std::pair<int, std::string>> unknown;
+  std::function<void(const tinyxml2::XMLElement*, const std::string&)> walk =
+      [&](const tinyxml2::XMLElement* e, const std::string& parent) {
+        if (!used_.count(e)) {
+          unknown.emplace_back(e->GetLineNum(),
+                               "unknown tag <" + std::string(e->Name()) + "> in <" + parent + ">");
+          return;  // its children are unknown by extension
+        }
+        for (const auto* c = e->FirstChildElement(); c; c = c->NextSiblingElement())
+          walk(c, e->Name());
+      };
+  walk(doc_.RootElement(), "");
+  if (unknown.empty()) return;
+  std::string message = unknown.front().second;
+  for (size_t i = 1; i < unknown.size(); ++i)
+    message += "\n" + file_ + ":" + std::to_string(unknown[i].first) + ": " + unknown[i].second;
+  throw InputError(file_, unknown.front().first, message);
+}
+
+}  // namespace anode

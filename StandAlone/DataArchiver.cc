@@ -1,0 +1,105 @@
+#include "StandAlone/DataArchiver.h"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iomanip>
+#include <sstream>
+
+#include "Core/Util/AtomicFile.h"
+#include "StandAlone/OutputLabels.h"
+
+namespace fs = std::filesystem;
+
+namespace anode {
+
+DataArchiver DataArchiver::fromInput(const PSNode& a) {
+  DataArchiver d;
+  d.filebase_ = a.get<std::string>("filebase", "output.uda");
+  if (d.filebase_.empty()) a.requireChild("filebase").fail("<filebase> is empty");
+  const PSNode interval = a.child("outputInterval");
+  const PSNode steps = a.child("outputTimestepInterval");
+  if (interval && steps) steps.fail("give <outputInterval> or <outputTimestepInterval>, not both");
+  if (!interval && !steps) a.fail("<DataArchiver> needs <outputInterval> or <outputTimestepInterval>");
+  if (interval) {
+    d.interval_ = interval.value<double>();
+    if (!(*d.interval_ > 0)) interval.fail("<outputInterval> must be positive");
+  } else {
+    d.stepInterval_ = steps.value<int>();
+    if (d.stepInterval_ < 1) steps.fail("<outputTimestepInterval> must be >= 1");
+  }
+  for (const char* inert : {"outputInitTimestep", "outputLastTimestep", "compression", "checkpoint", "outputDoubleAsFloat"})
+    a.acceptInert(inert);  // the first and last steps are always written; files are always compressed
+  for (const PSNode& save : a.children("save")) {
+    const std::string label = save.requireAttribute("label");
+    switch (classifyLabel(label)) {
+      case LabelStatus::Particle:
+        if (label != "p.x") d.particleLabels_.push_back(label);
+        break;
+      case LabelStatus::Grid:
+        d.gridLabels_.push_back(label);
+        break;
+      case LabelStatus::Unsupported:
+        save.unsupported("<save label=\"" + label + "\">: a quantity of a feature this code lacks");
+        break;
+      case LabelStatus::Unknown:
+        save.fail("<save label=\"" + label + "\">: unknown label");
+    }
+  }
+  return d;
+}
+
+std::string chooseOutputDirectory(const std::string& requested, const std::string& filebase) {
+  if (!requested.empty()) return requested;
+  if (!fs::exists(filebase)) return filebase;
+  for (int v = 0; v < 1000; ++v) {
+    std::ostringstream name;
+    name << filebase << "." << std::setw(3) << std::setfill('0') << v;
+    if (!fs::exists(name.str())) return name.str();
+  }
+  throw std::runtime_error("no free output directory name for " + filebase);
+}
+
+void DataArchiver::open(const std::string& dir, const std::string& inputFile) {
+  dir_ = dir;
+  fs::create_directories(fs::path(dir_) / "particles");
+  if (wantsGrid()) fs::create_directories(fs::path(dir_) / "grid");
+  writeAtomically((fs::path(dir_) / "input.ups").string(), [&](const std::string& tmp) {
+    fs::copy_file(inputFile, tmp, fs::copy_options::overwrite_existing);
+  });
+}
+
+bool DataArchiver::isOutputStep(long step, double time) const {
+  if (stepInterval_ > 0) return step % stepInterval_ == 0;
+  // The first step at or after each multiple of the interval (Uintah, UINTAH_UPS.md P21).
+  const double next = (std::floor(lastOutputTime_ / *interval_ + 1e-9) + 1) * *interval_;
+  return time >= next * (1 - 1e-12);
+}
+
+void DataArchiver::writeOutput(long step, double time, const MPM& mpm) {
+  std::ostringstream name;
+  name << "step_" << std::setw(6) << std::setfill('0') << step;
+  const std::string particleFile = "particles/" + name.str() + ".vtu";
+  writeParticlesVTU((fs::path(dir_) / particleFile).string(), gatherParticles(mpm, particleLabels_));
+  particleSeries_.add(time, particleFile);
+  particleSeries_.write((fs::path(dir_) / "particles.pvd").string());
+  if (wantsGrid()) {
+    const std::string gridFile = "grid/" + name.str() + ".vti";
+    writeGridVTI((fs::path(dir_) / gridFile).string(), gatherGrid(mpm, gridLabels_));
+    gridSeries_.add(time, gridFile);
+    gridSeries_.write((fs::path(dir_) / "grid.pvd").string());
+  }
+  lastOutputTime_ = time;
+  writeHistory();
+}
+
+void DataArchiver::writeHistory() const {
+  std::ostringstream s;
+  s << "step,time,dt,kinetic_energy,min_J,max_J,wall_seconds\n" << std::setprecision(10);
+  for (const HistoryRow& r : history_)
+    s << r.step << ',' << r.time << ',' << r.dt << ',' << r.kineticEnergy << ',' << r.minJ << ','
+      << r.maxJ << ',' << r.wallSeconds << '\n';
+  writeFileAtomically((fs::path(dir_) / "history.csv").string(), s.str());
+}
+
+}  // namespace anode

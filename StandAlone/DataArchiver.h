@@ -1,0 +1,53 @@
+// <DataArchiver> (UINTAH_UPS.md §2.3, DESIGN.md §6): what is saved, when, and where.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "Components/MPM/MPM.h"
+#include "vis/VTKWriters.h"
+
+namespace anode {
+
+struct HistoryRow {
+  long step;
+  double time, dt, kineticEnergy, minJ, maxJ, wallSeconds;
+};
+
+class DataArchiver {
+ public:
+  // Reads the block and checks every saved label against what the run computes.
+  static DataArchiver fromInput(const PSNode& archiver);
+
+  const std::string& filebase() const { return filebase_; }
+  bool wantsGrid() const { return !gridLabels_.empty(); }
+
+  // Creates the output directory and copies the input into it.
+  void open(const std::string& dir, const std::string& inputFile);
+  const std::string& directory() const { return dir_; }
+
+  // True if the step that ended at `time` (number `step`) is an output step.
+  bool isOutputStep(long step, double time) const;
+  // Writes particles (and grid, if asked) for this state and records it in the .pvd series.
+  void writeOutput(long step, double time, const MPM& mpm);
+  void recordHistory(const HistoryRow& row) { history_.push_back(row); }
+  void writeHistory() const;
+  int outputsWritten() const { return static_cast<int>(particleSeries_.entries().size()); }
+
+ private:
+  std::string filebase_;
+  std::optional<double> interval_;
+  long stepInterval_ = 0;
+  std::vector<std::string> particleLabels_, gridLabels_;
+  std::string dir_;
+  double lastOutputTime_ = 0;
+  PVDSeries particleSeries_, gridSeries_;
+  std::vector<HistoryRow> history_;
+};
+
+// Chooses the output directory: `requested` if given, else the filebase, versioned .000, .001, ...
+// when it already exists.
+std::string chooseOutputDirectory(const std::string& requested, const std::string& filebase);
+
+}  // namespace anode

@@ -1,0 +1,148 @@
+#include "StandAlone/OutputLabels.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <map>
+
+namespace anode {
+
+namespace {
+
+using ParticleGetter = std::function<void(const MPMMaterial&, const Grid&, size_t, double*)>;
+struct ParticleLabel {
+  int components;
+  ParticleGetter get;
+};
+
+void putVec(const Vec3& v, double* out) {
+  for (int d = 0; d < 3; ++d) out[d] = v[d];
+}
+
+void putMat(const Mat3& m, double* out) {
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) out[3 * r + c] = m(r, c);
+}
+
+const std::map<std::string, ParticleLabel>& particleLabels() {
+  static const std::map<std::string, ParticleLabel> labels = {
+      {"p.mass", {1, [](const MPMMaterial& m, const Grid&, size_t i, double* o) { o[0] = m.particles.mass[i]; }}},
+      {"p.volume", {1, [](const MPMMaterial& m, const Grid&, size_t i, double* o) { o[0] = m.particles.volume[i]; }}},
+      {"p.velocity", {3, [](const MPMMaterial& m, const Grid&, size_t i, double* o) {
+         putVec(m.particles.velocity[i], o); }}},
+      {"p.displacement", {3, [](const MPMMaterial& m, const Grid&, size_t i, double* o) {
+         putVec(m.particles.displacement[i], o); }}},
+      {"p.stress", {9, [](const MPMMaterial& m, const Grid&, size_t i, double* o) { putMat(m.particles.stress[i], o); }}},
+      {"p.deformationMeasure", {9, [](const MPMMaterial& m, const Grid&, size_t i, double* o) {
+         putMat(m.particles.F[i], o); }}},
+      // Current physical particle domain F*size*diag(dx), computed only when written.
+      {"p.scalefactor", {9, [](const MPMMaterial& m, const Grid& g, size_t i, double* o) {
+         putMat(m.particles.F[i] * m.particles.size[i] * g.dx.asDiagonal().toDenseMatrix(), o); }}},
+      {"p.size", {9, [](const MPMMaterial& m, const Grid&, size_t i, double* o) { putMat(m.particles.size[i], o); }}},
+      // No external mechanical loads exist in this code: the external force is zero.
+      {"p.externalforce", {3, [](const MPMMaterial&, const Grid&, size_t, double* o) { o[0] = o[1] = o[2] = 0; }}},
+      {"p.plasticStrain", {1, [](const MPMMaterial& m, const Grid&, size_t i, double* o) {
+         o[0] = m.particles.plasticStrain.empty() ? 0.0 : m.particles.plasticStrain[i]; }}},
+      {"p.plasticStrainRate", {1, [](const MPMMaterial& m, const Grid&, size_t i, double* o) {
+         o[0] = m.particles.plasticStrainRate.empty() ? 0.0 : m.particles.plasticStrainRate[i]; }}},
+      // Removed Uintah label kept as an alias: the von Mises equivalent stress.
+      {"p.equivalentStress_t1", {1, [](const MPMMaterial& m, const Grid&, size_t i, double* o) {
+         const Mat3& s = m.particles.stress[i];
+         const Mat3 dev = s - s.trace() / 3.0 * Mat3::Identity();
+         o[0] = std::sqrt(1.5) * dev.norm(); }}},
+  };
+  return labels;
+}
+
+const std::vector<std::string>& gridLabelNames() {
+  static const std::vector<std::string> names = {"g.mass", "g.velocity", "g.velocity_star",
+                                                 "g.acceleration", "g.internalforce"};
+  return names;
+}
+
+// Labels of Uintah features this code does not have yet (diffusion, splitting, ...).
+const std::vector<std::string>& unsupportedLabels() {
+  static const std::vector<std::string> names = {
+      "p.concentration", "p.area", "p.diffusivity", "p.externalScalarFlux", "p.externalscalarflux",
+      "p.concentrationGradient", "p.concPrevious", "p.flux", "p.loadCurveID", "p.refinedMPM",
+      "p.concentrationInterp", "p.pressure_t1", "p.energy", "g.concentration", "g.concentrationRate",
+      "g.concentrationStar", "g.externalscalarflux", "g.concentrationnobc", "g.hydrostaticStressRD"};
+  return names;
+}
+
+bool contains(const std::vector<std::string>& v, const std::string& s) {
+  return std::find(v.begin(), v.end(), s) != v.end();
+}
+
+}  // namespace
+
+LabelStatus classifyLabel(const std::string& label) {
+  if (label == "p.x" || label == "p.particleID" || particleLabels().count(label)) return LabelStatus::Particle;
+  if (contains(gridLabelNames(), label)) return LabelStatus::Grid;
+  if (contains(unsupportedLabels(), label)) return LabelStatus::Unsupported;
+  return LabelStatus::Unknown;
+}
+
+ParticleData gatherParticles(const MPM& mpm, const std::vector<std::string>& labels) {
+  ParticleData out;
+  const size_t n = mpm.numParticles();
+  out.points.reserve(3 * n);
+  NamedArray material{"material", 1, {}, {}};
+  NamedArray ids{"p.particleID", 1, {}, {}};
+  const bool wantIds = contains(labels, "p.particleID");
+  for (size_t m = 0; m < mpm.materials().size(); ++m) {
+    const ParticleSet& p = mpm.materials()[m].particles;
+    for (size_t i = 0; i < p.count(); ++i) {
+      out.points.insert(out.points.end(), p.x[i].data(), p.x[i].data() + 3);
+      material.integer.push_back(static_cast<int64_t>(m));
+      if (wantIds) ids.integer.push_back(p.id[i]);
+    }
+  }
+  out.arrays.push_back(std::move(material));
+  if (wantIds) out.arrays.push_back(std::move(ids));
+  for (const std::string& label : labels) {
+    auto it = particleLabels().find(label);
+    if (it == particleLabels().end()) continue;
+    NamedArray a{label, it->second.components, std::vector<double>(n * it->second.components), {}};
+    size_t offset = 0;
+    for (const MPMMaterial& mat : mpm.materials()) {
+      for (size_t i = 0; i < mat.particles.count(); ++i)
+        it->second.get(mat, mpm.grid(), i, &a.real[(offset + i) * a.components]);
+      offset += mat.particles.count();
+    }
+    out.arrays.push_back(std::move(a));
+  }
+  return out;
+}
+
+GridData gatherGrid(const MPM& mpm, const std::vector<std::string>& labels) {
+  const Grid& g = mpm.grid();
+  GridData out;
+  const Vec3 origin = g.nodePosition(-g.extra.x(), -g.extra.y(), -g.extra.z());
+  for (int d = 0; d < 3; ++d) {
+    out.origin[d] = origin[d];
+    out.spacing[d] = g.dx[d];
+    out.dims[d] = g.nodes()[d];
+  }
+  const size_t nodes = g.numNodes();
+  const size_t nm = mpm.gridFields().size();
+  for (const std::string& label : labels)
+    for (size_t m = 0; m < nm; ++m) {
+      const GridFields& f = mpm.gridFields()[m];
+      const std::string name = nm > 1 ? label + "_m" + std::to_string(m) : label;
+      if (label == "g.mass") {
+        out.arrays.push_back({name, 1, f.mass, {}});
+        continue;
+      }
+      const std::vector<Vec3>& v = label == "g.velocity"        ? f.velocity
+                                   : label == "g.velocity_star" ? f.velocityStar
+                                   : label == "g.acceleration"  ? f.acceleration
+                                                                : f.internalForce;
+      NamedArray a{name, 3, std::vector<double>(3 * nodes), {}};
+      for (size_t k = 0; k < nodes; ++k) putVec(v[k], &a.real[3 * k]);
+      out.arrays.push_back(std::move(a));
+    }
+  return out;
+}
+
+}  // namespace anode

@@ -1,0 +1,22 @@
+// The Uintah labels this code can save, and how each is gathered from the MPM state.
+#pragma once
+
+#include <string>
+
+#include "Components/MPM/MPM.h"
+#include "vis/PointData.h"
+
+namespace anode {
+
+enum class LabelStatus { Particle, Grid, Unsupported, Unknown };
+
+// Whether `label` names a particle or grid quantity this code writes, a known Uintah quantity of
+// a feature this code lacks, or nothing known.
+LabelStatus classifyLabel(const std::string& label);
+
+// Gathers the saved particle labels (plus the material index) over all materials.
+ParticleData gatherParticles(const MPM& mpm, const std::vector<std::string>& labels);
+// Gathers the saved grid labels, one array per material (suffix _m<index> when several).
+GridData gatherGrid(const MPM& mpm, const std::vector<std::string>& labels);
+
+}  // namespace anode

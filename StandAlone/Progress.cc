@@ -1,0 +1,63 @@
+#include "StandAlone/Progress.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <string>
+
+namespace anode {
+
+namespace {
+
+std::string duration(double s) {
+  char buf[64];
+  if (s < 0 || s > 1e8) return "?";
+  if (s < 60)
+    std::snprintf(buf, sizeof buf, "%.0fs", s);
+  else if (s < 3600)
+    std::snprintf(buf, sizeof buf, "%dm%02ds", int(s) / 60, int(s) % 60);
+  else
+    std::snprintf(buf, sizeof buf, "%dh%02dm", int(s) / 3600, (int(s) % 3600) / 60);
+  return buf;
+}
+
+}  // namespace
+
+ProgressReporter::ProgressReporter(double initTime, double maxTime, long maxSteps)
+    : initTime_(initTime),
+      maxTime_(maxTime),
+      maxSteps_(maxSteps),
+      terminal_(::isatty(STDERR_FILENO)),
+      start_(std::chrono::steady_clock::now()),
+      last_(start_) {}
+
+void ProgressReporter::update(long step, double time, double dt, double particleSteps, bool force) {
+  const auto now = std::chrono::steady_clock::now();
+  const double sinceLast = std::chrono::duration<double>(now - last_).count();
+  if (!force && sinceLast < (terminal_ ? 0.25 : 10.0)) return;
+  last_ = now;
+  const double elapsed = std::chrono::duration<double>(now - start_).count();
+  // Fraction done: by simulated time, or by steps when a step limit comes first.
+  double done = (time - initTime_) / (maxTime_ - initTime_);
+  if (maxSteps_ > 0) done = std::max(done, double(step) / maxSteps_);
+  done = std::min(done, 1.0);
+  const double eta = done > 0 ? elapsed * (1 - done) / done : -1;
+  char line[256];
+  std::snprintf(line, sizeof line, "step %ld  t = %.4e / %.4e  dt = %.3e  %.3e particle-steps/s  ETA %s",
+                step, time, maxTime_, dt, elapsed > 0 ? particleSteps / elapsed : 0.0,
+                duration(eta).c_str());
+  if (terminal_) {
+    std::fprintf(stderr, "\r%-100s", line);
+    pending_ = true;
+  } else {
+    std::fprintf(stderr, "%s\n", line);
+  }
+  std::fflush(stderr);
+}
+
+void ProgressReporter::finish() {
+  if (pending_) std::fprintf(stderr, "\n");
+  pending_ = false;
+}
+
+}  // namespace anode

@@ -1,0 +1,55 @@
+// A run of one input: setup (all validation, before any output), then the time loop.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "Components/MPM/MPM.h"
+#include "StandAlone/DataArchiver.h"
+#include "StandAlone/TimeControl.h"
+
+namespace anode {
+
+struct RunOptions {
+  std::string input;
+  std::string outputDir;        // empty: from <filebase>
+  long maxTimesteps = 0;        // 0: as the input says
+  bool ignoreUnsupported = false;
+  bool progress = true;
+};
+
+class Simulation {
+ public:
+  // Reads and validates the whole input; throws InputError. Writes nothing.
+  explicit Simulation(const RunOptions& options);
+  // Same, from text held in memory (tests, studies); `name` stands for the file in messages.
+  Simulation(const std::string& text, const std::string& name, const RunOptions& options);
+
+  // Runs to the end, writing output; throws SimulationError if the state goes bad.
+  void run();
+  // One step without output (tests and studies).
+  void advance();
+
+  MPM& mpm() { return mpm_; }
+  const TimeControl& timeControl() const { return time_; }
+  const DataArchiver& archiver() const { return archiver_; }
+  double time() const { return t_; }
+  long step() const { return step_; }
+  double dt() const { return dt_; }
+  const std::vector<std::string>& warnings() const { return spec_->warnings(); }
+  void printTimings() const;
+
+ private:
+  void setup();
+
+  RunOptions options_;
+  std::unique_ptr<ProblemSpec> spec_;
+  MPM mpm_;
+  TimeControl time_;
+  DataArchiver archiver_;
+  double t_ = 0, dt_ = 0;
+  long step_ = 0;
+  double particleSteps_ = 0, wallSeconds_ = 0;
+};
+
+}  // namespace anode

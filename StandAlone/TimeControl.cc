@@ -1,0 +1,47 @@
+#include "StandAlone/TimeControl.h"
+
+#include <algorithm>
+
+namespace anode {
+
+TimeControl TimeControl::fromInput(const PSNode& time) {
+  TimeControl tc;
+  tc.initTime = time.require<double>("initTime");
+  tc.maxTime = time.require<double>("maxTime");
+  if (!(tc.maxTime > tc.initTime)) time.requireChild("maxTime").fail("<maxTime> must exceed <initTime>");
+  tc.deltMin = time.require<double>("delt_min");
+  tc.deltMax = time.require<double>("delt_max");
+  if (tc.deltMin < 0) time.requireChild("delt_min").fail("<delt_min> must be >= 0");
+  if (!(tc.deltMax > 0)) time.requireChild("delt_max").fail("<delt_max> must be positive");
+  if (tc.deltMin > tc.deltMax) time.requireChild("delt_min").fail("<delt_min> exceeds <delt_max>");
+  tc.multiplier = time.require<double>("timestep_multiplier");
+  if (!(tc.multiplier > 0))
+    time.requireChild("timestep_multiplier").fail("<timestep_multiplier> must be positive");
+  tc.maxTimesteps = time.get<int>("max_Timesteps", 0);
+  if (tc.maxTimesteps < 0) time.requireChild("max_Timesteps").fail("<max_Timesteps> must be >= 0");
+  tc.maxDeltIncrease = time.get<double>("max_delt_increase", 0.0);
+  if (tc.maxDeltIncrease < 0) time.requireChild("max_delt_increase").fail("<max_delt_increase> must be >= 0");
+  if (const PSNode init = time.child("delt_init")) {
+    tc.deltInit = init.value<double>();
+    if (!(*tc.deltInit > 0)) init.fail("<delt_init> must be positive");
+  }
+  tc.initialDeltRange = time.get<double>("initial_delt_range", 0.0);
+  tc.endAtMaxTimeExactly = time.get<bool>("end_at_max_time_exactly", false);
+  tc.maxWallTime = time.get<double>("max_wall_time", 0.0);
+  if (const PSNode clamp = time.child("clamp_time_to_output"))
+    if (clamp.value<bool>()) clamp.unsupported("<clamp_time_to_output>true");
+  time.acceptInert("override_restart_delt");  // no restarts yet
+  return tc;
+}
+
+double TimeControl::nextTimestep(double stableDt, double previousDt, double t) const {
+  double dt = multiplier * stableDt;
+  if (maxDeltIncrease > 0 && previousDt > 0) dt = std::min(dt, (1 + maxDeltIncrease) * previousDt);
+  dt = std::max(dt, deltMin);
+  dt = std::min(dt, deltMax);
+  if (deltInit && t <= initTime + initialDeltRange) dt = std::min(dt, *deltInit);
+  if (endAtMaxTimeExactly && t + dt > maxTime) dt = maxTime - t;
+  return dt;
+}
+
+}  // namespace anode
