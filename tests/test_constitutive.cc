@@ -1,0 +1,136 @@
+// Pins rf_elastic_plastic: polar decomposition, radial return against the closed-form uniaxial
+// strain response (perfect plasticity and linear hardening), and objectivity under rotation.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "Components/MPM/Materials/ConstitutiveModels/RFElasticPlastic.h"
+#include "Core/Math/PolarDecomposition.h"
+
+namespace anode {
+namespace {
+
+TEST(PolarDecomposition, RecoversRotationAndSymmetricStretch) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-1, 1);
+  int tested = 0;
+  while (tested < 200) {
+    Mat3 F = Mat3::Identity();
+    for (int i = 0; i < 9; ++i) F(i / 3, i % 3) += 0.8 * u(rng);
+    if (F.determinant() < 0.05) continue;
+    ++tested;
+    const PolarDecomposition pd = polarDecompose(F);
+    EXPECT_LT((pd.R * pd.R.transpose() - Mat3::Identity()).norm(), 1e-13);
+    EXPECT_NEAR(pd.R.determinant(), 1.0, 1e-13);
+    EXPECT_LT((pd.U - pd.U.transpose()).norm(), 1e-14 * pd.U.norm());
+    EXPECT_GT(Eigen::SelfAdjointEigenSolver<Mat3>(pd.U).eigenvalues().minCoeff(), 0.0);
+    EXPECT_LT((pd.R * pd.U - F).norm(), 1e-13 * F.norm());
+  }
+}
+
+TEST(PolarDecomposition, KnownRotationTimesStretch) {
+  const Mat3 R = Eigen::AngleAxisd(1.1, Vec3(0.2, -1, 0.5).normalized()).toRotationMatrix();
+  Mat3 U;
+  U << 2.0, 0.3, 0.1, 0.3, 0.5, -0.2, 0.1, -0.2, 1.4;
+  const PolarDecomposition pd = polarDecompose(R * U);
+  EXPECT_LT((pd.R - R).norm(), 1e-13);
+  EXPECT_LT((pd.U - U).norm(), 1e-13);
+}
+
+struct UniaxialResult {
+  double sxx, syy, ep;
+};
+
+// Drives uniaxial strain to logarithmic strain e in n increments; D dt sums exactly to e.
+UniaxialResult uniaxialStrain(const RFElasticPlastic& model, double e, int n) {
+  Mat3 stress = Mat3::Zero(), F = Mat3::Identity();
+  double ep = 0, epdot = 0;
+  const double dt = 1e-3;
+  for (int i = 0; i < n; ++i) {
+    Mat3 Fnew = F;
+    Fnew(0, 0) = std::exp(e * (i + 1) / n);
+    Mat3 L = Mat3::Zero();
+    L(0, 0) = std::log(Fnew(0, 0) / F(0, 0)) / dt;
+    stress = model.updateStress(stress, F, Fnew, L, dt, ep, epdot);
+    F = Fnew;
+  }
+  return {stress(0, 0), stress(1, 1), ep};
+}
+
+const double K = 67e3, G = 31e3, sigmaY = 1.4e3, H = 1.15e3;  // the paper's values, MPa
+
+TEST(RadialReturn, ElasticUniaxialStrain) {
+  const RFElasticPlastic model(K, G, std::nullopt);
+  const double e = 0.02;
+  const UniaxialResult r = uniaxialStrain(model, e, 400);
+  EXPECT_NEAR(r.sxx, (K + 4 * G / 3) * e, 1e-9 * K * e);
+  EXPECT_NEAR(r.syy, (K - 2 * G / 3) * e, 1e-9 * K * e);
+}
+
+// Closed form in uniaxial strain: elastic until 2 G e = sigma_Y; then
+// eps_p = (2 G e - sigma_Y) / (3 G + H), sigma_eq = sigma_Y + H eps_p,
+// sigma_xx = K e + 2/3 sigma_eq, sigma_yy = K e - 1/3 sigma_eq.
+void checkPlasticUniaxial(const RFElasticPlastic& model, double hardening) {
+  for (double e : {0.03, 0.05, -0.04}) {
+    const UniaxialResult r = uniaxialStrain(model, e, 500);
+    const double ee = std::abs(e), sign = e > 0 ? 1 : -1;
+    const double ep = (2 * G * ee - sigmaY) / (3 * G + hardening);
+    ASSERT_GT(ep, 0) << "the test strain must exceed the yield strain";
+    const double seq = sigmaY + hardening * ep;
+    EXPECT_NEAR(r.ep, ep, 1e-9 * ep);
+    EXPECT_NEAR(r.sxx, K * e + sign * 2.0 / 3.0 * seq, 1e-9 * K * ee);
+    EXPECT_NEAR(r.syy, K * e - sign * 1.0 / 3.0 * seq, 1e-9 * K * ee);
+  }
+}
+
+TEST(RadialReturn, PerfectPlasticityJohnsonCookAOnly) {
+  FlowModel flow;
+  flow.type = FlowModel::Type::JohnsonCook;
+  flow.A = sigmaY;
+  checkPlasticUniaxial(RFElasticPlastic(K, G, flow), 0.0);
+}
+
+TEST(RadialReturn, LinearHardening) {
+  FlowModel flow;
+  flow.type = FlowModel::Type::IsotropicHardening;
+  flow.sigmaY = sigmaY;
+  flow.K = H;
+  checkPlasticUniaxial(RFElasticPlastic(K, G, flow), H);
+}
+
+TEST(RadialReturn, JohnsonCookWithLinearExponentEqualsLinearHardening) {
+  FlowModel flow;
+  flow.type = FlowModel::Type::JohnsonCook;
+  flow.A = sigmaY;
+  flow.B = H;
+  flow.n = 1;
+  checkPlasticUniaxial(RFElasticPlastic(K, G, flow), H);
+}
+
+TEST(Objectivity, RigidRotationRotatesTheStressAndKeepsItsInvariants) {
+  FlowModel flow;
+  flow.type = FlowModel::Type::JohnsonCook;
+  flow.A = sigmaY;
+  const RFElasticPlastic model(K, G, flow);
+  Mat3 stress;
+  stress << 300, 50, -20, 50, -100, 10, -20, 10, 80;
+  Mat3 F = Mat3::Identity();
+  const Vec3 axis = Vec3(1, 1, 0.3).normalized();
+  const double omega = 2.0, dt = 1e-3;
+  const Mat3 start = stress;
+  double ep = 0, epdot = 0;
+  for (int i = 1; i <= 500; ++i) {
+    const Mat3 Fnew = Eigen::AngleAxisd(omega * dt * i, axis).toRotationMatrix();
+    const Mat3 W = Fnew * F.inverse();  // incremental rotation
+    const Mat3 L = (W - W.transpose()) / (2 * dt);  // spin only: no rate of deformation
+    stress = model.updateStress(stress, F, Fnew, L, dt, ep, epdot);
+    F = Fnew;
+  }
+  const Mat3 expected = F * start * F.transpose();
+  EXPECT_LT((stress - expected).norm(), 1e-10 * start.norm());
+  EXPECT_NEAR(stress.trace(), start.trace(), 1e-10 * start.norm());
+  EXPECT_EQ(ep, 0.0);
+}
+
+}  // namespace
+}  // namespace anode
