@@ -40,7 +40,7 @@ GeometryPieceP GeometryPieceFactory::create(const PSNode& node) {
   const std::string tag = node.name();
   std::optional<std::string> label = node.attribute("label");
   if (!label) label = node.attribute("name");
-  const bool hasContent = static_cast<bool>(node.children().size());
+  const bool hasContent = node.hasChildren();
   if (label && !hasContent) {
     auto it = labelled_.find(*label);
     if (it == labelled_.end())

@@ -126,6 +126,18 @@ std::vector<PSNode> PSNode::children(const char* tag) const {
   return out;
 }
 
+std::vector<PSNode> PSNode::childrenWhere(bool (*select)(const std::string& tag)) const {
+  std::vector<PSNode> out;
+  for (const auto* c = e_->FirstChildElement(); c; c = c->NextSiblingElement()) {
+    if (!select(c->Name())) continue;
+    spec_->markUsed(c);
+    out.emplace_back(c, spec_);
+  }
+  return out;
+}
+
+bool PSNode::hasChildren() const { return e_->FirstChildElement() != nullptr; }
+
 std::string PSNode::text() const {
   // Concatenate all text children: comments may sit between pieces of a value.
   std::string s;

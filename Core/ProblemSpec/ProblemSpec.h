@@ -34,6 +34,11 @@ class PSNode {
   PSNode requireChild(const char* tag) const;
   // All children with that name (all element children when tag is null). Marks them used.
   std::vector<PSNode> children(const char* tag = nullptr) const;
+  // The element children whose tag `select` accepts, in document order. Marks only those, so
+  // an unknown tag among the others is still reported by checkAllUsed().
+  std::vector<PSNode> childrenWhere(bool (*select)(const std::string& tag)) const;
+  // Whether this element has any element child. Marks nothing.
+  bool hasChildren() const;
 
   // Typed value of a child tag: T is double, int, bool, std::string, Vec3, Vec3i or
   // std::vector<int> (a list "[a, b, ...]").

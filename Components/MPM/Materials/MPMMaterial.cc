@@ -10,8 +10,8 @@ namespace {
 void addGeomObject(const PSNode& geom, const Grid& grid, double density, GeometryPieceFactory& pieces,
                    int64_t& nextId, ParticleSet& p) {
   auto piece = std::make_shared<UnionPiece>();
-  for (const PSNode& c : geom.children())
-    if (GeometryPieceFactory::isPieceTag(c.name())) piece->pieces.push_back(pieces.create(c));
+  for (const PSNode& c : geom.childrenWhere(GeometryPieceFactory::isPieceTag))
+    piece->pieces.push_back(pieces.create(c));
   if (piece->pieces.empty()) geom.fail("<geom_object> needs a geometry piece (box, cylinder, sphere, ...)");
 
   const PSNode resNode = geom.requireChild("res");

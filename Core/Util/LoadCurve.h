@@ -1,0 +1,25 @@
+// A piecewise-linear load curve J(t) of <load_curve> (UINTAH_UPS.md §2.9): linear interpolation
+// in the first interval whose end is >= t, extrapolation from the first interval before it, the
+// last load after the last time.
+#pragma once
+
+#include <vector>
+
+#include "Core/ProblemSpec/ProblemSpec.h"
+
+namespace anode {
+
+class LoadCurve {
+ public:
+  LoadCurve(std::vector<double> times, std::vector<double> loads);
+  // Reads <load_curve> (<id> is read by the caller); times must be >= 0 and strictly increasing.
+  static LoadCurve fromInput(const PSNode& node);
+
+  double at(double t) const;
+  const std::vector<double>& times() const { return times_; }
+
+ private:
+  std::vector<double> times_, loads_;
+};
+
+}  // namespace anode
