@@ -13,7 +13,7 @@ namespace fs = std::filesystem;
 
 namespace anode {
 
-DataArchiver DataArchiver::fromInput(const PSNode& a) {
+DataArchiver DataArchiver::fromInput(const PSNode& a, bool diffusion) {
   DataArchiver d;
   d.filebase_ = a.get<std::string>("filebase", "output.uda");
   if (d.filebase_.empty()) a.requireChild("filebase").fail("<filebase> is empty");
@@ -32,13 +32,15 @@ DataArchiver DataArchiver::fromInput(const PSNode& a) {
     a.acceptInert(inert);  // the first and last steps are always written; files are always compressed
   for (const PSNode& save : a.children("save")) {
     const std::string label = save.requireAttribute("label");
-    switch (classifyLabel(label)) {
+    switch (classifyLabel(label, diffusion)) {
       case LabelStatus::Particle:
         if (label != "p.x") d.particleLabels_.push_back(label);
         break;
       case LabelStatus::Grid:
         d.gridLabels_.push_back(label);
         break;
+      case LabelStatus::NeedsDiffusion:
+        save.fail("<save label=\"" + label + "\">: a diffusion quantity, but <do_scalar_diffusion> is off");
       case LabelStatus::Unsupported:
         save.unsupported("<save label=\"" + label + "\">: a quantity of a feature this code lacks");
         break;
@@ -95,10 +97,15 @@ void DataArchiver::writeOutput(long step, double time, const MPM& mpm) {
 
 void DataArchiver::writeHistory() const {
   std::ostringstream s;
-  s << "step,time,dt,kinetic_energy,min_J,max_J,wall_seconds\n" << std::setprecision(10);
-  for (const HistoryRow& r : history_)
-    s << r.step << ',' << r.time << ',' << r.dt << ',' << r.kineticEnergy << ',' << r.minJ << ','
-      << r.maxJ << ',' << r.wallSeconds << '\n';
+  const bool diffusion = !history_.empty() && history_.front().diffusion;
+  s << "step,time,dt,kinetic_energy,min_J,max_J,"
+    << (diffusion ? "total_lithium,min_c,max_c," : "") << "wall_seconds\n"
+    << std::setprecision(10);
+  for (const HistoryRow& r : history_) {
+    s << r.step << ',' << r.time << ',' << r.dt << ',' << r.kineticEnergy << ',' << r.minJ << ',' << r.maxJ << ',';
+    if (diffusion) s << r.totalLithium << ',' << r.minConcentration << ',' << r.maxConcentration << ',';
+    s << r.wallSeconds << '\n';
+  }
   writeFileAtomically((fs::path(dir_) / "history.csv").string(), s.str());
 }
 

@@ -13,12 +13,14 @@ namespace anode {
 struct HistoryRow {
   long step;
   double time, dt, kineticEnergy, minJ, maxJ, wallSeconds;
+  bool diffusion;
+  double totalLithium, minConcentration, maxConcentration;
 };
 
 class DataArchiver {
  public:
   // Reads the block and checks every saved label against what the run computes.
-  static DataArchiver fromInput(const PSNode& archiver);
+  static DataArchiver fromInput(const PSNode& archiver, bool diffusion);
 
   const std::string& filebase() const { return filebase_; }
   bool wantsGrid() const { return !gridLabels_.empty(); }

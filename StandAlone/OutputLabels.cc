@@ -45,6 +45,20 @@ const std::map<std::string, ParticleLabel>& particleLabels() {
          o[0] = m.particles.plasticStrain.empty() ? 0.0 : m.particles.plasticStrain[i]; }}},
       {"p.plasticStrainRate", {1, [](const MPMMaterial& m, const Grid&, size_t i, double* o) {
          o[0] = m.particles.plasticStrainRate.empty() ? 0.0 : m.particles.plasticStrainRate[i]; }}},
+      {"p.concentration", {1, [](const MPMMaterial& m, const Grid&, size_t i, double* o) {
+         o[0] = m.particles.concentration.empty() ? 0.0 : m.particles.concentration[i]; }}},
+      {"p.diffusivity", {1, [](const MPMMaterial& m, const Grid&, size_t i, double* o) {
+         o[0] = m.particles.diffusivity.empty() ? 0.0 : m.particles.diffusivity[i]; }}},
+      {"p.concentrationGradient", {3, [](const MPMMaterial& m, const Grid&, size_t i, double* o) {
+         putVec(m.particles.concentrationGradient.empty() ? Vec3(Vec3::Zero()) : m.particles.concentrationGradient[i], o); }}},
+      // Flux BCs: the dc/dt they apply, the load curves of each particle (0: none) and the face
+      // area of each of those curves.
+      {"p.externalScalarFlux", {1, [](const MPMMaterial& m, const Grid&, size_t i, double* o) {
+         o[0] = m.particles.externalScalarFlux.empty() ? 0.0 : m.particles.externalScalarFlux[i]; }}},
+      {"p.loadCurveID", {3, [](const MPMMaterial& m, const Grid&, size_t i, double* o) {
+         putVec(m.particles.loadCurveID.empty() ? Vec3(Vec3::Zero()) : Vec3(m.particles.loadCurveID[i].cast<double>()), o); }}},
+      {"p.area", {3, [](const MPMMaterial& m, const Grid&, size_t i, double* o) {
+         putVec(m.particles.area.empty() ? Vec3(Vec3::Zero()) : m.particles.area[i], o); }}},
       // Removed Uintah label kept as an alias: the von Mises equivalent stress.
       {"p.equivalentStress_t1", {1, [](const MPMMaterial& m, const Grid&, size_t i, double* o) {
          const Mat3& s = m.particles.stress[i];
@@ -55,18 +69,25 @@ const std::map<std::string, ParticleLabel>& particleLabels() {
 }
 
 const std::vector<std::string>& gridLabelNames() {
-  static const std::vector<std::string> names = {"g.mass", "g.velocity", "g.velocity_star",
-                                                 "g.acceleration", "g.internalforce"};
+  static const std::vector<std::string> names = {"g.mass", "g.velocity", "g.velocity_star", "g.acceleration",
+                                                 "g.internalforce", "g.concentration", "g.concentrationRate"};
+  return names;
+}
+
+// Labels of the diffusion subcomponent: written only when it is on.
+const std::vector<std::string>& diffusionLabels() {
+  static const std::vector<std::string> names = {
+      "p.concentration", "p.diffusivity", "p.concentrationGradient", "p.externalScalarFlux",
+      "p.externalscalarflux", "p.loadCurveID", "p.area", "g.concentration", "g.concentrationRate"};
   return names;
 }
 
 // Labels of Uintah features this code does not have yet (diffusion, splitting, ...).
 const std::vector<std::string>& unsupportedLabels() {
   static const std::vector<std::string> names = {
-      "p.concentration", "p.area", "p.diffusivity", "p.externalScalarFlux", "p.externalscalarflux",
-      "p.concentrationGradient", "p.concPrevious", "p.flux", "p.loadCurveID", "p.refinedMPM",
-      "p.concentrationInterp", "p.pressure_t1", "p.energy", "g.concentration", "g.concentrationRate",
-      "g.concentrationStar", "g.externalscalarflux", "g.concentrationnobc", "g.hydrostaticStressRD"};
+      "p.concPrevious", "p.flux", "p.refinedMPM", "p.concentrationInterp", "p.pressure_t1",
+      "p.energy", "g.concentrationStar", "g.externalscalarflux", "g.concentrationnobc",
+      "g.hydrostaticStressRD"};
   return names;
 }
 
@@ -76,7 +97,9 @@ bool contains(const std::vector<std::string>& v, const std::string& s) {
 
 }  // namespace
 
-LabelStatus classifyLabel(const std::string& label) {
+LabelStatus classifyLabel(const std::string& label, bool diffusion) {
+  if (!diffusion && contains(diffusionLabels(), label)) return LabelStatus::NeedsDiffusion;
+  if (label == "p.externalscalarflux") return LabelStatus::Particle;
   if (label == "p.x" || label == "p.particleID" || particleLabels().count(label)) return LabelStatus::Particle;
   if (contains(gridLabelNames(), label)) return LabelStatus::Grid;
   if (contains(unsupportedLabels(), label)) return LabelStatus::Unsupported;
@@ -100,10 +123,12 @@ ParticleData gatherParticles(const MPM& mpm, const std::vector<std::string>& lab
   }
   out.arrays.push_back(std::move(material));
   if (wantIds) out.arrays.push_back(std::move(ids));
-  for (const std::string& label : labels) {
+  for (const std::string& saved : labels) {
+    // The label as saved in the input names the array; the old spelling reads the same field.
+    const std::string label = saved == "p.externalscalarflux" ? "p.externalScalarFlux" : saved;
     auto it = particleLabels().find(label);
     if (it == particleLabels().end()) continue;
-    NamedArray a{label, it->second.components, std::vector<double>(n * it->second.components), {}};
+    NamedArray a{saved, it->second.components, std::vector<double>(n * it->second.components), {}};
     size_t offset = 0;
     for (const MPMMaterial& mat : mpm.materials()) {
       for (size_t i = 0; i < mat.particles.count(); ++i)
@@ -130,8 +155,9 @@ GridData gatherGrid(const MPM& mpm, const std::vector<std::string>& labels) {
     for (size_t m = 0; m < nm; ++m) {
       const GridFields& f = mpm.gridFields()[m];
       const std::string name = nm > 1 ? label + "_m" + std::to_string(m) : label;
-      if (label == "g.mass") {
-        out.arrays.push_back({name, 1, f.mass, {}});
+      if (label == "g.mass" || label == "g.concentration" || label == "g.concentrationRate") {
+        out.arrays.push_back({name, 1, label == "g.mass" ? f.mass : label == "g.concentration" ? f.concentration
+                                                                                                 : f.concentrationRate, {}});
         continue;
       }
       const std::vector<Vec3>& v = label == "g.velocity"        ? f.velocity

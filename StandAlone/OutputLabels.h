@@ -8,11 +8,11 @@
 
 namespace anode {
 
-enum class LabelStatus { Particle, Grid, Unsupported, Unknown };
+enum class LabelStatus { Particle, Grid, NeedsDiffusion, Unsupported, Unknown };
 
-// Whether `label` names a particle or grid quantity this code writes, a known Uintah quantity of
-// a feature this code lacks, or nothing known.
-LabelStatus classifyLabel(const std::string& label);
+// Whether `label` names a particle or grid quantity this code writes, a diffusion quantity of a
+// run without diffusion, a known Uintah quantity of a feature this code lacks, or nothing known.
+LabelStatus classifyLabel(const std::string& label, bool diffusion);
 
 // Gathers the saved particle labels (plus the material index) over all materials.
 ParticleData gatherParticles(const MPM& mpm, const std::vector<std::string>& labels);

@@ -21,8 +21,8 @@ Simulation::Simulation(const std::string& text, const std::string& name, const R
 void Simulation::setup() {
   PSNode root = spec_->root();
   time_ = TimeControl::fromInput(root.requireChild("Time"));
-  mpm_.problemSetup(root);
-  archiver_ = DataArchiver::fromInput(root.requireChild("DataArchiver"));
+  mpm_.problemSetup(root, time_.initTime, time_.maxTime);
+  archiver_ = DataArchiver::fromInput(root.requireChild("DataArchiver"), mpm_.flags().doScalarDiffusion);
   spec_->checkAllUsed();
   if (options_.maxTimesteps > 0 &&
       (time_.maxTimesteps == 0 || options_.maxTimesteps < time_.maxTimesteps))
@@ -33,7 +33,7 @@ void Simulation::setup() {
 
 void Simulation::advance() {
   try {
-    mpm_.timeAdvance(dt_);
+    mpm_.timeAdvance(t_, dt_);
   } catch (const SimulationError& e) {
     std::ostringstream s;
     s << "step " << step_ + 1 << ", t = " << t_ + dt_ << ": " << e.what();
@@ -52,7 +52,8 @@ void Simulation::run() {
   const int outputTask = mpm_.timers().task("output");
   auto summaryRow = [&](double stepDt) {
     const StepSummary s = mpm_.summarize();
-    archiver_.recordHistory({step_, t_, stepDt, s.kineticEnergy, s.minJ, s.maxJ, wall()});
+    archiver_.recordHistory({step_, t_, stepDt, s.kineticEnergy, s.minJ, s.maxJ, wall(), s.diffusion,
+                             s.totalLithium, s.minConcentration, s.maxConcentration});
   };
   auto output = [&] {
     ScopedTimer timer(mpm_.timers(), outputTask);

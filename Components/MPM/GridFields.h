@@ -13,6 +13,19 @@ struct GridFields {
   std::vector<Vec3> internalForce;   // g.internalforce
   std::vector<Vec3> velocityStar;    // g.velocity_star: after integration and BCs
   std::vector<Vec3> acceleration;    // g.acceleration
+  // Diffusion (only with <do_scalar_diffusion>true).
+  std::vector<double> concentration;       // g.concentration: sum m c S / m (Eq. 5), then BCs
+  std::vector<double> concentrationNoBC;   // the same before the SD-Type BCs
+  std::vector<double> diffusionRate;       // -sum m (grad S . q) during P2G (Eq. 7 numerator)
+  std::vector<double> externalScalarFlux;  // sum m rate S (Eq. 18 numerator)
+  std::vector<double> concentrationStar;   // c + dc/dt dt, then BCs
+  std::vector<double> concentrationRate;   // g.concentrationRate: drives the particles (Eq. 8)
+
+  void resizeDiffusion(int nodes) {
+    for (auto* f : {&concentration, &concentrationNoBC, &diffusionRate, &externalScalarFlux,
+                    &concentrationStar, &concentrationRate})
+      f->assign(nodes, 0.0);
+  }
 
   void resize(int nodes) {
     mass.assign(nodes, 0.0);

@@ -14,23 +14,6 @@ namespace anode {
 
 namespace {
 
-void readPhysicalBCs(const PSNode& root) {
-  const PSNode physical = root.child("PhysicalBC");
-  if (!physical) return;
-  const PSNode mpm = physical.child("MPM");
-  if (!mpm) return;
-  for (const PSNode& bc : mpm.children()) {
-    if (bc.name() == "scalar_flux")
-      bc.unsupported("<scalar_flux> lithium flux boundary condition");
-    else if (bc.name() == "pressure" || bc.name() == "force" || bc.name() == "heat_flux" ||
-             bc.name() == "arches_heat_flux")
-      bc.unsupported("<" + bc.name() + "> boundary condition");
-    else
-      bc.fail("unknown physical boundary condition <" + bc.name() + ">");
-    bc.markSubtreeUsed();
-  }
-}
-
 std::string particleLabel(const MPMMaterial& m, size_t matl, size_t i) {
   std::ostringstream s;
   const Vec3& x = m.particles.x[i];
@@ -40,9 +23,25 @@ std::string particleLabel(const MPMMaterial& m, size_t matl, size_t i) {
   return s.str();
 }
 
+void readOtherPhysicalBCs(const PSNode& root) {
+  const PSNode physical = root.child("PhysicalBC");
+  if (!physical) return;
+  const PSNode mpm = physical.child("MPM");
+  if (!mpm) return;
+  for (const PSNode& bc : mpm.children()) {
+    if (bc.name() == "scalar_flux") continue;
+    if (bc.name() == "pressure" || bc.name() == "force" || bc.name() == "heat_flux" ||
+        bc.name() == "arches_heat_flux")
+      bc.unsupported("<" + bc.name() + "> boundary condition");
+    else
+      bc.fail("unknown physical boundary condition <" + bc.name() + ">");
+    bc.markSubtreeUsed();
+  }
+}
+
 }  // namespace
 
-void MPM::problemSetup(const PSNode& root) {
+void MPM::problemSetup(const PSNode& root, double initTime, double maxTime) {
   flags_ = MPMFlags::fromInput(root);
   const PSNode gridNode = root.requireChild("Grid");
   grid_ = Grid::fromInput(gridNode);
@@ -59,19 +58,34 @@ void MPM::problemSetup(const PSNode& root) {
   const auto materialNodes = mpmMats.children("material");
   if (materialNodes.empty()) mpmMats.fail("<MaterialProperties><MPM> needs at least one <material>");
   for (const PSNode& m : materialNodes)
-    materials_.push_back(MPMMaterial::fromInput(m, grid_, flags_, pieces, nextId));
+    materials_.push_back(MPMMaterial::fromInput(m, grid_, flags_, maxTime, pieces, nextId));
   contact_ = Contact::fromInput(mpmMats, static_cast<int>(materials_.size()));
   if (const PSNode iface = mpmMats.child("diffusion_interface")) {
     const std::string type = iface.get<std::string>("type", "null");
-    if (type != "null") iface.requireChild("type").unsupported("diffusion_interface type \"" + type + "\"");
-    iface.markSubtreeUsed();
+    if (type == "common") {
+      if (!flags_.doScalarDiffusion) iface.fail("diffusion_interface \"common\" needs <do_scalar_diffusion>true");
+      commonDiffusionInterface_ = materials_.size() > 1;
+    } else if (type != "null") {
+      iface.requireChild("type").fail("diffusion_interface type \"" + type + "\" is not supported; accepted: null, common");
+    }
+    iface.acceptInert("materials");
   }
-  faceBCs_ = readFaceBCs(gridNode, static_cast<int>(materials_.size()));
-  readPhysicalBCs(root);
+  faceBCs_ = readFaceBCs(gridNode, static_cast<int>(materials_.size()), flags_.doScalarDiffusion);
+  if (const PSNode physical = root.child("PhysicalBC")) {
+    fluxBCs_ = ScalarFluxBC::fromInput(physical);
+    if (!fluxBCs_.empty() && !flags_.doScalarDiffusion)
+      physical.fail("<scalar_flux> needs <MPM><do_scalar_diffusion>true");
+    if (!fluxBCs_.empty() && !flags_.useLoadCurves)
+      physical.fail("<scalar_flux> needs <MPM><use_load_curves>true (without it Uintah applies no flux)");
+  }
+  readOtherPhysicalBCs(root);
 
   const int nodes = grid_.numNodes();
   fields_.resize(materials_.size());
-  for (auto& f : fields_) f.resize(nodes);
+  for (auto& f : fields_) {
+    f.resize(nodes);
+    if (flags_.doScalarDiffusion) f.resizeDiffusion(nodes);
+  }
   weights_.resize(materials_.size());
   velocityGradient_.resize(materials_.size());
   newF_.resize(materials_.size());
@@ -86,6 +100,43 @@ void MPM::problemSetup(const PSNode& root) {
     t.mass.resize(nodes);
     t.velocity.resize(nodes);
     t.internalForce.resize(nodes);
+    if (flags_.doScalarDiffusion) t.resizeDiffusion(nodes);
+  }
+  if (flags_.doScalarDiffusion) {
+    findDirichletNodes();
+    assignFluxBCs();
+    computeDiffusivity(initTime);
+    applyExternalScalarFlux(initTime);
+  }
+}
+
+void MPM::assignFluxBCs() {
+  // Surface particles get, per BC that flags them, the area of the face that BC names
+  // (UINTAH_UPS.md §3.1; unlike Uintah, not the area left by the last BC tested).
+  for (size_t m = 0; m < materials_.size(); ++m) {
+    MPMMaterial& mat = materials_[m];
+    ParticleSet& p = mat.particles;
+    if (fluxBCs_.empty() || !mat.diffusion->diffuses()) {
+      mat.surface.clear();
+      continue;  // a material without diffusivity gets no lithium
+    }
+    p.externalScalarFlux.assign(p.count(), 0.0);
+    p.loadCurveID.assign(p.count(), Vec3i::Zero());
+    p.area.assign(p.count(), Vec3::Zero());
+    for (size_t i = 0; i < p.count(); ++i) {
+      if (!mat.surface[i]) continue;
+      const Vec3 dxp = p.size[i].diagonal().cwiseProduct(grid_.dx);
+      int slot = 0;
+      for (size_t b = 0; b < fluxBCs_.size() && slot < 3; ++b) {
+        const double a = fluxBCs_[b].flaggedArea(p.x[i], dxp);
+        if (a <= 0) continue;
+        p.loadCurveID[i][slot] = static_cast<int>(b) + 1;
+        p.area[i][slot] = a;
+        ++slot;
+      }
+    }
+    mat.surface.clear();
+    mat.surface.shrink_to_fit();
   }
 }
 
@@ -95,22 +146,29 @@ size_t MPM::numParticles() const {
   return n;
 }
 
-void MPM::timeAdvance(double dt) {
+void MPM::timeAdvance(double t, double dt) {
   static const char* names[] = {"computeInterpolationWeights", "interpolateParticlesToGrid",
                                 "exchangeMomentum+integrateGrid", "interpolateToParticlesAndUpdate",
-                                "computeStressTensor"};
-  int t[5];
-  for (int i = 0; i < 5; ++i) t[i] = timers_.task(names[i]);
-  { ScopedTimer s(timers_, t[0]); computeInterpolationWeights(); }      // step 1
-  { ScopedTimer s(timers_, t[1]); interpolateParticlesToGrid(); }       // step 3 and 5 (Eq. 4)
+                                "computeStressTensor", "diffusivity+externalScalarFlux"};
+  int k[6];
+  for (int i = 0; i < 6; ++i) k[i] = timers_.task(names[i]);
+  { ScopedTimer s(timers_, k[0]); computeInterpolationWeights(); }        // 1
+  { ScopedTimer s(timers_, k[1]); interpolateParticlesToGrid(); }         // 3, 5 (Eqs. 4, 5, 7, 18)
   {
-    ScopedTimer s(timers_, t[2]);
-    exchangeMomentumInterpolated();                                      // step 4
-    integrateGridMomentum(dt);                                           // step 6
+    ScopedTimer s(timers_, k[2]);
+    exchangeMomentumInterpolated();                                        // 4
+    integrateGridMomentum(dt);                                             // 6
+    if (flags_.doScalarDiffusion) integrateConcentration(dt);
     setGridBoundaryConditions(dt);
   }
-  { ScopedTimer s(timers_, t[3]); interpolateToParticlesAndUpdate(dt); }  // step 7
-  { ScopedTimer s(timers_, t[4]); computeStressTensor(dt); }              // step 8 (Eqs. 26-39)
+  { ScopedTimer s(timers_, k[3]); interpolateToParticlesAndUpdate(dt); }  // 7 (Eq. 8)
+  { ScopedTimer s(timers_, k[4]); computeStressTensor(dt); }              // 8 (Eqs. 26-39)
+  if (flags_.doScalarDiffusion) {
+    ScopedTimer s(timers_, k[5]);
+    checkConcentrationRange(t + dt);
+    computeDiffusivity(t + dt);     // D of the next step from this step's c and stress (Eq. 23)
+    applyExternalScalarFlux(t + dt);  // flux rate of the next step (Eqs. 16-17)
+  }
 }
 
 void MPM::computeInterpolationWeights() {
@@ -144,40 +202,122 @@ void MPM::computeInterpolationWeights() {
   }
 }
 
+void MPM::applyExternalScalarFlux(double t) {
+  // Eqs. 16-17: rate_p = R(c_p) sum_k J_k(t) A_k / V_p, the restriction applied once.
+  maxFluxRateCoefficient_ = 0;
+  if (fluxBCs_.empty()) return;
+  std::vector<double> J(fluxBCs_.size());
+  for (size_t b = 0; b < fluxBCs_.size(); ++b) J[b] = fluxBCs_[b].load.at(t);
+  for (MPMMaterial& mat : materials_) {
+    ParticleSet& p = mat.particles;
+    if (p.loadCurveID.empty()) continue;
+    const double cmax = mat.diffusion->maxConcentration;
+    const long n = static_cast<long>(p.count());
+    double kmax = 0;
+#pragma omp parallel for schedule(static) reduction(max : kmax)
+    for (long i = 0; i < n; ++i) {
+      double rate = 0, k = 0;
+      for (int s = 0; s < 3 && p.loadCurveID[i][s] > 0; ++s) {
+        rate += J[p.loadCurveID[i][s] - 1] * p.area[i][s];
+        k += std::abs(J[p.loadCurveID[i][s] - 1]) * p.area[i][s];
+      }
+      p.externalScalarFlux[i] = rate / p.volume[i] * fluxRestriction(p.concentration[i] / cmax) * cmax;
+      kmax = std::max(kmax, k / p.volume[i]);
+    }
+    maxFluxRateCoefficient_ = std::max(maxFluxRateCoefficient_, kmax);
+  }
+}
+
 namespace {
 
-// Scatters mass, momentum and internal force (Eq. 4; f_int = -sum V sigma grad S) of particles
-// [begin, end) into the given nodal arrays.
+// Nodal accumulators one scatter writes into (the grid's own, or a thread's private copy).
+struct ScatterTarget {
+  double* mass;
+  Vec3* momentum;
+  Vec3* force;
+  double* massConcentration;  // sum m c S (Eq. 5 numerator)
+  double* diffusionRate;      // -sum m (grad S . D grad c) (Eq. 7 numerator)
+  double* fluxSource;         // sum m rate S (Eq. 18 numerator)
+
+  static ScatterTarget of(GridFields& g) {
+    const bool d = !g.concentration.empty();
+    return {g.mass.data(), g.velocity.data(), g.internalForce.data(),
+            d ? g.concentration.data() : nullptr, d ? g.diffusionRate.data() : nullptr,
+            d ? g.externalScalarFlux.data() : nullptr};
+  }
+};
+
+// P2G of particles [begin, end): mass, momentum, internal force (f = -sum V sigma grad S) and,
+// with diffusion, concentration, flux divergence (q_p = D_p grad c_p of the previous step) and
+// the flux source.
+template <bool Diffusion, bool Flux>
 void scatterToGrid(const ParticleSet& p, const InterpolationWeights& W, long begin, long end,
-                   double* mass, Vec3* momentum, Vec3* force) {
+                   const ScatterTarget& g) {
   for (long i = begin; i < end; ++i) {
     const double mp = p.mass[i];
     const Vec3 mv = mp * p.velocity[i];
     const Mat3 Vsigma = p.volume[i] * p.stress[i];
+    double mc = 0, mrate = 0;
+    Vec3 mq = Vec3::Zero();
+    if constexpr (Diffusion) {
+      mc = mp * p.concentration[i];
+      mq = mp * p.diffusivity[i] * p.concentrationGradient[i];
+      if constexpr (Flux) mrate = mp * p.externalScalarFlux[i];
+    }
     const size_t b = static_cast<size_t>(i) * W.stride;
     for (int e = 0; e < W.count[i]; ++e) {
       const int n = W.node[b + e];
       const double w = W.weight[b + e];
-      mass[n] += mp * w;
-      momentum[n] += mv * w;
-      force[n] -= Vsigma * W.gradient[b + e];
+      const Vec3& grad = W.gradient[b + e];
+      g.mass[n] += mp * w;
+      g.momentum[n] += mv * w;
+      g.force[n] -= Vsigma * grad;
+      if constexpr (Diffusion) {
+        g.massConcentration[n] += mc * w;
+        g.diffusionRate[n] -= grad.dot(mq);
+        if constexpr (Flux) g.fluxSource[n] += mrate * w;
+      }
     }
   }
+}
+
+void scatter(bool diffusion, bool flux, const ParticleSet& p, const InterpolationWeights& W, long begin,
+             long end, const ScatterTarget& g) {
+  if (!diffusion)
+    scatterToGrid<false, false>(p, W, begin, end, g);
+  else if (!flux)
+    scatterToGrid<true, false>(p, W, begin, end, g);
+  else
+    scatterToGrid<true, true>(p, W, begin, end, g);
+}
+
+template <class T>
+void zero(std::vector<T>& v, const T& value) {
+  std::fill(v.begin(), v.end(), value);
+}
+
+void clearScatterFields(GridFields& g) {
+  zero(g.mass, 0.0);
+  zero(g.velocity, Vec3(Vec3::Zero()));
+  zero(g.internalForce, Vec3(Vec3::Zero()));
+  zero(g.concentration, 0.0);
+  zero(g.diffusionRate, 0.0);
+  zero(g.externalScalarFlux, 0.0);
 }
 
 }  // namespace
 
 void MPM::interpolateParticlesToGrid() {
   const long nodes = grid_.numNodes();
+  const bool diffusion = flags_.doScalarDiffusion;
   for (size_t m = 0; m < materials_.size(); ++m) {
     const ParticleSet& p = materials_[m].particles;
     GridFields& g = fields_[m];
     const long n = static_cast<long>(p.count());
-    std::fill(g.mass.begin(), g.mass.end(), 0.0);
-    std::fill(g.velocity.begin(), g.velocity.end(), Vec3::Zero());
-    std::fill(g.internalForce.begin(), g.internalForce.end(), Vec3::Zero());
+    const bool flux = !p.externalScalarFlux.empty();
+    clearScatterFields(g);
     if (threadScatter_.empty()) {
-      scatterToGrid(p, weights_[m], 0, n, g.mass.data(), g.velocity.data(), g.internalForce.data());
+      scatter(diffusion, flux, p, weights_[m], 0, n, ScatterTarget::of(g));
     } else {
       // Each thread scatters a contiguous block of particles into its own buffer; the buffers are
       // summed in thread order, so results do not depend on scheduling.
@@ -186,26 +326,50 @@ void MPM::interpolateParticlesToGrid() {
       {
         const int t = omp_get_thread_num();
         GridFields& s = threadScatter_[t];
-        std::fill(s.mass.begin(), s.mass.end(), 0.0);
-        std::fill(s.velocity.begin(), s.velocity.end(), Vec3::Zero());
-        std::fill(s.internalForce.begin(), s.internalForce.end(), Vec3::Zero());
+        clearScatterFields(s);
         const long begin = n * t / threads, end = n * (t + 1) / threads;
-        scatterToGrid(p, weights_[m], begin, end, s.mass.data(), s.velocity.data(), s.internalForce.data());
+        scatter(diffusion, flux, p, weights_[m], begin, end, ScatterTarget::of(s));
 #pragma omp barrier
 #pragma omp for schedule(static)
         for (long k = 0; k < nodes; ++k)
           for (int u = 0; u < threads; ++u) {
-            g.mass[k] += threadScatter_[u].mass[k];
-            g.velocity[k] += threadScatter_[u].velocity[k];
-            g.internalForce[k] += threadScatter_[u].internalForce[k];
+            const GridFields& b = threadScatter_[u];
+            g.mass[k] += b.mass[k];
+            g.velocity[k] += b.velocity[k];
+            g.internalForce[k] += b.internalForce[k];
+            if (diffusion) {
+              g.concentration[k] += b.concentration[k];
+              g.diffusionRate[k] += b.diffusionRate[k];
+              g.externalScalarFlux[k] += b.externalScalarFlux[k];
+            }
           }
       }
     }
 #pragma omp parallel for schedule(static)
-    for (long k = 0; k < nodes; ++k)
-      g.velocity[k] = g.mass[k] > 0 ? Vec3(g.velocity[k] / g.mass[k]) : Vec3::Zero();
+    for (long k = 0; k < nodes; ++k) {
+      const bool massive = g.mass[k] > 0;
+      g.velocity[k] = massive ? Vec3(g.velocity[k] / g.mass[k]) : Vec3::Zero();
+      if (diffusion) g.concentration[k] = massive ? g.concentration[k] / g.mass[k] : 0.0;  // Eq. 5
+    }
     applySymmetry(grid_, faceBCs_, static_cast<int>(m), g.velocity);
     applySymmetry(grid_, faceBCs_, static_cast<int>(m), g.internalForce);
+    if (diffusion) {
+      g.concentrationNoBC = g.concentration;
+      applyConcentrationBCs(grid_, faceBCs_, static_cast<int>(m), g.concentration);
+    }
+  }
+  if (commonDiffusionInterface_) {
+    // diffusion_interface common: one mass-weighted concentration for all materials at a node.
+#pragma omp parallel for schedule(static)
+    for (long k = 0; k < nodes; ++k) {
+      double mass = 0, mc = 0;
+      for (const GridFields& g : fields_) {
+        mass += g.mass[k];
+        mc += g.mass[k] * g.concentration[k];
+      }
+      if (mass > 0)
+        for (GridFields& g : fields_) g.concentration[k] = mc / mass;
+    }
   }
 }
 
@@ -226,6 +390,31 @@ void MPM::integrateGridMomentum(double dt) {
   }
 }
 
+void MPM::integrateConcentration(double dt) {
+  // UINTAH_UPS.md §6 step 7: c* = c + (R/m) dt with the SD-Type BCs applied to c*; the rate that
+  // drives the particles also carries the BC correction and the flux source G/m (Eq. 18).
+  const long nodes = grid_.numNodes();
+  for (size_t m = 0; m < materials_.size(); ++m) {
+    GridFields& g = fields_[m];
+    const double constantRate = materials_[m].diffusion->constantRate();
+#pragma omp parallel for schedule(static)
+    for (long k = 0; k < nodes; ++k) {
+      const double rate = g.mass[k] > 0 ? g.diffusionRate[k] / g.mass[k] + constantRate : 0.0;
+      g.concentrationStar[k] = g.concentration[k] + rate * dt;
+    }
+    applyConcentrationBCs(grid_, faceBCs_, static_cast<int>(m), g.concentrationStar);
+#pragma omp parallel for schedule(static)
+    for (long k = 0; k < nodes; ++k) {
+      if (!(g.mass[k] > 0)) {
+        g.concentrationRate[k] = 0;
+        continue;
+      }
+      g.concentrationRate[k] =
+          (g.concentrationStar[k] - g.concentrationNoBC[k]) / dt + g.externalScalarFlux[k] / g.mass[k];
+    }
+  }
+}
+
 void MPM::setGridBoundaryConditions(double dt) {
   contact_.exchange(fields_, &GridFields::velocityStar);
   const long nodes = grid_.numNodes();
@@ -238,7 +427,28 @@ void MPM::setGridBoundaryConditions(double dt) {
   }
 }
 
+void MPM::findDirichletNodes() {
+  // 1 on the nodes an SD-Type Dirichlet condition sets (per material), with its value.
+  std::vector<FaceBC> dirichlet;
+  for (const FaceBC& b : faceBCs_)
+    if (b.kind == FaceBC::Kind::ConcentrationDirichlet) dirichlet.push_back(b);
+  if (dirichlet.empty()) return;
+  dirichletMask_.assign(materials_.size(), std::vector<double>(grid_.numNodes(), 0.0));
+  dirichletValue_.assign(materials_.size(), std::vector<double>(grid_.numNodes(), 0.0));
+  for (size_t m = 0; m < materials_.size(); ++m) {
+    applyConcentrationBCs(grid_, dirichlet, static_cast<int>(m), dirichletValue_[m]);
+    for (FaceBC b : dirichlet) {
+      b.value = 1.0;
+      applyConcentrationBCs(grid_, {b}, static_cast<int>(m), dirichletMask_[m]);
+    }
+  }
+}
+
 void MPM::interpolateToParticlesAndUpdate(double dt) {
+  const bool diffusion = flags_.doScalarDiffusion;
+  // Particle treatment of SD-Type Dirichlet (docs/diffusion.md): the weight on the boundary
+  // nodes relaxes c toward c_BC instead of carrying Uintah's nodal rate.
+  const bool particleDirichlet = flags_.particleDirichlet && !dirichletMask_.empty();
   for (size_t m = 0; m < materials_.size(); ++m) {
     MPMMaterial& mat = materials_[m];
     ParticleSet& p = mat.particles;
@@ -248,11 +458,14 @@ void MPM::interpolateToParticlesAndUpdate(double dt) {
     std::vector<Mat3>& Fnew = newF_[m];
     const long n = static_cast<long>(p.count());
     const double rho0 = mat.density;
+    const double* wallMask = particleDirichlet ? dirichletMask_[m].data() : nullptr;
+    const double* wallTarget = particleDirichlet ? dirichletValue_[m].data() : nullptr;
     long firstInverted = n;
 #pragma omp parallel for schedule(static) reduction(min : firstInverted)
     for (long i = 0; i < n; ++i) {
       Mat3 gradV = Mat3::Zero();
-      Vec3 acc = Vec3::Zero(), vel = Vec3::Zero();
+      Vec3 acc = Vec3::Zero(), vel = Vec3::Zero(), gradC = Vec3::Zero();
+      double cRate = 0, wallWeight = 0, wallValue = 0;
       const size_t b = static_cast<size_t>(i) * W.stride;
       for (int e = 0; e < W.count[i]; ++e) {
         const int k = W.node[b + e];
@@ -260,6 +473,15 @@ void MPM::interpolateToParticlesAndUpdate(double dt) {
         gradV += g.velocityStar[k] * W.gradient[b + e].transpose();
         acc += g.acceleration[k] * w;
         vel += g.velocityStar[k] * w;
+        if (diffusion) {
+          gradC += g.concentrationStar[k] * W.gradient[b + e];  // grad c for the next step's flux
+          if (wallMask && wallMask[k] > 0) {
+            wallWeight += w;
+            wallValue += w * wallTarget[k];
+          } else {
+            cRate += g.concentrationRate[k] * w;
+          }
+        }
       }
       // F^{n+1} = (I + L dt/N)^N F^n, subcycled when L dt is large (Uintah's rule).
       const int cycles = std::min(std::max(flags_.minimumSubcyclesForF,
@@ -275,6 +497,13 @@ void MPM::interpolateToParticlesAndUpdate(double dt) {
       p.x[i] += vel * dt;
       p.displacement[i] += vel * dt;
       p.volume[i] = p.mass[i] / rho0 * J;
+      if (diffusion) {
+        p.concentrationGradient[i] = gradC;
+        double c = p.concentration[i] + dt * cRate;  // Eq. 8
+        // A convex combination: cannot leave [min(c, c_BC), max(c, c_BC)].
+        if (wallWeight > 0) c = (1 - wallWeight) * c + wallValue;
+        p.concentration[i] = c;
+      }
     }
     if (firstInverted < n) {
       std::ostringstream s;
@@ -288,6 +517,29 @@ void MPM::interpolateToParticlesAndUpdate(double dt) {
 void MPM::computeStressTensor(double dt) {
   for (size_t m = 0; m < materials_.size(); ++m)
     materials_[m].model->computeStressTensor(materials_[m].particles, velocityGradient_[m], newF_[m], dt);
+}
+
+void MPM::computeDiffusivity(double t) {
+  maxDiffusivity_ = 0;
+  for (MPMMaterial& mat : materials_)
+    maxDiffusivity_ = std::max(maxDiffusivity_, mat.diffusion->computeDiffusivity(mat.particles, t));
+}
+
+void MPM::checkConcentrationRange(double t) const {
+  for (size_t m = 0; m < materials_.size(); ++m) {
+    const ParticleSet& p = materials_[m].particles;
+    const ScalarDiffusionModel& d = *materials_[m].diffusion;
+    const double tol = kConcentrationTolerance * (d.maxConcentration - d.minConcentration);
+    for (size_t i = 0; i < p.count(); ++i) {
+      const double c = p.concentration[i];
+      if (c >= d.minConcentration - tol && c <= d.maxConcentration + tol) continue;
+      std::ostringstream s;
+      s << particleLabel(materials_[m], m, i) << " has concentration " << c << " at t = " << t
+        << ", outside [" << d.minConcentration << ", " << d.maxConcentration << "] by more than "
+        << tol << " (no clamp is applied)";
+      throw SimulationError(s.str());
+    }
+  }
 }
 
 double MPM::computeStableTimestep() const {
@@ -304,9 +556,10 @@ double MPM::computeStableTimestep() const {
       wy = std::max(wy, c + std::abs(p.velocity[i].y()));
       wz = std::max(wz, c + std::abs(p.velocity[i].z()));
     }
-    // Eq. 43.
-    dt = std::min({dt, grid_.dx.x() / wx, grid_.dx.y() / wy, grid_.dx.z() / wz});
+    dt = std::min({dt, grid_.dx.x() / wx, grid_.dx.y() / wy, grid_.dx.z() / wz});  // Eq. 43
   }
+  if (maxDiffusivity_ > 0) dt = std::min(dt, grid_.dx.minCoeff() * grid_.dx.minCoeff() / (2 * maxDiffusivity_));  // Eq. 44
+  if (maxFluxRateCoefficient_ > 0) dt = std::min(dt, 1.0 / (kRestrictionSlope * maxFluxRateCoefficient_));
   return dt;
 }
 
@@ -319,6 +572,9 @@ StepSummary MPM::summarize() const {
   StepSummary s;
   s.minJ = std::numeric_limits<double>::infinity();
   s.maxJ = -std::numeric_limits<double>::infinity();
+  s.diffusion = flags_.doScalarDiffusion;
+  s.minConcentration = std::numeric_limits<double>::infinity();
+  s.maxConcentration = -std::numeric_limits<double>::infinity();
   for (const MPMMaterial& mat : materials_) {
     const ParticleSet& p = mat.particles;
     for (size_t i = 0; i < p.count(); ++i) {
@@ -326,6 +582,11 @@ StepSummary MPM::summarize() const {
       const double J = p.volume[i] * mat.density / p.mass[i];
       s.minJ = std::min(s.minJ, J);
       s.maxJ = std::max(s.maxJ, J);
+      if (s.diffusion) {
+        s.totalLithium += p.mass[i] * p.concentration[i];
+        s.minConcentration = std::min(s.minConcentration, p.concentration[i]);
+        s.maxConcentration = std::max(s.maxConcentration, p.concentration[i]);
+      }
     }
     s.particles += p.count();
   }

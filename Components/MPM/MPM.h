@@ -8,6 +8,7 @@
 #include "Components/MPM/GridFields.h"
 #include "Components/MPM/Interpolator.h"
 #include "Components/MPM/MPMFlags.h"
+#include "Components/MPM/Materials/Diffusion/ScalarFluxBC.h"
 #include "Components/MPM/Materials/MPMMaterial.h"
 #include "Core/Grid/BoundaryConditions.h"
 #include "Core/Grid/Grid.h"
@@ -19,16 +20,27 @@ struct StepSummary {
   double kineticEnergy = 0;
   double minJ = 1, maxJ = 1;
   size_t particles = 0;
+  bool diffusion = false;
+  double totalLithium = 0;  // sum m c over all materials
+  double minConcentration = 0, maxConcentration = 0;
 };
+
+
+// A concentration may leave [min, max] by this much (relative to max - min) before the run is
+// stopped: round-off of the explicit update, never a clamp.
+constexpr double kConcentrationTolerance = 1e-6;
 
 class MPM {
  public:
-  // Reads <MPM>, <PhysicalConstants>, <Grid>, <MaterialProperties> and <PhysicalBC>.
-  void problemSetup(const PSNode& root);
+  // Reads <MPM>, <PhysicalConstants>, <Grid>, <MaterialProperties> and <PhysicalBC>; the
+  // simulation starts at initTime and ends at maxTime.
+  void problemSetup(const PSNode& root, double initTime, double maxTime);
 
-  // Advances the state by dt. Throws SimulationError when a particle leaves the grid or J <= 0.
-  void timeAdvance(double dt);
-  // Largest stable dt of the current state (paper Eq. 43), before the multiplier.
+  // Advances the state from time t by dt. Throws SimulationError when a particle leaves the
+  // grid, J <= 0, or a concentration leaves [min, max] beyond kConcentrationTolerance.
+  void timeAdvance(double t, double dt);
+  // Largest stable dt of the current state before the multiplier: paper Eq. 45, the smaller of
+  // the mechanical Eq. 43 and the diffusion Eq. 44, and the flux limit of the restriction.
   double computeStableTimestep() const;
   // Interpolation weights and the grid fields of the current state (for output of g.* labels).
   void interpolateToGridForOutput();
@@ -39,25 +51,37 @@ class MPM {
   const std::vector<MPMMaterial>& materials() const { return materials_; }
   std::vector<MPMMaterial>& materials() { return materials_; }
   const std::vector<GridFields>& gridFields() const { return fields_; }
+  const std::vector<ScalarFluxBC>& fluxBCs() const { return fluxBCs_; }
   size_t numParticles() const;
   TaskTimers& timers() { return timers_; }
   const TaskTimers& timers() const { return timers_; }
 
  private:
+  void assignFluxBCs();
+  void findDirichletNodes();
   // The step's tasks, in order (DESIGN.md §4).
   void computeInterpolationWeights();
+  void applyExternalScalarFlux(double t);
   void interpolateParticlesToGrid();
   void exchangeMomentumInterpolated();
   void integrateGridMomentum(double dt);
+  void integrateConcentration(double dt);
   void setGridBoundaryConditions(double dt);
   void interpolateToParticlesAndUpdate(double dt);
   void computeStressTensor(double dt);
+  void computeDiffusivity(double t);
+  void checkConcentrationRange(double t) const;
 
   MPMFlags flags_;
   Grid grid_;
   std::vector<FaceBC> faceBCs_;
   Contact contact_;
   std::vector<MPMMaterial> materials_;
+  std::vector<ScalarFluxBC> fluxBCs_;
+  bool commonDiffusionInterface_ = false;
+  std::vector<std::vector<double>> dirichletMask_, dirichletValue_;  // per material, per node
+  double maxDiffusivity_ = 0;   // over all particles, for Eq. 44
+  double maxFluxRateCoefficient_ = 0;  // max unrestricted J A/V over particles, for the flux limit
 
   std::vector<GridFields> fields_;                 // per material
   std::vector<InterpolationWeights> weights_;      // per material, for the current step

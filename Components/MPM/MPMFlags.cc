@@ -64,7 +64,14 @@ MPMFlags MPMFlags::fromInput(const PSNode& root) {
   if (const PSNode lcrit = mpm.child("cpdi_lcrit"))
     if (lcrit.value<double>() < 1e10) lcrit.unsupported("CPDI corner limiting <cpdi_lcrit>");
 
-  rejectIfTrue(mpm, "do_scalar_diffusion", "scalar (lithium) diffusion");
+  f.doScalarDiffusion = mpm.get<bool>("do_scalar_diffusion", false);
+  f.useLoadCurves = mpm.get<bool>("use_load_curves", false);
+  // This code's extension (docs/diffusion.md): how SD-Type Dirichlet conditions reach particles.
+  if (const PSNode t = mpm.child("concentration_dirichlet")) {
+    const std::string v = t.value<std::string>();
+    if (v != "particle" && v != "nodal") t.fail("<concentration_dirichlet> must be particle or nodal, found \"" + v + "\"");
+    f.particleDirichlet = v == "particle";
+  }
   rejectIfTrue(mpm, "refine_particles", "particle splitting");
   rejectIfTrue(mpm, "DoPressureStabilization", "pressure stabilization");
   rejectIfTrue(mpm, "do_auto_cycle_bc", "automatic flux cycling");
@@ -72,8 +79,7 @@ MPMFlags MPMFlags::fromInput(const PSNode& root) {
   rejectIfTrue(mpm, "artificial_viscosity", "artificial viscosity");
   rejectIfTrue(mpm, "axisymmetric", "axisymmetric MPM");
   rejectIfTrue(mpm, "UseGradientEnhancedVelocityProjection", "gradient-enhanced velocity projection");
-  // Load curves matter only to flux boundary conditions, which carry their own checks.
-  for (const char* inert : {"use_load_curves", "auto_cycle_use_minmax", "auto_cycle_max",
+  for (const char* inert : {"auto_cycle_use_minmax", "auto_cycle_max",
                             "auto_cycle_min", "withColor"})
     mpm.acceptInert(inert);
 

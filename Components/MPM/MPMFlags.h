@@ -13,6 +13,10 @@ struct MPMFlags {
   double minimumParticleMass = 3e-15;
   double artificialDampingCoeff = 0.0;
   Vec3 gravity = Vec3::Zero();
+  bool doScalarDiffusion = false;
+  bool useLoadCurves = false;
+  // SD-Type Dirichlet acting on particles by relaxation (true) or through Uintah's nodal rate.
+  bool particleDirichlet = true;
 
   // Reads <MPM>, <PhysicalConstants> and checks <SimulationComponent> and <AMR>.
   static MPMFlags fromInput(const PSNode& root);

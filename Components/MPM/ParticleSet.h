@@ -22,6 +22,15 @@ struct ParticleSet {
   std::vector<double> plasticStrain;      // p.plasticStrain (yielding materials only)
   std::vector<double> plasticStrainRate;  // p.plasticStrainRate (yielding materials only)
 
+  // Diffusion (only with <do_scalar_diffusion>true).
+  std::vector<double> concentration;        // p.concentration, normalised
+  std::vector<Vec3> concentrationGradient;  // p.concentrationGradient, from the previous step
+  std::vector<double> diffusivity;          // p.diffusivity
+  // Flux boundary conditions (only when <scalar_flux> blocks exist).
+  std::vector<double> externalScalarFlux;   // p.externalScalarFlux: dc/dt from the flux BCs
+  std::vector<Vec3i> loadCurveID;           // p.loadCurveID: up to 3 load curves (0: none)
+  std::vector<Vec3> area;                   // p.area: face area of each of those curves
+
   size_t count() const { return x.size(); }
 };
 

@@ -23,7 +23,7 @@ int materialId(const PSNode& bc, int numMaterials) {
 
 }  // namespace
 
-std::vector<FaceBC> readFaceBCs(const PSNode& gridNode, int numMaterials) {
+std::vector<FaceBC> readFaceBCs(const PSNode& gridNode, int numMaterials, bool diffusion) {
   std::vector<FaceBC> out;
   const PSNode bcs = gridNode.child("BoundaryConditions");
   if (!bcs) return out;
@@ -49,7 +49,22 @@ std::vector<FaceBC> readFaceBCs(const PSNode& gridNode, int numMaterials) {
       f.material = materialId(bc, numMaterials);
       const std::string label = bc.requireAttribute("label");
       const std::string var = bc.requireAttribute("var");
-      if (label == "Symmetric") {
+      if (label == "SD-Type") {
+        if (!diffusion) bc.fail("label=\"SD-Type\" (concentration) needs <MPM><do_scalar_diffusion>true");
+        if (var != "Dirichlet" && var != "Neumann")
+          bc.fail("SD-Type var=\"" + var + "\": accepted Dirichlet, Neumann");
+        f.kind = var == "Dirichlet" ? FaceBC::Kind::ConcentrationDirichlet : FaceBC::Kind::ConcentrationNeumann;
+        if (auto attr = bc.attribute("value")) {
+          try {
+            f.value = parseValue<double>(*attr);
+          } catch (const std::invalid_argument& e) {
+            bc.fail(std::string("<BCType value=...>: ") + e.what());
+          }
+        } else {
+          f.value = bc.require<double>("value");
+        }
+        out.push_back(f);
+      } else if (label == "Symmetric") {
         f.kind = FaceBC::Kind::Symmetric;
         out.push_back(f);
       } else if (label == "Velocity" && var == "Dirichlet") {
@@ -68,12 +83,9 @@ std::vector<FaceBC> readFaceBCs(const PSNode& gridNode, int numMaterials) {
         bc.markSubtreeUsed();  // Uintah's MPM ignores velocity Neumann conditions
       } else if (label == "Temperature") {
         bc.markSubtreeUsed();  // no heat conduction in this code; Uintah's MPM ignores it too
-      } else if (label == "SD-Type") {
-        bc.unsupported("concentration boundary condition label=\"SD-Type\"");
-        bc.markSubtreeUsed();
       } else {
         bc.fail("unknown boundary condition label=\"" + label + "\" var=\"" + var +
-                "\"; accepted: Symmetric, Velocity (Dirichlet), Temperature (ignored)");
+                "\"; accepted: Symmetric, Velocity (Dirichlet), SD-Type, Temperature (ignored)");
       }
     }
   }

@@ -13,13 +13,16 @@ struct FaceBC {
   int axis = 0;       // 0, 1, 2 for x, y, z
   int side = 0;       // 0 for the minus face, 1 for the plus face
   int material = -1;  // -1 for id="all"
-  enum class Kind { Symmetric, VelocityDirichlet } kind = Kind::Symmetric;
-  Vec3 velocity = Vec3::Zero();
+  enum class Kind { Symmetric, VelocityDirichlet, ConcentrationDirichlet, ConcentrationNeumann };
+  Kind kind = Kind::Symmetric;
+  Vec3 velocity = Vec3::Zero();  // VelocityDirichlet
+  double value = 0;              // SD-Type: concentration (Dirichlet) or gradient (Neumann)
 
   bool appliesTo(int matl) const { return material < 0 || material == matl; }
 };
 
-// Reads every <Face>; `numMaterials` bounds the id attribute.
-std::vector<FaceBC> readFaceBCs(const PSNode& gridNode, int numMaterials);
+// Reads every <Face>; `numMaterials` bounds the id attribute; SD-Type (concentration) conditions
+// need `diffusion`.
+std::vector<FaceBC> readFaceBCs(const PSNode& gridNode, int numMaterials, bool diffusion);
 
 }  // namespace anode

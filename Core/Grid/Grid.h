@@ -18,6 +18,8 @@ struct Grid {
   // Reads <Grid><Level><Box> (one level, one box).
   static Grid fromInput(const PSNode& gridNode);
 
+  // Uintah's dimensionality: 1 with one cell in y and z, 2 with one cell in z, else 3.
+  int ndim() const { return cells.z() == 1 ? (cells.y() == 1 ? 1 : 2) : 3; }
   Vec3i nodes() const { return cells + Vec3i::Ones() + 2 * extra; }
   int numNodes() const { return nodes().prod(); }
   // Flat index of node (i,j,k) in grid index space (interior node 0 is the lower corner).

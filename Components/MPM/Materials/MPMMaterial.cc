@@ -1,5 +1,6 @@
 #include "Components/MPM/Materials/MPMMaterial.h"
 
+#include "Components/MPM/Materials/Diffusion/ScalarFluxBC.h"
 #include "Core/Geometry/ParticleFill.h"
 
 namespace anode {
@@ -7,8 +8,9 @@ namespace anode {
 namespace {
 
 // Adds the particles of one <geom_object> (UINTAH_UPS.md §3.1).
-void addGeomObject(const PSNode& geom, const Grid& grid, double density, GeometryPieceFactory& pieces,
-                   int64_t& nextId, ParticleSet& p) {
+void addGeomObject(const PSNode& geom, const Grid& grid, const MPMFlags& flags, MPMMaterial& m,
+                   GeometryPieceFactory& pieces, int64_t& nextId) {
+  ParticleSet& p = m.particles;
   auto piece = std::make_shared<UnionPiece>();
   for (const PSNode& c : geom.childrenWhere(GeometryPieceFactory::isPieceTag))
     piece->pieces.push_back(pieces.create(c));
@@ -20,8 +22,17 @@ void addGeomObject(const PSNode& geom, const Grid& grid, double density, Geometr
   const Vec3 velocity = geom.require<Vec3>("velocity");
   // Temperature, colour and volume fraction change nothing in isothermal single-field MPM;
   // concentration matters only with diffusion.
-  for (const char* inert : {"temperature", "color", "volumeFraction", "concentration"})
-    geom.acceptInert(inert);
+  for (const char* inert : {"temperature", "color", "volumeFraction"}) geom.acceptInert(inert);
+  double c0 = 0;
+  if (flags.doScalarDiffusion) {
+    c0 = geom.require<double>("concentration");
+    if (c0 < m.diffusion->minConcentration || c0 > m.diffusion->maxConcentration)
+      geom.requireChild("concentration").fail("<concentration> must lie in [min_concentration, max_concentration] = [" +
+                                              std::to_string(m.diffusion->minConcentration) + ", " +
+                                              std::to_string(m.diffusion->maxConcentration) + "]");
+  } else {
+    geom.acceptInert("concentration");
+  }
   if (const PSNode levels = geom.child("numLevelsParticleFilling"))
     if (levels.value<int>() != 1) levels.unsupported("multi-level particle filling");
   for (const char* affine : {"affineTransformation_A0", "affineTransformation_A1",
@@ -32,12 +43,20 @@ void addGeomObject(const PSNode& geom, const Grid& grid, double density, Geometr
   if (xs.empty()) geom.fail("<geom_object> places no particle: its pieces contain no particle position of the grid");
   const Mat3 size = res.cast<double>().cwiseInverse().asDiagonal();
   const double v0 = size.determinant() * grid.dx.prod();
+  const Vec3 dxp = grid.dx.cwiseQuotient(res.cast<double>());
+  const bool findSurface = flags.doScalarDiffusion && flags.useLoadCurves;
   for (const Vec3& x : xs) {
+    if (findSurface) m.surface.push_back(onSurface(*piece, x, dxp, grid.ndim()));
+    if (flags.doScalarDiffusion) {
+      p.concentration.push_back(c0);
+      p.concentrationGradient.push_back(Vec3::Zero());
+      p.diffusivity.push_back(m.diffusion->D0);
+    }
     p.id.push_back(nextId++);
     p.x.push_back(x);
     p.velocity.push_back(velocity);
     p.displacement.push_back(Vec3::Zero());
-    p.mass.push_back(density * v0);
+    p.mass.push_back(m.density * v0);
     p.volume.push_back(v0);
     p.F.push_back(Mat3::Identity());
     p.stress.push_back(Mat3::Zero());
@@ -48,21 +67,25 @@ void addGeomObject(const PSNode& geom, const Grid& grid, double density, Geometr
 }  // namespace
 
 MPMMaterial MPMMaterial::fromInput(const PSNode& node, const Grid& grid, const MPMFlags& flags,
-                                   GeometryPieceFactory& pieces, int64_t& nextId) {
+                                   double maxTime, GeometryPieceFactory& pieces, int64_t& nextId) {
   MPMMaterial m;
   m.name = node.attribute("name").value_or("");
   m.density = node.require<double>("density");
   if (!(m.density > 0)) node.requireChild("density").fail("<density> must be positive");
   for (const char* inert : {"thermal_conductivity", "specific_heat", "melt_temp", "room_temp", "C_p",
-                            "do_conc_reduction", "diffusion_model"})
+                            "do_conc_reduction"})
     node.acceptInert(inert);
+  if (flags.doScalarDiffusion)
+    m.diffusion = createDiffusionModel(node.requireChild("diffusion_model"), maxTime);
+  else
+    node.acceptInert("diffusion_model");  // Uintah reads it only with do_scalar_diffusion
   if (const PSNode rigid = node.child("is_rigid"))
     if (rigid.value<bool>()) rigid.unsupported("rigid materials <is_rigid>");
   m.model = createConstitutiveModel(node.requireChild("constitutive_model"));
 
   const auto geoms = node.children("geom_object");
   if (geoms.empty()) node.fail("<material> needs at least one <geom_object>");
-  for (const PSNode& g : geoms) addGeomObject(g, grid, m.density, pieces, nextId, m.particles);
+  for (const PSNode& g : geoms) addGeomObject(g, grid, flags, m, pieces, nextId);
   if (m.particles.mass.front() <= flags.minimumParticleMass)
     node.requireChild("density").fail("particle mass " + std::to_string(m.particles.mass.front()) +
                                        " is at or below <minimum_particle_mass> " +

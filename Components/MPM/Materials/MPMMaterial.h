@@ -5,6 +5,7 @@
 #include <string>
 
 #include "Components/MPM/MPMFlags.h"
+#include "Components/MPM/Materials/Diffusion/ScalarDiffusionModel.h"
 #include "Components/MPM/Materials/ConstitutiveModels/ConstitutiveModel.h"
 #include "Components/MPM/ParticleSet.h"
 #include "Core/Geometry/GeometryPiece.h"
@@ -16,11 +17,15 @@ struct MPMMaterial {
   std::string name;
   double density = 0;  // rho0; particle mass = rho0 * V0
   std::unique_ptr<ConstitutiveModel> model;
+  std::unique_ptr<ScalarDiffusionModel> diffusion;  // only with <do_scalar_diffusion>true
   ParticleSet particles;
+  // Setup only: which particles lie on the surface of their geometry (for flux BCs).
+  std::vector<uint8_t> surface;
 
   // Reads the material and fills its particles; `nextId` numbers particles across materials.
+  // `maxTime` bounds the diffusion model's diff_curve.
   static MPMMaterial fromInput(const PSNode& node, const Grid& grid, const MPMFlags& flags,
-                               GeometryPieceFactory& pieces, int64_t& nextId);
+                               double maxTime, GeometryPieceFactory& pieces, int64_t& nextId);
 };
 
 }  // namespace anode

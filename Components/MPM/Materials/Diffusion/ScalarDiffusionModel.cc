@@ -1,0 +1,179 @@
+#include "Components/MPM/Materials/Diffusion/ScalarDiffusionModel.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace anode {
+
+double nonLinear1Diffusivity(double D0, double alpha, double beta, double c, double scaledPressure) {
+  return D0 * std::exp(alpha * c - beta * scaledPressure);
+}
+
+double cubicDiffusivity(double D0, double Dmax, double c) {
+  const double u = 1 - c;
+  return D0 * u * u * u + Dmax * c * c * c;
+}
+
+namespace {
+
+double maxOf(const std::vector<double>& v) {
+  double m = 0;
+  for (double x : v) m = std::max(m, x);
+  return m;
+}
+
+// jg: constant D (Fick).
+class ConstantDiffusivity : public ScalarDiffusionModel {
+ public:
+  double computeDiffusivity(ParticleSet& p, double) override {
+    std::fill(p.diffusivity.begin(), p.diffusivity.end(), D0);
+    return D0;
+  }
+};
+
+// constant_rate: no flux; every node's concentration changes at the same rate.
+class ConstantRate : public ScalarDiffusionModel {
+ public:
+  double rate = 0;
+  double computeDiffusivity(ParticleSet& p, double) override {
+    std::fill(p.diffusivity.begin(), p.diffusivity.end(), 0.0);
+    return 0.0;
+  }
+  double constantRate() const override { return rate; }
+  bool diffuses() const override { return false; }
+};
+
+// The optional <diff_curve> of non_linear1: intervals in which D is computed ("in",
+// "transition") or frozen at each particle's previous value ("out", delithiation, paper §4.7).
+struct DiffusivityCurve {
+  std::vector<double> times;
+  std::vector<bool> frozen;
+  size_t interval = 0;
+
+  // Advances at most one interval per call, as Uintah does; true if D is frozen at time t.
+  bool frozenAt(double t) {
+    if (interval + 1 < times.size() - 1 && t > times[interval + 1]) ++interval;
+    return frozen[interval];
+  }
+};
+
+// non_linear1: paper Eq. 23, optionally pressure dependent.
+class NonLinear1 : public ScalarDiffusionModel {
+ public:
+  double alpha = 0, beta = 0, pFloor = 0, pMax = 0, pScale = 1;
+  bool usePressure = false;
+  std::unique_ptr<DiffusivityCurve> curve;
+
+  double computeDiffusivity(ParticleSet& p, double t) override {
+    if (curve && curve->frozenAt(t) && initialized_) return maxOf(p.diffusivity);
+    initialized_ = true;
+    const long n = static_cast<long>(p.count());
+    double dmax = 0;
+#pragma omp parallel for schedule(static) reduction(max : dmax)
+    for (long i = 0; i < n; ++i) {
+      double scaled = 0;
+      if (usePressure) {
+        const double pressure = -p.stress[i].trace() / 3.0;  // compression positive
+        scaled = std::clamp(pScale * pressure, pFloor, pMax);
+      }
+      p.diffusivity[i] = nonLinear1Diffusivity(D0, alpha, usePressure ? beta : 0.0, p.concentration[i], scaled);
+      dmax = std::max(dmax, p.diffusivity[i]);
+    }
+    return dmax;
+  }
+
+ private:
+  bool initialized_ = false;
+};
+
+// cubic: paper Eq. 24 (Berla et al.), for comparison with Eq. 23.
+class Cubic : public ScalarDiffusionModel {
+ public:
+  double Dmax = 0;
+  double computeDiffusivity(ParticleSet& p, double) override {
+    const long n = static_cast<long>(p.count());
+    double dmax = 0;
+#pragma omp parallel for schedule(static) reduction(max : dmax)
+    for (long i = 0; i < n; ++i) {
+      p.diffusivity[i] = cubicDiffusivity(D0, Dmax, p.concentration[i] / maxConcentration);
+      dmax = std::max(dmax, p.diffusivity[i]);
+    }
+    return dmax;
+  }
+  bool diffuses() const override { return D0 > 0 || Dmax > 0; }
+};
+
+std::unique_ptr<DiffusivityCurve> readCurve(const PSNode& node, double maxTime) {
+  auto curve = std::make_unique<DiffusivityCurve>();
+  for (const PSNode& point : node.children("time_point")) {
+    const double t = point.require<double>("time");
+    if (!curve->times.empty() && !(t > curve->times.back()))
+      point.requireChild("time").fail("<diff_curve> times must be strictly increasing");
+    const std::string dir = point.require<std::string>("flux_direction");
+    if (dir != "in" && dir != "out" && dir != "transition")
+      point.requireChild("flux_direction").fail("<flux_direction> must be in, out or transition, found \"" + dir + "\"");
+    curve->times.push_back(t);
+    curve->frozen.push_back(dir == "out");
+  }
+  if (curve->times.size() < 2) node.fail("<diff_curve> needs at least two <time_point>");
+  if (!(curve->times.back() > maxTime))
+    node.fail("the last <diff_curve> time must lie beyond <maxTime> (Uintah reads past the list otherwise)");
+  return curve;
+}
+
+double positiveOrZero(const PSNode& node, const char* tag) {
+  const double v = node.require<double>(tag);
+  if (v < 0) node.requireChild(tag).fail("<" + std::string(tag) + "> must be >= 0");
+  return v;
+}
+
+}  // namespace
+
+std::unique_ptr<ScalarDiffusionModel> createDiffusionModel(const PSNode& node, double maxTime) {
+  const std::string type = node.requireAttribute("type");
+  std::unique_ptr<ScalarDiffusionModel> model;
+  if (type == "jg") {
+    model = std::make_unique<ConstantDiffusivity>();
+  } else if (type == "constant_rate") {
+    auto m = std::make_unique<ConstantRate>();
+    m->rate = node.require<double>("constant_rate");
+    model = std::move(m);
+  } else if (type == "non_linear1") {
+    auto m = std::make_unique<NonLinear1>();
+    m->usePressure = node.require<bool>("use_pressure");
+    m->alpha = node.require<double>("tuning1");
+    m->beta = node.require<double>("tuning2");
+    if (m->usePressure) {
+      m->pFloor = node.require<double>("tuning3");
+      m->pMax = node.require<double>("tuning4");
+      m->pScale = node.require<double>("tuning5");
+      if (m->pMax < m->pFloor) node.requireChild("tuning4").fail("<tuning4> (p_max) must be >= <tuning3>");
+    } else {
+      for (const char* inert : {"tuning3", "tuning4", "tuning5"}) node.acceptInert(inert);
+    }
+    if (const PSNode curve = node.child("diff_curve")) m->curve = readCurve(curve, maxTime);
+    model = std::move(m);
+  } else if (type == "cubic") {
+    auto m = std::make_unique<Cubic>();
+    m->Dmax = positiveOrZero(node, "max_diffusivity");
+    model = std::move(m);
+  } else if (type == "rf1" || type == "non_linear2") {
+    node.fail("diffusion_model type=\"" + type + "\" is not supported; accepted: jg, constant_rate, non_linear1, cubic");
+  } else {
+    node.fail("unknown diffusion_model type=\"" + type + "\"; accepted: jg, constant_rate, non_linear1, cubic");
+  }
+  model->type = type;
+  model->D0 = positiveOrZero(node, "diffusivity");
+  model->maxConcentration = node.require<double>("max_concentration");
+  if (!(model->maxConcentration > 0)) node.requireChild("max_concentration").fail("<max_concentration> must be positive");
+  model->minConcentration = node.get<double>("min_concentration", 0.0);
+  if (model->minConcentration >= model->maxConcentration)
+    node.requireChild("min_concentration").fail("<min_concentration> must be below <max_concentration>");
+  // conc_tolerance only shapes Uintah's clamp, which this code does not apply; the initial
+  // concentration comes from <geom_object><concentration> (Uintah never applies this one).
+  for (const char* inert : {"conc_tolerance", "initial_concentration"}) node.acceptInert(inert);
+  if (const PSNode cond = node.child("conductivity_equation")) cond.unsupported("<conductivity_equation> (Gauss solver)");
+  return model;
+}
+
+}  // namespace anode

@@ -1,0 +1,41 @@
+// Diffusivity laws of <diffusion_model type="..."> (UINTAH_UPS.md §2.11, §4; paper Eqs. 23-24).
+// A model maps each particle's normalised concentration (and pressure) to its diffusivity D_p;
+// the flux q_p = D_p grad c_p and its divergence (Eqs. 6-7) are computed by the MPM step.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "Components/MPM/ParticleSet.h"
+#include "Core/ProblemSpec/ProblemSpec.h"
+
+namespace anode {
+
+class ScalarDiffusionModel {
+ public:
+  virtual ~ScalarDiffusionModel() = default;
+
+  // Sets p.diffusivity for the step that starts at time t from the particles' current
+  // concentration and stress; returns the largest diffusivity (for Eq. 44).
+  virtual double computeDiffusivity(ParticleSet& p, double t) = 0;
+  // The uniform dc/dt of constant_rate; 0 for the others.
+  virtual double constantRate() const { return 0.0; }
+  // False when the model has no flux at all (constant_rate, or a zero diffusivity everywhere).
+  virtual bool diffuses() const { return D0 > 0; }
+
+  double D0 = 0;                 // <diffusivity>
+  double maxConcentration = 1;   // <max_concentration>
+  double minConcentration = 0;   // <min_concentration>
+  std::string type;
+};
+
+// Factory keyed by type=: jg, constant_rate, non_linear1, cubic. `maxTime` bounds diff_curve.
+std::unique_ptr<ScalarDiffusionModel> createDiffusionModel(const PSNode& node, double maxTime);
+
+// Eq. 23: D0 exp(alpha c) exp(-beta clamp(scale p, floor, p_max)), p = -tr(sigma)/3.
+double nonLinear1Diffusivity(double D0, double alpha, double beta, double c, double scaledPressure);
+// Eq. 24: D0 (1 - c)^3 + Dmax c^3.
+double cubicDiffusivity(double D0, double Dmax, double c);
+
+}  // namespace anode

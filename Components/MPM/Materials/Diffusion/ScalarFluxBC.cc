@@ -1,0 +1,114 @@
+#include "Components/MPM/Materials/Diffusion/ScalarFluxBC.h"
+
+#include <cmath>
+#include <string>
+
+namespace anode {
+
+double fluxRestriction(double c) {
+  if (c >= 1) return 0.0;
+  return std::max(0.0, 1.0 + 0.25 * std::log(1.0 - c));
+}
+
+bool onSurface(const GeometryPiece& piece, const Vec3& x, const Vec3& dxp, int ndim) {
+  const int dims = ndim == 3 ? 3 : 2;
+  for (int k = 0; k < dims; ++k) {
+    Vec3 step = Vec3::Zero();
+    step[k] = dxp[k];
+    if (!piece.inside(x + step) || !piece.inside(x - step)) return true;
+  }
+  return false;
+}
+
+std::vector<ScalarFluxBC> ScalarFluxBC::fromInput(const PSNode& physicalBC) {
+  std::vector<ScalarFluxBC> out;
+  const PSNode mpm = physicalBC.child("MPM");
+  if (!mpm) return out;
+  for (const PSNode& block : mpm.children("scalar_flux")) {
+    ScalarFluxBC bc;
+    bc.line = block.line();
+    const PSNode geom = block.requireChild("geom_object");
+    const auto pieces = geom.children();
+    if (pieces.size() != 1) geom.fail("a <scalar_flux> <geom_object> holds exactly one box, cylinder or sphere");
+    const PSNode piece = pieces[0];
+    const std::string type = piece.name();
+    if (type == "box") {
+      bc.face = Face::Box;
+      bc.boxMin = piece.require<Vec3>("min");
+      bc.boxMax = piece.require<Vec3>("max");
+      if ((bc.boxMax.array() < bc.boxMin.array()).any()) piece.requireChild("max").fail("<max> must be >= <min>");
+    } else if (type == "cylinder") {
+      bc.bottom = piece.require<Vec3>("bottom");
+      bc.top = piece.require<Vec3>("top");
+      bc.radius = piece.require<double>("radius");
+      if (!(bc.radius > 0)) piece.requireChild("radius").fail("<radius> must be positive");
+      if ((bc.top - bc.bottom).norm() == 0) piece.requireChild("top").fail("<top> equals <bottom>");
+      bc.face = piece.get<bool>("cylinder_end", false) ? Face::CylinderEnd : Face::CylinderSide;
+      if (const PSNode a = piece.child("axisymmetric_end"))
+        if (a.value<bool>()) a.unsupported("axisymmetric flux boundary conditions");
+      if (const PSNode a = piece.child("axisymmetric_side"))
+        if (a.value<bool>()) a.unsupported("axisymmetric flux boundary conditions");
+    } else if (type == "sphere") {
+      bc.face = Face::Sphere;
+      const PSNode origin = piece.child("origin");
+      bc.center = origin ? origin.value<Vec3>() : piece.require<Vec3>("center");
+      bc.radius = piece.require<double>("radius");
+      if (!(bc.radius > 0)) piece.requireChild("radius").fail("<radius> must be positive");
+    } else {
+      piece.fail("a <scalar_flux> geometry must be a box, cylinder or sphere, found <" + type + ">");
+    }
+    block.acceptInert("outward_normal");
+    block.acceptInert("auto_cycle");
+    block.acceptInert("numberOfParticlesOnLoadSurface");
+    const PSNode curve = block.requireChild("load_curve");
+    const int id = curve.require<int>("id");
+    // Uintah looks up the BC of a particle by id - 1 in file order (UINTAH_UPS.md P16).
+    if (id != static_cast<int>(out.size()) + 1)
+      curve.requireChild("id").fail("load curve <id> must be " + std::to_string(out.size() + 1) +
+                                    ": ids number the <scalar_flux> blocks 1..N in file order");
+    bc.load = LoadCurve::fromInput(curve);
+    out.push_back(std::move(bc));
+  }
+  return out;
+}
+
+double ScalarFluxBC::flaggedArea(const Vec3& x, const Vec3& dxp) const {
+  const Vec3 faceAreas(dxp.y() * dxp.z(), dxp.x() * dxp.z(), dxp.x() * dxp.y());
+  switch (face) {
+    case Face::Box: {
+      if ((x.array() < (boxMin - dxp).array()).any() || (x.array() > (boxMax + dxp).array()).any()) return 0;
+      // The BC's normal is the axis of the box's smallest extent.
+      int axis = 0;
+      (boxMax - boxMin).minCoeff(&axis);
+      return faceAreas[axis];
+    }
+    case Face::CylinderSide:
+    case Face::CylinderEnd: {
+      const double tol = 0.9 * dxp.minCoeff();
+      const Vec3 axis = (top - bottom).normalized();
+      const double length = (top - bottom).norm();
+      const double along = (x - bottom).dot(axis);
+      const Vec3 radial = (x - bottom) - along * axis;
+      if (face == Face::CylinderSide) {
+        if (along < 0 || along > length) return 0;
+        const double r = radial.norm();
+        if (r < radius - tol || r > radius + tol) return 0;
+        // Projection of the particle's faces onto the radial direction (in-plane normal).
+        const Vec3 n = radial / r;
+        return std::sqrt(std::pow(faceAreas.x() * n.x(), 2) + std::pow(faceAreas.y() * n.y(), 2) +
+                         std::pow(faceAreas.z() * n.z(), 2));
+      }
+      if (along < -tol || along > length + tol || radial.norm() > radius) return 0;
+      return std::sqrt(std::pow(faceAreas.x() * axis.x(), 2) + std::pow(faceAreas.y() * axis.y(), 2) +
+                       std::pow(faceAreas.z() * axis.z(), 2));
+    }
+    case Face::Sphere: {
+      const double r = (x - center).norm();
+      if (std::abs(r - radius) > dxp.norm()) return 0;
+      return faceAreas.x();
+    }
+  }
+  return 0;
+}
+
+}  // namespace anode
