@@ -51,7 +51,7 @@ UniaxialResult uniaxialStrain(const RFElasticPlastic& model, double e, int n) {
     Fnew(0, 0) = std::exp(e * (i + 1) / n);
     Mat3 L = Mat3::Zero();
     L(0, 0) = std::log(Fnew(0, 0) / F(0, 0)) / dt;
-    stress = model.updateStress(stress, F, Fnew, L, dt, ep, epdot);
+    stress = model.updateStress(stress, F, Fnew, L, 0.0, dt, ep, epdot);
     F = Fnew;
   }
   return {stress(0, 0), stress(1, 1), ep};
@@ -123,7 +123,7 @@ TEST(Objectivity, RigidRotationRotatesTheStressAndKeepsItsInvariants) {
     const Mat3 Fnew = Eigen::AngleAxisd(omega * dt * i, axis).toRotationMatrix();
     const Mat3 W = Fnew * F.inverse();  // incremental rotation
     const Mat3 L = (W - W.transpose()) / (2 * dt);  // spin only: no rate of deformation
-    stress = model.updateStress(stress, F, Fnew, L, dt, ep, epdot);
+    stress = model.updateStress(stress, F, Fnew, L, 0.0, dt, ep, epdot);
     F = Fnew;
   }
   const Mat3 expected = F * start * F.transpose();

@@ -95,6 +95,10 @@ void MPM::problemSetup(const PSNode& root, double initTime, double maxTime) {
     velocityGradient_[m].resize(n);
     newF_[m].resize(n);
   }
+  concentrationIncrement_.resize(materials_.size());
+  for (size_t m = 0; m < materials_.size(); ++m)
+    if (flags_.doScalarDiffusion && materials_[m].model->swells())
+      concentrationIncrement_[m].resize(materials_[m].particles.count());
   threadScatter_.resize(omp_get_max_threads() > 1 ? omp_get_max_threads() : 0);
   for (auto& t : threadScatter_) {
     t.mass.resize(nodes);
@@ -458,6 +462,7 @@ void MPM::interpolateToParticlesAndUpdate(double dt) {
     std::vector<Mat3>& Fnew = newF_[m];
     const long n = static_cast<long>(p.count());
     const double rho0 = mat.density;
+    double* dcOut = concentrationIncrement_[m].empty() ? nullptr : concentrationIncrement_[m].data();
     const double* wallMask = particleDirichlet ? dirichletMask_[m].data() : nullptr;
     const double* wallTarget = particleDirichlet ? dirichletValue_[m].data() : nullptr;
     long firstInverted = n;
@@ -502,6 +507,7 @@ void MPM::interpolateToParticlesAndUpdate(double dt) {
         double c = p.concentration[i] + dt * cRate;  // Eq. 8
         // A convex combination: cannot leave [min(c, c_BC), max(c, c_BC)].
         if (wallWeight > 0) c = (1 - wallWeight) * c + wallValue;
+        if (dcOut) dcOut[i] = c - p.concentration[i];
         p.concentration[i] = c;
       }
     }
@@ -516,7 +522,8 @@ void MPM::interpolateToParticlesAndUpdate(double dt) {
 
 void MPM::computeStressTensor(double dt) {
   for (size_t m = 0; m < materials_.size(); ++m)
-    materials_[m].model->computeStressTensor(materials_[m].particles, velocityGradient_[m], newF_[m], dt);
+    materials_[m].model->computeStressTensor(materials_[m].particles, velocityGradient_[m], newF_[m],
+                                             &concentrationIncrement_[m], dt);
 }
 
 void MPM::computeDiffusivity(double t) {

@@ -87,6 +87,7 @@ class MPM {
   std::vector<InterpolationWeights> weights_;      // per material, for the current step
   std::vector<std::vector<Mat3>> velocityGradient_;  // per material scratch: L of the step
   std::vector<std::vector<Mat3>> newF_;              // per material scratch: F at the step's end
+  std::vector<std::vector<double>> concentrationIncrement_;  // per swelling material: c^{n+1} - c^n
   std::vector<GridFields> threadScatter_;          // per thread, for P2G without locks
   TaskTimers timers_;
 };

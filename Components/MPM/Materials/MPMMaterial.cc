@@ -81,7 +81,7 @@ MPMMaterial MPMMaterial::fromInput(const PSNode& node, const Grid& grid, const M
     node.acceptInert("diffusion_model");  // Uintah reads it only with do_scalar_diffusion
   if (const PSNode rigid = node.child("is_rigid"))
     if (rigid.value<bool>()) rigid.unsupported("rigid materials <is_rigid>");
-  m.model = createConstitutiveModel(node.requireChild("constitutive_model"));
+  m.model = createConstitutiveModel(node.requireChild("constitutive_model"), flags.doScalarDiffusion);
 
   const auto geoms = node.children("geom_object");
   if (geoms.empty()) node.fail("<material> needs at least one <geom_object>");

@@ -6,14 +6,17 @@
 
 namespace anode {
 
-std::unique_ptr<RFElasticPlastic> RFElasticPlastic::fromInput(const PSNode& node) {
+std::unique_ptr<RFElasticPlastic> RFElasticPlastic::fromInput(const PSNode& node, bool diffusion) {
   const double K = node.require<double>("bulk_modulus");
   if (!(K > 0)) node.requireChild("bulk_modulus").fail("<bulk_modulus> must be positive");
   const double G = node.require<double>("shear_modulus");
   if (!(G > 0)) node.requireChild("shear_modulus").fail("<shear_modulus> must be positive");
-  // Swelling couples to concentration, which a later stage of the code adds; without diffusion
-  // the coefficient has nothing to act on.
-  node.acceptInert("volume_expansion_coeff");
+  // Swelling needs a concentration; without diffusion the coefficient has nothing to act on.
+  double eta = 0;
+  if (diffusion)
+    eta = node.require<double>("volume_expansion_coeff");
+  else
+    node.acceptInert("volume_expansion_coeff");
   for (const char* inert :
        {"initial_material_temperature", "taylor_quinney_coeff", "coeff_thermal_expansion",
         "critical_stress", "tolerance", "useModifiedEOS", "check_TEPLA_failure_criterion",
@@ -58,7 +61,7 @@ std::unique_ptr<RFElasticPlastic> RFElasticPlastic::fromInput(const PSNode& node
     if (!flowNode) yield.fail("<yield_condition> requires a <flow_model>");
     yield.markSubtreeUsed();
   }
-  return std::make_unique<RFElasticPlastic>(K, G, flow);
+  return std::make_unique<RFElasticPlastic>(K, G, flow, eta);
 }
 
 void RFElasticPlastic::initializeState(ParticleSet& p) const {
@@ -68,12 +71,14 @@ void RFElasticPlastic::initializeState(ParticleSet& p) const {
 }
 
 Mat3 RFElasticPlastic::updateStress(const Mat3& stress, const Mat3& Fold, const Mat3& Fnew,
-                                    const Mat3& L, double dt, double& ep, double& epdot) const {
+                                    const Mat3& L, double dc, double dt, double& ep, double& epdot) const {
   const Mat3 I = Mat3::Identity();
   // Unrotate the rate of deformation and the stress with R of the old F (Eqs. 26-29).
   const Mat3 Rold = rotationOf(Fold);
   const Mat3 D = 0.5 * (L + L.transpose());
-  const Mat3 Dbar = Rold.transpose() * D * Rold;
+  // Elastic-plus-plastic rate: the swelling rate eta dc/dt on each normal component removed
+  // (Eqs. 25, 33, 36); c of this step, not the previous one as in Uintah.
+  const Mat3 Dbar = Rold.transpose() * D * Rold - eta_ * dc / dt * I;
   const Mat3 sigmaBar = Rold.transpose() * stress * Rold;
 
   // Hypoelastic trial (Eqs. 31, 37-38): deviatoric and volumetric parts separately.
@@ -112,14 +117,16 @@ Mat3 RFElasticPlastic::updateStress(const Mat3& stress, const Mat3& Fold, const 
 }
 
 void RFElasticPlastic::computeStressTensor(ParticleSet& p, const std::vector<Mat3>& L,
-                                           const std::vector<Mat3>& Fnew, double dt) const {
+                                           const std::vector<Mat3>& Fnew,
+                                           const std::vector<double>* concentrationIncrement, double dt) const {
+  const double* dc = swells() && concentrationIncrement ? concentrationIncrement->data() : nullptr;
   const long n = static_cast<long>(p.count());
   double unused = 0, unusedRate = 0;
 #pragma omp parallel for schedule(static) firstprivate(unused, unusedRate)
   for (long i = 0; i < n; ++i) {
     double& ep = canYield() ? p.plasticStrain[i] : unused;
     double& epdot = canYield() ? p.plasticStrainRate[i] : unusedRate;
-    p.stress[i] = updateStress(p.stress[i], p.F[i], Fnew[i], L[i], dt, ep, epdot);
+    p.stress[i] = updateStress(p.stress[i], p.F[i], Fnew[i], L[i], dc ? dc[i] : 0.0, dt, ep, epdot);
     p.F[i] = Fnew[i];
   }
 }

@@ -19,7 +19,7 @@ namespace anode {
 double fluxRestriction(double c);
 // The restriction's steepest slope before it reaches zero, |R'| at c = 1 - e^-4: a particle
 // whose unrestricted rate is k cannot step past the zero of R when dt k kRestrictionSlope <= 1.
-constexpr double kRestrictionSlope = 13.649537500080112;  // e^4 / 4
+constexpr double kRestrictionSlope = 13.649537508286059;  // e^4 / 4 = 13.649537508286059769...
 
 struct ScalarFluxBC {
   enum class Face { Box, CylinderSide, CylinderEnd, Sphere } face = Face::Box;
