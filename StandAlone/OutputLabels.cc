@@ -59,7 +59,12 @@ const std::map<std::string, ParticleLabel>& particleLabels() {
          putVec(m.particles.loadCurveID.empty() ? Vec3(Vec3::Zero()) : Vec3(m.particles.loadCurveID[i].cast<double>()), o); }}},
       {"p.area", {3, [](const MPMMaterial& m, const Grid&, size_t i, double* o) {
          putVec(m.particles.area.empty() ? Vec3(Vec3::Zero()) : m.particles.area[i], o); }}},
-      // Removed Uintah label kept as an alias: the von Mises equivalent stress.
+      // Removed Uintah labels kept as aliases: the concentration and the scaled pressure that the
+      // diffusivity uses (Eq. 23), and the von Mises equivalent stress.
+      {"p.concentrationInterp", {1, [](const MPMMaterial& m, const Grid&, size_t i, double* o) {
+         o[0] = m.particles.concentration.empty() ? 0.0 : m.particles.concentration[i]; }}},
+      {"p.pressure_t1", {1, [](const MPMMaterial& m, const Grid&, size_t i, double* o) {
+         o[0] = m.diffusion ? m.diffusion->scaledPressure(m.particles.stress[i]) : 0.0; }}},
       {"p.equivalentStress_t1", {1, [](const MPMMaterial& m, const Grid&, size_t i, double* o) {
          const Mat3& s = m.particles.stress[i];
          const Mat3 dev = s - s.trace() / 3.0 * Mat3::Identity();
@@ -78,15 +83,15 @@ const std::vector<std::string>& gridLabelNames() {
 const std::vector<std::string>& diffusionLabels() {
   static const std::vector<std::string> names = {
       "p.concentration", "p.diffusivity", "p.concentrationGradient", "p.externalScalarFlux",
-      "p.externalscalarflux", "p.loadCurveID", "p.area", "g.concentration", "g.concentrationRate"};
+      "p.externalscalarflux", "p.loadCurveID", "p.area", "p.concentrationInterp", "p.pressure_t1",
+      "g.concentration", "g.concentrationRate"};
   return names;
 }
 
 // Labels of Uintah features this code does not have yet (diffusion, splitting, ...).
 const std::vector<std::string>& unsupportedLabels() {
   static const std::vector<std::string> names = {
-      "p.concPrevious", "p.flux", "p.refinedMPM", "p.concentrationInterp", "p.pressure_t1",
-      "p.energy", "g.concentrationStar", "g.externalscalarflux", "g.concentrationnobc",
+      "p.concPrevious", "p.flux", "p.refinedMPM", "p.energy", "g.concentrationStar", "g.externalscalarflux", "g.concentrationnobc",
       "g.hydrostaticStressRD"};
   return names;
 }

@@ -121,26 +121,24 @@ void MPM::assignFluxBCs() {
     MPMMaterial& mat = materials_[m];
     ParticleSet& p = mat.particles;
     if (fluxBCs_.empty() || !mat.diffusion->diffuses()) {
-      mat.surface.clear();
+      mat.surface = {};
       continue;  // a material without diffusivity gets no lithium
     }
     p.externalScalarFlux.assign(p.count(), 0.0);
     p.loadCurveID.assign(p.count(), Vec3i::Zero());
     p.area.assign(p.count(), Vec3::Zero());
     for (size_t i = 0; i < p.count(); ++i) {
-      if (!mat.surface[i]) continue;
-      const Vec3 dxp = p.size[i].diagonal().cwiseProduct(grid_.dx);
+      if (!mat.surface.onSurface[i]) continue;
       int slot = 0;
       for (size_t b = 0; b < fluxBCs_.size() && slot < 3; ++b) {
-        const double a = fluxBCs_[b].flaggedArea(p.x[i], dxp);
+        const double a = fluxBCs_[b].flaggedArea(p.x[i], mat.surface.spacing[i], mat.surface.faceArea[i]);
         if (a <= 0) continue;
         p.loadCurveID[i][slot] = static_cast<int>(b) + 1;
         p.area[i][slot] = a;
         ++slot;
       }
     }
-    mat.surface.clear();
-    mat.surface.shrink_to_fit();
+    mat.surface = {};
   }
 }
 
@@ -395,15 +393,17 @@ void MPM::integrateGridMomentum(double dt) {
 }
 
 void MPM::integrateConcentration(double dt) {
-  // UINTAH_UPS.md §6 step 7: c* = c + (R/m) dt with the SD-Type BCs applied to c*; the rate that
-  // drives the particles also carries the BC correction and the flux source G/m (Eq. 18).
+  // Eq. 18: c* = c + (R/m + G/m) dt, then the SD-Type BCs on c*; the rate that drives the
+  // particles is (c* - c_noBC)/dt. Unlike Uintah (UINTAH_UPS.md §6 step 7) the flux source is
+  // part of c*, so the next step's gradient sees the lithium that entered.
   const long nodes = grid_.numNodes();
   for (size_t m = 0; m < materials_.size(); ++m) {
     GridFields& g = fields_[m];
     const double constantRate = materials_[m].diffusion->constantRate();
 #pragma omp parallel for schedule(static)
     for (long k = 0; k < nodes; ++k) {
-      const double rate = g.mass[k] > 0 ? g.diffusionRate[k] / g.mass[k] + constantRate : 0.0;
+      const double rate =
+          g.mass[k] > 0 ? (g.diffusionRate[k] + g.externalScalarFlux[k]) / g.mass[k] + constantRate : 0.0;
       g.concentrationStar[k] = g.concentration[k] + rate * dt;
     }
     applyConcentrationBCs(grid_, faceBCs_, static_cast<int>(m), g.concentrationStar);
@@ -413,8 +413,7 @@ void MPM::integrateConcentration(double dt) {
         g.concentrationRate[k] = 0;
         continue;
       }
-      g.concentrationRate[k] =
-          (g.concentrationStar[k] - g.concentrationNoBC[k]) / dt + g.externalScalarFlux[k] / g.mass[k];
+      g.concentrationRate[k] = (g.concentrationStar[k] - g.concentrationNoBC[k]) / dt;
     }
   }
 }

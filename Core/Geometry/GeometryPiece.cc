@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "Core/Geometry/SmoothCylinder.h"
+
 namespace anode {
 
 bool CylinderPiece::inside(const Vec3& x) const {
@@ -105,9 +107,11 @@ GeometryPieceP GeometryPieceFactory::create(const PSNode& node) {
     d->first = parts[0];
     d->second = parts[1];
     piece = d;
+  } else if (tag == "smoothcyl") {
+    piece = SmoothCylinderPiece::fromInput(node);
   } else if (isPieceTag(tag)) {
     node.fail("geometry piece <" + tag + "> is not supported; accepted: box, cylinder, sphere, "
-              "union, intersection, difference");
+              "smoothcyl, union, intersection, difference");
   } else {
     node.fail("<" + tag + "> is not a geometry piece");
   }

@@ -2,6 +2,7 @@
 
 #include "Components/MPM/Materials/Diffusion/ScalarFluxBC.h"
 #include "Core/Geometry/ParticleFill.h"
+#include "Core/Geometry/SmoothCylinder.h"
 
 namespace anode {
 
@@ -39,28 +40,45 @@ void addGeomObject(const PSNode& geom, const Grid& grid, const MPMFlags& flags, 
                              "affineTransformation_A2", "affineTransformation_b"})
     if (const PSNode a = geom.child(affine)) a.unsupported("affine transformation of the particle lattice");
 
-  const std::vector<Vec3> xs = fillParticles(grid, *piece, res);
-  if (xs.empty()) geom.fail("<geom_object> places no particle: its pieces contain no particle position of the grid");
-  const Mat3 size = res.cast<double>().cwiseInverse().asDiagonal();
-  const double v0 = size.determinant() * grid.dx.prod();
+  // Particles from the grid (Uintah's placement) or laid out by a smooth piece.
+  std::vector<SmoothParticle> seeds;
   const Vec3 dxp = grid.dx.cwiseQuotient(res.cast<double>());
+  const auto* smooth = piece->pieces.size() == 1 ? dynamic_cast<const SmoothCylinderPiece*>(piece->pieces[0].get()) : nullptr;
+  if (smooth) {
+    seeds = smooth->createParticles(grid);
+  } else {
+    for (const GeometryPieceP& g : piece->pieces)
+      if (dynamic_cast<const SmoothCylinderPiece*>(g.get()))
+        geom.fail("a <smoothcyl> must be the only piece of its <geom_object>");
+    const Mat3 size = res.cast<double>().cwiseInverse().asDiagonal();
+    const Vec3 faces(dxp.y() * dxp.z(), dxp.x() * dxp.z(), dxp.x() * dxp.y());  // normal to x, y, z
+    for (const Vec3& x : fillParticles(grid, *piece, res)) seeds.push_back({x, dxp.prod(), size, faces});
+  }
+  if (seeds.empty()) geom.fail("<geom_object> places no particle: its pieces contain no particle position of the grid");
+
   const bool findSurface = flags.doScalarDiffusion && flags.useLoadCurves;
-  for (const Vec3& x : xs) {
-    if (findSurface) m.surface.push_back(onSurface(*piece, x, dxp, grid.ndim()));
+  for (const SmoothParticle& s : seeds) {
+    if (findSurface) {
+      // Smooth pieces are not searched for their surface: every particle is tested by the flux
+      // BCs (UINTAH_UPS.md §3.2), with the spacing dx/res.
+      m.surface.onSurface.push_back(smooth || onSurface(*piece, s.x, dxp, grid.ndim()));
+      m.surface.faceArea.push_back(s.faceArea);
+      m.surface.spacing.push_back(dxp);
+    }
     if (flags.doScalarDiffusion) {
       p.concentration.push_back(c0);
       p.concentrationGradient.push_back(Vec3::Zero());
       p.diffusivity.push_back(m.diffusion->D0);
     }
     p.id.push_back(nextId++);
-    p.x.push_back(x);
+    p.x.push_back(s.x);
     p.velocity.push_back(velocity);
     p.displacement.push_back(Vec3::Zero());
-    p.mass.push_back(m.density * v0);
-    p.volume.push_back(v0);
+    p.mass.push_back(m.density * s.volume);
+    p.volume.push_back(s.volume);
     p.F.push_back(Mat3::Identity());
     p.stress.push_back(Mat3::Zero());
-    p.size.push_back(size);
+    p.size.push_back(s.size);
   }
 }
 

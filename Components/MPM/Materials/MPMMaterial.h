@@ -19,8 +19,13 @@ struct MPMMaterial {
   std::unique_ptr<ConstitutiveModel> model;
   std::unique_ptr<ScalarDiffusionModel> diffusion;  // only with <do_scalar_diffusion>true
   ParticleSet particles;
-  // Setup only: which particles lie on the surface of their geometry (for flux BCs).
-  std::vector<uint8_t> surface;
+  // Setup only, for flux BCs: which particles lie on the surface of their geometry, their face
+  // areas (normal to x, y, z; for smooth pieces normal to r, r, axis) and the spacing the BCs
+  // select them with.
+  struct SurfaceSeeds {
+    std::vector<uint8_t> onSurface;
+    std::vector<Vec3> faceArea, spacing;
+  } surface;
 
   // Reads the material and fills its particles; `nextId` numbers particles across materials.
   // `maxTime` bounds the diffusion model's diff_curve.

@@ -64,26 +64,23 @@ class NonLinear1 : public ScalarDiffusionModel {
   bool usePressure = false;
   std::unique_ptr<DiffusivityCurve> curve;
 
+  double scaledPressure(const Mat3& stress) const override {
+    return usePressure ? std::clamp(-pScale * stress.trace() / 3.0, pFloor, pMax) : 0.0;  // compression positive
+  }
+
   double computeDiffusivity(ParticleSet& p, double t) override {
-    if (curve && curve->frozenAt(t) && initialized_) return maxOf(p.diffusivity);
-    initialized_ = true;
+    // Frozen: each particle keeps its diffusivity (D0 from the start, as in Uintah).
+    if (curve && curve->frozenAt(t)) return maxOf(p.diffusivity);
     const long n = static_cast<long>(p.count());
     double dmax = 0;
 #pragma omp parallel for schedule(static) reduction(max : dmax)
     for (long i = 0; i < n; ++i) {
-      double scaled = 0;
-      if (usePressure) {
-        const double pressure = -p.stress[i].trace() / 3.0;  // compression positive
-        scaled = std::clamp(pScale * pressure, pFloor, pMax);
-      }
-      p.diffusivity[i] = nonLinear1Diffusivity(D0, alpha, usePressure ? beta : 0.0, p.concentration[i], scaled);
+      p.diffusivity[i] =
+          nonLinear1Diffusivity(D0, alpha, beta, p.concentration[i] / maxConcentration, scaledPressure(p.stress[i]));
       dmax = std::max(dmax, p.diffusivity[i]);
     }
     return dmax;
   }
-
- private:
-  bool initialized_ = false;
 };
 
 // cubic: paper Eq. 24 (Berla et al.), for comparison with Eq. 23.

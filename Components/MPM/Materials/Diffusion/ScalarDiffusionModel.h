@@ -21,6 +21,8 @@ class ScalarDiffusionModel {
   virtual double computeDiffusivity(ParticleSet& p, double t) = 0;
   // The uniform dc/dt of constant_rate; 0 for the others.
   virtual double constantRate() const { return 0.0; }
+  // The scaled pressure entering D (Eq. 23), for output as Uintah's removed p.pressure_t1.
+  virtual double scaledPressure(const Mat3&) const { return 0.0; }
   // False when the model has no flux at all (constant_rate, or a zero diffusivity everywhere).
   virtual bool diffuses() const { return D0 > 0; }
 

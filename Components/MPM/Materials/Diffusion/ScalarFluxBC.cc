@@ -72,8 +72,7 @@ std::vector<ScalarFluxBC> ScalarFluxBC::fromInput(const PSNode& physicalBC) {
   return out;
 }
 
-double ScalarFluxBC::flaggedArea(const Vec3& x, const Vec3& dxp) const {
-  const Vec3 faceAreas(dxp.y() * dxp.z(), dxp.x() * dxp.z(), dxp.x() * dxp.y());
+double ScalarFluxBC::flaggedArea(const Vec3& x, const Vec3& dxp, const Vec3& faceAreas) const {
   switch (face) {
     case Face::Box: {
       if ((x.array() < (boxMin - dxp).array()).any() || (x.array() > (boxMax + dxp).array()).any()) return 0;

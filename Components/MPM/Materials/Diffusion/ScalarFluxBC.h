@@ -32,9 +32,14 @@ struct ScalarFluxBC {
 
   static std::vector<ScalarFluxBC> fromInput(const PSNode& physicalBC);
 
-  // The area of the face this BC names for a particle at x with edge lengths dxp (axis-aligned
-  // particle); 0 if the BC does not flag it. Uintah's selection rules (UINTAH_UPS.md §3.1).
-  double flaggedArea(const Vec3& x, const Vec3& dxp) const;
+  // The area of the face this BC names for a particle at x, selected with the spacing dxp;
+  // faceAreas are the particle's face areas normal to x, y, z (for smooth pieces: normal to r,
+  // r, axis). 0 if the BC does not flag it. Uintah's selection rules (UINTAH_UPS.md §3.1).
+  double flaggedArea(const Vec3& x, const Vec3& dxp, const Vec3& faceAreas) const;
+  // The same for an axis-aligned grid-filled particle of edge lengths dxp.
+  double flaggedArea(const Vec3& x, const Vec3& dxp) const {
+    return flaggedArea(x, dxp, Vec3(dxp.y() * dxp.z(), dxp.x() * dxp.z(), dxp.x() * dxp.y()));
+  }
 };
 
 // Surface detection (UINTAH_UPS.md §3.1): any of x +- dxp_k e_k (k < ndim) outside the piece.
