@@ -98,11 +98,11 @@ void DataArchiver::writeOutput(long step, double time, const MPM& mpm) {
 void DataArchiver::writeHistory() const {
   std::ostringstream s;
   const bool diffusion = !history_.empty() && history_.front().diffusion;
-  s << "step,time,dt,kinetic_energy,min_J,max_J,"
+  s << "step,time,dt,particles,kinetic_energy,min_J,max_J,"
     << (diffusion ? "total_lithium,min_c,max_c," : "") << "wall_seconds\n"
     << std::setprecision(10);
   for (const HistoryRow& r : history_) {
-    s << r.step << ',' << r.time << ',' << r.dt << ',' << r.kineticEnergy << ',' << r.minJ << ',' << r.maxJ << ',';
+    s << r.step << ',' << r.time << ',' << r.dt << ',' << r.particles << ',' << r.kineticEnergy << ',' << r.minJ << ',' << r.maxJ << ',';
     if (diffusion) s << r.totalLithium << ',' << r.minConcentration << ',' << r.maxConcentration << ',';
     s << r.wallSeconds << '\n';
   }

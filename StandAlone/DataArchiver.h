@@ -12,6 +12,7 @@ namespace anode {
 
 struct HistoryRow {
   long step;
+  size_t particles;
   double time, dt, kineticEnergy, minJ, maxJ, wallSeconds;
   bool diffusion;
   double totalLithium, minConcentration, maxConcentration;

@@ -59,6 +59,9 @@ const std::map<std::string, ParticleLabel>& particleLabels() {
          putVec(m.particles.loadCurveID.empty() ? Vec3(Vec3::Zero()) : Vec3(m.particles.loadCurveID[i].cast<double>()), o); }}},
       {"p.area", {3, [](const MPMMaterial& m, const Grid&, size_t i, double* o) {
          putVec(m.particles.area.empty() ? Vec3(Vec3::Zero()) : m.particles.area[i], o); }}},
+      // 1 for particles made by splitting (or split themselves), 0 otherwise.
+      {"p.refinedMPM", {1, [](const MPMMaterial& m, const Grid&, size_t i, double* o) {
+         o[0] = m.particles.refined.empty() ? 0.0 : m.particles.refined[i]; }}},
       // Removed Uintah labels kept as aliases: the concentration and the scaled pressure that the
       // diffusivity uses (Eq. 23), and the von Mises equivalent stress.
       {"p.concentrationInterp", {1, [](const MPMMaterial& m, const Grid&, size_t i, double* o) {
@@ -91,7 +94,7 @@ const std::vector<std::string>& diffusionLabels() {
 // Labels of Uintah features this code does not have yet (diffusion, splitting, ...).
 const std::vector<std::string>& unsupportedLabels() {
   static const std::vector<std::string> names = {
-      "p.concPrevious", "p.flux", "p.refinedMPM", "p.energy", "g.concentrationStar", "g.externalscalarflux", "g.concentrationnobc",
+      "p.concPrevious", "p.flux", "p.energy", "g.concentrationStar", "g.externalscalarflux", "g.concentrationnobc",
       "g.hydrostaticStressRD"};
   return names;
 }

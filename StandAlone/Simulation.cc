@@ -52,7 +52,7 @@ void Simulation::run() {
   const int outputTask = mpm_.timers().task("output");
   auto summaryRow = [&](double stepDt) {
     const StepSummary s = mpm_.summarize();
-    archiver_.recordHistory({step_, t_, stepDt, s.kineticEnergy, s.minJ, s.maxJ, wall(), s.diffusion,
+    archiver_.recordHistory({step_, s.particles, t_, stepDt, s.kineticEnergy, s.minJ, s.maxJ, wall(), s.diffusion,
                              s.totalLithium, s.minConcentration, s.maxConcentration});
   };
   auto output = [&] {

@@ -117,7 +117,7 @@ TEST(Output, VtuFilesCarryTheSavedLabels) {
   // history.csv: a header and one row per step (0..5); the input copied alongside.
   const std::string history = readFile(run.dir / "history.csv");
   EXPECT_EQ(std::count(history.begin(), history.end(), '\n'), 7);
-  EXPECT_EQ(history.rfind("step,time,dt,kinetic_energy", 0), 0u);
+  EXPECT_EQ(history.rfind("step,time,dt,particles,kinetic_energy", 0), 0u);
   EXPECT_EQ(readFile(run.dir / "input.ups"), in.text());
   EXPECT_FALSE(fs::exists(run.dir / "grid.pvd")) << "no g.* label saved: no grid output";
   for (const auto& e : fs::recursive_directory_iterator(run.dir))

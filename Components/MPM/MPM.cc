@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "Components/MPM/GridBoundaryConditions.h"
+#include "Components/MPM/ParticleSplitting.h"
 #include "Core/Util/Errors.h"
 
 namespace anode {
@@ -59,6 +60,13 @@ void MPM::problemSetup(const PSNode& root, double initTime, double maxTime) {
   if (materialNodes.empty()) mpmMats.fail("<MaterialProperties><MPM> needs at least one <material>");
   for (const PSNode& m : materialNodes)
     materials_.push_back(MPMMaterial::fromInput(m, grid_, flags_, maxTime, pieces, nextId));
+  nextParticleId_ = nextId;
+  if (flags_.refineMaterial >= static_cast<int>(materials_.size()))
+    root.requireChild("AMR").fail("the stretchRatio names material " + std::to_string(flags_.refineMaterial) +
+                                  ", but there are " + std::to_string(materials_.size()));
+  for (size_t m = 0; m < materials_.size(); ++m)
+    if (flags_.refineParticles && (flags_.refineMaterial < 0 || flags_.refineMaterial == static_cast<int>(m)))
+      materials_[m].particles.refined.assign(materials_[m].particles.count(), 0);
   contact_ = Contact::fromInput(mpmMats, static_cast<int>(materials_.size()));
   if (const PSNode iface = mpmMats.child("diffusion_interface")) {
     const std::string type = iface.get<std::string>("type", "null");
@@ -86,19 +94,7 @@ void MPM::problemSetup(const PSNode& root, double initTime, double maxTime) {
     f.resize(nodes);
     if (flags_.doScalarDiffusion) f.resizeDiffusion(nodes);
   }
-  weights_.resize(materials_.size());
-  velocityGradient_.resize(materials_.size());
-  newF_.resize(materials_.size());
-  for (size_t m = 0; m < materials_.size(); ++m) {
-    const size_t n = materials_[m].particles.count();
-    weights_[m].resize(n, maxNodesPerParticle(flags_.interpolator));
-    velocityGradient_[m].resize(n);
-    newF_[m].resize(n);
-  }
-  concentrationIncrement_.resize(materials_.size());
-  for (size_t m = 0; m < materials_.size(); ++m)
-    if (flags_.doScalarDiffusion && materials_[m].model->swells())
-      concentrationIncrement_[m].resize(materials_[m].particles.count());
+  resizeParticleScratch();
   threadScatter_.resize(omp_get_max_threads() > 1 ? omp_get_max_threads() : 0);
   for (auto& t : threadScatter_) {
     t.mass.resize(nodes);
@@ -142,6 +138,28 @@ void MPM::assignFluxBCs() {
   }
 }
 
+void MPM::resizeParticleScratch() {
+  weights_.resize(materials_.size());
+  velocityGradient_.resize(materials_.size());
+  newF_.resize(materials_.size());
+  concentrationIncrement_.resize(materials_.size());
+  for (size_t m = 0; m < materials_.size(); ++m) {
+    const size_t n = materials_[m].particles.count();
+    weights_[m].resize(n, maxNodesPerParticle(flags_.interpolator));
+    velocityGradient_[m].resize(n);
+    newF_[m].resize(n);
+    if (flags_.doScalarDiffusion && materials_[m].model->swells()) concentrationIncrement_[m].resize(n);
+  }
+}
+
+void MPM::splitParticles() {
+  size_t split = 0;
+  for (MPMMaterial& mat : materials_)
+    if (!mat.particles.refined.empty())
+      split += splitStretchedParticles(mat.particles, grid_, flags_.stretchRatio, fluxBCs_, nextParticleId_);
+  if (split > 0) resizeParticleScratch();
+}
+
 size_t MPM::numParticles() const {
   size_t n = 0;
   for (const auto& m : materials_) n += m.particles.count();
@@ -151,9 +169,9 @@ size_t MPM::numParticles() const {
 void MPM::timeAdvance(double t, double dt) {
   static const char* names[] = {"computeInterpolationWeights", "interpolateParticlesToGrid",
                                 "exchangeMomentum+integrateGrid", "interpolateToParticlesAndUpdate",
-                                "computeStressTensor", "diffusivity+externalScalarFlux"};
-  int k[6];
-  for (int i = 0; i < 6; ++i) k[i] = timers_.task(names[i]);
+                                "computeStressTensor", "diffusivity+externalScalarFlux", "splitParticles"};
+  int k[7];
+  for (int i = 0; i < 7; ++i) k[i] = timers_.task(names[i]);
   { ScopedTimer s(timers_, k[0]); computeInterpolationWeights(); }        // 1
   { ScopedTimer s(timers_, k[1]); interpolateParticlesToGrid(); }         // 3, 5 (Eqs. 4, 5, 7, 18)
   {
@@ -165,6 +183,10 @@ void MPM::timeAdvance(double t, double dt) {
   }
   { ScopedTimer s(timers_, k[3]); interpolateToParticlesAndUpdate(dt); }  // 7 (Eq. 8)
   { ScopedTimer s(timers_, k[4]); computeStressTensor(dt); }              // 8 (Eqs. 26-39)
+  if (flags_.refineParticles) {
+    ScopedTimer s(timers_, k[6]);
+    splitParticles();
+  }
   if (flags_.doScalarDiffusion) {
     ScopedTimer s(timers_, k[5]);
     checkConcentrationRange(t + dt);

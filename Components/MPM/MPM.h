@@ -71,6 +71,8 @@ class MPM {
   void computeStressTensor(double dt);
   void computeDiffusivity(double t);
   void checkConcentrationRange(double t) const;
+  void splitParticles();
+  void resizeParticleScratch();
 
   MPMFlags flags_;
   Grid grid_;
@@ -82,6 +84,7 @@ class MPM {
   std::vector<std::vector<double>> dirichletMask_, dirichletValue_;  // per material, per node
   double maxDiffusivity_ = 0;   // over all particles, for Eq. 44
   double maxFluxRateCoefficient_ = 0;  // max unrestricted J A/V over particles, for the flux limit
+  int64_t nextParticleId_ = 0;
 
   std::vector<GridFields> fields_;                 // per material
   std::vector<InterpolationWeights> weights_;      // per material, for the current step

@@ -20,8 +20,46 @@ void readAMR(const PSNode& root) {
       regridder.requireChild("max_levels").unsupported("adaptive refinement with several levels");
     regridder.markSubtreeUsed();
   }
-  // Refinement thresholds drive particle splitting, which <refine_particles> switches on.
-  amr.acceptInert("MPM");
+}
+
+// <AMR><MPM><Refinement_Criteria_Thresholds>: the stretch ratio that splits a particle
+// (UINTAH_UPS.md §9), read only when <refine_particles> is on.
+void readRefinementCriteria(const PSNode& root, MPMFlags& f) {
+  const PSNode amr = root.child("AMR");
+  const PSNode amrMPM = amr ? amr.child("MPM") : PSNode();
+  if (!f.refineParticles) {
+    if (amrMPM) amrMPM.markSubtreeUsed();
+    return;
+  }
+  const PSNode criteria = amrMPM ? amrMPM.child("Refinement_Criteria_Thresholds") : PSNode();
+  if (!criteria)
+    root.child("MPM").requireChild("refine_particles")
+        .fail("<refine_particles>true needs <AMR><MPM><Refinement_Criteria_Thresholds> with a stretchRatio");
+  for (const PSNode& v : criteria.children()) {
+    if (v.name() != "Variable") v.fail("<Refinement_Criteria_Thresholds> holds <Variable> tags");
+    const std::string name = v.requireAttribute("name");
+    if (name != "stretchRatio") {
+      v.unsupported("refinement criterion \"" + name + "\" (accepted: stretchRatio)");
+      continue;
+    }
+    try {
+      f.stretchRatio = parseValue<double>(v.requireAttribute("value"));
+    } catch (const std::invalid_argument& e) {
+      v.fail(std::string("<Variable value=...>: ") + e.what());
+    }
+    if (!(f.stretchRatio > 1)) v.fail("the stretchRatio must exceed 1");
+    const std::string matl = v.attribute("matl").value_or("all");
+    if (matl == "all") {
+      f.refineMaterial = -1;
+    } else {
+      try {
+        f.refineMaterial = parseValue<int>(matl);
+      } catch (const std::invalid_argument&) {
+        v.fail("matl=\"" + matl + "\" must be \"all\" or a material index");
+      }
+    }
+  }
+  if (!(f.stretchRatio > 0)) criteria.fail("<refine_particles>true needs a stretchRatio <Variable>");
 }
 
 }  // namespace
@@ -42,7 +80,10 @@ MPMFlags MPMFlags::fromInput(const PSNode& root) {
     constants.acceptInert("reference_pressure");
   }
   const PSNode mpm = root.child("MPM");
-  if (!mpm) return f;
+  if (!mpm) {
+    readRefinementCriteria(root, f);  // no <refine_particles>: the thresholds are inert
+    return f;
+  }
 
   const std::string integrator = mpm.get<std::string>("time_integrator", "explicit");
   if (integrator != "explicit")
@@ -72,7 +113,8 @@ MPMFlags MPMFlags::fromInput(const PSNode& root) {
     if (v != "particle" && v != "nodal") t.fail("<concentration_dirichlet> must be particle or nodal, found \"" + v + "\"");
     f.particleDirichlet = v == "particle";
   }
-  rejectIfTrue(mpm, "refine_particles", "particle splitting");
+  f.refineParticles = mpm.get<bool>("refine_particles", false);
+  readRefinementCriteria(root, f);
   rejectIfTrue(mpm, "DoPressureStabilization", "pressure stabilization");
   rejectIfTrue(mpm, "do_auto_cycle_bc", "automatic flux cycling");
   rejectIfTrue(mpm, "with_gauss_solver", "the Gauss (electric potential) solver");

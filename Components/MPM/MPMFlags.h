@@ -17,6 +17,9 @@ struct MPMFlags {
   bool useLoadCurves = false;
   // SD-Type Dirichlet acting on particles by relaxation (true) or through Uintah's nodal rate.
   bool particleDirichlet = true;
+  bool refineParticles = false;
+  double stretchRatio = 0;   // split a particle whose domain is stretched beyond this ratio
+  int refineMaterial = -1;   // -1: all materials
 
   // Reads <MPM>, <PhysicalConstants> and checks <SimulationComponent> and <AMR>.
   static MPMFlags fromInput(const PSNode& root);

@@ -30,8 +30,22 @@ struct ParticleSet {
   std::vector<double> externalScalarFlux;   // p.externalScalarFlux: dc/dt from the flux BCs
   std::vector<Vec3i> loadCurveID;           // p.loadCurveID: up to 3 load curves (0: none)
   std::vector<Vec3> area;                   // p.area: face area of each of those curves
+  // Particle splitting (only with <refine_particles>true): 1 once a particle or its parent split.
+  std::vector<uint8_t> refined;
 
   size_t count() const { return x.size(); }
+
+  // Appends a copy of particle i (every array that exists) and returns its index.
+  size_t duplicate(size_t i) {
+    auto copy = [i](auto& v) {
+      if (!v.empty()) v.push_back(v[i]);
+    };
+    copy(id), copy(x), copy(velocity), copy(displacement), copy(mass), copy(volume), copy(F);
+    copy(stress), copy(size), copy(plasticStrain), copy(plasticStrainRate), copy(concentration);
+    copy(concentrationGradient), copy(diffusivity), copy(externalScalarFlux), copy(loadCurveID);
+    copy(area), copy(refined);
+    return count() - 1;
+  }
 };
 
 }  // namespace anode

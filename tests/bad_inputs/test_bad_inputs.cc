@@ -18,7 +18,7 @@ namespace {
 
 const std::string kDir = std::string(ANODE_SOURCE_DIR) + "/tests/bad_inputs";
 const std::string kValid = kDir + "/valid_minimal.ups";
-const std::string kUnsupported = kDir + "/unsupported_refine_particles.ups";
+const std::string kUnsupported = kDir + "/unsupported_artificial_viscosity.ups";
 
 struct RunResult {
   int exitCode = -1;

@@ -72,6 +72,45 @@ std::vector<ScalarFluxBC> ScalarFluxBC::fromInput(const PSNode& physicalBC) {
   return out;
 }
 
+Vec3 ScalarFluxBC::normalAt(const Vec3& x) const {
+  switch (face) {
+    case Face::Box: {
+      int axis = 0;
+      (boxMax - boxMin).minCoeff(&axis);
+      return Vec3::Unit(axis);
+    }
+    case Face::CylinderSide: {
+      const Vec3 axis = (top - bottom).normalized();
+      const Vec3 radial = (x - bottom) - (x - bottom).dot(axis) * axis;
+      return radial.norm() > 0 ? Vec3(radial.normalized()) : Vec3::UnitX();
+    }
+    case Face::CylinderEnd:
+      return (top - bottom).normalized();
+    case Face::Sphere:
+      return (x - center).norm() > 0 ? Vec3((x - center).normalized()) : Vec3::UnitX();
+  }
+  return Vec3::UnitX();
+}
+
+double ScalarFluxBC::distanceToFace(const Vec3& x) const {
+  switch (face) {
+    case Face::Box:
+      return std::abs((x - 0.5 * (boxMin + boxMax)).dot(normalAt(x)));
+    case Face::CylinderSide: {
+      const Vec3 axis = (top - bottom).normalized();
+      return std::abs(((x - bottom) - (x - bottom).dot(axis) * axis).norm() - radius);
+    }
+    case Face::CylinderEnd: {
+      const Vec3 axis = (top - bottom).normalized();
+      const double along = (x - bottom).dot(axis);
+      return std::min(std::abs(along), std::abs(along - (top - bottom).norm()));
+    }
+    case Face::Sphere:
+      return std::abs((x - center).norm() - radius);
+  }
+  return 0;
+}
+
 double ScalarFluxBC::flaggedArea(const Vec3& x, const Vec3& dxp, const Vec3& faceAreas) const {
   switch (face) {
     case Face::Box: {

@@ -36,6 +36,10 @@ struct ScalarFluxBC {
   // faceAreas are the particle's face areas normal to x, y, z (for smooth pieces: normal to r,
   // r, axis). 0 if the BC does not flag it. Uintah's selection rules (UINTAH_UPS.md §3.1).
   double flaggedArea(const Vec3& x, const Vec3& dxp, const Vec3& faceAreas) const;
+  // Unit normal of the face this BC names near x, and the distance of x from that face (for
+  // sharing a flux face among split particles).
+  Vec3 normalAt(const Vec3& x) const;
+  double distanceToFace(const Vec3& x) const;
   // The same for an axis-aligned grid-filled particle of edge lengths dxp.
   double flaggedArea(const Vec3& x, const Vec3& dxp) const {
     return flaggedArea(x, dxp, Vec3(dxp.y() * dxp.z(), dxp.x() * dxp.z(), dxp.x() * dxp.y()));

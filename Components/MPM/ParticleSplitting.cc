@@ -1,0 +1,86 @@
+#include "Components/MPM/ParticleSplitting.h"
+
+#include <cmath>
+
+namespace anode {
+
+int splitAxis(const Mat3& domain, double ratio, int ndim) {
+  const double l1 = domain.col(0).squaredNorm(), l2 = domain.col(1).squaredNorm(),
+               l3 = domain.col(2).squaredNorm(), s2 = ratio * ratio;
+  if (l1 > s2 * l2) return 0;
+  if (l2 > s2 * l1) return 1;
+  if (ndim < 3) return -1;
+  if (l1 > s2 * l3) return 0;
+  if (l3 > s2 * l1) return 2;
+  if (l2 > s2 * l3) return 1;
+  if (l3 > s2 * l2) return 2;
+  return -1;
+}
+
+namespace {
+
+// Shares the parent's flux faces among its 4 children (indices in `child`, offsets along the
+// split in `offset`).
+void splitFluxAreas(ParticleSet& p, const std::vector<ScalarFluxBC>& bcs, const size_t child[4],
+                    const Vec3 offset[4], const Vec3& splitDirection) {
+  const size_t parent = child[0];
+  const Vec3 parentX = p.x[parent] - offset[0];
+  const Vec3i ids = p.loadCurveID[parent];
+  const Vec3 areas = p.area[parent];
+  for (int c = 0; c < 4; ++c) {
+    p.loadCurveID[child[c]].setZero();
+    p.area[child[c]].setZero();
+  }
+  int slots[4] = {0, 0, 0, 0};
+  for (int s = 0; s < 3 && ids[s] > 0; ++s) {
+    const ScalarFluxBC& bc = bcs[ids[s] - 1];
+    const bool acrossFace = std::abs(splitDirection.dot(bc.normalAt(parentX))) > M_SQRT1_2;
+    int nearest = 0;
+    for (int c = 1; c < 4; ++c)
+      if (bc.distanceToFace(p.x[child[c]]) < bc.distanceToFace(p.x[child[nearest]])) nearest = c;
+    for (int c = 0; c < 4; ++c) {
+      if (acrossFace && c != nearest) continue;
+      p.loadCurveID[child[c]][slots[c]] = ids[s];
+      p.area[child[c]][slots[c]] = acrossFace ? areas[s] : 0.25 * areas[s];
+      ++slots[c];
+    }
+  }
+}
+
+}  // namespace
+
+size_t splitStretchedParticles(ParticleSet& p, const Grid& grid, double ratio,
+                               const std::vector<ScalarFluxBC>& bcs, int64_t& nextId) {
+  const size_t n = p.count();
+  const bool flux = !p.loadCurveID.empty();
+  size_t split = 0;
+  for (size_t i = 0; i < n; ++i) {
+    if (p.refined[i]) continue;
+    const Mat3 domain = p.F[i] * p.size[i] * grid.dx.asDiagonal();
+    const int axis = splitAxis(domain, ratio, grid.ndim());
+    if (axis < 0) continue;
+    const Vec3 edge = domain.col(axis);
+    const Vec3 x = p.x[i];
+    p.mass[i] *= 0.25;
+    p.volume[i] *= 0.25;
+    p.size[i].col(axis) *= 0.25;
+    p.refined[i] = 1;
+    // Children at x -/+ 0.375 and 0.125 of the edge; the parent becomes the first.
+    static const double offsets[4] = {-0.375, -0.125, 0.125, 0.375};
+    size_t child[4] = {i, 0, 0, 0};
+    Vec3 offset[4];
+    for (int c = 1; c < 4; ++c) {
+      child[c] = p.duplicate(i);
+      p.id[child[c]] = nextId++;
+    }
+    for (int c = 0; c < 4; ++c) {
+      offset[c] = offsets[c] * edge;
+      p.x[child[c]] = x + offset[c];
+    }
+    if (flux) splitFluxAreas(p, bcs, child, offset, edge.normalized());
+    ++split;
+  }
+  return split;
+}
+
+}  // namespace anode

@@ -1,0 +1,24 @@
+// Particle splitting (<refine_particles>true, UINTAH_UPS.md §9): a particle whose physical domain
+// F*size*diag(dx) is stretched beyond the stretch ratio splits into 4 along its longest edge,
+// conserving mass, volume, lithium and momentum. Each particle splits at most once.
+#pragma once
+
+#include <vector>
+
+#include "Components/MPM/Materials/Diffusion/ScalarFluxBC.h"
+#include "Components/MPM/ParticleSet.h"
+#include "Core/Grid/Grid.h"
+
+namespace anode {
+
+// The edge (0, 1, 2: a column of F*size*diag(dx)) a particle splits along, or -1 if none:
+// squared length ratios against ratio^2 in Uintah's order (edge 3 tested only when ndim = 3).
+int splitAxis(const Mat3& domain, double ratio, int ndim);
+
+// Splits every stretched particle not yet refined; returns how many split. New particles get
+// IDs from nextId. A flux face (of `bcs`) normal to the split goes to the child nearest it
+// whole; a face along the split is shared by the 4 children.
+size_t splitStretchedParticles(ParticleSet& p, const Grid& grid, double ratio,
+                               const std::vector<ScalarFluxBC>& bcs, int64_t& nextId);
+
+}  // namespace anode
