@@ -83,7 +83,9 @@ void MPM::problemSetup(const PSNode& root, double initTime, double maxTime) {
     fluxBCs_ = ScalarFluxBC::fromInput(physical);
     if (!fluxBCs_.empty() && !flags_.doScalarDiffusion)
       physical.fail("<scalar_flux> needs <MPM><do_scalar_diffusion>true");
-    if (!fluxBCs_.empty() && !flags_.useLoadCurves)
+    if (flags_.autoCycle && fluxBCs_.empty())
+    root.requireChild("MPM").requireChild("do_auto_cycle_bc").fail("<do_auto_cycle_bc>true needs <scalar_flux> boundary conditions");
+  if (!fluxBCs_.empty() && !flags_.useLoadCurves)
       physical.fail("<scalar_flux> needs <MPM><use_load_curves>true (without it Uintah applies no flux)");
   }
   readOtherPhysicalBCs(root);
@@ -190,6 +192,7 @@ void MPM::timeAdvance(double t, double dt) {
   if (flags_.doScalarDiffusion) {
     ScopedTimer s(timers_, k[5]);
     checkConcentrationRange(t + dt);
+    if (flags_.autoCycle) updateAutoCycle();
     computeDiffusivity(t + dt);     // D of the next step from this step's c and stress (Eq. 23)
     applyExternalScalarFlux(t + dt);  // flux rate of the next step (Eqs. 16-17)
   }
@@ -231,7 +234,7 @@ void MPM::applyExternalScalarFlux(double t) {
   maxFluxRateCoefficient_ = 0;
   if (fluxBCs_.empty()) return;
   std::vector<double> J(fluxBCs_.size());
-  for (size_t b = 0; b < fluxBCs_.size(); ++b) J[b] = fluxBCs_[b].load.at(t);
+  for (size_t b = 0; b < fluxBCs_.size(); ++b) J[b] = fluxSign_ * fluxBCs_[b].load.at(t);
   for (MPMMaterial& mat : materials_) {
     ParticleSet& p = mat.particles;
     if (p.loadCurveID.empty()) continue;
@@ -245,7 +248,9 @@ void MPM::applyExternalScalarFlux(double t) {
         rate += J[p.loadCurveID[i][s] - 1] * p.area[i][s];
         k += std::abs(J[p.loadCurveID[i][s] - 1]) * p.area[i][s];
       }
-      p.externalScalarFlux[i] = rate / p.volume[i] * fluxRestriction(p.concentration[i] / cmax) * cmax;
+      // Eq. 17 restricts inflow as c -> 1; outflow is restricted the same way as c -> 0.
+      const double c = p.concentration[i] / cmax;
+      p.externalScalarFlux[i] = rate / p.volume[i] * fluxRestriction(rate >= 0 ? c : 1 - c) * cmax;
       kmax = std::max(kmax, k / p.volume[i]);
     }
     maxFluxRateCoefficient_ = std::max(maxFluxRateCoefficient_, kmax);
@@ -545,6 +550,26 @@ void MPM::computeStressTensor(double dt) {
   for (size_t m = 0; m < materials_.size(); ++m)
     materials_[m].model->computeStressTensor(materials_[m].particles, velocityGradient_[m], newF_[m],
                                              &concentrationIncrement_[m], dt);
+}
+
+void MPM::updateAutoCycle() {
+  // Mean (or min and max) normalised concentration of the particles that receive flux.
+  double sum = 0, lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  size_t n = 0;
+  for (const MPMMaterial& mat : materials_) {
+    if (mat.particles.loadCurveID.empty()) continue;
+    const double cmax = mat.diffusion->maxConcentration;
+    for (double c : mat.particles.concentration) {
+      sum += c / cmax;
+      lo = std::min(lo, c / cmax);
+      hi = std::max(hi, c / cmax);
+    }
+    n += mat.particles.count();
+  }
+  if (n == 0) return;
+  const double mean = sum / n;
+  if (fluxSign_ > 0 && (flags_.autoCycleUseMinMax ? lo : mean) > flags_.autoCycleMax) fluxSign_ = -1;
+  if (fluxSign_ < 0 && (flags_.autoCycleUseMinMax ? hi : mean) < flags_.autoCycleMin) fluxSign_ = 1;
 }
 
 void MPM::computeDiffusivity(double t) {

@@ -72,6 +72,7 @@ class MPM {
   void computeDiffusivity(double t);
   void checkConcentrationRange(double t) const;
   void splitParticles();
+  void updateAutoCycle();
   void resizeParticleScratch();
 
   MPMFlags flags_;
@@ -85,6 +86,7 @@ class MPM {
   double maxDiffusivity_ = 0;   // over all particles, for Eq. 44
   double maxFluxRateCoefficient_ = 0;  // max unrestricted J A/V over particles, for the flux limit
   int64_t nextParticleId_ = 0;
+  double fluxSign_ = 1;  // do_auto_cycle_bc: +1 lithiates, -1 delithiates
 
   std::vector<GridFields> fields_;                 // per material
   std::vector<InterpolationWeights> weights_;      // per material, for the current step

@@ -116,14 +116,17 @@ MPMFlags MPMFlags::fromInput(const PSNode& root) {
   f.refineParticles = mpm.get<bool>("refine_particles", false);
   readRefinementCriteria(root, f);
   rejectIfTrue(mpm, "DoPressureStabilization", "pressure stabilization");
-  rejectIfTrue(mpm, "do_auto_cycle_bc", "automatic flux cycling");
+  f.autoCycle = mpm.get<bool>("do_auto_cycle_bc", false);
+  f.autoCycleUseMinMax = mpm.get<bool>("auto_cycle_use_minmax", false);
+  f.autoCycleMax = mpm.get<double>("auto_cycle_max", 0.9);
+  f.autoCycleMin = mpm.get<double>("auto_cycle_min", 0.1);
+  if (f.autoCycle && !(f.autoCycleMin < f.autoCycleMax))
+    mpm.requireChild("auto_cycle_min").fail("<auto_cycle_min> must be below <auto_cycle_max>");
   rejectIfTrue(mpm, "with_gauss_solver", "the Gauss (electric potential) solver");
   rejectIfTrue(mpm, "artificial_viscosity", "artificial viscosity");
   rejectIfTrue(mpm, "axisymmetric", "axisymmetric MPM");
   rejectIfTrue(mpm, "UseGradientEnhancedVelocityProjection", "gradient-enhanced velocity projection");
-  for (const char* inert : {"auto_cycle_use_minmax", "auto_cycle_max",
-                            "auto_cycle_min", "withColor"})
-    mpm.acceptInert(inert);
+  mpm.acceptInert("withColor");
 
   f.minimumSubcyclesForF = mpm.get<int>("minimum_subcycles_for_F", 1);
   if (f.minimumSubcyclesForF < 1)

@@ -17,6 +17,9 @@ struct MPMFlags {
   bool useLoadCurves = false;
   // SD-Type Dirichlet acting on particles by relaxation (true) or through Uintah's nodal rate.
   bool particleDirichlet = true;
+  // do_auto_cycle_bc: the flux sign flips when the concentration crosses these thresholds.
+  bool autoCycle = false, autoCycleUseMinMax = false;
+  double autoCycleMax = 0.9, autoCycleMin = 0.1;
   bool refineParticles = false;
   double stretchRatio = 0;   // split a particle whose domain is stretched beyond this ratio
   int refineMaterial = -1;   // -1: all materials
