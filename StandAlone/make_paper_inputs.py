@@ -1,0 +1,285 @@
+#!/usr/bin/env python3
+"""Writes the paper's scenarios (Gritton et al. §4.2-4.7) as inputs/Paper/*.ups.
+
+One description per scenario below; every file states its paper section, parameters and what the
+paper does not give (chosen here). Units: um, us, pg (1 GPa = 1e6, 1 kg/m^3 = 1e-3 pg/um^3,
+1 m^2/s = 1e6 um^2/us, a flux of 1 m/s = 1 um/us). Run: python3 StandAlone/make_paper_inputs.py
+"""
+import math
+import os
+
+GPA = 1e6
+OUT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "inputs", "Paper")
+
+SILICON = dict(K=67.0, G=31.0, sigmaY=1.4, H=1.15)       # GPa
+SUBSTRATE = dict(K=180.4, G=76.0, sigmaY=0.7, H=1.15)    # GPa
+SMALL = dict(radius=0.05, height=0.1, dx=0.005, num_radial=10, num_axial=20, num_angular=64,
+             lateral=0.15, top=0.3)
+LARGE = dict(radius=0.25, height=0.05, dx=0.01, num_radial=100, num_axial=20, num_angular=580,
+             lateral=0.5, top=0.2)
+
+
+def flow_model(kind, m):
+    if kind == "elastic":
+        return ""
+    if kind == "perfect":
+        return ('<flow_model type="johnson_cook"><A>%g</A><B>0</B><C>0</C><n>0</n><m>1</m></flow_model>\n'
+                '          <yield_condition type="vonMises"/>' % (m["sigmaY"] * GPA))
+    return ('<flow_model type="isotropic_hardening"><sigma_Y>%g</sigma_Y><K>%g</K></flow_model>\n'
+            '          <yield_condition type="vonMises"/>' % (m["sigmaY"] * GPA, m["H"] * GPA))
+
+
+def time_points(points, value_tag):
+    return "".join("<time_point><time>%g</time><%s>%s</%s></time_point>" % (t, value_tag, v, value_tag)
+                   for t, v in points)
+
+
+def scenario(s):
+    p = s["pillar"]
+    dx = p["dx"]
+    base = s.get("substrate_height", 0.0)
+    dr = p["radius"] / p["num_radial"]
+    dz = p["height"] / p["num_axial"]
+    tol = 0.9 * dx  # Uintah's selection tolerance for smooth pieces (spacing dx/res, res 1)
+    # Flux BC geometry chosen so exactly the outer ring and the top layer are selected.
+    side_radius = p["radius"] - dr / 2 + tol - dr / 2
+    top_bottom = base + p["height"] - dz / 2 + tol - dz / 2
+    lithiation_end = s.get("lithiation_end")
+    J = s["flux"]
+    if lithiation_end:
+        load = [(0, J), (lithiation_end, J), (lithiation_end * 1.0001, -J), (1e12, -J)]
+    else:
+        load = [(0, J), (1e12, J)]
+    diff_curve = ""
+    if lithiation_end:
+        diff_curve = ("\n          <diff_curve>%s</diff_curve>" %
+                      time_points([(0, "in"), (lithiation_end, "out"), (1e12, "out")], "flux_direction"))
+    diffusion = """<diffusion_model type="non_linear1">
+          <diffusivity>%g</diffusivity>
+          <max_concentration>1.0</max_concentration>
+          <use_pressure>true</use_pressure>
+          <tuning1>%g</tuning1>
+          <tuning2>%g</tuning2>
+          <tuning3>0.0</tuning3>
+          <tuning4>%g</tuning4>
+          <tuning5>1e-6</tuning5>%s
+        </diffusion_model>""" % (s["D0"] * 1e6, s.get("alpha", 6.0), s.get("beta", 0.5), s.get("pmax", 3.0), diff_curve)
+    density = s["density"] * 1e-3
+    pillar = """      <material name="silicon">
+        <density>%g</density>
+        <constitutive_model type="rf_elastic_plastic">
+          <bulk_modulus>%g</bulk_modulus>
+          <shear_modulus>%g</shear_modulus>
+          <volume_expansion_coeff>0.56</volume_expansion_coeff>
+          <equation_of_state type="default_hypo"/>
+          %s
+        </constitutive_model>
+        %s
+        <geom_object>
+          <smoothcyl label="pillar">
+            <discretization_scheme>pie_slices</discretization_scheme>
+            <bottom>[0.0, 0.0, %g]</bottom>
+            <top>[0.0, 0.0, %g]</top>
+            <outer_radius>%g</outer_radius>
+            <num_radial>%d</num_radial>
+            <num_axial>%d</num_axial>
+            <num_angular>%d</num_angular>
+          </smoothcyl>
+          <res>[1,1,1]</res>
+          <velocity>[0.0, 0.0, 0.0]</velocity>
+          <concentration>0</concentration>
+        </geom_object>
+      </material>""" % (density, SILICON["K"] * GPA, SILICON["G"] * GPA, flow_model(s["model"], SILICON), diffusion,
+                        base, base + p["height"], p["radius"], p["num_radial"], p["num_axial"], p["num_angular"])
+    substrate = ""
+    contact = "<contact><type>null</type></contact>"
+    if base > 0:
+        w = s["substrate_width"]
+        substrate = """
+      <material name="substrate">
+        <density>%g</density>
+        <constitutive_model type="rf_elastic_plastic">
+          <bulk_modulus>%g</bulk_modulus>
+          <shear_modulus>%g</shear_modulus>
+          <volume_expansion_coeff>0.0</volume_expansion_coeff>
+          <equation_of_state type="default_hypo"/>
+          %s
+        </constitutive_model>
+        <diffusion_model type="jg">
+          <diffusivity>0.0</diffusivity>
+          <max_concentration>1.0</max_concentration>
+        </diffusion_model>
+        <geom_object>
+          <box label="substrate">
+            <min>[%g, %g, 0.0]</min>
+            <max>[%g, %g, %g]</max>
+          </box>
+          <res>[2,2,2]</res>
+          <velocity>[0.0, 0.0, 0.0]</velocity>
+          <concentration>0</concentration>
+        </geom_object>
+      </material>""" % (density, SUBSTRATE["K"] * GPA, SUBSTRATE["G"] * GPA, flow_model("hardening", SUBSTRATE),
+                        -w / 2, -w / 2, w / 2, w / 2, base)
+        contact = "<contact><type>single_velocity</type><materials>[0,1]</materials></contact>"
+    L = p["lateral"]
+    cells = [int(round(2 * L / dx)), int(round(2 * L / dx)), int(round(p["top"] / dx))]
+    flux_blocks = ""
+    for i, (name, piece) in enumerate([
+            ("side", "<cylinder label=\"side\"><bottom>[0.0,0.0,%g]</bottom><top>[0.0,0.0,%g]</top>"
+                     "<radius>%g</radius></cylinder>" % (base, base + p["height"], side_radius)),
+            ("top", "<cylinder label=\"top\"><bottom>[0.0,0.0,%g]</bottom><top>[0.0,0.0,%g]</top>"
+                    "<radius>%g</radius><cylinder_end>true</cylinder_end></cylinder>"
+             % (top_bottom, top_bottom + dz, p["radius"]))]):
+        flux_blocks += """
+      <scalar_flux>
+        <geom_object>%s</geom_object>
+        <load_curve><id>%d</id>%s</load_curve>
+      </scalar_flux>""" % (piece, i + 1, time_points(load, "load"))
+    steps = "\n    <max_Timesteps>%d</max_Timesteps>" % s["max_steps"] if s.get("max_steps") else ""
+    text = """<?xml version='1.0' encoding='ISO-8859-1' ?>
+<!--
+  %s (Gritton et al. %s)
+%s
+  Units: um, us, pg (1 GPa = 1e6; density in pg/um^3 = 1e-3 kg/m^3; D in um^2/us = 1e-6 m^2/s;
+  flux in um/us = m/s). Written by StandAlone/make_paper_inputs.py; edit the script, not this file.
+-->
+<Uintah_specification>
+  <Meta><title>%s</title></Meta>
+  <SimulationComponent type="amrmpm"/>
+  <Time>
+    <maxTime>%g</maxTime>
+    <initTime>0.0</initTime>
+    <delt_min>1.0e-16</delt_min>
+    <delt_max>1.0e12</delt_max>
+    <timestep_multiplier>0.2</timestep_multiplier>%s
+  </Time>
+  <DataArchiver>
+    <filebase>%s.uda</filebase>
+    <outputInterval>%g</outputInterval>
+    <save label="p.x"/>
+    <save label="p.particleID"/>
+    <save label="p.volume"/>
+    <save label="p.concentration"/>
+    <save label="p.diffusivity"/>
+    <save label="p.stress"/>
+    <save label="p.plasticStrain"/>
+    <save label="p.displacement"/>
+  </DataArchiver>
+  <MPM>
+    <interpolator>cpdi</interpolator>
+    <do_scalar_diffusion>true</do_scalar_diffusion>
+    <use_load_curves>true</use_load_curves>
+  </MPM>
+  <AMR><useLockStep>true</useLockStep><MPM/></AMR>
+  <PhysicalConstants><gravity>[0,0,0]</gravity></PhysicalConstants>
+  <MaterialProperties>
+    <MPM>
+%s%s
+      %s
+      <diffusion_interface><type>null</type></diffusion_interface>
+    </MPM>
+  </MaterialProperties>
+  <PhysicalBC>
+    <MPM>%s
+    </MPM>
+  </PhysicalBC>
+  <Grid>
+    <Level>
+      <Box label="1">
+        <lower>[%g, %g, 0.0]</lower>
+        <upper>[%g, %g, %g]</upper>
+        <resolution>[%d, %d, %d]</resolution>
+        <extraCells>[1,1,1]</extraCells>
+      </Box>
+    </Level>
+    <BoundaryConditions>
+      <Face side="x-"><BCType id="all" label="Symmetric" var="symmetry"/></Face>
+      <Face side="x+"><BCType id="all" label="Symmetric" var="symmetry"/></Face>
+      <Face side="y-"><BCType id="all" label="Symmetric" var="symmetry"/></Face>
+      <Face side="y+"><BCType id="all" label="Symmetric" var="symmetry"/></Face>
+      <Face side="z-">
+        <BCType id="all" label="Symmetric" var="symmetry"/>
+        <BCType id="all" label="Velocity" var="Dirichlet"><value>[0.0, 0.0, 0.0]</value></BCType>
+      </Face>
+      <Face side="z+"><BCType id="all" label="Symmetric" var="symmetry"/></Face>
+    </BoundaryConditions>
+  </Grid>
+</Uintah_specification>
+""" % (s["title"], s["section"], s["notes"], s["title"], s["maxTime"], steps, s["name"], s["maxTime"] / 20,
+       pillar, substrate, contact, flux_blocks, -L, -L, L, L, p["top"], cells[0], cells[1], cells[2])
+    with open(os.path.join(OUT, s["name"] + ".ups"), "w") as f:
+        f.write(text)
+
+
+def describe(lines):
+    return "\n".join("  " + l for l in lines)
+
+
+COMMON = ["Small pillar: diameter 0.1 um, height 0.1 um, smoothcyl pie slices (dr = dz = 5 nm) on",
+          "a 5 nm grid; base fixed (Velocity Dirichlet on z-); flux on the side and the top.",
+          "Silicon: K = 67 GPa, G = 31 GPa, eta = 0.56; D = D0 exp(alpha c - beta p), p_max = 3 GPa."]
+
+SCENARIOS = []
+for rho, D0, J, T, name, sec, extra in [  # T: maxTime in us
+        (2.33e3, 1e-10, 0.4, 0.05, "Density_2.33e3", "§4.2, Fig. 3",
+         ["Density 2.33e3 kg/m^3 (real silicon), D0 = 1e-10 m^2/s (raised, as in the paper).",
+          "Not in the paper: the flux (0.4 m/s, to lithiate within the 48 ns the paper shows)."]),
+        (2.33e8, 1e-10, 0.4, 0.05, "Density_2.33e8", "§4.2, Fig. 3",
+         ["Density raised to 2.33e8 kg/m^3, otherwise as Density_2.33e3: the paper finds little",
+          "difference; compare the two at 6, 26 and 48 ns (6e-3, 26e-3, 48e-3 us)."]),
+        (2.33e18, 1e-17, 1e-9, 3.0e7, "Density_2.33e18", "§4.2, Fig. 4",
+         ["Density 2.33e18 kg/m^3, D0 = 1e-17 m^2/s, flux 1e-9 m/s; compare with Density_2.33e24 at",
+          "4, 16 and 28 s (4e6, 16e6, 28e6 us)."]),
+        (2.33e24, 1e-17, 1e-9, 3.0e7, "Density_2.33e24", "§4.2, Fig. 4",
+         ["Density 2.33e24 kg/m^3 (diffusion-limited time step), otherwise as Density_2.33e18."])]:
+    SCENARIOS.append(dict(name=name, section=sec, title="Density scaling: " + name.split("_")[1] + " kg/m^3",
+                          notes=describe(COMMON + ["Linear isotropic hardening, yield 1.4 GPa, modulus 1.15 GPa."] + extra),
+                          pillar=SMALL, density=rho, D0=D0, flux=J, maxTime=T, model="hardening"))
+
+for model, label in [("elastic", "linear elastic"), ("perfect", "perfect plasticity, yield 1.4 GPa"),
+                     ("hardening", "linear hardening, yield 1.4 GPa, modulus 1.15 GPa")]:
+    SCENARIOS.append(dict(name="Constitutive_" + model, section="§4.3, Fig. 5",
+                          title="Constitutive model: " + label,
+                          notes=describe(COMMON + ["Constitutive model: " + label + ".",
+                                                   "D0 = 1e-17 m^2/s, alpha = 6, beta = 0.5, flux 1e-9 m/s, density 2.33e24 kg/m^3."]),
+                          pillar=SMALL, density=2.33e24, D0=1e-17, flux=1e-9, maxTime=3.0e7, model=model))
+for J, tag in [(1e-9, "1e-9"), (1e-8, "1e-8")]:
+    SCENARIOS.append(dict(name="Flux_" + tag, section="§4.4, Figs. 6-7", title="Flux boundary condition " + tag + " m/s",
+                          notes=describe(COMMON + ["Linear hardening; alpha = 6, beta = 0.5; flux " + tag + " m/s;",
+                                                   "the paper finds c ~ 0.5-0.6 behind the front at 1e-9 and > 0.7 at 1e-8."]),
+                          pillar=SMALL, density=2.33e24, D0=1e-17, flux=J, maxTime=3.0e7 if J < 5e-9 else 4.0e6,
+                          model="hardening"))
+for beta in [0.0, 1.0]:
+    SCENARIOS.append(dict(name="Beta_%g" % beta, section="§4.5, Fig. 8", title="Pressure dependence beta = %g" % beta,
+                          notes=describe(COMMON + ["Linear hardening; alpha = 6, beta = %g (1/GPa); flux 1e-9 m/s." % beta]),
+                          pillar=SMALL, density=2.33e24, D0=1e-17, flux=1e-9, maxTime=3.0e7, model="hardening",
+                          beta=beta))
+SCENARIOS.append(dict(name="Substrate_fixed", section="§4.6, Fig. 9", title="Pillar on a fixed base",
+                      notes=describe(COMMON + ["Linear hardening; alpha = 6, beta = 0.5; flux 1e-9 m/s; compare with Substrate_deformable."]),
+                      pillar=SMALL, density=2.33e24, D0=1e-17, flux=1e-9, maxTime=3.0e7, model="hardening"))
+SCENARIOS.append(dict(name="Substrate_deformable", section="§4.6, Fig. 9", title="Pillar on a deformable substrate",
+                      notes=describe(COMMON + ["The pillar sits on a 0.2 x 0.2 x 0.05 um substrate (K = 180.4 GPa, G = 76 GPa,",
+                                               "yield 0.7 GPa, modulus 1.15 GPa, no lithium: D = 0), bonded by single_velocity",
+                                               "contact; the substrate's base is fixed."]),
+                      pillar=SMALL, density=2.33e24, D0=1e-17, flux=1e-9, maxTime=3.0e7, model="hardening",
+                      substrate_height=0.05, substrate_width=0.2))
+SCENARIOS[-1]["pillar"] = dict(SMALL, top=0.35)
+SCENARIOS.append(dict(name="Cycle_LargePillar", section="§4.7, Fig. 10",
+                      title="Full lithiation/delithiation cycle of the large pillar on a substrate",
+                      notes=describe(["Large pillar: diameter 0.5 um, height 0.05 um, smoothcyl (dr = dz = 2.5 nm) on the paper's",
+                                      "10 nm grid, on a 0.7 x 0.7 x 0.04 um substrate (K = 180.4 GPa, G = 76 GPa, yield 0.7 GPa,",
+                                      "modulus 1.15 GPa, no lithium) bonded by single_velocity contact; base fixed.",
+                                      "Silicon: linear hardening (K = 67, G = 31, yield 1.4, modulus 1.15 GPa), eta = 0.56,",
+                                      "D0 = 1e-17 m^2/s, alpha = 6, beta = 0.5, p_max = 3 GPa; density 2.33e24 kg/m^3.",
+                                      "Flux 1e-9 m/s in for 40 s, then out for 40 s (not in the paper: the durations);",
+                                      "during delithiation each particle's diffusivity stays at its last lithiation value",
+                                      "(diff_curve 'out'). The paper's run: 27,472 steps, 48.57 h on 9 cores."]),
+                      pillar=LARGE, density=2.33e24, D0=1e-17, flux=1e-9, maxTime=8.0e7, lithiation_end=4.0e7,
+                      model="hardening", substrate_height=0.04, substrate_width=0.7))
+SCENARIOS[-1]["pillar"] = dict(LARGE, top=0.24)
+
+if __name__ == "__main__":
+    os.makedirs(OUT, exist_ok=True)
+    for s in SCENARIOS:
+        scenario(s)
+        print("wrote", s["name"])
