@@ -199,13 +199,15 @@ void MPM::timeAdvance(double t, double dt) {
 }
 
 void MPM::computeInterpolationWeights() {
+  previous_ = active_;
+  long lowest = grid_.numNodes(), highest = -1;
   for (size_t m = 0; m < materials_.size(); ++m) {
     const ParticleSet& p = materials_[m].particles;
     InterpolationWeights& W = weights_[m];
     const long n = static_cast<long>(p.count());
     const int stride = W.stride;
     long firstOutside = n;
-#pragma omp parallel for schedule(static) reduction(min : firstOutside)
+#pragma omp parallel for schedule(static) reduction(min : firstOutside, lowest) reduction(max : highest)
     for (long i = 0; i < n; ++i) {
       const size_t b = static_cast<size_t>(i) * stride;
       int count = 0;
@@ -222,11 +224,16 @@ void MPM::computeInterpolationWeights() {
       }
       if (count < 0) firstOutside = std::min(firstOutside, i);
       W.count[i] = static_cast<uint8_t>(std::max(count, 0));
+      for (int e = 0; e < count; ++e) {
+        lowest = std::min<long>(lowest, W.node[b + e]);
+        highest = std::max<long>(highest, W.node[b + e]);
+      }
     }
     if (firstOutside < n)
       throw SimulationError(particleLabel(materials_[m], m, firstOutside) +
                             " has left the grid (its interpolation support reaches beyond the last node)");
   }
+  active_ = highest < 0 ? NodeRange{0, 0} : NodeRange{lowest, highest + 1};
 }
 
 void MPM::applyExternalScalarFlux(double t) {
@@ -321,30 +328,41 @@ void scatter(bool diffusion, bool flux, const ParticleSet& p, const Interpolatio
 }
 
 template <class T>
-void zero(std::vector<T>& v, const T& value) {
-  std::fill(v.begin(), v.end(), value);
+void zero(std::vector<T>& v, long begin, long end, const T& value) {
+  if (!v.empty()) std::fill(v.begin() + begin, v.begin() + end, value);
 }
 
-void clearScatterFields(GridFields& g) {
-  zero(g.mass, 0.0);
-  zero(g.velocity, Vec3(Vec3::Zero()));
-  zero(g.internalForce, Vec3(Vec3::Zero()));
-  zero(g.concentration, 0.0);
-  zero(g.diffusionRate, 0.0);
-  zero(g.externalScalarFlux, 0.0);
+// Zeroes the fields a scatter accumulates into, on nodes [begin, end).
+void clearScatterFields(GridFields& g, long begin, long end) {
+  zero(g.mass, begin, end, 0.0);
+  zero(g.velocity, begin, end, Vec3(Vec3::Zero()));
+  zero(g.internalForce, begin, end, Vec3(Vec3::Zero()));
+  zero(g.concentration, begin, end, 0.0);
+  zero(g.diffusionRate, begin, end, 0.0);
+  zero(g.externalScalarFlux, begin, end, 0.0);
+}
+
+// Zeroes every field on nodes [begin, end).
+void clearAllFields(GridFields& g, long begin, long end) {
+  clearScatterFields(g, begin, end);
+  zero(g.velocityStar, begin, end, Vec3(Vec3::Zero()));
+  zero(g.acceleration, begin, end, Vec3(Vec3::Zero()));
+  zero(g.concentrationNoBC, begin, end, 0.0);
+  zero(g.concentrationStar, begin, end, 0.0);
+  zero(g.concentrationRate, begin, end, 0.0);
 }
 
 }  // namespace
 
 void MPM::interpolateParticlesToGrid() {
-  const long nodes = grid_.numNodes();
+  const long begin = active_.begin, end = active_.end;
   const bool diffusion = flags_.doScalarDiffusion;
   for (size_t m = 0; m < materials_.size(); ++m) {
     const ParticleSet& p = materials_[m].particles;
     GridFields& g = fields_[m];
     const long n = static_cast<long>(p.count());
     const bool flux = !p.externalScalarFlux.empty();
-    clearScatterFields(g);
+    clearAllFields(g, std::min(begin, previous_.begin), std::max(end, previous_.end));
     if (threadScatter_.empty()) {
       scatter(diffusion, flux, p, weights_[m], 0, n, ScatterTarget::of(g));
     } else {
@@ -355,12 +373,11 @@ void MPM::interpolateParticlesToGrid() {
       {
         const int t = omp_get_thread_num();
         GridFields& s = threadScatter_[t];
-        clearScatterFields(s);
-        const long begin = n * t / threads, end = n * (t + 1) / threads;
-        scatter(diffusion, flux, p, weights_[m], begin, end, ScatterTarget::of(s));
+        clearScatterFields(s, begin, end);
+        scatter(diffusion, flux, p, weights_[m], n * t / threads, n * (t + 1) / threads, ScatterTarget::of(s));
 #pragma omp barrier
 #pragma omp for schedule(static)
-        for (long k = 0; k < nodes; ++k)
+        for (long k = begin; k < end; ++k)
           for (int u = 0; u < threads; ++u) {
             const GridFields& b = threadScatter_[u];
             g.mass[k] += b.mass[k];
@@ -375,7 +392,7 @@ void MPM::interpolateParticlesToGrid() {
       }
     }
 #pragma omp parallel for schedule(static)
-    for (long k = 0; k < nodes; ++k) {
+    for (long k = begin; k < end; ++k) {
       const bool massive = g.mass[k] > 0;
       g.velocity[k] = massive ? Vec3(g.velocity[k] / g.mass[k]) : Vec3::Zero();
       if (diffusion) g.concentration[k] = massive ? g.concentration[k] / g.mass[k] : 0.0;  // Eq. 5
@@ -383,14 +400,14 @@ void MPM::interpolateParticlesToGrid() {
     applySymmetry(grid_, faceBCs_, static_cast<int>(m), g.velocity);
     applySymmetry(grid_, faceBCs_, static_cast<int>(m), g.internalForce);
     if (diffusion) {
-      g.concentrationNoBC = g.concentration;
+      std::copy(g.concentration.begin() + begin, g.concentration.begin() + end, g.concentrationNoBC.begin() + begin);
       applyConcentrationBCs(grid_, faceBCs_, static_cast<int>(m), g.concentration);
     }
   }
   if (commonDiffusionInterface_) {
     // diffusion_interface common: one mass-weighted concentration for all materials at a node.
 #pragma omp parallel for schedule(static)
-    for (long k = 0; k < nodes; ++k) {
+    for (long k = begin; k < end; ++k) {
       double mass = 0, mc = 0;
       for (const GridFields& g : fields_) {
         mass += g.mass[k];
@@ -403,14 +420,14 @@ void MPM::interpolateParticlesToGrid() {
 }
 
 void MPM::exchangeMomentumInterpolated() {
-  if (contact_.exchangeInterpolated) contact_.exchange(fields_, &GridFields::velocity);
+  if (contact_.exchangeInterpolated)
+    contact_.exchange(fields_, &GridFields::velocity, active_.begin, active_.end);
 }
 
 void MPM::integrateGridMomentum(double dt) {
-  const long nodes = grid_.numNodes();
   for (GridFields& g : fields_) {
 #pragma omp parallel for schedule(static)
-    for (long k = 0; k < nodes; ++k) {
+    for (long k = active_.begin; k < active_.end; ++k) {
       Vec3 a = Vec3::Zero();
       if (g.mass[k] > flags_.minimumMassForAcc && g.mass[k] > 0)
         a = g.internalForce[k] / g.mass[k] + flags_.gravity - flags_.artificialDampingCoeff * g.velocity[k];
@@ -423,19 +440,19 @@ void MPM::integrateConcentration(double dt) {
   // Eq. 18: c* = c + (R/m + G/m) dt, then the SD-Type BCs on c*; the rate that drives the
   // particles is (c* - c_noBC)/dt. Unlike Uintah (UINTAH_UPS.md §6 step 7) the flux source is
   // part of c*, so the next step's gradient sees the lithium that entered.
-  const long nodes = grid_.numNodes();
+  const long begin = active_.begin, end = active_.end;
   for (size_t m = 0; m < materials_.size(); ++m) {
     GridFields& g = fields_[m];
     const double constantRate = materials_[m].diffusion->constantRate();
 #pragma omp parallel for schedule(static)
-    for (long k = 0; k < nodes; ++k) {
+    for (long k = begin; k < end; ++k) {
       const double rate =
           g.mass[k] > 0 ? (g.diffusionRate[k] + g.externalScalarFlux[k]) / g.mass[k] + constantRate : 0.0;
       g.concentrationStar[k] = g.concentration[k] + rate * dt;
     }
     applyConcentrationBCs(grid_, faceBCs_, static_cast<int>(m), g.concentrationStar);
 #pragma omp parallel for schedule(static)
-    for (long k = 0; k < nodes; ++k) {
+    for (long k = begin; k < end; ++k) {
       if (!(g.mass[k] > 0)) {
         g.concentrationRate[k] = 0;
         continue;
@@ -446,14 +463,13 @@ void MPM::integrateConcentration(double dt) {
 }
 
 void MPM::setGridBoundaryConditions(double dt) {
-  contact_.exchange(fields_, &GridFields::velocityStar);
-  const long nodes = grid_.numNodes();
+  contact_.exchange(fields_, &GridFields::velocityStar, active_.begin, active_.end);
   for (size_t m = 0; m < fields_.size(); ++m) {
     GridFields& g = fields_[m];
     applyVelocityDirichlet(grid_, faceBCs_, static_cast<int>(m), g.velocityStar);
     applySymmetry(grid_, faceBCs_, static_cast<int>(m), g.velocityStar);
 #pragma omp parallel for schedule(static)
-    for (long k = 0; k < nodes; ++k) g.acceleration[k] = (g.velocityStar[k] - g.velocity[k]) / dt;
+    for (long k = active_.begin; k < active_.end; ++k) g.acceleration[k] = (g.velocityStar[k] - g.velocity[k]) / dt;
   }
 }
 

@@ -86,6 +86,12 @@ class MPM {
   double maxDiffusivity_ = 0;   // over all particles, for Eq. 44
   double maxFluxRateCoefficient_ = 0;  // max unrestricted J A/V over particles, for the flux limit
   int64_t nextParticleId_ = 0;
+  // Nodes the particles touch this step (flat indices [begin, end)); grid loops run over them
+  // only. Outside, nodal fields are zero (the previous step's range is cleared too) except the
+  // values face boundary conditions set.
+  struct NodeRange {
+    long begin = 0, end = 0;
+  } active_, previous_;
   double fluxSign_ = 1;  // do_auto_cycle_bc: +1 lithiates, -1 delithiates
 
   std::vector<GridFields> fields_;                 // per material

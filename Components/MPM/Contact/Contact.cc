@@ -30,11 +30,11 @@ Contact Contact::fromInput(const PSNode& mpmMaterials, int numMaterials) {
   return c;
 }
 
-void Contact::exchange(std::vector<GridFields>& fields, std::vector<Vec3> GridFields::*velocity) const {
+void Contact::exchange(std::vector<GridFields>& fields, std::vector<Vec3> GridFields::*velocity, long begin,
+                       long end) const {
   if (type == Type::Null || materials.size() < 2) return;
-  const long nodes = static_cast<long>(fields[materials[0]].mass.size());
 #pragma omp parallel for schedule(static)
-  for (long n = 0; n < nodes; ++n) {
+  for (long n = begin; n < end; ++n) {
     double mass = 0;
     Vec3 momentum = Vec3::Zero();
     for (int m : materials) {

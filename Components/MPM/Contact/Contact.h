@@ -15,8 +15,10 @@ struct Contact {
 
   static Contact fromInput(const PSNode& mpmMaterials, int numMaterials);
 
-  // Replaces each member's nodal velocity by the centre-of-mass velocity sum(m v)/sum(m).
-  void exchange(std::vector<GridFields>& fields, std::vector<Vec3> GridFields::*velocity) const;
+  // Replaces each member's nodal velocity by the centre-of-mass velocity sum(m v)/sum(m), on
+  // nodes [begin, end).
+  void exchange(std::vector<GridFields>& fields, std::vector<Vec3> GridFields::*velocity, long begin,
+                long end) const;
 };
 
 }  // namespace anode
