@@ -24,6 +24,10 @@ std::string interpolatorName(InterpolatorKind kind) {
 
 namespace {
 
+// floor for index coordinates (> -1024): a conversion instead of a libm call, since the
+// portable x86-64 baseline has no SSE4.1 rounding instruction.
+inline int floorIndex(double x) { return static_cast<int>(x + 1024.0) - 1024; }
+
 // Tensor product of per-axis 1-D weights `n[d][a]` and slopes `dn[d][a]` (index space) over
 // `len[d]` nodes starting at `first[d]`.
 int tensorProduct(const Grid& g, const int first[3], const int len[3], const double n[3][3],
@@ -52,7 +56,7 @@ int linearWeights(const Grid& g, const Vec3& x, int32_t* nodes, double* w, Vec3*
   int first[3], len[3] = {2, 2, 2};
   double n[3][3], dn[3][3];
   for (int d = 0; d < 3; ++d) {
-    first[d] = static_cast<int>(std::floor(xi[d]));
+    first[d] = floorIndex(xi[d]);
     const double f = xi[d] - first[d];
     n[d][0] = 1 - f;
     n[d][1] = f;
@@ -68,7 +72,7 @@ int gimpWeights(const Grid& g, const Vec3& x, const Mat3& size, int32_t* nodes, 
   double n[3][3], dn[3][3];
   for (int d = 0; d < 3; ++d) {
     const double l = 0.5 * size(d, d);  // half-width of the particle in cell units
-    first[d] = static_cast<int>(std::lround(xi[d])) - 1;
+    first[d] = floorIndex(xi[d] + 0.5) - 1;
     for (int a = 0; a < 3; ++a) {
       const double r = xi[d] - (first[d] + a);
       const double ar = std::abs(r), sign = r < 0 ? -1.0 : 1.0;
@@ -98,70 +102,77 @@ int cpdiWeights(const Grid& g, const Vec3& x, const Mat3& size, const Mat3& F, i
   // gradients follow from the divergence theorem over its faces.
   const Mat3 A = F * size;
   const Vec3 r1 = A.col(0), r2 = A.col(1), r3 = A.col(2);
-  const double detA = A.determinant();
   const Vec3 c23 = r2.cross(r3), c31 = r3.cross(r1), c12 = r1.cross(r2);
+  const Vec3 toPhysical = g.dx.cwiseInverse() / (4 * A.determinant());
   const Vec3 xi = g.indexCoordinate(x);
 
-  Vec3 corner[8], alpha[8];
-  Vec3i lo(1 << 30, 1 << 30, 1 << 30), hi(-(1 << 30), -(1 << 30), -(1 << 30));
+  int f[8][3];
+  double fr[8][3];
+  Vec3 alpha[8];  // physical gradient factor of each corner
+  int lo[3] = {1 << 30, 1 << 30, 1 << 30}, hi[3] = {-(1 << 30), -(1 << 30), -(1 << 30)};
   for (int c = 0; c < 8; ++c) {
-    const double s1 = (c & 1) ? 1 : -1, s2 = (c & 2) ? 1 : -1, s3 = (c & 4) ? 1 : -1;
-    corner[c] = xi + 0.5 * (s1 * r1 + s2 * r2 + s3 * r3);
-    alpha[c] = (s1 * c23 + s2 * c31 + s3 * c12) / (4 * detA);
+    const double s1 = (c & 1) ? 0.5 : -0.5, s2 = (c & 2) ? 0.5 : -0.5, s3 = (c & 4) ? 0.5 : -0.5;
+    const Vec3 corner = xi + s1 * r1 + s2 * r2 + s3 * r3;
+    alpha[c] = (2 * (s1 * c23 + s2 * c31 + s3 * c12)).cwiseProduct(toPhysical);
     for (int d = 0; d < 3; ++d) {
-      const int f = static_cast<int>(std::floor(corner[c][d]));
-      lo[d] = std::min(lo[d], f);
-      hi[d] = std::max(hi[d], f + 1);
+      f[c][d] = floorIndex(corner[d]);
+      fr[c][d] = corner[d] - f[c][d];
+      lo[d] = std::min(lo[d], f[c][d]);
+      hi[d] = std::max(hi[d], f[c][d] + 1);
     }
   }
-  const Vec3i span = hi - lo + Vec3i::Ones();
   if (!g.hasNode(lo[0], lo[1], lo[2]) || !g.hasNode(hi[0], hi[1], hi[2])) return -1;
+  const int sx = hi[0] - lo[0] + 1, sy = hi[1] - lo[1] + 1, sz = hi[2] - lo[2] + 1;
 
-  // Corners of one particle share nodes: sum into a dense block (at most 64 nodes) when it fits,
-  // so each node appears once; a domain stretched over more cells keeps one entry per corner-node.
-  const bool dense = span.prod() <= 64;
-  double bw[64] = {0};
-  Vec3 bg[64];
-  if (dense)
-    for (int b = 0; b < span.prod(); ++b) bg[b].setZero();
-  int count = 0;
-  for (int c = 0; c < 8; ++c) {
-    int f[3];
-    double fr[3];
-    for (int d = 0; d < 3; ++d) {
-      f[d] = static_cast<int>(std::floor(corner[c][d]));
-      fr[d] = corner[c][d] - f[d];
-    }
-    for (int e = 0; e < 8; ++e) {
-      const int a = e & 1, b = (e >> 1) & 1, cc = (e >> 2) & 1;
-      const double nl = (a ? fr[0] : 1 - fr[0]) * (b ? fr[1] : 1 - fr[1]) * (cc ? fr[2] : 1 - fr[2]);
-      if (nl <= 0) continue;
-      const int i = f[0] + a, j = f[1] + b, k = f[2] + cc;
-      if (dense) {
-        const int slot = ((k - lo[2]) * span[1] + (j - lo[1])) * span[0] + (i - lo[0]);
-        bw[slot] += 0.125 * nl;
-        bg[slot] += nl * alpha[c];
-      } else {
-        nodes[count] = g.nodeIndex(i, j, k);
+  if (sx * sy * sz > 64) {
+    // A domain stretched over more than 3 cells: one entry per corner and node.
+    int count = 0;
+    for (int c = 0; c < 8; ++c)
+      for (int e = 0; e < 8; ++e) {
+        const int a = e & 1, b = (e >> 1) & 1, cc = e >> 2;
+        const double nl = (a ? fr[c][0] : 1 - fr[c][0]) * (b ? fr[c][1] : 1 - fr[c][1]) *
+                          (cc ? fr[c][2] : 1 - fr[c][2]);
+        if (nl <= 0) continue;
+        nodes[count] = g.nodeIndex(f[c][0] + a, f[c][1] + b, f[c][2] + cc);
         w[count] = 0.125 * nl;
         grad[count] = nl * alpha[c];
         ++count;
       }
-    }
+    return count;
   }
-  if (dense) {
-    for (int k = 0; k < span[2]; ++k)
-      for (int j = 0; j < span[1]; ++j)
-        for (int i = 0; i < span[0]; ++i) {
-          const int slot = (k * span[1] + j) * span[0] + i;
-          if (bw[slot] <= 0) continue;
-          nodes[count] = g.nodeIndex(lo[0] + i, lo[1] + j, lo[2] + k);
-          w[count] = bw[slot];
-          grad[count] = bg[slot];
-          ++count;
+  // Corners of one particle share nodes: sum into a dense block so each node appears once.
+  double bw[64];
+  Vec3 bg[64];
+  const int slots = sx * sy * sz;
+  for (int b = 0; b < slots; ++b) {
+    bw[b] = 0;
+    bg[b].setZero();
+  }
+  for (int c = 0; c < 8; ++c) {
+    const int base = ((f[c][2] - lo[2]) * sy + (f[c][1] - lo[1])) * sx + (f[c][0] - lo[0]);
+    const double wx[2] = {1 - fr[c][0], fr[c][0]}, wy[2] = {1 - fr[c][1], fr[c][1]},
+                 wz[2] = {1 - fr[c][2], fr[c][2]};
+    for (int k = 0; k < 2; ++k)
+      for (int j = 0; j < 2; ++j)
+        for (int i = 0; i < 2; ++i) {
+          const double nl = wx[i] * wy[j] * wz[k];
+          const int slot = base + (k * sy + j) * sx + i;
+          bw[slot] += nl;
+          bg[slot] += nl * alpha[c];
         }
   }
-  for (int e = 0; e < count; ++e) grad[e] = grad[e].cwiseQuotient(g.dx);
+  const Vec3i n = g.nodes();
+  const int first = g.nodeIndex(lo[0], lo[1], lo[2]);
+  int count = 0;
+  for (int k = 0, slot = 0; k < sz; ++k)
+    for (int j = 0; j < sy; ++j)
+      for (int i = 0; i < sx; ++i, ++slot) {
+        if (bw[slot] <= 0) continue;
+        nodes[count] = first + (k * n.y() + j) * n.x() + i;
+        w[count] = 0.125 * bw[slot];
+        grad[count] = bg[slot];
+        ++count;
+      }
   return count;
 }
 
