@@ -4,6 +4,7 @@
 #include <cmath>
 #include <functional>
 #include <map>
+#include <stdexcept>
 
 namespace anode {
 
@@ -143,6 +144,35 @@ ParticleData gatherParticles(const MPM& mpm, const std::vector<std::string>& lab
         it->second.get(mat, mpm.grid(), i, &a.real[(offset + i) * a.components]);
       offset += mat.particles.count();
     }
+    out.arrays.push_back(std::move(a));
+  }
+  return out;
+}
+
+int particleLabelComponents(const std::string& label) {
+  const auto it = particleLabels().find(label);
+  return it == particleLabels().end() ? 0 : it->second.components;
+}
+
+ParticleData gatherParticlesWhere(const MPM& mpm, const std::vector<std::string>& labels,
+                                  const std::function<bool(size_t material, const double* x)>& keep) {
+  ParticleData out;
+  std::vector<std::vector<size_t>> kept(mpm.materials().size());
+  for (size_t m = 0; m < kept.size(); ++m) {
+    const ParticleSet& p = mpm.materials()[m].particles;
+    for (size_t i = 0; i < p.count(); ++i)
+      if (keep(m, p.x[i].data())) {
+        kept[m].push_back(i);
+        out.points.insert(out.points.end(), p.x[i].data(), p.x[i].data() + 3);
+      }
+  }
+  for (const std::string& label : labels) {
+    const auto it = particleLabels().find(label);
+    if (it == particleLabels().end()) throw std::logic_error("no particle label " + label);
+    NamedArray a{label, it->second.components, std::vector<double>(out.count() * it->second.components), {}};
+    size_t k = 0;
+    for (size_t m = 0; m < kept.size(); ++m)
+      for (size_t i : kept[m]) it->second.get(mpm.materials()[m], mpm.grid(), i, &a.real[a.components * k++]);
     out.arrays.push_back(std::move(a));
   }
   return out;

@@ -1,6 +1,7 @@
 // The Uintah labels this code can save, and how each is gathered from the MPM state.
 #pragma once
 
+#include <functional>
 #include <string>
 
 #include "Components/MPM/MPM.h"
@@ -16,6 +17,12 @@ LabelStatus classifyLabel(const std::string& label, bool diffusion);
 
 // Gathers the saved particle labels (plus the material index) over all materials.
 ParticleData gatherParticles(const MPM& mpm, const std::vector<std::string>& labels);
+// The number of components of a particle label gatherParticles writes as real numbers (0: none).
+int particleLabelComponents(const std::string& label);
+// Gathers what a picture needs (DESIGN.md §7): only the particles `keep` accepts (material index,
+// position) and only the given labels; no material array.
+ParticleData gatherParticlesWhere(const MPM& mpm, const std::vector<std::string>& labels,
+                                  const std::function<bool(size_t material, const double* x)>& keep);
 // Gathers the saved grid labels, one array per material (suffix _m<index> when several).
 GridData gatherGrid(const MPM& mpm, const std::vector<std::string>& labels);
 

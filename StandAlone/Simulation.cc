@@ -23,6 +23,7 @@ void Simulation::setup() {
   time_ = TimeControl::fromInput(root.requireChild("Time"));
   mpm_.problemSetup(root, time_.initTime, time_.maxTime);
   archiver_ = DataArchiver::fromInput(root.requireChild("DataArchiver"), mpm_.flags().doScalarDiffusion);
+  scenes_ = SceneOutput::fromInput(root, time_, mpm_);
   spec_->checkAllUsed();
   if (options_.maxTimesteps > 0 &&
       (time_.maxTimesteps == 0 || options_.maxTimesteps < time_.maxTimesteps))
@@ -65,6 +66,7 @@ void Simulation::run() {
                mpm_.grid().cells.y(), mpm_.grid().cells.z(), archiver_.directory().c_str());
   summaryRow(0.0);
   output();
+  scenes_.renderDue(t_, mpm_, archiver_.directory());
   ProgressReporter progress(time_.initTime, time_.maxTime, time_.maxTimesteps);
   while (true) {
     const double stepDt = dt_;
@@ -79,6 +81,7 @@ void Simulation::run() {
     const bool done = t_ >= time_.maxTime || (time_.maxTimesteps > 0 && step_ >= time_.maxTimesteps) ||
                       (time_.maxWallTime > 0 && wall() >= time_.maxWallTime);
     if (done || archiver_.isOutputStep(step_, t_)) output();
+    scenes_.renderDue(t_, mpm_, archiver_.directory());
     if (options_.progress) progress.update(step_, t_, stepDt, particleSteps_, done);
     if (done) break;
   }

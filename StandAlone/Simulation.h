@@ -6,6 +6,7 @@
 
 #include "Components/MPM/MPM.h"
 #include "StandAlone/DataArchiver.h"
+#include "StandAlone/SceneOutput.h"
 #include "StandAlone/TimeControl.h"
 
 namespace anode {
@@ -33,6 +34,7 @@ class Simulation {
   MPM& mpm() { return mpm_; }
   const TimeControl& timeControl() const { return time_; }
   const DataArchiver& archiver() const { return archiver_; }
+  const SceneOutput& scenes() const { return scenes_; }
   double time() const { return t_; }
   long step() const { return step_; }
   double dt() const { return dt_; }
@@ -47,6 +49,7 @@ class Simulation {
   MPM mpm_;
   TimeControl time_;
   DataArchiver archiver_;
+  SceneOutput scenes_;
   double t_ = 0, dt_ = 0;
   long step_ = 0;
   double particleSteps_ = 0, wallSeconds_ = 0;

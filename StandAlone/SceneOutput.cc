@@ -1,0 +1,71 @@
+#include "StandAlone/SceneOutput.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+
+#include "StandAlone/OutputLabels.h"
+#include "vis/SceneRenderer.h"
+
+namespace anode {
+
+SceneOutput::SceneOutput() = default;
+SceneOutput::~SceneOutput() = default;
+SceneOutput::SceneOutput(SceneOutput&&) noexcept = default;
+SceneOutput& SceneOutput::operator=(SceneOutput&&) noexcept = default;
+
+SceneOutput SceneOutput::fromInput(const PSNode& root, const TimeControl& time, const MPM& mpm) {
+  SceneOutput out;
+  const PSNode visualization = root.child("Visualization");
+  if (!visualization) return out;
+  SceneContext context;
+  context.initTime = time.initTime;
+  context.maxTime = time.maxTime;
+  context.materials = static_cast<int>(mpm.materials().size());
+  const bool diffusion = mpm.flags().doScalarDiffusion;
+  context.lookup = [diffusion](const std::string& label) -> SceneContext::LabelInfo {
+    switch (classifyLabel(label, diffusion)) {
+      case LabelStatus::Particle:
+        if (const int n = particleLabelComponents(label)) return {n, ""};
+        return {0, label + " is not a real-valued particle quantity"};
+      case LabelStatus::NeedsDiffusion:
+        return {0, label + " is a diffusion quantity, but <do_scalar_diffusion> is off"};
+      default:
+        return {0, label + " is not a particle quantity this code computes"};
+    }
+  };
+  out.scenes_ = readScenes(visualization, context);
+  for (const Scene& s : out.scenes_)
+    out.times_.push_back(s.renderTimes(time.initTime, time.maxTime));
+  out.next_.assign(out.scenes_.size(), 0);
+  return out;
+}
+
+void SceneOutput::renderDue(double t, MPM& mpm, const std::string& outputDir) {
+  // The first state at or after a scene time renders it (as <outputInterval> output steps).
+  const auto crossed = [t](double time) {
+    return time <= t + 1e-12 * std::max(std::abs(time), std::abs(t));
+  };
+  for (size_t k = 0; k < scenes_.size(); ++k) {
+    const Scene& scene = scenes_[k];
+    const std::vector<double>& times = times_[k];
+    if (next_[k] >= times.size() || !crossed(times[next_[k]])) continue;
+    ScopedTimer timer(mpm.timers(), mpm.timers().task("render"));
+    std::vector<std::string> labels = {scene.field.label};
+    if (scene.field.label != "p.volume") labels.push_back("p.volume");
+    const ParticleData data = gatherParticlesWhere(mpm, labels, [&](size_t m, const double* x) {
+      return scene.drawsMaterial(static_cast<int>(m)) && scene.keeps(x);
+    });
+    if (!renderer_) renderer_ = std::make_unique<SceneRenderer>();
+    const RenderedScene picture = renderer_->render(scene, makeSprites(scene, data), t);
+    std::filesystem::create_directories(std::filesystem::path(outputDir) / "images");
+    // One picture for every scene time this step crossed, each under its own name.
+    for (; next_[k] < times.size() && crossed(times[next_[k]]); ++next_[k]) {
+      writePNG(picture.canvas,
+               (std::filesystem::path(outputDir) / scene.imageFile(times[next_[k]])).string());
+      ++imagesWritten_;
+    }
+  }
+}
+
+}  // namespace anode

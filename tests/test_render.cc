@@ -1,0 +1,415 @@
+// Offscreen scenes (DESIGN.md §7, RENDERING.md), checked on their pixels: how much of the picture
+// the particles cover, the colour at particles of known value against the colour map, the colour
+// bar, the clip plane, materials; the render tool under an empty environment (no DISPLAY); no
+// libGL linked; the run's pictures at the scene times, and none (no OSMesa context) without scenes.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+#include <vtkImageData.h>
+#include <vtkPNGReader.h>
+#include <vtkSmartPointer.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+
+#include "StandAlone/OutputLabels.h"
+#include "StandAlone/Simulation.h"
+#include "TestInputs.h"
+#include "vis/ColourMap.h"
+#include "vis/SceneRenderer.h"
+#include "vis/VTKWriters.h"
+
+namespace fs = std::filesystem;
+
+namespace anode {
+namespace {
+
+// n x n x n particles of spacing h filling [-n h/2, n h/2]^3 with c = the fraction of x across
+// the block (particle centres at (i + 1/2) / n), and material 0 for x < 0, 1 for x > 0.
+ParticleData block(int n, double h) {
+  ParticleData d;
+  NamedArray c{"p.concentration", 1, {}, {}}, volume{"p.volume", 1, {}, {}},
+      material{"material", 1, {}, {}};
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        d.points.insert(d.points.end(), {(i + 0.5 - n / 2.0) * h, (j + 0.5 - n / 2.0) * h,
+                                         (k + 0.5 - n / 2.0) * h});
+        c.real.push_back((i + 0.5) / n);
+        volume.real.push_back(h * h * h);
+        material.integer.push_back(2 * i < n ? 0 : 1);
+      }
+  d.arrays = {c, volume, material};
+  return d;
+}
+
+Scene frontScene() {
+  Scene s;
+  s.name = "test";
+  s.times = {0};
+  s.range = std::make_pair(0.0, 1.0);
+  s.camera.preset = CameraPreset::Front;
+  return s;
+}
+
+bool isBackground(const Canvas& c, int x, int y, const Vec3& background) {
+  const unsigned char* p = c.pixel(x, y);
+  for (int k = 0; k < 3; ++k)
+    if (std::abs(p[k] - 255 * background[k]) > 1) return false;
+  return true;
+}
+
+// Fraction of the particle area (the viewport) that is not background.
+double coveredFraction(const RenderedScene& r, const Vec3& background) {
+  long covered = 0;
+  for (int y = r.viewport[1]; y < r.viewport[1] + r.viewport[3]; ++y)
+    for (int x = r.viewport[0]; x < r.viewport[0] + r.viewport[2]; ++x)
+      covered += !isBackground(r.canvas, x, y, background);
+  return static_cast<double>(covered) / (static_cast<double>(r.viewport[2]) * r.viewport[3]);
+}
+
+double colourDistance(const unsigned char* pixel, const std::array<double, 3>& rgb) {
+  double d = 0;
+  for (int k = 0; k < 3; ++k) d = std::max(d, std::abs(pixel[k] - 255 * rgb[k]));
+  return d;
+}
+
+const unsigned char* pixelAt(const RenderedScene& r, const Vec3& x) {
+  const auto p = r.project(x);
+  return r.canvas.pixel(static_cast<int>(p[0]), static_cast<int>(p[1]));
+}
+
+TEST(Render, ParticlesCoverTheirProjectedArea) {
+  const int n = 20;
+  const double h = 0.01;
+  const ParticleData data = block(n, h);
+  const Scene scene = frontScene();
+  SceneRenderer renderer;
+  const RenderedScene r = renderer.render(scene, makeSprites(scene, data), 0.0);
+  // The silhouette of the front row of spheres (they reach r - h/2 beyond the block's faces).
+  const double rs = sphereRadius(h * h * h), reach = n * h / 2 - h / 2 + rs,
+               front = -(n * h / 2 - h / 2);
+  const auto a = r.project(Vec3(-reach, front, -reach)), b = r.project(Vec3(reach, front, reach));
+  const double faceArea = std::abs((b[0] - a[0]) * (b[1] - a[1]));
+  const double fraction = coveredFraction(r, scene.background);
+  const double expected = faceArea / (static_cast<double>(r.viewport[2]) * r.viewport[3]);
+  EXPECT_GT(fraction, 0.2);
+  EXPECT_LT(fraction, 0.9);
+  EXPECT_NEAR(fraction / expected, 1.0, 0.08) << "covered " << fraction << ", face " << expected;
+}
+
+TEST(Render, ColourAtParticlesMatchesTheColourMap) {
+  const int n = 10;
+  const double h = 0.01;
+  const ParticleData data = block(n, h);
+  for (ColourMapKind kind : {ColourMapKind::Viridis, ColourMapKind::BlueRed, ColourMapKind::Grey}) {
+    Scene scene = frontScene();
+    scene.colourMap = kind;
+    SceneRenderer renderer;
+    const RenderedScene r = renderer.render(scene, makeSprites(scene, data), 0.0);
+    const ColourMap map(kind);
+    // The centre of each sphere of the front row (j = 0) in the middle layer shows its value.
+    for (int i = 0; i < n; ++i) {
+      const double c = (i + 0.5) / n;
+      const Vec3 centre((i + 0.5 - n / 2.0) * h, (0.5 - n / 2.0) * h, 0.5 * h);
+      EXPECT_LE(colourDistance(pixelAt(r, centre), map.colour(c)), 3.0)
+          << "map " << static_cast<int>(kind) << " c = " << c;
+    }
+  }
+}
+
+TEST(Render, FixedAndDataRanges) {
+  const ParticleData data = block(10, 0.01);
+  Scene scene = frontScene();
+  SceneRenderer renderer;
+  scene.range.reset();
+  EXPECT_EQ(renderer.render(scene, makeSprites(scene, data), 0.0).range,
+            std::make_pair(0.05, 0.95));
+  scene.range = std::make_pair(-1.0, 2.0);
+  const RenderedScene r = renderer.render(scene, makeSprites(scene, data), 0.0);
+  EXPECT_EQ(r.range, std::make_pair(-1.0, 2.0));
+  // c = 0.05 at a third of the way from -1 to 2 on the map.
+  const Vec3 first((0.5 - 5) * 0.01, (0.5 - 5) * 0.01, 0.005);
+  EXPECT_LE(colourDistance(pixelAt(r, first), ColourMap(ColourMapKind::Viridis).colour(1.05 / 3)),
+            3.0);
+}
+
+TEST(Render, ColourBarShowsTheMapTicksAndName) {
+  const ParticleData data = block(10, 0.01);
+  Scene scene = frontScene();
+  scene.units = "mol/m^3";
+  SceneRenderer renderer;
+  const RenderedScene r = renderer.render(scene, makeSprites(scene, data), 1.5);
+  const ColourMap map(ColourMapKind::Viridis);
+  const auto [x0, y0, x1, y1] = r.colourBar;
+  ASSERT_GT(x1 - x0, 5);
+  ASSERT_GT(y1 - y0, 100);
+  for (int y = y0; y < y1; y += 7) {
+    const double t = (y - y0 + 0.5) / (y1 - y0);
+    EXPECT_LE(colourDistance(r.canvas.pixel((x0 + x1) / 2, y), map.colour(t)), 1.0)
+        << "bar row " << y;
+  }
+  // Dark text: the tick values right of the bar and the field name and units above it.
+  auto darkPixels = [&](int xa, int ya, int xb, int yb) {
+    int dark = 0;
+    for (int y = std::max(ya, 0); y < std::min(yb, r.canvas.height()); ++y)
+      for (int x = std::max(xa, 0); x < std::min(xb, r.canvas.width()); ++x) {
+        const unsigned char* p = r.canvas.pixel(x, y);
+        dark += p[0] < 100 && p[1] < 100 && p[2] < 100;
+      }
+    return dark;
+  };
+  EXPECT_GT(darkPixels(x1 + 2, y0 - 10, r.canvas.width(), y1 + 10), 200) << "tick labels";
+  EXPECT_GT(darkPixels(x0 - 20, y1 + 4, r.canvas.width(), y1 + 80), 200) << "field name and units";
+  EXPECT_GT(darkPixels(0, r.canvas.height() - 60, r.canvas.width() / 2, r.canvas.height()), 100)
+      << "title";
+  // Nothing of the bar area is drawn over by particles.
+  EXPECT_GE(x0, r.viewport[0] + r.viewport[2]);
+  EXPECT_EQ(niceTicks(0, 1), (std::vector<double>{0, 0.25, 0.5, 0.75, 1}));
+  EXPECT_EQ(niceTicks(0.05, 0.95), (std::vector<double>{0.25, 0.5, 0.75}));
+  EXPECT_EQ(niceTicks(0, 2e6), (std::vector<double>{0, 5e5, 1e6, 1.5e6, 2e6}));
+}
+
+TEST(Render, ClipPlaneRemovesOneSide) {
+  const int n = 20;
+  const double h = 0.01;
+  const ParticleData data = block(n, h);
+  Scene scene = frontScene();
+  // A fixed camera, so that both pictures frame the same region.
+  scene.camera.preset = CameraPreset::Custom;
+  scene.camera.position = Vec3(0, -0.6, 0);
+  scene.camera.focalPoint = Vec3::Zero();
+  SceneRenderer renderer;
+  const RenderedScene whole = renderer.render(scene, makeSprites(scene, data), 0.0);
+  scene.clip = ClipPlane{Vec3::Zero(), Vec3(1, 0, 0)};  // cuts away x > 0
+  const SpriteSet kept = makeSprites(scene, data);
+  EXPECT_EQ(kept.count(), static_cast<size_t>(n * n * n / 2));
+  const RenderedScene clipped = renderer.render(scene, kept, 0.0);
+  const double rs = sphereRadius(h * h * h);
+  const double edge =
+      clipped.project(Vec3(rs, -n * h / 2, 0))[0];  // the last kept spheres reach here
+  long left = 0, right = 0, leftWhole = 0;
+  for (int y = clipped.viewport[1]; y < clipped.viewport[1] + clipped.viewport[3]; ++y)
+    for (int x = clipped.viewport[0]; x < clipped.viewport[0] + clipped.viewport[2]; ++x) {
+      const bool covered = !isBackground(clipped.canvas, x, y, scene.background);
+      (x > edge + 1 ? right : left) += covered;
+      if (x <= edge + 1) leftWhole += !isBackground(whole.canvas, x, y, scene.background);
+    }
+  EXPECT_EQ(right, 0) << "particles drawn on the cut-away side";
+  EXPECT_GT(left, 0.9 * leftWhole);
+  EXPECT_TRUE(
+      isBackground(clipped.canvas, static_cast<int>(clipped.project(Vec3(n * h / 4, 0, 0))[0]),
+                   static_cast<int>(clipped.project(Vec3(n * h / 4, 0, 0))[1]), scene.background));
+}
+
+TEST(Render, MaterialsNotDrawnAreLeftOut) {
+  const ParticleData data = block(10, 0.01);
+  Scene scene = frontScene();
+  scene.materials = {1};
+  const SpriteSet s = makeSprites(scene, data);
+  ASSERT_EQ(s.count(), 500u);
+  for (size_t i = 0; i < s.count(); ++i) EXPECT_GT(s.position[3 * i], 0);
+}
+
+TEST(Render, DarkBackgroundAndOtherCameras) {
+  const ParticleData data = block(10, 0.01);
+  for (const char* camera : {"iso", "front", "back", "side", "top"}) {
+    Scene scene = frontScene();
+    setSceneValue(scene, "camera", camera);
+    setSceneValue(scene, "background", "[0, 0, 0]");
+    setSceneValue(scene, "size", "[400, 300]");
+    SceneRenderer renderer;
+    const RenderedScene r = renderer.render(scene, makeSprites(scene, data), 0.0);
+    const double fraction = coveredFraction(r, scene.background);
+    EXPECT_GT(fraction, 0.15) << camera;
+    EXPECT_LT(fraction, 0.9) << camera;
+    // White text on black.
+    int white = 0;
+    for (int y = r.canvas.height() - 30; y < r.canvas.height(); ++y)
+      for (int x = 0; x < 150; ++x) white += r.canvas.pixel(x, y)[0] > 200;
+    EXPECT_GT(white, 30) << camera;
+  }
+}
+
+struct TempDir {
+  fs::path path;
+  explicit TempDir(const std::string& tag)
+      : path(fs::temp_directory_path() /
+             ("anode_render_" + tag + "_" + std::to_string(::getpid()))) {
+    fs::remove_all(path);
+    fs::create_directories(path);
+  }
+  ~TempDir() { fs::remove_all(path); }
+};
+
+vtkSmartPointer<vtkImageData> readPNG(const fs::path& file) {
+  auto reader = vtkSmartPointer<vtkPNGReader>::New();
+  reader->SetFileName(file.c_str());
+  reader->Update();
+  return reader->GetOutput();
+}
+
+// Fraction of the pixels of a PNG that differ from its corner pixel (the background).
+double nonBackgroundFraction(vtkImageData* image) {
+  int dims[3];
+  image->GetDimensions(dims);
+  const auto* p = static_cast<const unsigned char*>(image->GetScalarPointer());
+  const int channels = image->GetNumberOfScalarComponents();
+  long differ = 0;
+  for (long i = 0; i < static_cast<long>(dims[0]) * dims[1]; ++i)
+    for (int c = 0; c < 3; ++c)
+      if (p[channels * i + c] != p[c]) {
+        ++differ;
+        break;
+      }
+  return static_cast<double>(differ) / (static_cast<double>(dims[0]) * dims[1]);
+}
+
+std::string run(const std::string& command) {
+  std::string output;
+  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
+  char buffer[4096];
+  size_t n;
+  while (pipe && (n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) output.append(buffer, n);
+  const int status = pipe ? pclose(pipe) : -1;
+  if (status != 0) output += "\n[exit status " + std::to_string(status) + "]";
+  return output;
+}
+
+TEST(RenderTool, RendersAVTUInAnEmptyEnvironment) {
+  TempDir dir("env");
+  writeParticlesVTU((dir.path / "block.vtu").string(), block(16, 0.01));
+  const std::string output =
+      run("env -i " + std::string(ANODE_RENDER_VTU) +
+          " --name plain --field p.concentration --time 2 --size '[320, 240]' -o " +
+          dir.path.string() + " " + (dir.path / "block.vtu").string());
+  EXPECT_EQ(output.find("exit status"), std::string::npos) << output;
+  const fs::path png = dir.path / "images" / "plain_2.png";
+  ASSERT_TRUE(fs::exists(png)) << output;
+  vtkSmartPointer<vtkImageData> image = readPNG(png);
+  int dims[3];
+  image->GetDimensions(dims);
+  EXPECT_EQ(dims[0], 320);
+  EXPECT_EQ(dims[1], 240);
+  const double fraction = nonBackgroundFraction(image);
+  EXPECT_GT(fraction, 0.1);
+  EXPECT_LT(fraction, 0.8);
+}
+
+TEST(RenderTool, BadOptionsExitWith2) {
+  const std::string output = run(std::string(ANODE_RENDER_VTU) + " --colormap jet some.vtu");
+  EXPECT_NE(output.find("--colormap: unknown colour map 'jet'"), std::string::npos) << output;
+  EXPECT_NE(output.find("[exit status " + std::to_string(2 << 8) + "]"), std::string::npos)
+      << output;
+}
+
+// The renderer, the render tool and sus link OSMesa only: no libGL, GLX, OpenGL or GLEW.
+TEST(RenderLinking, NoGLLibraries) {
+  for (const std::string& binary : {std::string(ANODE_RENDER_VTU), std::string(ANODE_SUS)}) {
+    const std::string libraries = run("ldd " + binary);
+    EXPECT_NE(libraries.find("libOSMesa"), std::string::npos) << binary << ":\n" << libraries;
+    static const std::regex gl(R"(lib(GL|GLX|OpenGL|GLEW|GLdispatch)[.-])");
+    EXPECT_FALSE(std::regex_search(libraries, gl)) << binary << ":\n" << libraries;
+  }
+}
+
+// A small run with a scene: pictures at the scene times, named by them; the render tool
+// regenerates the same picture from the run's output.
+TEST(RunScenes, ImagesAtTheSceneTimes) {
+  TempDir dir("run");
+  testing::BlockInput in;
+  in.velocity = "[0, 0, -1]";
+  in.maxSteps = 1000;
+  in.maxTime = 0.02;
+  in.outputEvery = 1000;
+  in.saves = "<save label=\"p.x\"/><save label=\"p.volume\"/><save label=\"p.velocity\"/>";
+  std::string text = in.text();
+  text.insert(text.find("<MPM>"), R"(<Visualization>
+  <scene name="vz"><times>[0, 0.005, 0.0051]</times><field>p.velocity:z</field><size>[320, 240]</size>
+    <range>[-1.5, 0]</range></scene>
+  <scene name="cut"><interval>0.01</interval><field>p.volume</field><size>[320, 240]</size>
+    <clip><point>[0.5, 0.5, 0.5]</point><normal>[0, -1, 0]</normal></clip></scene>
+</Visualization>
+)");
+  std::ofstream(dir.path / "scene.ups") << text;
+  RunOptions options;
+  options.input = (dir.path / "scene.ups").string();
+  options.outputDir = (dir.path / "out").string();
+  options.progress = false;
+  Simulation sim(options);
+  sim.run();
+  const fs::path images = dir.path / "out" / "images";
+  for (const char* name :
+       {"vz_0.png", "vz_0.005.png", "vz_0.0051.png", "cut_0.png", "cut_0.01.png", "cut_0.02.png"}) {
+    ASSERT_TRUE(fs::exists(images / name)) << name;
+    EXPECT_GT(nonBackgroundFraction(readPNG(images / name)), 0.05) << name;
+  }
+  EXPECT_EQ(sim.scenes().imagesWritten(), 6);
+
+  // From the run's first output (step 0), the tool draws the picture the run drew at t = 0.
+  const std::string output =
+      run(std::string(ANODE_RENDER_VTU) + " --scene vz -o " + (dir.path / "again").string() + " " +
+          (dir.path / "out" / "particles.pvd").string());
+  EXPECT_EQ(output.find("exit status"), std::string::npos) << output;
+  vtkSmartPointer<vtkImageData> a = readPNG(images / "vz_0.png"),
+                                b = readPNG(dir.path / "again" / "images" / "vz_0.png");
+  ASSERT_TRUE(b->GetScalarPointer()) << output;
+  const auto* pa = static_cast<const unsigned char*>(a->GetScalarPointer());
+  const auto* pb = static_cast<const unsigned char*>(b->GetScalarPointer());
+  long same = 0;
+  const long values = 320L * 240 * a->GetNumberOfScalarComponents();
+  for (long i = 0; i < values; ++i) same += pa[i] == pb[i];
+  EXPECT_GT(static_cast<double>(same) / values, 0.999);
+}
+
+TEST(RunScenes, NoScenesNoRendererNoImages) {
+  TempDir dir("plain");
+  testing::BlockInput in;
+  in.maxSteps = 3;
+  std::ofstream(dir.path / "plain.ups") << in.text();
+  RunOptions options;
+  options.input = (dir.path / "plain.ups").string();
+  options.outputDir = (dir.path / "out").string();
+  options.progress = false;
+  const int contextsBefore = SceneRenderer::contextsCreated();
+  Simulation sim(options);
+  sim.run();
+  EXPECT_EQ(SceneRenderer::contextsCreated(), contextsBefore);
+  EXPECT_FALSE(fs::exists(dir.path / "out" / "images"));
+  EXPECT_EQ(sim.scenes().imagesWritten(), 0);
+}
+
+// The driver's gather copies only the particles and arrays a scene draws.
+TEST(RunScenes, GatherKeepsOnlyWhatTheSceneDraws) {
+  testing::BlockInput in;
+  in.extraMaterials =
+      "<material name=\"second\"><density>1000</density><constitutive_model "
+      "type=\"rf_elastic_plastic\">"
+      "<bulk_modulus>1e6</bulk_modulus><shear_modulus>5e5</shear_modulus><equation_of_state "
+      "type=\"default_hypo\"/>"
+      "</constitutive_model><geom_object><box label=\"c\"><min>[0.25, 0.25, 0.8]</min><max>[0.75, "
+      "0.75, 0.9]</max></box>"
+      "<res>[2,2,2]</res><velocity>[0,0,0]</velocity><temperature>298</temperature></geom_object></"
+      "material>";
+  Simulation sim(in.text(), "two.ups", RunOptions());
+  const size_t first = sim.mpm().materials()[0].particles.count();
+  ASSERT_GT(sim.mpm().materials()[1].particles.count(), 0u);
+  Scene scene = frontScene();
+  scene.materials = {0};
+  scene.clip = ClipPlane{Vec3(0.5, 0.5, 0.5), Vec3(0, 0, 1)};  // cuts away z > 0.5
+  const ParticleData d =
+      gatherParticlesWhere(sim.mpm(), {"p.stress"}, [&](size_t m, const double* x) {
+        return scene.drawsMaterial(static_cast<int>(m)) && scene.keeps(x);
+      });
+  EXPECT_EQ(d.count(), first / 2);
+  ASSERT_EQ(d.arrays.size(), 1u);
+  EXPECT_EQ(d.arrays[0].name, "p.stress");
+  EXPECT_EQ(d.arrays[0].real.size(), 9 * d.count());
+  for (size_t i = 0; i < d.count(); ++i) EXPECT_LE(d.points[3 * i + 2], 0.5);
+}
+
+}  // namespace
+}  // namespace anode

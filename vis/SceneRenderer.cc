@@ -1,0 +1,425 @@
+#include "vis/SceneRenderer.h"
+
+#define GL_GLEXT_PROTOTYPES 1
+#include <GL/gl.h>
+#include <GL/glext.h>
+#include <GL/osmesa.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <limits>
+#include <stdexcept>
+
+#include "vis/ColourMap.h"
+
+namespace anode {
+
+namespace {
+
+std::atomic<int> contextCount{0};
+
+// Sprites: the vertex shader sizes each point to its sphere's projected diameter; the fragment
+// shader keeps the unit disc, lights it as a sphere under a headlight (full colour at the centre,
+// so the centre shows the colour map exactly) and writes the depth of the sphere's surface.
+const char* kVertexShader = R"(#version 330 core
+layout(location = 0) in vec3 position;
+layout(location = 1) in float fraction;
+layout(location = 2) in float radius;
+uniform mat4 view;
+uniform mat4 projection;
+uniform float pointScale;
+out float vFraction;
+out float vRadius;
+out vec3 vCentre;
+void main() {
+  vec4 eye = view * vec4(position, 1.0);
+  vCentre = eye.xyz;
+  vFraction = fraction;
+  vRadius = radius;
+  gl_Position = projection * eye;
+  gl_PointSize = max(radius * pointScale / -eye.z, 1.0);
+}
+)";
+
+const char* kFragmentShader = R"(#version 330 core
+in float vFraction;
+in float vRadius;
+in vec3 vCentre;
+uniform mat4 projection;
+uniform sampler2D colours;
+out vec4 colour;
+void main() {
+  vec2 p = 2.0 * gl_PointCoord - 1.0;
+  p.y = -p.y;
+  float rr = dot(p, p);
+  if (rr > 1.0) discard;
+  float nz = sqrt(1.0 - rr);
+  vec3 base = texture(colours, vec2(vFraction, 0.5)).rgb;
+  colour = vec4(base * (0.3 + 0.7 * nz), 1.0);
+  vec4 surface = projection * vec4(vCentre + vRadius * vec3(p, nz), 1.0);
+  gl_FragDepth = 0.5 + 0.5 * surface.z / surface.w;
+}
+)";
+
+GLuint compile(GLenum kind, const char* source) {
+  const GLuint shader = glCreateShader(kind);
+  glShaderSource(shader, 1, &source, nullptr);
+  glCompileShader(shader);
+  GLint ok = 0;
+  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+  if (!ok) {
+    char log[2048];
+    glGetShaderInfoLog(shader, sizeof log, nullptr, log);
+    throw std::runtime_error(std::string("sprite shader does not compile: ") + log);
+  }
+  return shader;
+}
+
+Eigen::Matrix4d lookAt(const Vec3& eye, const Vec3& centre, const Vec3& up) {
+  const Vec3 f = (centre - eye).normalized();
+  const Vec3 s = f.cross(up).normalized();
+  const Vec3 u = s.cross(f);
+  Eigen::Matrix4d m = Eigen::Matrix4d::Identity();
+  m.block<1, 3>(0, 0) = s.transpose();
+  m.block<1, 3>(1, 0) = u.transpose();
+  m.block<1, 3>(2, 0) = -f.transpose();
+  m.block<3, 1>(0, 3) = -m.block<3, 3>(0, 0) * eye;
+  return m;
+}
+
+Eigen::Matrix4d perspective(double fovy, double aspect, double near, double far) {
+  const double f = 1.0 / std::tan(fovy / 2);
+  Eigen::Matrix4d p = Eigen::Matrix4d::Zero();
+  p(0, 0) = f / aspect;
+  p(1, 1) = f;
+  p(2, 2) = (far + near) / (near - far);
+  p(2, 3) = 2 * far * near / (near - far);
+  p(3, 2) = -1;
+  return p;
+}
+
+// Direction from the focal point to the eye, and the up vector, of a preset (the pillar axis is z).
+std::pair<Vec3, Vec3> presetDirection(CameraPreset preset) {
+  switch (preset) {
+    case CameraPreset::Front:
+      return {Vec3(0, -1, 0), Vec3(0, 0, 1)};
+    case CameraPreset::Back:
+      return {Vec3(0, 1, 0), Vec3(0, 0, 1)};
+    case CameraPreset::Side:
+      return {Vec3(1, 0, 0), Vec3(0, 0, 1)};
+    case CameraPreset::Top:
+      return {Vec3(0, 0, 1), Vec3(0, 1, 0)};
+    case CameraPreset::Iso:
+    case CameraPreset::Custom:
+      break;
+  }
+  return {Vec3(1, -1.25, 0.9).normalized(), Vec3(0, 0, 1)};
+}
+
+struct Bounds {
+  Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity());
+  Vec3 hi = -Vec3::Constant(std::numeric_limits<double>::infinity());
+  bool empty() const { return !(lo.x() <= hi.x()); }
+  Vec3 centre() const { return empty() ? Vec3(Vec3::Zero()) : Vec3(0.5 * (lo + hi)); }
+};
+
+// The box around the spheres.
+Bounds spriteBounds(const SpriteSet& s) {
+  Bounds b;
+  for (size_t i = 0; i < s.count(); ++i)
+    for (int d = 0; d < 3; ++d) {
+      b.lo[d] = std::min(b.lo[d], s.position[3 * i + d] - s.radius[i]);
+      b.hi[d] = std::max(b.hi[d], s.position[3 * i + d] + s.radius[i]);
+    }
+  return b;
+}
+
+struct View {
+  Eigen::Matrix4d view, projection;  // view acts on positions relative to `origin`
+  Vec3 origin;
+};
+
+// The camera of the scene; a preset looks at the centre of the drawn particles from the nearest
+// distance at which all of their box fits the particle area.
+View makeView(const Camera& camera, const Bounds& bounds, double aspect) {
+  const double fovy = camera.viewAngle * M_PI / 180;
+  const double tanY = std::tan(fovy / 2), tanX = tanY * aspect;
+  View v;
+  v.origin = bounds.centre();
+  Vec3 eye, focal, up;
+  if (camera.preset == CameraPreset::Custom) {
+    eye = *camera.position - v.origin;
+    focal = *camera.focalPoint - v.origin;
+    up = camera.up;
+  } else {
+    const auto [direction, presetUp] = presetDirection(camera.preset);
+    focal = Vec3::Zero();
+    up = presetUp;
+    const Eigen::Matrix4d orient = lookAt(direction, Vec3::Zero(), up);  // eye at unit distance
+    double distance = 0;
+    for (int corner = 0; corner < 8 && !bounds.empty(); ++corner) {
+      const Vec3 c((corner & 1 ? bounds.hi : bounds.lo).x(),
+                   (corner & 2 ? bounds.hi : bounds.lo).y(),
+                   (corner & 4 ? bounds.hi : bounds.lo).z());
+      const Vec3 q = orient.block<3, 3>(0, 0) * (c - v.origin);  // x right, y up, z towards the eye
+      distance =
+          std::max({distance, q.z() + std::abs(q.x()) / tanX, q.z() + std::abs(q.y()) / tanY});
+    }
+    if (distance <= 0) distance = 1;
+    eye = direction * distance * 1.08;
+  }
+  v.view = lookAt(eye, focal, up);
+  double near = std::numeric_limits<double>::infinity(), far = 0;
+  for (int corner = 0; corner < 8 && !bounds.empty(); ++corner) {
+    const Vec3 c((corner & 1 ? bounds.hi : bounds.lo).x(), (corner & 2 ? bounds.hi : bounds.lo).y(),
+                 (corner & 4 ? bounds.hi : bounds.lo).z());
+    const double depth =
+        -(v.view.block<3, 3>(0, 0) * (c - v.origin) + v.view.block<3, 1>(0, 3)).z();
+    near = std::min(near, depth);
+    far = std::max(far, depth);
+  }
+  if (!(far > 0)) far = (eye - focal).norm() * 2 + 1;
+  far *= 1.05;
+  near = std::max(near * 0.95, far * 1e-4);
+  v.projection = perspective(fovy, aspect, near, far);
+  return v;
+}
+
+std::pair<double, double> colourRange(const Scene& scene, const SpriteSet& s) {
+  if (scene.range) return *scene.range;
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (double v : s.value)
+    if (std::isfinite(v)) {
+      lo = std::min(lo, v);
+      hi = std::max(hi, v);
+    }
+  if (!(lo <= hi)) return {0, 1};
+  if (hi > lo) return {lo, hi};
+  return lo == 0 ? std::make_pair(0.0, 1.0)
+                 : std::make_pair(lo - 0.05 * std::abs(lo), hi + 0.05 * std::abs(hi));
+}
+
+std::string formatNumber(double v) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.4g", v == 0 ? 0.0 : v);
+  return buffer;
+}
+
+}  // namespace
+
+std::vector<double> niceTicks(double lo, double hi, int target) {
+  const double raw = (hi - lo) / std::max(target - 1, 1);
+  if (!(raw > 0)) return {lo};
+  const double magnitude = std::pow(10.0, std::floor(std::log10(raw)));
+  double step = 10 * magnitude;
+  for (double m : {1.0, 2.0, 2.5, 5.0})
+    if (m * magnitude >= raw * 0.999) {
+      step = m * magnitude;
+      break;
+    }
+  std::vector<double> ticks;
+  for (double k = std::ceil(lo / step - 1e-9); k * step <= hi + 1e-9 * step; k += 1)
+    ticks.push_back(k * step);
+  return ticks;
+}
+
+std::array<double, 2> RenderedScene::project(const Vec3& x) const {
+  const Eigen::Vector4d c = worldToClip * Eigen::Vector4d(x.x(), x.y(), x.z(), 1.0);
+  return {viewport[0] + (c.x() / c.w() + 1) / 2 * viewport[2],
+          viewport[1] + (c.y() / c.w() + 1) / 2 * viewport[3]};
+}
+
+struct SceneRenderer::GLState {
+  OSMesaContext context = nullptr;
+  std::vector<unsigned char> buffer;
+  GLuint program = 0, vao = 0, vbo = 0, texture = 0;
+  GLint uView = -1, uProjection = -1, uPointScale = -1, uColours = -1;
+
+  GLState() {
+    // Mesa keeps a shader cache under the home directory unless told otherwise.
+    if (!std::getenv("MESA_SHADER_CACHE_DIR"))
+      setenv("MESA_SHADER_CACHE_DIR",
+             (std::filesystem::temp_directory_path() / "anode-mpm-mesa-cache").c_str(), 1);
+    const int attributes[] = {OSMESA_FORMAT,
+                              OSMESA_RGBA,
+                              OSMESA_DEPTH_BITS,
+                              24,
+                              OSMESA_STENCIL_BITS,
+                              0,
+                              OSMESA_ACCUM_BITS,
+                              0,
+                              OSMESA_PROFILE,
+                              OSMESA_CORE_PROFILE,
+                              OSMESA_CONTEXT_MAJOR_VERSION,
+                              3,
+                              OSMESA_CONTEXT_MINOR_VERSION,
+                              3,
+                              0};
+    context = OSMesaCreateContextAttribs(attributes, nullptr);
+    if (!context) throw std::runtime_error("OSMesa could not create an OpenGL 3.3 core context");
+    ++contextCount;
+  }
+
+  ~GLState() { OSMesaDestroyContext(context); }
+
+  void makeCurrent(int width, int height) {
+    buffer.resize(4 * static_cast<size_t>(width) * height);
+    if (!OSMesaMakeCurrent(context, buffer.data(), GL_UNSIGNED_BYTE, width, height))
+      throw std::runtime_error("OSMesa could not make its context current");
+    if (program) return;
+    program = glCreateProgram();
+    const GLuint vs = compile(GL_VERTEX_SHADER, kVertexShader),
+                 fs = compile(GL_FRAGMENT_SHADER, kFragmentShader);
+    glAttachShader(program, vs);
+    glAttachShader(program, fs);
+    glLinkProgram(program);
+    glDeleteShader(vs);
+    glDeleteShader(fs);
+    GLint ok = 0;
+    glGetProgramiv(program, GL_LINK_STATUS, &ok);
+    if (!ok) throw std::runtime_error("sprite shaders do not link");
+    uView = glGetUniformLocation(program, "view");
+    uProjection = glGetUniformLocation(program, "projection");
+    uPointScale = glGetUniformLocation(program, "pointScale");
+    uColours = glGetUniformLocation(program, "colours");
+    glGenVertexArrays(1, &vao);
+    glGenBuffers(1, &vbo);
+    glBindVertexArray(vao);
+    glBindBuffer(GL_ARRAY_BUFFER, vbo);
+    const GLsizei stride = 5 * sizeof(float);
+    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, stride, nullptr);
+    glVertexAttribPointer(1, 1, GL_FLOAT, GL_FALSE, stride,
+                          reinterpret_cast<void*>(3 * sizeof(float)));
+    glVertexAttribPointer(2, 1, GL_FLOAT, GL_FALSE, stride,
+                          reinterpret_cast<void*>(4 * sizeof(float)));
+    for (GLuint a = 0; a < 3; ++a) glEnableVertexAttribArray(a);
+    glGenTextures(1, &texture);
+    glBindTexture(GL_TEXTURE_2D, texture);
+    // Nearest texel: the same entry of the table the colour bar shows.
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  }
+};
+
+SceneRenderer::SceneRenderer() = default;
+SceneRenderer::~SceneRenderer() = default;
+
+int SceneRenderer::contextsCreated() {
+  return contextCount;
+}
+
+RenderedScene SceneRenderer::render(const Scene& scene, const SpriteSet& sprites, double time) {
+  const int W = scene.width, H = scene.height;
+  const RGB background = {scene.background[0], scene.background[1], scene.background[2]};
+  const double luminance = 0.2126 * background[0] + 0.7152 * background[1] + 0.0722 * background[2];
+  const RGB ink = luminance > 0.5 ? RGB{0, 0, 0} : RGB{1, 1, 1};
+  const int titleSize = std::max(12, H / 30), labelSize = std::max(10, H / 44);
+  const int titleBand = 2 * titleSize;
+  const int barArea = std::clamp(W * 17 / 100, 110, 400);
+
+  RenderedScene out(Canvas(W, H, background));
+  out.viewport = {0, 0, W - barArea, H - titleBand};
+  out.range = colourRange(scene, sprites);
+  const ColourMap colours(scene.colourMap);
+
+  // Particles.
+  if (!gl_) gl_ = std::make_unique<GLState>();
+  gl_->makeCurrent(W, H);
+  const Bounds bounds = spriteBounds(sprites);
+  const View view =
+      makeView(scene.camera, bounds, static_cast<double>(out.viewport[2]) / out.viewport[3]);
+  Eigen::Matrix4d shift = Eigen::Matrix4d::Identity();
+  shift.block<3, 1>(0, 3) = -view.origin;
+  out.worldToClip = view.projection * view.view * shift;
+
+  glViewport(0, 0, W, H);
+  glClearColor(static_cast<float>(background[0]), static_cast<float>(background[1]),
+               static_cast<float>(background[2]), 1);
+  glClearDepth(1.0);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  if (sprites.count() > 0) {
+    std::vector<float> vertices(5 * sprites.count());
+    const double lo = out.range.first, span = out.range.second - out.range.first;
+    for (size_t i = 0; i < sprites.count(); ++i) {
+      float* v = &vertices[5 * i];
+      for (int d = 0; d < 3; ++d)
+        v[d] = static_cast<float>(sprites.position[3 * i + d] - view.origin[d]);
+      const double t = (sprites.value[i] - lo) / span;
+      v[3] = static_cast<float>(std::isnan(t) ? 0.0 : std::clamp(t, 0.0, 1.0));
+      v[4] = static_cast<float>(sprites.radius[i]);
+    }
+    glViewport(out.viewport[0], out.viewport[1], out.viewport[2], out.viewport[3]);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glEnable(GL_PROGRAM_POINT_SIZE);
+    glUseProgram(gl_->program);
+    const Eigen::Matrix4f viewF = view.view.cast<float>(),
+                          projectionF = view.projection.cast<float>();
+    glUniformMatrix4fv(gl_->uView, 1, GL_FALSE, viewF.data());  // Eigen is column-major, as GL
+    glUniformMatrix4fv(gl_->uProjection, 1, GL_FALSE, projectionF.data());
+    glUniform1f(gl_->uPointScale, static_cast<float>(view.projection(1, 1) * out.viewport[3]));
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, gl_->texture);
+    const std::vector<unsigned char> table = colours.rgba8();
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, ColourMap::kEntries, 1, 0, GL_RGBA, GL_UNSIGNED_BYTE,
+                 table.data());
+    glUniform1i(gl_->uColours, 0);
+    glBindVertexArray(gl_->vao);
+    glBindBuffer(GL_ARRAY_BUFFER, gl_->vbo);
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices.size() * sizeof(float)),
+                 vertices.data(), GL_STREAM_DRAW);
+    glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(sprites.count()));
+  }
+  glFinish();
+  if (const GLenum error = glGetError(); error != GL_NO_ERROR)
+    throw std::runtime_error("OpenGL error " + std::to_string(error) +
+                             " while drawing the particles");
+  const unsigned char* src = gl_->buffer.data();
+  unsigned char* dst = out.canvas.data().data();
+  for (size_t p = 0; p < static_cast<size_t>(W) * H; ++p)
+    for (int c = 0; c < 3; ++c) dst[3 * p + c] = src[4 * p + c];
+
+  // Title with the time.
+  std::string title =
+      (scene.title.empty() ? scene.name : scene.title) + "    t = " + formatNumber(time);
+  if (!scene.timeUnit.empty()) title += " " + scene.timeUnit;
+  out.canvas.text(title, titleSize / 2, H - titleSize / 2, titleSize, ink, Canvas::Align::Start,
+                  Canvas::Align::End);
+
+  // Colour bar: the table's colours, a frame, ticks with values, the field name and units above.
+  const int barWidth = std::max(10, W / 48);
+  const int x0 = W - barArea + barWidth / 2, x1 = x0 + barWidth;
+  const int y0 = H * 12 / 100, y1 = H * 70 / 100;
+  out.colourBar = {x0, y0, x1, y1};
+  for (int y = y0; y < y1; ++y) {
+    const auto c = colours.colour((y - y0 + 0.5) / (y1 - y0));
+    out.canvas.fillRect(x0, y, x1, y + 1, {c[0], c[1], c[2]});
+  }
+  out.canvas.fillRect(x0 - 1, y0 - 1, x1 + 1, y0, ink);
+  out.canvas.fillRect(x0 - 1, y1, x1 + 1, y1 + 1, ink);
+  out.canvas.fillRect(x0 - 1, y0, x0, y1, ink);
+  out.canvas.fillRect(x1, y0, x1 + 1, y1, ink);
+  const auto [lo, hi] = out.range;
+  for (double tick : niceTicks(lo, hi)) {
+    const int y = y0 + static_cast<int>(std::lround((tick - lo) / (hi - lo) * (y1 - y0 - 1)));
+    out.canvas.fillRect(x1, y, x1 + barWidth / 3, y + 1, ink);
+    out.canvas.text(formatNumber(tick), x1 + barWidth / 3 + 4, y, labelSize, ink,
+                    Canvas::Align::Start, Canvas::Align::Centre);
+  }
+  int labelY = y1 + labelSize;
+  if (!scene.units.empty()) {
+    out.canvas.text("[" + scene.units + "]", x0, labelY, labelSize, ink);
+    labelY += labelSize * 3 / 2;
+  }
+  const int nameWidth = Canvas::textSize(scene.field.text, labelSize)[0];
+  out.canvas.text(scene.field.text, std::min(x0, W - 4 - nameWidth), labelY, labelSize, ink);
+  return out;
+}
+
+}  // namespace anode

@@ -1,0 +1,73 @@
+#include "vis/Sprites.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace anode {
+
+namespace {
+
+const NamedArray* findArray(const ParticleData& data, const std::string& name) {
+  for (const NamedArray& a : data.arrays)
+    if (a.name == name) return &a;
+  return nullptr;
+}
+
+// Radius for data without volumes: the bounding box shared equally (a flat set: its area).
+double radiusFromBounds(const std::vector<double>& points) {
+  const size_t n = points.size() / 3;
+  if (n == 0) return 0;
+  double lo[3] = {points[0], points[1], points[2]}, hi[3] = {points[0], points[1], points[2]};
+  for (size_t i = 0; i < n; ++i)
+    for (int d = 0; d < 3; ++d) {
+      lo[d] = std::min(lo[d], points[3 * i + d]);
+      hi[d] = std::max(hi[d], points[3 * i + d]);
+    }
+  double extents[3];
+  for (int d = 0; d < 3; ++d) extents[d] = hi[d] - lo[d];
+  std::sort(extents, extents + 3);
+  const double spacing =
+      extents[0] > 0   ? std::cbrt(extents[0] * extents[1] * extents[2] / static_cast<double>(n))
+      : extents[1] > 0 ? std::sqrt(extents[1] * extents[2] / static_cast<double>(n))
+      : extents[2] > 0 ? extents[2] / static_cast<double>(n)
+                       : 1.0;
+  return sphereRadius(spacing * spacing * spacing);
+}
+
+}  // namespace
+
+double sphereRadius(double volume) {
+  return std::cbrt(3.0 * std::max(volume, 0.0) / (4.0 * M_PI));
+}
+
+SpriteSet makeSprites(const Scene& scene, const ParticleData& data) {
+  const FieldSpec& field = scene.field;
+  const NamedArray* values = findArray(data, field.label);
+  if (!values || values->isInteger())
+    throw std::runtime_error("the data holds no real array " + field.label + " for the field " +
+                             field.text);
+  if (values->components != field.components)
+    throw std::runtime_error("field " + field.text + ": " + field.label + " has " +
+                             std::to_string(values->components) +
+                             " component(s), the field needs " + std::to_string(field.components));
+  const NamedArray* volume = findArray(data, "p.volume");
+  const NamedArray* material = findArray(data, "material");
+  if (material && !material->isInteger())
+    throw std::runtime_error("the material array does not hold integers");
+  const double fallbackRadius = volume ? 0.0 : radiusFromBounds(data.points);
+
+  SpriteSet s;
+  const size_t n = data.count();
+  for (size_t i = 0; i < n; ++i) {
+    const double* x = &data.points[3 * i];
+    if (material && !scene.drawsMaterial(static_cast<int>(material->integer[i]))) continue;
+    if (!scene.keeps(x)) continue;
+    s.position.insert(s.position.end(), x, x + 3);
+    s.value.push_back(field.evaluate(&values->real[i * field.components]));
+    s.radius.push_back(volume ? sphereRadius(volume->real[i]) : fallbackRadius);
+  }
+  return s;
+}
+
+}  // namespace anode

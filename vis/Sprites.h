@@ -1,0 +1,29 @@
+// The particles one scene draws, reduced to what the GPU needs: a position, the field value and
+// a radius per particle, nothing else (DESIGN.md §7).
+#pragma once
+
+#include <vector>
+
+#include "vis/PointData.h"
+#include "vis/SceneSpec.h"
+
+namespace anode {
+
+struct SpriteSet {
+  std::vector<double> position;  // x0 y0 z0 x1 ...
+  std::vector<double> value;     // the scene's field
+  std::vector<double> radius;    // of the sphere with the particle's volume
+  size_t count() const { return value.size(); }
+};
+
+// Picks the particles the scene draws (its materials, its side of the clip plane) out of `data`,
+// which holds the scene's field array and, when available, "p.volume" and "material" arrays
+// (data without a material array is taken to hold only the scene's materials).
+// Without p.volume every particle gets the radius of an equal share of the bounding box.
+// Throws std::runtime_error when the field array is missing or has the wrong component count.
+SpriteSet makeSprites(const Scene& scene, const ParticleData& data);
+
+// The radius of the sphere of volume v.
+double sphereRadius(double volume);
+
+}  // namespace anode
