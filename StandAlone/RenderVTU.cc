@@ -26,30 +26,27 @@ using namespace anode;
 
 const char* kUsage =
     "usage: render_vtu [options] DATA\n"
-    "  DATA                   a run's particles.pvd, or one .vtu\n"
-    "  --ups FILE             the scenes of the <Visualization> block of FILE (default with a "
-    ".pvd:\n"
-    "                         the run's input.ups beside it, if it has scenes; otherwise one "
-    "scene\n"
-    "                         \"view\" made of the options below)\n"
-    "  --scene NAME           render only this scene\n"
-    "  --times all            every file of the .pvd (default: each scene's times, each rendered "
-    "from\n"
-    "                         the first file at or after it)\n"
-    "  --time T               the time of a .vtu given alone (default 0)\n"
-    "  -o DIR                 write DIR/images/<scene>_<time>.png (default DIR: the folder of "
-    "DATA)\n"
-    "  --name NAME            the name of the scene made of options (default view)\n"
-    "  --TAG VALUE            set a scene tag in every scene, written as in the input\n"
-    "                         (docs/input-reference.md): --field, --range, --colormap, "
-    "--materials,\n"
-    "                         --clip-point, --clip-normal, --camera, --camera-position,\n"
-    "                         --camera-focal-point, --camera-up, --camera-view-angle, --size,\n"
-    "                         --background, --title, --units, --time-unit, --times, --interval\n"
-    "  --benchmark N          render a synthetic pillar of N particles at --size (default\n"
-    "                         [1024, 768]) five times and print the seconds per image\n"
-    "Example: render_vtu --field p.stress:von_mises --camera front --clip-normal \"[0,-1,0]\" "
-    "out/run/particles.pvd\n";
+    "  DATA             a run's particles.pvd, or one .vtu\n"
+    "  --ups FILE       the scenes of the <Visualization> block of FILE (scene options\n"
+    "                   change them). Without --ups: with scene options, one new scene\n"
+    "                   made of them; without, the scenes of the run's input.ups beside\n"
+    "                   a .pvd (or a default scene)\n"
+    "  --scene NAME     render only this scene (of --ups or of the run's input.ups)\n"
+    "  --times all      every file of the .pvd (default: each scene time, from the first\n"
+    "                   file at or after it; a default scene: every file)\n"
+    "  --time T         the time of a .vtu given alone (default 0)\n"
+    "  -o DIR           write DIR/images/<scene>_<time>.png (default DIR: DATA's folder)\n"
+    "  --name NAME      the name of a scene made of options (default view)\n"
+    "  --TAG VALUE      a scene option: sets that tag, written as in the input\n"
+    "                   (docs/input-reference.md): --field, --range, --colormap,\n"
+    "                   --materials, --clip-point, --clip-normal, --camera,\n"
+    "                   --camera-position, --camera-focal-point, --camera-up,\n"
+    "                   --camera-view-angle, --size, --background, --title, --units,\n"
+    "                   --time-unit, --times, --interval\n"
+    "  --benchmark N    render a synthetic pillar of N particles at --size (default\n"
+    "                   [1024, 768]) five times and print the seconds per image\n"
+    "example: render_vtu --field p.stress:von_mises --camera front\n"
+    "             --clip-normal \"[0,-1,0]\" out/run/particles.pvd\n";
 
 [[noreturn]] void usageError(const std::string& message) {
   std::fprintf(stderr, "render_vtu: %s\n%s", message.c_str(), kUsage);
@@ -147,7 +144,9 @@ struct Chosen {
 
 Chosen chooseScenes(const Options& o) {
   std::string ups = o.ups;
-  if (ups.empty() && fs::path(o.data).extension() == ".pvd") {
+  // Options that describe a scene make a new one, unless an input's scenes are asked for.
+  if (ups.empty() && fs::path(o.data).extension() == ".pvd" &&
+      (o.tags.empty() || !o.only.empty())) {
     const fs::path beside = fs::path(o.data).parent_path() / "input.ups";
     if (fs::exists(beside) && hasScenes(beside.string())) ups = beside.string();
   }

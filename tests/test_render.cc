@@ -365,6 +365,34 @@ TEST(RunScenes, ImagesAtTheSceneTimes) {
   EXPECT_GT(static_cast<double>(same) / values, 0.999);
 }
 
+// The README's main-job command (line 1 of its Quick start block) runs an input that draws at
+// least one picture; here its first step.
+TEST(RunScenes, ReadmeDefaultInputDrawsAPicture) {
+  std::ifstream readme(std::string(ANODE_SOURCE_DIR) + "/README.md");
+  std::string line, command;
+  bool quickStart = false, block = false;
+  while (std::getline(readme, line) && command.empty()) {
+    if (line.rfind("## Quick start", 0) == 0) quickStart = true;
+    if (quickStart && block) command = line;
+    if (quickStart && line.rfind("```sh", 0) == 0) block = true;
+  }
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(command, m, std::regex(R"(sus .*?(inputs/\S+\.ups)\s*$)")))
+      << command;
+  TempDir dir("readme");
+  const std::string output =
+      run("OMP_WAIT_POLICY=passive " + std::string(ANODE_SUS) + " --max-timesteps 1 -o " +
+          (dir.path / "out").string() + " " + std::string(ANODE_SOURCE_DIR) + "/" + m[1].str());
+  EXPECT_EQ(output.find("exit status"), std::string::npos) << output;
+  int pictures = 0;
+  if (fs::exists(dir.path / "out" / "images"))
+    for (const auto& entry : fs::directory_iterator(dir.path / "out" / "images")) {
+      ++pictures;
+      EXPECT_GT(nonBackgroundFraction(readPNG(entry.path())), 0.05) << entry.path();
+    }
+  EXPECT_GE(pictures, 1) << m[1].str() << " drew no picture at its first step";
+}
+
 TEST(RunScenes, NoScenesNoRendererNoImages) {
   TempDir dir("plain");
   testing::BlockInput in;
