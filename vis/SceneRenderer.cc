@@ -125,6 +125,10 @@ struct Bounds {
   Vec3 hi = -Vec3::Constant(std::numeric_limits<double>::infinity());
   bool empty() const { return !(lo.x() <= hi.x()); }
   Vec3 centre() const { return empty() ? Vec3(Vec3::Zero()) : Vec3(0.5 * (lo + hi)); }
+  // Corner k of 8: bit 0 picks x, bit 1 y, bit 2 z from hi.
+  Vec3 corner(int k) const {
+    return Vec3((k & 1 ? hi : lo).x(), (k & 2 ? hi : lo).y(), (k & 4 ? hi : lo).z());
+  }
 };
 
 // The box around the spheres.
@@ -162,10 +166,8 @@ View makeView(const Camera& camera, const Bounds& bounds, double aspect) {
     const Eigen::Matrix4d orient = lookAt(direction, Vec3::Zero(), up);  // eye at unit distance
     double distance = 0;
     for (int corner = 0; corner < 8 && !bounds.empty(); ++corner) {
-      const Vec3 c((corner & 1 ? bounds.hi : bounds.lo).x(),
-                   (corner & 2 ? bounds.hi : bounds.lo).y(),
-                   (corner & 4 ? bounds.hi : bounds.lo).z());
-      const Vec3 q = orient.block<3, 3>(0, 0) * (c - v.origin);  // x right, y up, z towards the eye
+      const Vec3 q = orient.block<3, 3>(0, 0) *
+                     (bounds.corner(corner) - v.origin);  // x right, y up, z towards the eye
       distance =
           std::max({distance, q.z() + std::abs(q.x()) / tanX, q.z() + std::abs(q.y()) / tanY});
     }
@@ -175,10 +177,9 @@ View makeView(const Camera& camera, const Bounds& bounds, double aspect) {
   v.view = lookAt(eye, focal, up);
   double near = std::numeric_limits<double>::infinity(), far = 0;
   for (int corner = 0; corner < 8 && !bounds.empty(); ++corner) {
-    const Vec3 c((corner & 1 ? bounds.hi : bounds.lo).x(), (corner & 2 ? bounds.hi : bounds.lo).y(),
-                 (corner & 4 ? bounds.hi : bounds.lo).z());
     const double depth =
-        -(v.view.block<3, 3>(0, 0) * (c - v.origin) + v.view.block<3, 1>(0, 3)).z();
+        -(v.view.block<3, 3>(0, 0) * (bounds.corner(corner) - v.origin) + v.view.block<3, 1>(0, 3))
+             .z();
     near = std::min(near, depth);
     far = std::max(far, depth);
   }
