@@ -95,6 +95,22 @@ int gimpWeights(const Grid& g, const Vec3& x, const Mat3& size, int32_t* nodes, 
   return tensorProduct(g, first, len, n, dn, nodes, w, grad);
 }
 
+int cpdiCapacity(const Grid& g, const Vec3& x, const Mat3& size, const Mat3& F) {
+  const Mat3 A = F * size;
+  const Vec3 xi = g.indexCoordinate(x);
+  int lo[3] = {1 << 30, 1 << 30, 1 << 30}, hi[3] = {-(1 << 30), -(1 << 30), -(1 << 30)};
+  for (int c = 0; c < 8; ++c) {
+    const Vec3 corner = xi + ((c & 1) ? 0.5 : -0.5) * A.col(0) + ((c & 2) ? 0.5 : -0.5) * A.col(1) +
+                        ((c & 4) ? 0.5 : -0.5) * A.col(2);
+    for (int d = 0; d < 3; ++d) {
+      lo[d] = std::min(lo[d], floorIndex(corner[d]));
+      hi[d] = std::max(hi[d], floorIndex(corner[d]) + 1);
+    }
+  }
+  const long span = long(hi[0] - lo[0] + 1) * (hi[1] - lo[1] + 1) * (hi[2] - lo[2] + 1);
+  return static_cast<int>(std::min(span, 64L));
+}
+
 int cpdiWeights(const Grid& g, const Vec3& x, const Mat3& size, const Mat3& F, int32_t* nodes,
                 double* w, Vec3* grad) {
   // Sadeghirad et al. 2011: the particle domain is the parallelepiped spanned by the columns of

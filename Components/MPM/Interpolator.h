@@ -25,21 +25,33 @@ int linearWeights(const Grid& g, const Vec3& x, int32_t* nodes, double* w, Vec3*
 int gimpWeights(const Grid& g, const Vec3& x, const Mat3& size, int32_t* nodes, double* w, Vec3* grad);
 int cpdiWeights(const Grid& g, const Vec3& x, const Mat3& size, const Mat3& F, int32_t* nodes,
                 double* w, Vec3* grad);
+// The most entries cpdiWeights can write for this particle (the nodes of the cells its corners
+// span, at most 64): a domain within one cell per axis touches 27 nodes, not 64.
+int cpdiCapacity(const Grid& g, const Vec3& x, const Mat3& size, const Mat3& F);
 
-// Per-particle weights of one material for the current step, fixed stride per particle.
+// Per-particle weights of one material for the current step: particle i owns the entries
+// [offset[i], offset[i] + count[i]).
 struct InterpolationWeights {
-  int stride = 0;
   std::vector<uint8_t> count;
+  std::vector<size_t> offset;
   std::vector<int32_t> node;
   std::vector<double> weight;
   std::vector<Vec3> gradient;
 
-  void resize(size_t particles, int perParticle) {
-    stride = perParticle;
-    count.assign(particles, 0);
-    node.resize(particles * perParticle);
-    weight.resize(particles * perParticle);
-    gradient.resize(particles * perParticle);
+  // Lays out `capacity[i]` entries for each particle; storage only grows.
+  void layOut(const std::vector<uint8_t>& capacity) {
+    offset.resize(capacity.size());
+    count.resize(capacity.size());
+    size_t total = 0;
+    for (size_t i = 0; i < capacity.size(); ++i) {
+      offset[i] = total;
+      total += capacity[i];
+    }
+    if (total > node.size()) {
+      node.resize(total);
+      weight.resize(total);
+      gradient.resize(total);
+    }
   }
 };
 

@@ -8,7 +8,9 @@
 #include <sstream>
 
 #include "Components/MPM/GridBoundaryConditions.h"
+#include "Components/MPM/Materials/ConstitutiveModels/RFElasticPlastic.h"
 #include "Components/MPM/ParticleSplitting.h"
+#include "Components/MPM/ProblemSize.h"
 #include "Core/Util/Errors.h"
 
 namespace anode {
@@ -90,13 +92,15 @@ void MPM::problemSetup(const PSNode& root, double initTime, double maxTime) {
   }
   readOtherPhysicalBCs(root);
 
+  checkProblemSize(gridNode, grid_, flags_, materials_.size(), numParticles(), omp_get_max_threads());
   const int nodes = grid_.numNodes();
   fields_.resize(materials_.size());
   for (auto& f : fields_) {
     f.resize(nodes);
     if (flags_.doScalarDiffusion) f.resizeDiffusion(nodes);
   }
-  resizeParticleScratch();
+  weights_.resize(materials_.size());
+  capacity_.resize(materials_.size());
   threadScatter_.resize(omp_get_max_threads() > 1 ? omp_get_max_threads() : 0);
   for (auto& t : threadScatter_) {
     t.mass.resize(nodes);
@@ -140,26 +144,11 @@ void MPM::assignFluxBCs() {
   }
 }
 
-void MPM::resizeParticleScratch() {
-  weights_.resize(materials_.size());
-  velocityGradient_.resize(materials_.size());
-  newF_.resize(materials_.size());
-  concentrationIncrement_.resize(materials_.size());
-  for (size_t m = 0; m < materials_.size(); ++m) {
-    const size_t n = materials_[m].particles.count();
-    weights_[m].resize(n, maxNodesPerParticle(flags_.interpolator));
-    velocityGradient_[m].resize(n);
-    newF_[m].resize(n);
-    if (flags_.doScalarDiffusion && materials_[m].model->swells()) concentrationIncrement_[m].resize(n);
-  }
-}
-
 void MPM::splitParticles() {
-  size_t split = 0;
+  // The weights of the next step are laid out for the new particle count.
   for (MPMMaterial& mat : materials_)
     if (!mat.particles.refined.empty())
-      split += splitStretchedParticles(mat.particles, grid_, flags_.stretchRatio, fluxBCs_, nextParticleId_);
-  if (split > 0) resizeParticleScratch();
+      splitStretchedParticles(mat.particles, grid_, flags_.stretchRatio, fluxBCs_, nextParticleId_);
 }
 
 size_t MPM::numParticles() const {
@@ -170,10 +159,10 @@ size_t MPM::numParticles() const {
 
 void MPM::timeAdvance(double t, double dt) {
   static const char* names[] = {"computeInterpolationWeights", "interpolateParticlesToGrid",
-                                "exchangeMomentum+integrateGrid", "interpolateToParticlesAndUpdate",
-                                "computeStressTensor", "diffusivity+externalScalarFlux", "splitParticles"};
-  int k[7];
-  for (int i = 0; i < 7; ++i) k[i] = timers_.task(names[i]);
+                                "exchangeMomentum+integrateGrid", "interpolateToParticles+computeStress",
+                                "splitParticles", "diffusivity+externalScalarFlux"};
+  int k[6];
+  for (int i = 0; i < 6; ++i) k[i] = timers_.task(names[i]);
   { ScopedTimer s(timers_, k[0]); computeInterpolationWeights(); }        // 1
   { ScopedTimer s(timers_, k[1]); interpolateParticlesToGrid(); }         // 3, 5 (Eqs. 4, 5, 7, 18)
   {
@@ -183,10 +172,9 @@ void MPM::timeAdvance(double t, double dt) {
     if (flags_.doScalarDiffusion) integrateConcentration(dt);
     setGridBoundaryConditions(dt);
   }
-  { ScopedTimer s(timers_, k[3]); interpolateToParticlesAndUpdate(dt); }  // 7 (Eq. 8)
-  { ScopedTimer s(timers_, k[4]); computeStressTensor(dt); }              // 8 (Eqs. 26-39)
+  { ScopedTimer s(timers_, k[3]); interpolateToParticlesAndUpdate(dt); }  // 7 (Eq. 8), 8 (Eqs. 25-39)
   if (flags_.refineParticles) {
-    ScopedTimer s(timers_, k[6]);
+    ScopedTimer s(timers_, k[4]);
     splitParticles();
   }
   if (flags_.doScalarDiffusion) {
@@ -205,11 +193,19 @@ void MPM::computeInterpolationWeights() {
     const ParticleSet& p = materials_[m].particles;
     InterpolationWeights& W = weights_[m];
     const long n = static_cast<long>(p.count());
-    const int stride = W.stride;
+    std::vector<uint8_t>& capacity = capacity_[m];
+    capacity.resize(n);
+    if (flags_.interpolator == InterpolatorKind::CPDI) {
+#pragma omp parallel for schedule(static)
+      for (long i = 0; i < n; ++i) capacity[i] = static_cast<uint8_t>(cpdiCapacity(grid_, p.x[i], p.size[i], p.F[i]));
+    } else {
+      std::fill(capacity.begin(), capacity.end(), static_cast<uint8_t>(maxNodesPerParticle(flags_.interpolator)));
+    }
+    W.layOut(capacity);
     long firstOutside = n;
 #pragma omp parallel for schedule(static) reduction(min : firstOutside, lowest) reduction(max : highest)
     for (long i = 0; i < n; ++i) {
-      const size_t b = static_cast<size_t>(i) * stride;
+      const size_t b = W.offset[i];
       int count = 0;
       switch (flags_.interpolator) {
         case InterpolatorKind::Linear:
@@ -300,7 +296,7 @@ void scatterToGrid(const ParticleSet& p, const InterpolationWeights& W, long beg
       mq = mp * p.diffusivity[i] * p.concentrationGradient[i];
       if constexpr (Flux) mrate = mp * p.externalScalarFlux[i];
     }
-    const size_t b = static_cast<size_t>(i) * W.stride;
+    const size_t b = W.offset[i];
     for (int e = 0; e < W.count[i]; ++e) {
       const int n = W.node[b + e];
       const double w = W.weight[b + e];
@@ -474,46 +470,44 @@ void MPM::setGridBoundaryConditions(double dt) {
 }
 
 void MPM::findDirichletNodes() {
-  // 1 on the nodes an SD-Type Dirichlet condition sets (per material), with its value.
+  // 1 on the nodes an SD-Type Dirichlet condition sets (per material).
   std::vector<FaceBC> dirichlet;
-  for (const FaceBC& b : faceBCs_)
-    if (b.kind == FaceBC::Kind::ConcentrationDirichlet) dirichlet.push_back(b);
+  for (FaceBC b : faceBCs_)
+    if (b.kind == FaceBC::Kind::ConcentrationDirichlet) {
+      b.value = 1.0;
+      dirichlet.push_back(b);
+    }
   if (dirichlet.empty()) return;
   dirichletMask_.assign(materials_.size(), std::vector<double>(grid_.numNodes(), 0.0));
-  dirichletValue_.assign(materials_.size(), std::vector<double>(grid_.numNodes(), 0.0));
-  for (size_t m = 0; m < materials_.size(); ++m) {
-    applyConcentrationBCs(grid_, dirichlet, static_cast<int>(m), dirichletValue_[m]);
-    for (FaceBC b : dirichlet) {
-      b.value = 1.0;
-      applyConcentrationBCs(grid_, {b}, static_cast<int>(m), dirichletMask_[m]);
-    }
-  }
+  for (size_t m = 0; m < materials_.size(); ++m)
+    applyConcentrationBCs(grid_, dirichlet, static_cast<int>(m), dirichletMask_[m]);
 }
 
 void MPM::interpolateToParticlesAndUpdate(double dt) {
   const bool diffusion = flags_.doScalarDiffusion;
-  // Particle treatment of SD-Type Dirichlet (docs/diffusion.md): the weight on the boundary
-  // nodes relaxes c toward c_BC instead of carrying Uintah's nodal rate.
+  // Particle treatment of SD-Type Dirichlet (docs/diffusion.md): a particle touching a boundary
+  // node takes the grid solution c = sum S c* instead of Uintah's nodal rate.
   const bool particleDirichlet = flags_.particleDirichlet && !dirichletMask_.empty();
   for (size_t m = 0; m < materials_.size(); ++m) {
     MPMMaterial& mat = materials_[m];
     ParticleSet& p = mat.particles;
     const InterpolationWeights& W = weights_[m];
     const GridFields& g = fields_[m];
-    std::vector<Mat3>& L = velocityGradient_[m];
-    std::vector<Mat3>& Fnew = newF_[m];
     const long n = static_cast<long>(p.count());
     const double rho0 = mat.density;
-    double* dcOut = concentrationIncrement_[m].empty() ? nullptr : concentrationIncrement_[m].data();
+    // The stress update (Eqs. 25-39) runs in the same particle loop, dispatched once per material.
+    const auto* model = dynamic_cast<const RFElasticPlastic*>(mat.model.get());
+    if (!model) throw std::logic_error("interpolateToParticlesAndUpdate: unknown constitutive model");
+    const bool yields = model->canYield(), swells = diffusion && model->swells();
     const double* wallMask = particleDirichlet ? dirichletMask_[m].data() : nullptr;
-    const double* wallTarget = particleDirichlet ? dirichletValue_[m].data() : nullptr;
     long firstInverted = n;
 #pragma omp parallel for schedule(static) reduction(min : firstInverted)
     for (long i = 0; i < n; ++i) {
       Mat3 gradV = Mat3::Zero();
       Vec3 acc = Vec3::Zero(), vel = Vec3::Zero(), gradC = Vec3::Zero();
-      double cRate = 0, wallWeight = 0, wallValue = 0;
-      const size_t b = static_cast<size_t>(i) * W.stride;
+      double cRate = 0, cGrid = 0;
+      bool touchesWall = false;
+      const size_t b = W.offset[i];
       for (int e = 0; e < W.count[i]; ++e) {
         const int k = W.node[b + e];
         const double w = W.weight[b + e];
@@ -522,11 +516,10 @@ void MPM::interpolateToParticlesAndUpdate(double dt) {
         vel += g.velocityStar[k] * w;
         if (diffusion) {
           gradC += g.concentrationStar[k] * W.gradient[b + e];  // grad c for the next step's flux
-          if (wallMask && wallMask[k] > 0) {
-            wallWeight += w;
-            wallValue += w * wallTarget[k];
-          } else {
-            cRate += g.concentrationRate[k] * w;
+          cRate += g.concentrationRate[k] * w;
+          if (wallMask) {
+            cGrid += g.concentrationStar[k] * w;
+            touchesWall |= wallMask[k] > 0;
           }
         }
       }
@@ -537,35 +530,42 @@ void MPM::interpolateToParticlesAndUpdate(double dt) {
       Mat3 F = p.F[i];
       for (int c = 0; c < cycles; ++c) F = increment * F;
       const double J = F.determinant();
-      if (!(J > 0)) firstInverted = std::min(firstInverted, i);
-      L[i] = gradV;
-      Fnew[i] = F;
       p.velocity[i] += acc * dt;
       p.x[i] += vel * dt;
       p.displacement[i] += vel * dt;
       p.volume[i] = p.mass[i] / rho0 * J;
+      double dc = 0;
       if (diffusion) {
         p.concentrationGradient[i] = gradC;
-        double c = p.concentration[i] + dt * cRate;  // Eq. 8
-        // A convex combination: cannot leave [min(c, c_BC), max(c, c_BC)].
-        if (wallWeight > 0) c = (1 - wallWeight) * c + wallValue;
-        if (dcOut) dcOut[i] = c - p.concentration[i];
+        // Eq. 8; next to a Dirichlet wall, a convex combination of nodal values instead.
+        const double c = touchesWall ? cGrid : p.concentration[i] + dt * cRate;
+        dc = c - p.concentration[i];
         p.concentration[i] = c;
       }
+      if (!(J > 0)) {  // no stress update for an inverted particle: the run stops below
+        firstInverted = std::min(firstInverted, i);
+        p.F[i] = F;
+        continue;
+      }
+      double ep = 0, epdot = 0;
+      if (yields) {
+        ep = p.plasticStrain[i];
+        epdot = p.plasticStrainRate[i];
+      }
+      p.stress[i] = model->updateStress(p.stress[i], p.F[i], F, gradV, swells ? dc : 0.0, dt, ep, epdot);
+      if (yields) {
+        p.plasticStrain[i] = ep;
+        p.plasticStrainRate[i] = epdot;
+      }
+      p.F[i] = F;
     }
     if (firstInverted < n) {
       std::ostringstream s;
-      s << particleLabel(mat, m, firstInverted) << " has det F = " << Fnew[firstInverted].determinant()
+      s << particleLabel(mat, m, firstInverted) << " has det F = " << p.F[firstInverted].determinant()
         << " (inverted or degenerate deformation)";
       throw SimulationError(s.str());
     }
   }
-}
-
-void MPM::computeStressTensor(double dt) {
-  for (size_t m = 0; m < materials_.size(); ++m)
-    materials_[m].model->computeStressTensor(materials_[m].particles, velocityGradient_[m], newF_[m],
-                                             &concentrationIncrement_[m], dt);
 }
 
 void MPM::updateAutoCycle() {

@@ -68,12 +68,10 @@ class MPM {
   void integrateConcentration(double dt);
   void setGridBoundaryConditions(double dt);
   void interpolateToParticlesAndUpdate(double dt);
-  void computeStressTensor(double dt);
   void computeDiffusivity(double t);
   void checkConcentrationRange(double t) const;
   void splitParticles();
   void updateAutoCycle();
-  void resizeParticleScratch();
 
   MPMFlags flags_;
   Grid grid_;
@@ -82,7 +80,7 @@ class MPM {
   std::vector<MPMMaterial> materials_;
   std::vector<ScalarFluxBC> fluxBCs_;
   bool commonDiffusionInterface_ = false;
-  std::vector<std::vector<double>> dirichletMask_, dirichletValue_;  // per material, per node
+  std::vector<std::vector<double>> dirichletMask_;  // per material, per node: 1 on Dirichlet nodes
   double maxDiffusivity_ = 0;   // over all particles, for Eq. 44
   double maxFluxRateCoefficient_ = 0;  // max unrestricted J A/V over particles, for the flux limit
   int64_t nextParticleId_ = 0;
@@ -96,9 +94,7 @@ class MPM {
 
   std::vector<GridFields> fields_;                 // per material
   std::vector<InterpolationWeights> weights_;      // per material, for the current step
-  std::vector<std::vector<Mat3>> velocityGradient_;  // per material scratch: L of the step
-  std::vector<std::vector<Mat3>> newF_;              // per material scratch: F at the step's end
-  std::vector<std::vector<double>> concentrationIncrement_;  // per swelling material: c^{n+1} - c^n
+  std::vector<std::vector<uint8_t>> capacity_;     // per material: weight entries per particle
   std::vector<GridFields> threadScatter_;          // per thread, for P2G without locks
   TaskTimers timers_;
 };

@@ -1,6 +1,11 @@
 #include "Components/MPM/Materials/MPMMaterial.h"
 
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
 #include "Components/MPM/Materials/Diffusion/ScalarFluxBC.h"
+#include "Components/MPM/ProblemSize.h"
 #include "Core/Geometry/ParticleFill.h"
 #include "Core/Geometry/SmoothCylinder.h"
 
@@ -8,13 +13,19 @@ namespace anode {
 
 namespace {
 
+std::string count(double n) {
+  char s[32];
+  std::snprintf(s, sizeof s, "%.4g", n);
+  return s;
+}
+
 // Adds the particles of one <geom_object> (UINTAH_UPS.md §3.1).
 void addGeomObject(const PSNode& geom, const Grid& grid, const MPMFlags& flags, MPMMaterial& m,
                    GeometryPieceFactory& pieces, int64_t& nextId) {
   ParticleSet& p = m.particles;
   auto piece = std::make_shared<UnionPiece>();
-  for (const PSNode& c : geom.childrenWhere(GeometryPieceFactory::isPieceTag))
-    piece->pieces.push_back(pieces.create(c));
+  const std::vector<PSNode> pieceNodes = geom.childrenWhere(GeometryPieceFactory::isPieceTag);
+  for (const PSNode& c : pieceNodes) piece->pieces.push_back(pieces.create(c));
   if (piece->pieces.empty()) geom.fail("<geom_object> needs a geometry piece (box, cylinder, sphere, ...)");
 
   const PSNode resNode = geom.requireChild("res");
@@ -44,15 +55,30 @@ void addGeomObject(const PSNode& geom, const Grid& grid, const MPMFlags& flags, 
   std::vector<SmoothParticle> seeds;
   const Vec3 dxp = grid.dx.cwiseQuotient(res.cast<double>());
   const auto* smooth = piece->pieces.size() == 1 ? dynamic_cast<const SmoothCylinderPiece*>(piece->pieces[0].get()) : nullptr;
+  // The particles of the materials before and of this object must fit the memory budget.
+  const double limit = std::max(0.0, std::floor(maxParticles(flags)) - static_cast<double>(nextId));
+  const std::string beyond = " particles, beyond " + describeBudget() + " at about " +
+                             std::to_string(static_cast<long>(bytesPerParticle(flags))) + " bytes per particle";
   if (smooth) {
+    const double n = smooth->particleCount(grid, limit);
+    if (n > limit)
+      pieceNodes[0].fail("the <smoothcyl> lays out " + (n > 2 * limit ? "more than " + count(limit) : count(n)) + beyond);
     seeds = smooth->createParticles(grid);
   } else {
     for (const GeometryPieceP& g : piece->pieces)
       if (dynamic_cast<const SmoothCylinderPiece*>(g.get()))
         geom.fail("a <smoothcyl> must be the only piece of its <geom_object>");
+    // Filling tests every candidate point: bound the work as well as the particles kept.
+    const double candidates = fillCandidates(grid, *piece, res);
+    if (candidates > 16 * limit + 1e6)
+      resNode.fail("<res> gives " + count(candidates) + " candidate positions in the cells the pieces' bounding box meets; at most " +
+                   count(limit) + beyond);
+    const std::vector<Vec3> points = fillParticles(grid, *piece, res, static_cast<size_t>(limit));
+    if (static_cast<double>(points.size()) > limit)
+      resNode.fail("the <geom_object> places more than " + count(limit) + beyond);
     const Mat3 size = res.cast<double>().cwiseInverse().asDiagonal();
     const Vec3 faces(dxp.y() * dxp.z(), dxp.x() * dxp.z(), dxp.x() * dxp.y());  // normal to x, y, z
-    for (const Vec3& x : fillParticles(grid, *piece, res)) seeds.push_back({x, dxp.prod(), size, faces});
+    for (const Vec3& x : points) seeds.push_back({x, dxp.prod(), size, faces});
   }
   if (seeds.empty()) geom.fail("<geom_object> places no particle: its pieces contain no particle position of the grid");
 

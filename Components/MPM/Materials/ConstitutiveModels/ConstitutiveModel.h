@@ -1,4 +1,5 @@
-// Constitutive model interface: one virtual call per material per step, never per particle.
+// What the step needs to know of a constitutive model; the stress update itself is called on the
+// concrete model inside the particle loop (MPM dispatches once per material, never per particle).
 #pragma once
 
 #include <memory>
@@ -14,11 +15,6 @@ class ConstitutiveModel {
   virtual ~ConstitutiveModel() = default;
   // Creates the per-particle state this model needs (and nothing else).
   virtual void initializeState(ParticleSet& p) const = 0;
-  // Stress at the end of the step from the velocity gradient L and the new F; p.F still holds
-  // the old F on entry and the new one on exit. `concentrationIncrement` (c^{n+1} - c^n of the
-  // step, per particle) is null without diffusion.
-  virtual void computeStressTensor(ParticleSet& p, const std::vector<Mat3>& L, const std::vector<Mat3>& Fnew,
-                                   const std::vector<double>* concentrationIncrement, double dt) const = 0;
   // True if the stress depends on the concentration (swelling).
   virtual bool swells() const = 0;
   // K + 4G/3: the modulus of the dilatational wave speed (paper Eq. 41).

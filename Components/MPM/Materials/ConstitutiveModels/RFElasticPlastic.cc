@@ -116,19 +116,4 @@ Mat3 RFElasticPlastic::updateStress(const Mat3& stress, const Mat3& Fold, const 
   return Rnew * sigmaBarNew * Rnew.transpose();
 }
 
-void RFElasticPlastic::computeStressTensor(ParticleSet& p, const std::vector<Mat3>& L,
-                                           const std::vector<Mat3>& Fnew,
-                                           const std::vector<double>* concentrationIncrement, double dt) const {
-  const double* dc = swells() && concentrationIncrement ? concentrationIncrement->data() : nullptr;
-  const long n = static_cast<long>(p.count());
-  double unused = 0, unusedRate = 0;
-#pragma omp parallel for schedule(static) firstprivate(unused, unusedRate)
-  for (long i = 0; i < n; ++i) {
-    double& ep = canYield() ? p.plasticStrain[i] : unused;
-    double& epdot = canYield() ? p.plasticStrainRate[i] : unusedRate;
-    p.stress[i] = updateStress(p.stress[i], p.F[i], Fnew[i], L[i], dc ? dc[i] : 0.0, dt, ep, epdot);
-    p.F[i] = Fnew[i];
-  }
-}
-
 }  // namespace anode

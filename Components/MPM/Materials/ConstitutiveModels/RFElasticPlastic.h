@@ -18,8 +18,6 @@ class RFElasticPlastic : public ConstitutiveModel {
   static std::unique_ptr<RFElasticPlastic> fromInput(const PSNode& node, bool diffusion);
 
   void initializeState(ParticleSet& p) const override;
-  void computeStressTensor(ParticleSet& p, const std::vector<Mat3>& L, const std::vector<Mat3>& Fnew,
-                           const std::vector<double>* concentrationIncrement, double dt) const override;
   bool swells() const override { return eta_ != 0; }
   double dilatationalModulus() const override { return K_ + 4.0 * G_ / 3.0; }
   bool canYield() const override { return flow_.has_value(); }
