@@ -22,20 +22,21 @@ namespace anode {
 
 namespace {
 
+// Wraps the array's own storage (no copy: output must not double the memory of a large run);
+// `a` must outlive the VTK object.
 vtkSmartPointer<vtkDataArray> toVTK(const NamedArray& a, size_t tuples) {
+  const vtkIdType values = static_cast<vtkIdType>(tuples) * a.components;
   if (a.isInteger()) {
     auto arr = vtkSmartPointer<vtkTypeInt64Array>::New();
     arr->SetName(a.name.c_str());
     arr->SetNumberOfComponents(a.components);
-    arr->SetNumberOfTuples(static_cast<vtkIdType>(tuples));
-    for (size_t i = 0; i < a.integer.size(); ++i) arr->SetValue(static_cast<vtkIdType>(i), a.integer[i]);
+    arr->SetArray(const_cast<vtkTypeInt64*>(reinterpret_cast<const vtkTypeInt64*>(a.integer.data())), values, 1);
     return arr;
   }
   auto arr = vtkSmartPointer<vtkDoubleArray>::New();
   arr->SetName(a.name.c_str());
   arr->SetNumberOfComponents(a.components);
-  arr->SetNumberOfTuples(static_cast<vtkIdType>(tuples));
-  for (size_t i = 0; i < a.real.size(); ++i) arr->SetValue(static_cast<vtkIdType>(i), a.real[i]);
+  arr->SetArray(const_cast<double*>(a.real.data()), values, 1);
   return arr;
 }
 
@@ -53,10 +54,11 @@ void runWriter(Writer* writer, const std::string& path) {
 
 void writeParticlesVTU(const std::string& path, const ParticleData& data) {
   const size_t n = data.count();
+  auto coordinates = vtkSmartPointer<vtkDoubleArray>::New();
+  coordinates->SetNumberOfComponents(3);
+  coordinates->SetArray(const_cast<double*>(data.points.data()), static_cast<vtkIdType>(3 * n), 1);
   auto points = vtkSmartPointer<vtkPoints>::New();
-  points->SetDataTypeToDouble();
-  points->SetNumberOfPoints(static_cast<vtkIdType>(n));
-  for (size_t i = 0; i < n; ++i) points->SetPoint(static_cast<vtkIdType>(i), &data.points[3 * i]);
+  points->SetData(coordinates);
   auto cells = vtkSmartPointer<vtkCellArray>::New();
   cells->AllocateExact(static_cast<vtkIdType>(n), static_cast<vtkIdType>(n));
   for (size_t i = 0; i < n; ++i) {
