@@ -71,6 +71,24 @@ TEST(ProblemSpec, ParseValueRejectsMalformedText) {
   EXPECT_TRUE(parseValue<bool>(" TRUE "));
 }
 
+TEST(ProblemSpec, ParseValueRejectsNonFiniteNumbers) {
+  // strtod reads these; no input quantity may be NaN or infinite (1e400 overflows to infinity).
+  for (const char* text : {"nan", "NaN", "-nan", "inf", "-inf", "Infinity", "1e400", "-1e400"}) {
+    EXPECT_THROW(parseValue<double>(text), std::invalid_argument) << text;
+    EXPECT_THROW(parseValue<Vec3>(std::string("[0, ") + text + ", 0]"), std::invalid_argument) << text;
+  }
+  EXPECT_EQ(parseValue<double>("-0"), 0.0);
+  EXPECT_EQ(parseValue<double>("1e308"), 1e308);
+}
+
+TEST(ProblemSpec, EmptyInputIsAnInputErrorOnLine1) {
+  for (const char* text : {"", "  \n", "<?xml version='1.0'?>"}) {
+    const InputError e = expectInputError([&] { ProblemSpec::fromText(text, "empty.ups"); });
+    EXPECT_EQ(e.line(), 1) << e.what();
+    EXPECT_TRUE(startsWith(e.what(), "empty.ups:1: ")) << e.what();
+  }
+}
+
 TEST(ProblemSpec, MalformedValueNamesTheTagLine) {
   auto spec = ProblemSpec::fromText(kValues, "values.ups");
   const PSNode root = spec->root();

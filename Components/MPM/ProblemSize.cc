@@ -37,10 +37,6 @@ double bytesPerGridNode(const MPMFlags& flags, size_t materials, int threads) {
 
 double maxParticles(const MPMFlags& flags) { return static_cast<double>(memoryBudget()) / bytesPerParticle(flags); }
 
-std::string describeBudget() {
-  return "the memory budget of " + formatBytes(static_cast<double>(memoryBudget())) + " (the machine's physical memory)";
-}
-
 void checkProblemSize(const PSNode& gridNode, const Grid& grid, const MPMFlags& flags, size_t materials,
                       size_t particles, int threads) {
   const double nodes = static_cast<double>(grid.numNodes());
@@ -54,7 +50,7 @@ void checkProblemSize(const PSNode& gridNode, const Grid& grid, const MPMFlags& 
   if (!where) where = box ? box : gridNode;
   where.fail("the grid's " + count(nodes) + " nodes (" + formatBytes(gridBytes) + " for " + std::to_string(materials) +
              " material(s) and " + std::to_string(threads) + " thread(s)) and " + count(static_cast<double>(particles)) +
-             " particles (" + formatBytes(particleBytes) + ") exceed " + describeBudget());
+             " particles (" + formatBytes(particleBytes) + ") exceed " + describeMemoryBudget());
 }
 
 }  // namespace anode

@@ -18,8 +18,6 @@ double bytesPerParticle(const MPMFlags& flags);
 double bytesPerGridNode(const MPMFlags& flags, size_t materials, int threads);
 // The most particles the budget holds beside nothing else.
 double maxParticles(const MPMFlags& flags);
-// "the memory budget of 1.2 GB (...)": for messages.
-std::string describeBudget();
 
 // Throws an InputError at the grid's <resolution> (or <spacing>) when the particles and the
 // nodal arrays together exceed the budget.

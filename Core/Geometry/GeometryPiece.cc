@@ -1,6 +1,7 @@
 #include "Core/Geometry/GeometryPiece.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "Core/Geometry/SmoothCylinder.h"
 
@@ -12,6 +13,30 @@ bool CylinderPiece::inside(const Vec3& x) const {
   if (along < 0 || along > axis.squaredNorm()) return false;
   const Vec3 radial = (x - bottom) - along / axis.squaredNorm() * axis;
   return radial.squaredNorm() <= radius * radius;
+}
+
+Bounds CylinderPiece::bounds() const {
+  return {bottom.cwiseMin(top).array() - radius, bottom.cwiseMax(top).array() + radius};
+}
+
+Bounds UnionPiece::bounds() const {
+  Bounds b{Vec3::Constant(HUGE_VAL), Vec3::Constant(-HUGE_VAL)};
+  for (const auto& p : pieces) {
+    const Bounds q = p->bounds();
+    b.lo = b.lo.cwiseMin(q.lo);
+    b.hi = b.hi.cwiseMax(q.hi);
+  }
+  return b;
+}
+
+Bounds IntersectionPiece::bounds() const {
+  Bounds b{Vec3::Constant(-HUGE_VAL), Vec3::Constant(HUGE_VAL)};
+  for (const auto& p : pieces) {
+    const Bounds q = p->bounds();
+    b.lo = b.lo.cwiseMax(q.lo);
+    b.hi = b.hi.cwiseMin(q.hi);
+  }
+  return b;
 }
 
 bool UnionPiece::inside(const Vec3& x) const {

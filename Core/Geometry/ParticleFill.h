@@ -1,7 +1,9 @@
 // Uintah's particle placement (UINTAH_UPS.md §3.1): in every interior cell, res.x*res.y*res.z
-// candidate points at X_cell + dxp*(i + 1/2), kept when inside the piece.
+// candidate points at X_cell + dxp*(i + 1/2), kept when inside the piece. Only the cells that
+// meet the piece's bounding box are visited (the same points, in the same order).
 #pragma once
 
+#include <cstddef>
 #include <vector>
 
 #include "Core/Geometry/GeometryPiece.h"
@@ -9,6 +11,11 @@
 
 namespace anode {
 
-std::vector<Vec3> fillParticles(const Grid& grid, const GeometryPiece& piece, const Vec3i& res);
+// Candidate points fillParticles tests: the cells it visits times res.x*res.y*res.z.
+double fillCandidates(const Grid& grid, const GeometryPiece& piece, const Vec3i& res);
+
+// The points inside the piece; stops after maxParticles + 1 (the caller refuses that many).
+std::vector<Vec3> fillParticles(const Grid& grid, const GeometryPiece& piece, const Vec3i& res,
+                                size_t maxParticles = static_cast<size_t>(-1));
 
 }  // namespace anode

@@ -54,6 +54,30 @@ bool SmoothCylinderPiece::inside(const Vec3& x) const {
   return r2 <= outerRadius * outerRadius && r2 > innerRadius * innerRadius;
 }
 
+double SmoothCylinderPiece::slicesInRing(int ii, double cellVolume) const {
+  const double dz = (top - bottom).norm() / numAxial, dr = (outerRadius - innerRadius) / numRadial;
+  const double rIn = innerRadius + ii * dr, rOut = rIn + dr, r = rIn + 0.5 * dr;
+  // Uintah spans arc_angle - arc_start_angle, starting at arc_start_angle.
+  const double span = arcAngle - arcStart;
+  if (scheme == Scheme::ConstantParticleVolumes) return std::max(1.0, std::floor(span * r / dr));
+  // Fewer slices (x0.9 steps) until a slice holds at least 5% of a cell.
+  double reduction = 1;
+  int n = std::max(1, static_cast<int>(numAngular * reduction));
+  while (0.5 * span / n * (rOut * rOut - rIn * rIn) * dz < 0.05 * cellVolume && n > 1) {
+    reduction *= 0.9;
+    n = std::max(1, static_cast<int>(numAngular * reduction));
+  }
+  return n;
+}
+
+double SmoothCylinderPiece::particleCount(const Grid& grid, double limit) const {
+  // Every ring holds at least one particle.
+  if (static_cast<double>(numRadial) * numAxial > limit) return static_cast<double>(numRadial) * numAxial;
+  double perLayer = 0;
+  for (int ii = 0; ii < numRadial && perLayer * numAxial <= limit; ++ii) perLayer += slicesInRing(ii, grid.dx.prod());
+  return perLayer * numAxial;
+}
+
 std::vector<SmoothParticle> SmoothCylinderPiece::createParticles(const Grid& grid) const {
   const Vec3 axisVector = top - bottom;
   const double length = axisVector.norm();
@@ -61,7 +85,6 @@ std::vector<SmoothParticle> SmoothCylinderPiece::createParticles(const Grid& gri
   // Rings are laid out around z and rotated onto the cylinder's axis.
   const Mat3 R = Eigen::Quaterniond::FromTwoVectors(Vec3::UnitZ(), axis).toRotationMatrix();
   const double dz = length / numAxial, dr = (outerRadius - innerRadius) / numRadial;
-  // Uintah spans arc_angle - arc_start_angle, starting at arc_start_angle.
   const double span = arcAngle - arcStart;
   const double cellVolume = grid.dx.prod();
   std::vector<SmoothParticle> out;
@@ -69,18 +92,7 @@ std::vector<SmoothParticle> SmoothCylinderPiece::createParticles(const Grid& gri
     const Vec3 center = bottom + axis * ((kk + 0.5) * dz);
     for (int ii = 0; ii < numRadial; ++ii) {
       const double rIn = innerRadius + ii * dr, rOut = rIn + dr, r = rIn + 0.5 * dr;
-      int n = 1;
-      if (scheme == Scheme::ConstantParticleVolumes) {
-        n = std::max(1, static_cast<int>(span * r / dr));
-      } else {
-        // Fewer slices (x0.9 steps) until a slice holds at least 5% of a cell.
-        double reduction = 1;
-        n = std::max(1, static_cast<int>(numAngular * reduction));
-        while (0.5 * span / n * (rOut * rOut - rIn * rIn) * dz < 0.05 * cellVolume && n > 1) {
-          reduction *= 0.9;
-          n = std::max(1, static_cast<int>(numAngular * reduction));
-        }
-      }
+      const int n = static_cast<int>(slicesInRing(ii, cellVolume));
       const double dtheta = span / n;
       const double sliceArea = 0.5 * dtheta * (rOut * rOut - rIn * rIn);
       for (int jj = 0; jj < n; ++jj) {

@@ -29,7 +29,18 @@ struct SmoothCylinderPiece : GeometryPiece {
 
   bool inside(const Vec3& x) const override;
   std::string type() const override { return "smoothcyl"; }
+  Bounds bounds() const override {
+    return {bottom.cwiseMin(top).array() - outerRadius, bottom.cwiseMax(top).array() + outerRadius};
+  }
+  // How many particles createParticles lays out, counted up to `limit` (a larger count stops
+  // the count: it returns a value above `limit`), without creating them.
+  double particleCount(const Grid& grid, double limit) const;
+  // Call only when particleCount() is within what the run can hold (counts fit an int).
   std::vector<SmoothParticle> createParticles(const Grid& grid) const;
+
+ private:
+  // Particles in ring ii of one axial layer.
+  double slicesInRing(int ii, double cellVolume) const;
 };
 
 }  // namespace anode

@@ -1,9 +1,22 @@
 #include "Core/Grid/Grid.h"
 
 #include <cmath>
+#include <cstdio>
 #include <string>
 
+#include "Core/Util/MemoryBudget.h"
+
 namespace anode {
+
+namespace {
+
+std::string formatCount(double n) {
+  char s[32];
+  std::snprintf(s, sizeof s, "%.4g", n);
+  return s;
+}
+
+}  // namespace
 
 Grid Grid::fromInput(const PSNode& gridNode) {
   const PSNode level = gridNode.requireChild("Level");
@@ -23,6 +36,8 @@ Grid Grid::fromInput(const PSNode& gridNode) {
   for (int d = 0; d < 3; ++d)
     if (!(g.upper[d] > g.lower[d]))
       box.requireChild("upper").fail("<upper> must exceed <lower> in every direction");
+    else if (!std::isfinite(g.upper[d] - g.lower[d]))
+      box.requireChild("upper").fail("<upper> - <lower> overflows a double");
   const PSNode resolution = box.child("resolution");
   const PSNode spacing = level.child("spacing");
   if (resolution && spacing) spacing.fail("give either <Box><resolution> or <Level><spacing>, not both");
@@ -37,6 +52,8 @@ Grid Grid::fromInput(const PSNode& gridNode) {
     for (int d = 0; d < 3; ++d) {
       if (!(h[d] > 0)) spacing.fail("<spacing> must be positive in each direction");
       const double n = (g.upper[d] - g.lower[d]) / h[d];
+      if (!(n < kMaxCellsPerAxis))
+        spacing.fail("<spacing> gives more than " + std::to_string(kMaxCellsPerAxis) + " cells along an axis");
       if (std::abs(n - std::round(n)) > 1e-6 * n)
         spacing.fail("<spacing> must divide the box into a whole number of cells");
       g.cells[d] = static_cast<int>(std::round(n));
@@ -52,6 +69,20 @@ Grid Grid::fromInput(const PSNode& gridNode) {
   if (const PSNode patches = box.child("patches")) {
     if ((patches.value<Vec3i>().array() < 1).any()) patches.fail("<patches> must be >= 1");
   }
+  // Node indices are 32-bit, and every node holds at least one material's fields.
+  const PSNode size = resolution ? resolution : spacing;
+  double nodes = 1;
+  for (int d = 0; d < 3; ++d) {
+    if (g.cells[d] > kMaxCellsPerAxis)
+      size.fail("the grid has " + std::to_string(g.cells[d]) + " cells along an axis; at most " +
+                std::to_string(kMaxCellsPerAxis) + " are supported");
+    nodes *= g.cells[d] + 1.0 + 2.0 * g.extra[d];
+  }
+  if (nodes > 2147483647.0)
+    size.fail("the grid has " + formatCount(nodes) + " nodes; at most 2147483647 are supported (32-bit node indices)");
+  if (nodes * kMinBytesPerNode > static_cast<double>(memoryBudget()))
+    size.fail("the grid's " + formatCount(nodes) + " nodes need at least " + formatBytes(nodes * kMinBytesPerNode) +
+              ", beyond " + describeMemoryBudget());
   g.dx = (g.upper - g.lower).cwiseQuotient(g.cells.cast<double>());
   return g;
 }

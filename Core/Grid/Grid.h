@@ -9,6 +9,11 @@
 namespace anode {
 
 struct Grid {
+  // Limits setup enforces: cells per axis, and the bytes one material's nodal fields take per
+  // node at least (mass, velocity, internal force, velocity*, acceleration).
+  static constexpr int kMaxCellsPerAxis = 1 << 20;
+  static constexpr double kMinBytesPerNode = 8 + 4 * 24;
+
   Vec3 lower = Vec3::Zero();
   Vec3 upper = Vec3::Ones();
   Vec3i cells = Vec3i::Ones();

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <functional>
@@ -25,6 +26,8 @@ double parseDouble(const std::string& raw) {
   char* end = nullptr;
   const double v = std::strtod(s.c_str(), &end);
   if (end != s.c_str() + s.size()) throw std::invalid_argument("expected a number, found '" + s + "'");
+  // strtod reads "nan", "inf" and overflows to infinity: no input quantity may be either.
+  if (!std::isfinite(v)) throw std::invalid_argument("expected a finite number, found '" + s + "'");
   return v;
 }
 
@@ -245,9 +248,11 @@ std::unique_ptr<ProblemSpec> ProblemSpec::fromText(const std::string& text, cons
 }
 
 void ProblemSpec::parse(tinyxml2::XMLError status) {
+  if (status == tinyxml2::XML_ERROR_EMPTY_DOCUMENT) throw InputError(file_, 1, "the input is empty: no XML element");
   if (status != tinyxml2::XML_SUCCESS) {
     const char* what = doc_.ErrorStr();
-    throw InputError(file_, doc_.ErrorLineNum(),
+    // tinyxml2 reports line 0 for errors it cannot place; every message names a line of the file.
+    throw InputError(file_, std::max(1, doc_.ErrorLineNum()),
                      std::string("malformed XML: ") + (what ? what : "parse error"));
   }
   const auto* r = doc_.RootElement();

@@ -8,6 +8,7 @@
 #include "Components/MPM/ProblemSize.h"
 #include "Core/Geometry/ParticleFill.h"
 #include "Core/Geometry/SmoothCylinder.h"
+#include "Core/Util/MemoryBudget.h"
 
 namespace anode {
 
@@ -57,7 +58,7 @@ void addGeomObject(const PSNode& geom, const Grid& grid, const MPMFlags& flags, 
   const auto* smooth = piece->pieces.size() == 1 ? dynamic_cast<const SmoothCylinderPiece*>(piece->pieces[0].get()) : nullptr;
   // The particles of the materials before and of this object must fit the memory budget.
   const double limit = std::max(0.0, std::floor(maxParticles(flags)) - static_cast<double>(nextId));
-  const std::string beyond = " particles, beyond " + describeBudget() + " at about " +
+  const std::string beyond = " particles, beyond " + describeMemoryBudget() + " at about " +
                              std::to_string(static_cast<long>(bytesPerParticle(flags))) + " bytes per particle";
   if (smooth) {
     const double n = smooth->particleCount(grid, limit);

@@ -1,0 +1,172 @@
+// Pins the size checks of setup: particle filling visits only the cells of a piece's bounding box
+// yet places the same particles as a scan of the whole grid; grids and particle counts beyond the
+// memory budget (or 32-bit node indices) are InputErrors at the tag responsible, before any large
+// allocation; a smooth cylinder's count matches the particles it lays out.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "Core/Geometry/ParticleFill.h"
+#include "Core/Geometry/SmoothCylinder.h"
+#include "Core/Util/MemoryBudget.h"
+#include "StandAlone/Simulation.h"
+#include "TestInputs.h"
+
+namespace anode {
+namespace {
+
+using testing::BlockInput;
+
+RunOptions quiet() {
+  RunOptions o;
+  o.progress = false;
+  return o;
+}
+
+// Uintah's placement over every interior cell, as fillParticles did before it was limited to
+// the bounding box.
+std::vector<Vec3> fillWholeGrid(const Grid& grid, const GeometryPiece& piece, const Vec3i& res) {
+  std::vector<Vec3> out;
+  const Vec3 dxp = grid.dx.cwiseQuotient(res.cast<double>());
+  for (int k = 0; k < grid.cells.z(); ++k)
+    for (int j = 0; j < grid.cells.y(); ++j)
+      for (int i = 0; i < grid.cells.x(); ++i)
+        for (int c = 0; c < res.z(); ++c)
+          for (int b = 0; b < res.y(); ++b)
+            for (int a = 0; a < res.x(); ++a) {
+              const Vec3 x = grid.nodePosition(i, j, k) + Vec3((a + 0.5) * dxp.x(), (b + 0.5) * dxp.y(), (c + 0.5) * dxp.z());
+              if (piece.inside(x)) out.push_back(x);
+            }
+  return out;
+}
+
+// The InputError setup throws for `text`, or a failure.
+InputError setupError(const std::string& text, const std::string& name) {
+  try {
+    Simulation sim(text, name, quiet());
+  } catch (const InputError& e) {
+    return e;
+  }
+  ADD_FAILURE() << "setup of " << name << " succeeded";
+  return InputError("", 0, "");
+}
+
+int lineOf(const std::string& text, const std::string& needle) {
+  const size_t at = text.find(needle);
+  return at == std::string::npos ? -1 : 1 + static_cast<int>(std::count(text.begin(), text.begin() + at, '\n'));
+}
+
+TEST(ParticleFill, BoundingBoxFillPlacesTheSameParticlesAsAWholeGridScan) {
+  Grid grid;
+  grid.lower = Vec3(-1, 0, 0.5);
+  grid.upper = Vec3(2, 1.5, 2);
+  grid.cells = Vec3i(30, 15, 15);
+  grid.dx = (grid.upper - grid.lower).cwiseQuotient(grid.cells.cast<double>());
+  auto sphere = std::make_shared<SpherePiece>();
+  sphere->origin = Vec3(0.3, 0.7, 1.1);
+  sphere->radius = 0.45;
+  auto cylinder = std::make_shared<CylinderPiece>();
+  cylinder->bottom = Vec3(-2, 0.2, 0.9);  // reaches beyond the grid
+  cylinder->top = Vec3(1.7, 1.0, 1.6);
+  cylinder->radius = 0.3;
+  auto box = std::make_shared<BoxPiece>();
+  box->lo = Vec3(1.0, 0.0, 0.5);  // on the grid's lower faces
+  box->hi = Vec3(2.0, 0.35, 0.8);
+  auto difference = std::make_shared<DifferencePiece>();
+  difference->first = cylinder;
+  difference->second = sphere;
+  auto both = std::make_shared<UnionPiece>();
+  both->pieces = {sphere, box};
+  auto disjoint = std::make_shared<IntersectionPiece>();
+  disjoint->pieces = {sphere, box};
+  const std::vector<std::shared_ptr<const GeometryPiece>> pieces = {sphere, cylinder, box, difference, both, disjoint};
+  for (const auto& piece : pieces)
+    for (const Vec3i& res : {Vec3i(1, 1, 1), Vec3i(2, 3, 2)}) {
+      const std::vector<Vec3> expected = fillWholeGrid(grid, *piece, res);
+      EXPECT_EQ(fillParticles(grid, *piece, res), expected) << piece->type();
+      EXPECT_LE(static_cast<double>(expected.size()), fillCandidates(grid, *piece, res)) << piece->type();
+      if (piece->type() != "intersection") {
+        EXPECT_GT(expected.size(), 0u) << piece->type();
+      }
+      // Pieces in a fraction of the grid: fewer candidates than a whole-grid scan.
+      if (piece->type() == "sphere" || piece->type() == "box" || piece->type() == "union") {
+        EXPECT_LT(fillCandidates(grid, *piece, res), grid.cells.prod() * res.prod()) << piece->type();
+      }
+    }
+  EXPECT_EQ(fillCandidates(grid, *disjoint, Vec3i(2, 2, 2)), 0.0);
+  // The fill stops after one particle more than asked.
+  EXPECT_EQ(fillParticles(grid, *sphere, Vec3i(2, 2, 2), 10).size(), 11u);
+}
+
+TEST(ProblemSize, MoreNodesThan32BitIndicesIsAnInputErrorAtTheResolution) {
+  BlockInput in;
+  in.cells = "[2000, 2000, 1000]";
+  const std::string text = in.text();
+  const InputError e = setupError(text, "nodes.ups");
+  EXPECT_EQ(e.line(), lineOf(text, "<resolution>")) << e.what();
+  EXPECT_NE(std::string(e.what()).find("at most 2147483647 are supported"), std::string::npos) << e.what();
+}
+
+TEST(ProblemSize, GridBeyondTheMemoryBudgetIsAnInputErrorAtTheResolution) {
+  BlockInput in;
+  in.cells = "[400, 400, 400]";  // 6.6e7 nodes: at least 6.9 GB
+  const std::string text = in.text();
+  setMemoryBudget(size_t(1) << 30);
+  const InputError e = setupError(text, "grid.ups");
+  setMemoryBudget(0);
+  EXPECT_EQ(e.line(), lineOf(text, "<resolution>")) << e.what();
+  EXPECT_NE(std::string(e.what()).find("beyond the memory budget of 1.07 GB"), std::string::npos) << e.what();
+}
+
+TEST(ProblemSize, ParticlesBeyondTheMemoryBudgetAreAnInputErrorAtTheRes) {
+  BlockInput in;
+  in.res = "[40, 40, 40]";  // 125 cells x 64000: 8e6 particles, about 7 GB
+  const std::string text = in.text();
+  setMemoryBudget(size_t(64) << 20);
+  const InputError e = setupError(text, "particles.ups");
+  setMemoryBudget(0);
+  EXPECT_EQ(e.line(), lineOf(text, "<res>")) << e.what();
+  EXPECT_NE(std::string(e.what()).find("particles, beyond the memory budget of 67.1 MB"), std::string::npos) << e.what();
+}
+
+TEST(ProblemSize, GridAndParticlesTogetherBeyondTheBudgetAreAnInputError) {
+  // Each alone fits 256 MB; together they do not.
+  BlockInput in;
+  in.cells = "[80, 80, 80]";  // 5.7e5 nodes: 59 MB for one material and one thread
+  in.boxMin = "[0.1, 0.1, 0.1]";
+  in.boxMax = "[0.9, 0.9, 0.9]";
+  in.res = "[1, 1, 1]";  // 262k particles (linear): about 204 MB
+  const std::string text = in.text();
+  setMemoryBudget(size_t(256) << 20);
+  const InputError e = setupError(text, "both.ups");
+  setMemoryBudget(0);
+  EXPECT_EQ(e.line(), lineOf(text, "<resolution>")) << e.what();
+  EXPECT_NE(std::string(e.what()).find("particles ("), std::string::npos) << e.what();
+}
+
+TEST(ProblemSize, SmoothCylinderCountMatchesTheParticlesItLaysOut) {
+  Grid grid;
+  grid.cells = Vec3i(20, 20, 20);
+  grid.dx = Vec3::Constant(0.05);
+  for (auto scheme : {SmoothCylinderPiece::Scheme::PieSlices, SmoothCylinderPiece::Scheme::ConstantParticleVolumes}) {
+    SmoothCylinderPiece c;
+    c.scheme = scheme;
+    c.bottom = Vec3(0.5, 0.5, 0.1);
+    c.top = Vec3(0.5, 0.5, 0.8);
+    c.outerRadius = 0.3;
+    c.innerRadius = 0.05;
+    c.numRadial = 6;
+    c.numAxial = 14;
+    c.numAngular = 40;
+    const double n = static_cast<double>(c.createParticles(grid).size());
+    EXPECT_EQ(c.particleCount(grid, 1e9), n);
+    EXPECT_GT(c.particleCount(grid, n / 3), n / 3);  // counting stops beyond the limit
+    // Absurd ring counts are counted without a loop over them.
+    c.numRadial = 2000000000;
+    c.numAxial = 2000000000;
+    EXPECT_GT(c.particleCount(grid, 1e7), 1e7);
+  }
+}
+
+}  // namespace
+}  // namespace anode
