@@ -1,5 +1,7 @@
 #include "StandAlone/Simulation.h"
 
+#include <sys/resource.h>
+
 #include <chrono>
 #include <cstdio>
 #include <sstream>
@@ -100,6 +102,11 @@ void Simulation::printTimings() const {
     std::fprintf(stderr, "  %-34s %10.3f %6.1f%%\n", timers.names()[i].c_str(), timers.seconds()[i],
                  total > 0 ? 100 * timers.seconds()[i] / total : 0.0);
   std::fprintf(stderr, "  particle-steps per second: %.4e\n", wallSeconds_ > 0 ? particleSteps_ / wallSeconds_ : 0.0);
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  const double peakBytes = usage.ru_maxrss * 1024.0;  // Linux reports kilobytes
+  std::fprintf(stderr, "  peak memory: %.1f MB, %.0f bytes per particle\n", peakBytes / 1e6,
+               peakBytes / std::max<size_t>(mpm_.numParticles(), 1));
 }
 
 }  // namespace anode
