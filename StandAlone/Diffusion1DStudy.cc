@@ -152,7 +152,7 @@ std::string plotScript(const std::string& csv, const std::string& dir,
   g << "set title 'RMS absolute error (all particles)'\n"
     << "plot " << curves(3, 16)
     << ", $REF using 1:2 w p pt 12 ps 2.2 lw 1.5 lc rgb 'black' title 'reference (nodal, linear)', "
-       "1.3*x**1.5 lc rgb 'gray' dt 4 title 'slope 1.5', 0.5*x**2 lc rgb 'black' dt 4 title 'slope 2'\n";
+       "1.3*x**1.5 lc rgb 'gray' dt 4 title 'slope 1.5', 2*x**2 lc rgb 'black' dt 4 title 'slope 2'\n";
   g << "set title 'RMS absolute error, interior particles 0.1 <= x <= 0.9'\n"
     << "plot " << curves(3, 18) << ", x**2 lc rgb 'black' dt 4 title 'slope 2'\n";
   g << "unset multiplot\n";

@@ -187,11 +187,17 @@ DiffusionSlabResult runDiffusionSlab(const DiffusionSlabCase& c) {
   } catch (const SimulationError& e) {
     // The range check throws after the G2P update: the particles hold the offending state.
     track(sim.time() + sim.dt());
-    const bool high = r.maxConcentration - c.maxConcentration > c.minConcentration - r.minConcentration;
-    char buf[160];
-    std::snprintf(buf, sizeof buf, "stopped: c = %.7g at step %ld (t = %.4g)",
-                  high ? r.maxConcentration : r.minConcentration, sim.step() + 1, sim.time() + sim.dt());
-    r.stopMessage = buf;
+    const double above = r.maxConcentration - c.maxConcentration;
+    const double below = c.minConcentration - r.minConcentration;
+    if (above > 0 || below > 0) {
+      char buf[160];
+      std::snprintf(buf, sizeof buf, "stopped: c = %.7g at step %ld (t = %.4g)",
+                    above > below ? r.maxConcentration : r.minConcentration, sim.step() + 1,
+                    sim.time() + sim.dt());
+      r.stopMessage = buf;
+    } else {
+      r.stopMessage = std::string("stopped: ") + e.what();  // not the range check
+    }
     r.steps = sim.step() + 1;
     r.finalTime = sim.time() + sim.dt();
     r.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -44,7 +44,9 @@ struct DiffusionSlabResult {
   double wallSeconds = 0;   // building the Simulation + stepping + the error evaluation
   double finalTime = 0;
   double firstDt = 0;       // the dt of the first step, = multiplier h^2/(2D) when mechanics is irrelevant
-  bool completed = false;   // false: a SimulationError stopped the run (stopMessage)
+  // false: a SimulationError stopped the run; stopMessage is "stopped: c = <the value out of
+  // range> at step <k> (t = ...)" for the range check, else "stopped: " + the error.
+  bool completed = false;
   std::string stopMessage;
   // Errors at t = endTime, particle by particle against Eq. 13 at the particle position
   // (e_p of Eq. 14 is (c_exact - c_p)/c_exact, 0 where c_exact = 0). Undefined if !completed.
