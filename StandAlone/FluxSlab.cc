@@ -68,7 +68,7 @@ double fluxSlabAnalytic(double x, double t, double J, double L, double D) {
   const double tau = D * t / (L * L);
   double sum = 0;
   for (int n = 1; n <= 100000; ++n) {
-    const double decay = std::exp(-n * n * kPi * kPi * tau);
+    const double decay = std::exp(-double(n) * n * kPi * kPi * tau);  // n * n overflows an int
     const double term = decay / (double(n) * n) * std::cos(n * kPi * x / L);
     sum += (n % 2 ? -term : term);
     // Remaining terms are below decay/n^2 each and fall faster than geometrically.
