@@ -92,7 +92,16 @@ void DataArchiver::writeOutput(long step, double time, const MPM& mpm) {
     gridSeries_.write((fs::path(dir_) / "grid.pvd").string());
   }
   lastOutputTime_ = time;
+  lastOutputStep_ = step;
   writeHistory();
+}
+
+std::string DataArchiver::writeFailedState(long step, const MPM& mpm) const {
+  std::ostringstream name;
+  name << "particles/failed_step_" << std::setw(6) << std::setfill('0') << step << ".vtu";
+  const std::string path = (fs::path(dir_) / name.str()).string();
+  writeParticlesVTU(path, gatherParticles(mpm, particleLabels_));
+  return path;
 }
 
 void DataArchiver::writeHistory() const {

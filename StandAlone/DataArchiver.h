@@ -34,6 +34,11 @@ class DataArchiver {
   bool isOutputStep(long step, double time) const;
   // Writes particles (and grid, if asked) for this state and records it in the .pvd series.
   void writeOutput(long step, double time, const MPM& mpm);
+  // The step of the last writeOutput (-1 before the first).
+  long lastOutputStep() const { return lastOutputStep_; }
+  // Writes the particles of a step that failed a check to particles/failed_step_NNNNNN.vtu,
+  // outside the .pvd series; returns that path.
+  std::string writeFailedState(long step, const MPM& mpm) const;
   void recordHistory(const HistoryRow& row) { history_.push_back(row); }
   void writeHistory() const;
   int outputsWritten() const { return static_cast<int>(particleSeries_.entries().size()); }
@@ -45,6 +50,7 @@ class DataArchiver {
   std::vector<std::string> particleLabels_, gridLabels_;
   std::string dir_;
   double lastOutputTime_ = 0;
+  long lastOutputStep_ = -1;
   PVDSeries particleSeries_, gridSeries_;
   std::vector<HistoryRow> history_;
 };

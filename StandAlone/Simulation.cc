@@ -37,6 +37,8 @@ void Simulation::setup() {
 void Simulation::advance() {
   try {
     mpm_.timeAdvance(t_, dt_);
+    ScopedTimer timer(mpm_.timers(), mpm_.timers().task("stateChecks"));
+    checks_.afterStep(mpm_);
   } catch (const SimulationError& e) {
     std::ostringstream s;
     s << "step " << step_ + 1 << ", t = " << t_ + dt_ << ": " << e.what();
@@ -53,6 +55,7 @@ void Simulation::run() {
   auto wall = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
   archiver_.open(chooseOutputDirectory(options_.outputDir, archiver_.filebase()), options_.input);
   const int outputTask = mpm_.timers().task("output");
+  const int snapshotTask = mpm_.timers().task("lastGoodState");
   auto summaryRow = [&](double stepDt) {
     const StepSummary s = mpm_.summarize();
     archiver_.recordHistory({step_, s.particles, t_, stepDt, s.kineticEnergy, s.minJ, s.maxJ, wall(), s.diffusion,
@@ -72,11 +75,16 @@ void Simulation::run() {
   ProgressReporter progress(time_.initTime, time_.maxTime, time_.maxTimesteps);
   while (true) {
     const double stepDt = dt_;
+    {
+      ScopedTimer timer(mpm_.timers(), snapshotTask);
+      lastGood_.save(mpm_);
+    }
     try {
       advance();
     } catch (const SimulationError&) {
       archiver_.writeHistory();
       if (options_.progress) progress.finish();
+      writeStateOnStop();
       throw;
     }
     summaryRow(stepDt);
@@ -89,6 +97,19 @@ void Simulation::run() {
   }
   if (options_.progress) progress.finish();
   wallSeconds_ = wall();
+}
+
+void Simulation::writeStateOnStop() {
+  // The failing step's particles outside the .pvd series, then the last good state (the end of
+  // step_, saved before the failing step) as the series' last entry.
+  const std::string failed = archiver_.writeFailedState(step_ + 1, mpm_);
+  lastGood_.restore(mpm_);
+  if (archiver_.lastOutputStep() != step_) {
+    if (archiver_.wantsGrid()) mpm_.interpolateToGridForOutput();
+    archiver_.writeOutput(step_, t_, mpm_);
+  }
+  std::fprintf(stderr, "sus: the last good state (step %ld, t = %.6e) is the last entry of %s/particles.pvd; "
+               "the failing step's particles are in %s\n", step_, t_, archiver_.directory().c_str(), failed.c_str());
 }
 
 void Simulation::printTimings() const {

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "Components/MPM/MPM.h"
+#include "Components/MPM/StateChecks.h"
 #include "StandAlone/DataArchiver.h"
 #include "StandAlone/SceneOutput.h"
 #include "StandAlone/TimeControl.h"
@@ -43,6 +44,8 @@ class Simulation {
 
  private:
   void setup();
+  // After a failed step: writes its particles and the last good state (DESIGN.md §8).
+  void writeStateOnStop();
 
   RunOptions options_;
   std::unique_ptr<ProblemSpec> spec_;
@@ -50,6 +53,8 @@ class Simulation {
   TimeControl time_;
   DataArchiver archiver_;
   SceneOutput scenes_;
+  StateChecks checks_;
+  ParticleSnapshot lastGood_;  // the particles at the start of the running step (run() only)
   double t_ = 0, dt_ = 0;
   long step_ = 0;
   double particleSteps_ = 0, wallSeconds_ = 0;

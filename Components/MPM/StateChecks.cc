@@ -1,0 +1,218 @@
+#include "Components/MPM/StateChecks.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "Core/Util/Errors.h"
+
+namespace anode {
+
+namespace {
+
+std::string describeParticle(const MPMMaterial& mat, size_t m, size_t i) {
+  std::ostringstream s;
+  const Vec3& x = mat.particles.x[i];
+  s << "particle " << mat.particles.id[i] << " of material " << m;
+  if (!mat.name.empty()) s << " (" << mat.name << ")";
+  s << " at [" << x.x() << ", " << x.y() << ", " << x.z() << "]";
+  return s.str();
+}
+
+std::string vector(const Vec3& v) {
+  std::ostringstream s;
+  s << "[" << v.x() << ", " << v.y() << ", " << v.z() << "]";
+  return s.str();
+}
+
+double jacobian(const MPMMaterial& mat, size_t i) {
+  return mat.particles.volume[i] * mat.density / mat.particles.mass[i];
+}
+
+// What is wrong with particle i (one that failed the check in afterStep).
+std::string problemOf(const MPMMaterial& mat, size_t i) {
+  const ParticleSet& p = mat.particles;
+  std::ostringstream s;
+  const double J = jacobian(mat, i);
+  if (!p.x[i].allFinite()) {
+    s << "has a non-finite position p.x = " << vector(p.x[i]);
+  } else if (!p.velocity[i].allFinite()) {
+    s << "has a non-finite velocity p.velocity = " << vector(p.velocity[i]);
+  } else if (!p.stress[i].allFinite()) {
+    s << "has a non-finite stress p.stress = [";
+    for (int k = 0; k < 9; ++k) s << (k ? ", " : "") << p.stress[i](k / 3, k % 3);
+    s << "]";
+  } else if (!(J > 0)) {
+    s << "has J = V rho0 / m = " << J << " (inverted, degenerate or not a number)";
+  } else if (J < StateChecks::kMinJ) {
+    s << "has J = V rho0 / m = " << J << ", below " << StateChecks::kMinJ
+      << ": a compression no material sustains (the particle is collapsing)";
+  } else {
+    s << "has J = V rho0 / m = " << J << ", above " << StateChecks::kMaxJ
+      << ": a volume growth no swelling or tension explains";
+  }
+  return s.str();
+}
+
+}  // namespace
+
+bool StateChecks::oscillates(Oscillation& o, double energy, double product, double* growth, double* correlation) {
+  const double c = o.lastEnergy > 0 && energy > 0 ? product / std::sqrt(energy * o.lastEnergy) : 0.0;
+  const double pair = energy + o.lastEnergy;
+  o.lastEnergy = energy;
+  *correlation = c;
+  if (!(c < kAlternation)) {
+    o.steps = 0;
+    return false;
+  }
+  o.smallest = o.steps == 0 ? pair : std::min(o.smallest, pair);
+  ++o.steps;
+  *growth = pair / o.smallest;
+  return pair >= kOscillationGrowth * o.smallest;
+}
+
+void StateChecks::afterStep(const MPM& mpm) {
+  const auto& materials = mpm.materials();
+  const size_t count = materials.size();
+  if (velocity_.size() != count) {
+    velocity_.assign(count, {});
+    velocityIncrement_.assign(count, {});
+    concentration_.assign(count, {});
+    concentrationIncrement_.assign(count, {});
+  }
+  // One pass per material: finite values and J, kinetic energy, the increments of the step.
+  double energy = 0, velocityEnergy = 0, velocityProduct = 0, concentrationEnergy = 0, concentrationProduct = 0;
+  bool restart = false;
+  for (size_t m = 0; m < count; ++m) {
+    const MPMMaterial& mat = materials[m];
+    const ParticleSet& p = mat.particles;
+    const long n = static_cast<long>(p.count());
+    const bool diffusion = !p.concentration.empty();
+    if (velocity_[m].size() != p.count()) {
+      // The first step, or particles split: the oscillation watch starts over.
+      velocity_[m] = p.velocity;
+      velocityIncrement_[m].assign(p.count(), Vec3::Zero());
+      concentration_[m] = p.concentration;
+      concentrationIncrement_[m].assign(p.concentration.size(), 0.0);
+      restart = true;
+    }
+    Vec3* v = velocity_[m].data();
+    Vec3* dv = velocityIncrement_[m].data();
+    double* c = diffusion ? concentration_[m].data() : nullptr;
+    double* dc = diffusion ? concentrationIncrement_[m].data() : nullptr;
+    long firstBad = n;
+    double kinetic = 0, ve = 0, vp = 0, ce = 0, cp = 0;
+#pragma omp parallel for schedule(static) reduction(min : firstBad) reduction(+ : kinetic, ve, vp, ce, cp)
+    for (long i = 0; i < n; ++i) {
+      const double J = p.volume[i] * mat.density / p.mass[i];
+      if (!p.x[i].allFinite() || !p.velocity[i].allFinite() || !p.stress[i].allFinite() || !(J >= kMinJ && J <= kMaxJ))
+        firstBad = std::min(firstBad, i);
+      const double half = 0.5 * p.mass[i];
+      kinetic += half * p.velocity[i].squaredNorm();
+      const Vec3 d = p.velocity[i] - v[i];
+      ve += half * d.squaredNorm();
+      vp += half * d.dot(dv[i]);
+      v[i] = p.velocity[i];
+      dv[i] = d;
+      if (c) {
+        const double e = p.concentration[i] - c[i];
+        ce += half * e * e;
+        cp += half * e * dc[i];
+        c[i] = p.concentration[i];
+        dc[i] = e;
+      }
+    }
+    if (firstBad < n) throw SimulationError(describeParticle(mat, m, firstBad) + " " + problemOf(mat, firstBad));
+    energy += kinetic;
+    velocityEnergy += ve, velocityProduct += vp, concentrationEnergy += ce, concentrationProduct += cp;
+  }
+  if (restart) {
+    velocityOscillation_ = concentrationOscillation_ = Oscillation();
+  } else {
+    checkOscillation(mpm, velocityEnergy, velocityProduct, concentrationEnergy, concentrationProduct);
+  }
+  checkKineticEnergy(mpm, energy);
+}
+
+void StateChecks::checkOscillation(const MPM& mpm, double velocityEnergy, double velocityProduct,
+                                   double concentrationEnergy, double concentrationProduct) {
+  double growth = 0, correlation = 0;
+  const bool velocity = oscillates(velocityOscillation_, velocityEnergy, velocityProduct, &growth, &correlation);
+  const bool concentration =
+      !velocity && oscillates(concentrationOscillation_, concentrationEnergy, concentrationProduct, &growth, &correlation);
+  if (!velocity && !concentration) return;
+
+  // The particle whose increment is largest, as the place to look.
+  const auto& materials = mpm.materials();
+  size_t worstM = 0, worstI = 0;
+  double worst = -1;
+  for (size_t m = 0; m < materials.size(); ++m) {
+    const size_t n = velocity ? velocityIncrement_[m].size() : concentrationIncrement_[m].size();
+    for (size_t i = 0; i < n; ++i) {
+      const double size = velocity ? velocityIncrement_[m][i].squaredNorm() : std::abs(concentrationIncrement_[m][i]);
+      if (size > worst) worst = size, worstM = m, worstI = i;
+    }
+  }
+  const ParticleSet& p = materials[worstM].particles;
+  const Oscillation& o = velocity ? velocityOscillation_ : concentrationOscillation_;
+  std::ostringstream s;
+  s << "the particle " << (velocity ? "velocities" : "concentrations")
+    << " oscillate with growing amplitude: for " << o.steps << " steps each step's increment reversed the previous one "
+    << "(mass-weighted correlation " << correlation << ") and their energy grew by a factor of " << growth
+    << ": the explicit " << (velocity ? "momentum" : "diffusion")
+    << " update is unstable at this time step (lower <timestep_multiplier>); the largest increment is at "
+    << describeParticle(materials[worstM], worstM, worstI);
+  if (velocity)
+    s << ": p.velocity = " << vector(p.velocity[worstI]) << " after a change of " << vector(velocityIncrement_[worstM][worstI]);
+  else
+    s << ": p.concentration = " << p.concentration[worstI] << " after a change of " << concentrationIncrement_[worstM][worstI];
+  throw SimulationError(s.str());
+}
+
+void StateChecks::checkKineticEnergy(const MPM& mpm, double energy) {
+  if (lastKineticEnergy_ > 0 && energy >= kGrowthPerStep * lastKineticEnergy_) {
+    if (growingSteps_ == 0) energyBeforeGrowth_ = lastKineticEnergy_;
+    ++growingSteps_;
+  } else {
+    growingSteps_ = 0;
+  }
+  lastKineticEnergy_ = energy;
+  if (growingSteps_ < kGrowthSteps && std::isfinite(energy)) return;
+
+  // The fastest particle, as the place to look.
+  const auto& materials = mpm.materials();
+  size_t fastM = 0, fastI = 0;
+  double fastest = -1;
+  for (size_t m = 0; m < materials.size(); ++m)
+    for (size_t i = 0; i < materials[m].particles.count(); ++i)
+      if (materials[m].particles.velocity[i].squaredNorm() > fastest) {
+        fastest = materials[m].particles.velocity[i].squaredNorm();
+        fastM = m;
+        fastI = i;
+      }
+  std::ostringstream s;
+  if (!std::isfinite(energy)) {
+    s << "the kinetic energy overflows (" << energy << ")";
+  } else {
+    s << "the kinetic energy grew by a factor of at least " << kGrowthPerStep << " at each of the last "
+      << growingSteps_ << " steps, from " << energyBeforeGrowth_ << " to " << energy
+      << ": a numerical instability (a time step beyond the stable one: lower <timestep_multiplier>)";
+  }
+  s << "; the fastest is " << describeParticle(materials[fastM], fastM, fastI)
+    << " with p.velocity = " << vector(materials[fastM].particles.velocity[fastI]);
+  throw SimulationError(s.str());
+}
+
+void ParticleSnapshot::save(const MPM& mpm) {
+  const auto& materials = mpm.materials();
+  sets_.resize(materials.size());
+  // Copy-assignment keeps each array's storage: no allocation while the counts stay put.
+  for (size_t m = 0; m < materials.size(); ++m) sets_[m] = materials[m].particles;
+}
+
+void ParticleSnapshot::restore(MPM& mpm) {
+  auto& materials = mpm.materials();
+  for (size_t m = 0; m < materials.size() && m < sets_.size(); ++m) std::swap(materials[m].particles, sets_[m]);
+}
+
+}  // namespace anode

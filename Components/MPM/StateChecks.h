@@ -1,0 +1,78 @@
+// Instability diagnostics run after every step (DESIGN.md §8, docs/stability.md), besides the
+// ones the step itself makes (a particle leaving the grid, det F <= 0, a concentration out of
+// range): a non-finite position, velocity or stress; J = V rho0 / m outside [kMinJ, kMaxJ]; the
+// oscillation of an explicit update beyond its stable time step, in the velocities or the
+// concentrations; a kinetic energy that grows geometrically. Each throws a SimulationError naming
+// the particle (ID, material, position), the field and the offending value.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "Components/MPM/MPM.h"
+#include "Components/MPM/ParticleSet.h"
+
+namespace anode {
+
+class StateChecks {
+ public:
+  // J outside [kMinJ, kMaxJ]: a volume no swelling, tension or compression explains (Uintah
+  // stops above the same upper bound).
+  static constexpr double kMaxJ = 1e5;
+  static constexpr double kMinJ = 1e-5;
+  // Oscillation: an explicit update beyond its stable time step amplifies its highest mode,
+  // which flips sign every step. Watched in the particles' increments per step d_n (velocity,
+  // and concentration with diffusion): while consecutive increments are anti-correlated
+  // (mass-weighted correlation below kAlternation), the energy of two consecutive increments,
+  // sum m (|d_n|^2 + |d_{n-1}|^2) / 2, must not grow by kOscillationGrowth over its smallest
+  // value in the run. A stable mode near the limit keeps that ratio below ~100 (it is
+  // (1 + |cos theta|) / (1 - |cos theta|) for a single mode of phase theta per step, 99 at
+  // omega dt = 1.99); a physical solution has positively correlated increments.
+  static constexpr double kAlternation = -0.5;
+  static constexpr double kOscillationGrowth = 100;
+  // Kinetic-energy blow-up: the energy grew by at least kGrowthPerStep at each of
+  // kGrowthSteps consecutive steps (2^20 ~ 1e6 overall). Physical growth from rest follows a
+  // power p of time, whose ratio per step (1 + 1/n)^p drops below 2 after about 1.44 p steps.
+  static constexpr double kGrowthPerStep = 2;
+  static constexpr int kGrowthSteps = 20;
+
+  // Checks the state after a step; throws SimulationError on the first problem found.
+  void afterStep(const MPM& mpm);
+
+ private:
+  // The oscillation watch of one field (velocity or concentration).
+  struct Oscillation {
+    double lastEnergy = 0;  // sum m |d_{n-1}|^2 / 2
+    int steps = 0;          // consecutive anti-correlated steps
+    double smallest = 0;    // the smallest pair energy of those steps
+  };
+  // Updates `o` with this step's increment energy and correlation; true when it trips.
+  static bool oscillates(Oscillation& o, double energy, double product, double* growth, double* correlation);
+  void checkOscillation(const MPM& mpm, double velocityEnergy, double velocityProduct, double concentrationEnergy,
+                        double concentrationProduct);
+  void checkKineticEnergy(const MPM& mpm, double energy);
+
+  // Per material: last step's velocities and concentrations, and their increments then.
+  std::vector<std::vector<Vec3>> velocity_, velocityIncrement_;
+  std::vector<std::vector<double>> concentration_, concentrationIncrement_;
+  Oscillation velocityOscillation_, concentrationOscillation_;
+
+  double lastKineticEnergy_ = 0;
+  int growingSteps_ = 0;
+  double energyBeforeGrowth_ = 0;
+};
+
+// The particles at the start of a step, so a run that stops can write the last good state.
+// A copy of every particle array (no allocation once the count is stable): about 400 bytes per
+// particle and a few per cent of a step's time (docs/stability.md).
+class ParticleSnapshot {
+ public:
+  void save(const MPM& mpm);
+  // Puts the saved particles back.
+  void restore(MPM& mpm);
+
+ private:
+  std::vector<ParticleSet> sets_;
+};
+
+}  // namespace anode

@@ -1,0 +1,364 @@
+// Quick versions of the stiff and extreme cases in inputs/Stability (docs/stability.md): each runs
+// through sus and either completes with bounded energy and c in range, or stops with exit code 3
+// and the expected diagnostic, having written the last good state. Also unit checks of the
+// instability diagnostics (StateChecks) on states made bad on purpose.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "Components/MPM/StateChecks.h"
+#include "StandAlone/Simulation.h"
+#include "TestInputs.h"
+
+namespace fs = std::filesystem;
+
+namespace anode {
+namespace {
+
+const std::string kDir = std::string(ANODE_SOURCE_DIR) + "/inputs/Stability";
+
+struct SusRun {
+  int exitCode = -1;
+  std::string output;
+  fs::path dir;
+};
+
+std::string quote(const std::string& s) {
+  std::string out = "'";
+  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+// sus on one thread, so the step a diagnostic fires at does not depend on the machine.
+SusRun runSus(const std::string& input, long maxSteps) {
+  SusRun r;
+  r.dir = fs::temp_directory_path() / ("anode_stability_" + fs::path(input).stem().string() + "_" + std::to_string(getpid()));
+  fs::remove_all(r.dir);
+  std::string command = quote(ANODE_SUS) + " --threads 1 -o " + quote(r.dir.string());
+  if (maxSteps > 0) command += " --max-timesteps " + std::to_string(maxSteps);
+  command += " " + quote(input) + " 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return r;
+  char buffer[4096];
+  size_t n;
+  while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) r.output.append(buffer, n);
+  const int status = pclose(pipe);
+  if (status != -1 && WIFEXITED(status)) r.exitCode = WEXITSTATUS(status);
+  return r;
+}
+
+// history.csv as rows of named columns.
+std::vector<std::map<std::string, double>> readHistory(const fs::path& file) {
+  std::ifstream in(file);
+  std::string line;
+  std::getline(in, line);
+  std::vector<std::string> names;
+  std::stringstream header(line);
+  for (std::string name; std::getline(header, name, ',');) names.push_back(name);
+  std::vector<std::map<std::string, double>> rows;
+  while (std::getline(in, line)) {
+    std::stringstream fields(line);
+    std::map<std::string, double> row;
+    size_t k = 0;
+    for (std::string f; std::getline(fields, f, ',') && k < names.size(); ++k) row[names[k]] = std::stod(f);
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+double column(const std::vector<std::map<std::string, double>>& h, const std::string& name, bool largest) {
+  double v = largest ? -HUGE_VAL : HUGE_VAL;
+  for (const auto& row : h) v = largest ? std::max(v, row.at(name)) : std::min(v, row.at(name));
+  return v;
+}
+
+struct Expectation {
+  long maxSteps;           // --max-timesteps (0: run to maxTime)
+  int exitCode;            // 0 or 3
+  std::string message;     // exit 3: a regular expression the diagnostic matches
+  long stopStep;           // exit 3: the step it stops at (within +-2)
+  std::function<void(const std::vector<std::map<std::string, double>>&)> check;  // on history.csv
+};
+
+// Silicon of every case (ARL units): K = 67 GPa, G = 31 GPa; dx = 0.01 um.
+constexpr double kDx = 0.01, kModulus = 6.7e7 + 4.0 / 3.0 * 3.1e7;
+
+void cInRange(const std::vector<std::map<std::string, double>>& h) {
+  EXPECT_GE(column(h, "min_c", false), 0.0);
+  EXPECT_LE(column(h, "max_c", true), 1.0);
+}
+
+void energyBelowInitial(const std::vector<std::map<std::string, double>>& h) {
+  EXPECT_LE(column(h, "kinetic_energy", true), h.front().at("kinetic_energy") * (1 + 1e-9));
+  EXPECT_GT(h.back().at("kinetic_energy"), 0.0);
+  EXPECT_GE(column(h, "min_J", false), 0.99);
+  EXPECT_LE(column(h, "max_J", true), 1.01);
+}
+
+const std::map<std::string, Expectation>& expectations() {
+  static const std::map<std::string, Expectation> e = {
+      {"Density_2.33e3", {300, 0, "", 0, [](const auto& h) {
+         // Mechanics-limited: dt = 0.4 dx / c (Eq. 43), c = sqrt((K + 4G/3) / rho).
+         EXPECT_NEAR(h[1].at("dt"), 0.4 * kDx / std::sqrt(kModulus / 2.33), 1e-9 * h[1].at("dt"));
+         cInRange(h);
+       }}},
+      {"Density_2.33e24", {300, 0, "", 0, [](const auto& h) {
+         // Diffusion-limited: dt = 0.4 dx^2 / (2 D0) (Eq. 44), D0 = 1e-4 um^2/us, far below Eq. 43.
+         EXPECT_NEAR(h[1].at("dt"), 0.4 * kDx * kDx / (2 * 1e-4), 1e-12);
+         EXPECT_LT(h[1].at("dt"), 1e-3 * kDx / std::sqrt(kModulus / 2.33e21));
+         cInRange(h);
+       }}},
+      {"Alpha_0", {600, 0, "", 0, cInRange}},
+      {"Alpha_10", {600, 0, "", 0, [](const auto& h) {
+         cInRange(h);
+         // D_max = D0 e^(10 c_max) (less the pressure term): dt falls several-fold as c_max reaches 0.4.
+         EXPECT_GT(column(h, "max_c", true), 0.3);
+         EXPECT_LT(h.back().at("dt"), h[1].at("dt") / 3);
+       }}},
+      {"Beta_0.5_confined", {600, 0, "", 0, cInRange}},
+      {"Beta_2_confined", {0, 3, "has concentration -[0-9.e-]+ at t = .*outside \\[0, 1\\]", 56, cInRange}},
+      {"Flux_1e-10", {300, 0, "", 0, [](const auto& h) {
+         cInRange(h);
+         EXPECT_LT(column(h, "max_c", true), 0.01);
+       }}},
+      {"Flux_1e-6", {0, 3, "has concentration 1\\.0000[0-9]* at t = .*outside \\[0, 1\\]", 1162, [](const auto& h) {
+         // The last good state: the surface full (the restriction's root is 0.9817), still in range.
+         cInRange(h);
+         EXPECT_GT(column(h, "max_c", true), 0.999);
+       }}},
+      {"Concentration_0.999", {300, 0, "", 0, [](const auto& h) {
+         EXPECT_EQ(column(h, "min_c", false), 0.999);
+         EXPECT_EQ(column(h, "max_c", true), 0.999);
+       }}},
+      {"Multiplier_0.1", {1500, 0, "", 0, energyBelowInitial}},
+      {"Multiplier_0.75", {0, 0, "", 0, energyBelowInitial}},
+      {"Multiplier_0.8", {0, 3, "the particle velocities oscillate with growing amplitude", 40, [](const auto& h) {
+         // Stopped before the oscillation shows in the energy: the last good state is still close.
+         EXPECT_LT(column(h, "kinetic_energy", true), 2 * h.front().at("kinetic_energy"));
+       }}},
+      {"Multiplier_1.5", {0, 3, "the particle velocities oscillate with growing amplitude", 5, nullptr}},
+      {"Multiplier_diffusion_0.6", {1000, 0, "", 0, [](const auto& h) {
+         EXPECT_GE(column(h, "min_c", false), 0.5 - 1e-9);
+         EXPECT_LE(column(h, "max_c", true), 0.6);
+       }}},
+      {"Multiplier_diffusion_1.0", {0, 3, "the particle concentrations oscillate with growing amplitude", 11,
+                                    [](const auto& h) {
+                                      EXPECT_GE(column(h, "min_c", false), 0.49);
+                                      EXPECT_LE(column(h, "max_c", true), 0.51);
+                                    }}},
+      {"Swelling_eta_1", {0, 0, "", 0, [](const auto& h) {
+         EXPECT_GE(h.back().at("time"), 300.0);
+         EXPECT_GT(column(h, "max_c", true), 0.98);
+         EXPECT_LE(column(h, "max_c", true), 1.0);
+         EXPECT_GT(column(h, "max_J", true), 10.0);
+         EXPECT_LT(column(h, "max_J", true), 25.0);
+       }}},
+      {"Elastic_compression_5km_s", {0, 0, "", 0, [](const auto& h) {
+         EXPECT_LE(column(h, "kinetic_energy", true), h.front().at("kinetic_energy") * (1 + 1e-9));
+         EXPECT_LT(column(h, "min_J", false), 0.3);
+         EXPECT_GT(column(h, "min_J", false), 0.1);
+       }}},
+      {"Elastic_compression_12km_s", {0, 3, "has J = V rho0 / m = [0-9.e-]+, below 1e-05", 66, nullptr}},
+  };
+  return e;
+}
+
+std::vector<std::string> stabilityInputs() {
+  std::vector<std::string> names;
+  for (const auto& entry : fs::directory_iterator(kDir))
+    if (entry.path().extension() == ".ups") names.push_back(entry.path().stem().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+std::string testName(const ::testing::TestParamInfo<std::string>& info) {
+  std::string name = info.param;
+  for (char& c : name)
+    if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+  return name;
+}
+
+class StabilityCase : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(StabilityCase, QuickVersionEndsAsExpected) {
+  const auto it = expectations().find(GetParam());
+  ASSERT_NE(it, expectations().end()) << GetParam() << ".ups has no expectation in test_stability.cc";
+  const Expectation& e = it->second;
+  const SusRun r = runSus(kDir + "/" + GetParam() + ".ups", e.maxSteps);
+  ASSERT_EQ(r.exitCode, e.exitCode) << r.output;
+  const auto history = readHistory(r.dir / "history.csv");
+  ASSERT_GE(history.size(), 2u) << r.output;
+  for (const auto& row : history) ASSERT_TRUE(std::isfinite(row.at("kinetic_energy"))) << r.output;
+  if (e.exitCode == 3) {
+    std::smatch m;
+    ASSERT_TRUE(std::regex_search(r.output, m, std::regex("simulation stopped: step ([0-9]+), t = [-0-9.e+]+: (.*)")))
+        << r.output;
+    const long step = std::stol(m[1]);
+    EXPECT_NEAR(step, e.stopStep, 2) << r.output;
+    EXPECT_TRUE(std::regex_search(std::string(m[2]), std::regex(e.message))) << "expected /" << e.message << "/ in\n" << r.output;
+    // The diagnostic names a particle and its material, and the last good state is written.
+    EXPECT_TRUE(std::regex_search(r.output, std::regex("particle [0-9]+ of material 0 \\(silicon\\) at \\["))) << r.output;
+    EXPECT_EQ(history.back().at("step"), step - 1);
+    char last[64], failed[64];
+    std::snprintf(last, sizeof last, "particles/step_%06ld.vtu", step - 1);
+    std::snprintf(failed, sizeof failed, "particles/failed_step_%06ld.vtu", step);
+    std::ifstream pvd(r.dir / "particles.pvd");
+    const std::string series((std::istreambuf_iterator<char>(pvd)), std::istreambuf_iterator<char>());
+    EXPECT_NE(series.find(last), std::string::npos) << series;
+    EXPECT_EQ(series.find("file=", series.find(last) + 1), std::string::npos) << "not the last entry:\n" << series;
+    EXPECT_EQ(series.find("failed_step"), std::string::npos);
+    EXPECT_TRUE(fs::exists(r.dir / last));
+    EXPECT_TRUE(fs::exists(r.dir / failed));
+  } else {
+    EXPECT_NE(r.output.find("sus: " + std::to_string(static_cast<long>(history.back().at("step"))) + " steps"),
+              std::string::npos)
+        << r.output;
+    if (e.maxSteps > 0) {
+      EXPECT_EQ(history.back().at("step"), e.maxSteps);
+    }
+  }
+  if (e.check) e.check(history);
+  if (!::testing::Test::HasFailure()) fs::remove_all(r.dir);
+}
+
+INSTANTIATE_TEST_SUITE_P(Inputs, StabilityCase, ::testing::ValuesIn(stabilityInputs()), testName);
+
+TEST(StabilityInputs, EveryExpectationHasItsInput) {
+  const auto inputs = stabilityInputs();
+  for (const auto& [name, e] : expectations())
+    EXPECT_TRUE(std::find(inputs.begin(), inputs.end(), name) != inputs.end()) << name;
+}
+
+RunOptions quiet() {
+  RunOptions o;
+  o.progress = false;
+  return o;
+}
+
+std::string readInput(const std::string& name) {
+  std::ifstream in(kDir + "/" + name + ".ups");
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+TEST(BetaBeyondPmax, TheClampHoldsTheDiffusivityWherePressureExceedsPmax) {
+  // D = D0 exp(alpha c - beta min(p, p_max)) with D0 = 1e-4, alpha = 6, beta = 0.5, p_max = 3 GPa.
+  Simulation sim(readInput("Beta_0.5_confined"), "Beta_0.5_confined.ups", quiet());
+  while (sim.step() < 300) sim.advance();
+  const ParticleSet& p = sim.mpm().materials()[0].particles;
+  double maxPressure = 0, smallestRatio = HUGE_VAL;
+  for (size_t i = 0; i < p.count(); ++i) {
+    maxPressure = std::max(maxPressure, -p.stress[i].trace() / 3 * 1e-6);  // GPa
+    smallestRatio = std::min(smallestRatio, p.diffusivity[i] / (1e-4 * std::exp(6 * p.concentration[i])));
+  }
+  EXPECT_GT(maxPressure, 10 * 3.0);
+  EXPECT_NEAR(smallestRatio, std::exp(-0.5 * 3.0), 1e-9);
+}
+
+// One elastic block at rest: the StateChecks see what the test does to its particles.
+class StateChecksTest : public ::testing::Test {
+ protected:
+  StateChecksTest() : sim(block().text(), "block.ups", quiet()) {}
+  static testing::BlockInput block() {
+    testing::BlockInput in;
+    in.velocity = "[1, 0, 0]";
+    return in;
+  }
+  ParticleSet& particles() { return sim.mpm().materials()[0].particles; }
+  std::string failure() {
+    try {
+      checks.afterStep(sim.mpm());
+    } catch (const SimulationError& e) {
+      return e.what();
+    }
+    return "";
+  }
+  Simulation sim;
+  StateChecks checks;
+};
+
+TEST_F(StateChecksTest, AcceptsAGoodState) { EXPECT_EQ(failure(), ""); }
+
+TEST_F(StateChecksTest, NamesANonFiniteVelocityWithTheParticle) {
+  particles().velocity[3].y() = std::nan("");
+  const std::string f = failure();
+  EXPECT_NE(f.find("particle 3 of material 0 (block) at ["), std::string::npos) << f;
+  EXPECT_NE(f.find("has a non-finite velocity p.velocity = [1, nan, 0]"), std::string::npos) << f;
+}
+
+TEST_F(StateChecksTest, NamesANonFinitePositionAndStress) {
+  particles().stress[5](1, 2) = HUGE_VAL;
+  std::string f = failure();
+  EXPECT_NE(f.find("particle 5 of material 0 (block) at ["), std::string::npos) << f;
+  EXPECT_NE(f.find("] has a non-finite stress p.stress = [0, 0, 0, 0, 0, inf, 0, 0, 0]"), std::string::npos) << f;
+  particles().x[2].z() = -HUGE_VAL;
+  f = failure();
+  EXPECT_NE(f.find("particle 2 of material 0 (block) at ["), std::string::npos) << f;
+  EXPECT_NE(f.find(", -inf] has a non-finite position"), std::string::npos) << f;
+}
+
+TEST_F(StateChecksTest, NamesJOutsideItsBounds) {
+  particles().volume[7] *= 2e5;
+  EXPECT_NE(failure().find("particle 7 of material 0 (block) at ["), std::string::npos) << failure();
+  EXPECT_NE(failure().find("has J = V rho0 / m = 200000, above 100000"), std::string::npos) << failure();
+  particles().volume[7] = particles().mass[7] / 1000 * 2e-6;
+  EXPECT_NE(failure().find("has J = V rho0 / m = 2e-06, below 1e-05"), std::string::npos) << failure();
+  particles().volume[7] = -1;
+  EXPECT_NE(failure().find("(inverted, degenerate or not a number)"), std::string::npos) << failure();
+}
+
+TEST_F(StateChecksTest, StopsAnOscillationThatGrowsButNotOneThatDoesNot) {
+  // Velocities that flip sign every step: growing by 1.5 per step trips the check once the
+  // energy of two increments grew 100-fold (about 6 steps); a constant amplitude never does.
+  std::vector<Vec3> base = particles().velocity;
+  auto steps = [&](double growth, int n) {
+    double amplitude = 1e-3;
+    for (int k = 0; k < n; ++k) {
+      for (size_t i = 0; i < base.size(); ++i) particles().velocity[i] = base[i] + Vec3(0, (k % 2 ? -1 : 1) * amplitude, 0);
+      amplitude *= growth;
+      const std::string f = failure();
+      if (!f.empty()) return k + 1;
+    }
+    return 0;
+  };
+  EXPECT_EQ(steps(1.0, 200), 0);
+  const int at = steps(1.5, 200);
+  EXPECT_GE(at, 5);
+  EXPECT_LE(at, 10);
+}
+
+TEST_F(StateChecksTest, StopsAKineticEnergyThatDoublesTwentyStepsInARow) {
+  std::vector<Vec3> base = particles().velocity;
+  int stopped = 0;
+  std::string f;
+  for (int k = 1; k <= 40 && f.empty(); ++k) {
+    // Same direction every step (no oscillation): the energy grows by 2.25 per step.
+    for (size_t i = 0; i < base.size(); ++i) particles().velocity[i] = base[i] * std::pow(1.5, k);
+    f = failure();
+    stopped = k;
+  }
+  EXPECT_EQ(stopped, 21) << f;
+  EXPECT_NE(f.find("the kinetic energy grew by a factor of at least 2 at each of the last 20 steps"), std::string::npos) << f;
+  EXPECT_NE(f.find("; the fastest is particle "), std::string::npos) << f;
+}
+
+TEST_F(StateChecksTest, PowerLawGrowthFromRestIsNotABlowUp) {
+  // A body starting from rest under a load that grows linearly: v ~ t^3, KE ~ t^6.
+  std::vector<Vec3> base(particles().count(), Vec3(1, 0, 0));
+  for (int k = 1; k <= 500; ++k) {
+    for (size_t i = 0; i < base.size(); ++i) particles().velocity[i] = base[i] * std::pow(k, 3.0);
+    ASSERT_EQ(failure(), "") << "step " << k;
+  }
+}
+
+}  // namespace
+}  // namespace anode
