@@ -17,15 +17,6 @@ namespace anode {
 
 namespace {
 
-std::string particleLabel(const MPMMaterial& m, size_t matl, size_t i) {
-  std::ostringstream s;
-  const Vec3& x = m.particles.x[i];
-  s << "particle " << m.particles.id[i] << " of material " << matl;
-  if (!m.name.empty()) s << " (" << m.name << ")";
-  s << " at [" << x.x() << ", " << x.y() << ", " << x.z() << "]";
-  return s.str();
-}
-
 void readOtherPhysicalBCs(const PSNode& root) {
   const PSNode physical = root.child("PhysicalBC");
   if (!physical) return;
@@ -226,7 +217,7 @@ void MPM::computeInterpolationWeights() {
       }
     }
     if (firstOutside < n)
-      throw SimulationError(particleLabel(materials_[m], m, firstOutside) +
+      throw SimulationError(describeParticle(materials_[m], m, firstOutside) +
                             " has left the grid (its interpolation support reaches beyond the last node)");
   }
   active_ = highest < 0 ? NodeRange{0, 0} : NodeRange{lowest, highest + 1};
@@ -561,7 +552,7 @@ void MPM::interpolateToParticlesAndUpdate(double dt) {
     }
     if (firstInverted < n) {
       std::ostringstream s;
-      s << particleLabel(mat, m, firstInverted) << " has det F = " << p.F[firstInverted].determinant()
+      s << describeParticle(mat, m, firstInverted) << " has det F = " << p.F[firstInverted].determinant()
         << " (inverted or degenerate deformation)";
       throw SimulationError(s.str());
     }
@@ -603,7 +594,7 @@ void MPM::checkConcentrationRange(double t) const {
       const double c = p.concentration[i];
       if (c >= d.minConcentration - tol && c <= d.maxConcentration + tol) continue;
       std::ostringstream s;
-      s << particleLabel(materials_[m], m, i) << " has concentration " << c << " at t = " << t
+      s << describeParticle(materials_[m], m, i) << " has concentration " << c << " at t = " << t
         << ", outside [" << d.minConcentration << ", " << d.maxConcentration << "] by more than "
         << tol << " (no clamp is applied)";
       throw SimulationError(s.str());

@@ -10,15 +10,6 @@ namespace anode {
 
 namespace {
 
-std::string describeParticle(const MPMMaterial& mat, size_t m, size_t i) {
-  std::ostringstream s;
-  const Vec3& x = mat.particles.x[i];
-  s << "particle " << mat.particles.id[i] << " of material " << m;
-  if (!mat.name.empty()) s << " (" << mat.name << ")";
-  s << " at [" << x.x() << ", " << x.y() << ", " << x.z() << "]";
-  return s.str();
-}
-
 std::string vector(const Vec3& v) {
   std::ostringstream s;
   s << "[" << v.x() << ", " << v.y() << ", " << v.z() << "]";

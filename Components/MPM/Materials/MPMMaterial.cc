@@ -1,5 +1,7 @@
 #include "Components/MPM/Materials/MPMMaterial.h"
 
+#include <sstream>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -110,6 +112,15 @@ void addGeomObject(const PSNode& geom, const Grid& grid, const MPMFlags& flags, 
 }
 
 }  // namespace
+
+std::string describeParticle(const MPMMaterial& mat, size_t matl, size_t i) {
+  std::ostringstream s;
+  const Vec3& x = mat.particles.x[i];
+  s << "particle " << mat.particles.id[i] << " of material " << matl;
+  if (!mat.name.empty()) s << " (" << mat.name << ")";
+  s << " at [" << x.x() << ", " << x.y() << ", " << x.z() << "]";
+  return s.str();
+}
 
 MPMMaterial MPMMaterial::fromInput(const PSNode& node, const Grid& grid, const MPMFlags& flags,
                                    double maxTime, GeometryPieceFactory& pieces, int64_t& nextId) {

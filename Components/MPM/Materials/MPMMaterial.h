@@ -33,4 +33,7 @@ struct MPMMaterial {
                                double maxTime, GeometryPieceFactory& pieces, int64_t& nextId);
 };
 
+// "particle ID of material M (name) at [x, y, z]", for diagnostics.
+std::string describeParticle(const MPMMaterial& mat, size_t matl, size_t i);
+
 }  // namespace anode
