@@ -59,7 +59,7 @@ bool StateChecks::oscillates(Oscillation& o, double energy, double product, doub
   o.smallest = o.steps == 0 ? pair : std::min(o.smallest, pair);
   ++o.steps;
   *growth = pair / o.smallest;
-  return pair >= kOscillationGrowth * o.smallest;
+  return *growth >= kOscillationGrowth || (o.steps >= kSustainedSteps && *growth >= kSustainedGrowth);
 }
 
 void StateChecks::afterStep(const MPM& mpm) {
