@@ -64,6 +64,10 @@ void Simulation::run() {
   auto output = [&] {
     ScopedTimer timer(mpm_.timers(), outputTask);
     if (archiver_.wantsGrid() && step_ == 0) mpm_.interpolateToGridForOutput();
+    // Between steps the snapshot and the weights are not needed: the output's copy of the
+    // particles takes their memory instead of adding to the peak.
+    lastGood_.release();
+    mpm_.releaseInterpolationWeights();
     archiver_.writeOutput(step_, t_, mpm_);
   };
   std::fprintf(stderr, "sus: %zu particles in %zu material(s), grid %dx%dx%d cells, output in %s\n",

@@ -1,5 +1,6 @@
 // sus: runs a Uintah-style .ups input. Exit codes: 0 done, 1 I/O or internal error, 2 bad input
 // (nothing written), 3 the simulation went bad (diagnostic printed).
+#include <malloc.h>
 #include <omp.h>
 
 #include <cstdio>
@@ -32,6 +33,10 @@ long positiveNumber(const char* flag, const char* value) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // Arrays above 1 MB come from the OS and go back to it when freed (glibc would otherwise raise
+  // the threshold as they are freed and keep them in the heap): buffers freed between steps for
+  // output then leave the peak memory.
+  mallopt(M_MMAP_THRESHOLD, 1 << 20);
   anode::RunOptions options;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];

@@ -38,7 +38,7 @@ struct InterpolationWeights {
   std::vector<double> weight;
   std::vector<Vec3> gradient;
 
-  // Lays out `capacity[i]` entries for each particle; storage only grows.
+  // Lays out `capacity[i]` entries for each particle; storage only grows between releases.
   void layOut(const std::vector<uint8_t>& capacity) {
     offset.resize(capacity.size());
     count.resize(capacity.size());
@@ -48,9 +48,13 @@ struct InterpolationWeights {
       total += capacity[i];
     }
     if (total > node.size()) {
-      node.resize(total);
-      weight.resize(total);
-      gradient.resize(total);
+      // Freed before growing (the old entries are not needed; resizing would hold both), with
+      // 1/16 to spare so that domains stretching step by step do not reallocate every step.
+      node = {}, weight = {}, gradient = {};
+      const size_t grown = total + total / 16;
+      node.resize(grown);
+      weight.resize(grown);
+      gradient.resize(grown);
     }
   }
 };

@@ -628,6 +628,10 @@ void MPM::interpolateToGridForOutput() {
   interpolateParticlesToGrid();
 }
 
+void MPM::releaseInterpolationWeights() {
+  for (InterpolationWeights& w : weights_) w = InterpolationWeights();
+}
+
 StepSummary MPM::summarize() const {
   StepSummary s;
   s.minJ = std::numeric_limits<double>::infinity();

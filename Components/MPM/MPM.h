@@ -44,6 +44,9 @@ class MPM {
   double computeStableTimestep() const;
   // Interpolation weights and the grid fields of the current state (for output of g.* labels).
   void interpolateToGridForOutput();
+  // Frees the interpolation weights between steps so output can use the memory; the next step
+  // lays them out again.
+  void releaseInterpolationWeights();
   StepSummary summarize() const;
 
   const Grid& grid() const { return grid_; }

@@ -35,16 +35,31 @@ struct ParticleSet {
 
   size_t count() const { return x.size(); }
 
+  // Calls f(array) for every array above, in declaration order (the one list of them).
+  template <class F>
+  void forEachArray(F&& f) { eachArray(*this, f); }
+  template <class F>
+  void forEachArray(F&& f) const { eachArray(*this, f); }
+
   // Appends a copy of particle i (every array that exists) and returns its index.
   size_t duplicate(size_t i) {
-    auto copy = [i](auto& v) {
+    forEachArray([i](auto& v) {
       if (!v.empty()) v.push_back(v[i]);
-    };
-    copy(id), copy(x), copy(velocity), copy(displacement), copy(mass), copy(volume), copy(F);
-    copy(stress), copy(size), copy(plasticStrain), copy(plasticStrainRate), copy(concentration);
-    copy(concentrationGradient), copy(diffusivity), copy(externalScalarFlux), copy(loadCurveID);
-    copy(area), copy(refined);
+    });
     return count() - 1;
+  }
+
+  // Frees the spare capacity of every array (growth by appending leaves up to half unused).
+  void shrinkToFit() {
+    forEachArray([](auto& v) { v.shrink_to_fit(); });
+  }
+
+ private:
+  template <class Self, class F>
+  static void eachArray(Self& s, F& f) {
+    f(s.id), f(s.x), f(s.velocity), f(s.displacement), f(s.mass), f(s.volume), f(s.F), f(s.stress), f(s.size);
+    f(s.plasticStrain), f(s.plasticStrainRate), f(s.concentration), f(s.concentrationGradient), f(s.diffusivity);
+    f(s.externalScalarFlux), f(s.loadCurveID), f(s.area), f(s.refined);
   }
 };
 

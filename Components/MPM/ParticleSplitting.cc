@@ -53,13 +53,19 @@ size_t splitStretchedParticles(ParticleSet& p, const Grid& grid, double ratio,
                                const std::vector<ScalarFluxBC>& bcs, int64_t& nextId) {
   const size_t n = p.count();
   const bool flux = !p.loadCurveID.empty();
-  size_t split = 0;
+  // First the particles that split and along which edge, so every array grows once, exactly.
+  std::vector<std::pair<size_t, int>> splits;
   for (size_t i = 0; i < n; ++i) {
     if (p.refined[i]) continue;
-    const Mat3 domain = p.F[i] * p.size[i] * grid.dx.asDiagonal();
-    const int axis = splitAxis(domain, ratio, grid.ndim());
-    if (axis < 0) continue;
-    const Vec3 edge = domain.col(axis);
+    const int axis = splitAxis(p.F[i] * p.size[i] * grid.dx.asDiagonal(), ratio, grid.ndim());
+    if (axis >= 0) splits.emplace_back(i, axis);
+  }
+  if (splits.empty()) return 0;
+  p.forEachArray([&](auto& v) {
+    if (!v.empty()) v.reserve(n + 3 * splits.size());
+  });
+  for (const auto& [i, axis] : splits) {
+    const Vec3 edge = (p.F[i] * p.size[i] * grid.dx.asDiagonal()).col(axis);
     const Vec3 x = p.x[i];
     p.mass[i] *= 0.25;
     p.volume[i] *= 0.25;
@@ -78,9 +84,8 @@ size_t splitStretchedParticles(ParticleSet& p, const Grid& grid, double ratio,
       p.x[child[c]] = x + offset[c];
     }
     if (flux) splitFluxAreas(p, bcs, child, offset, edge.normalized());
-    ++split;
   }
-  return split;
+  return splits.size();
 }
 
 }  // namespace anode

@@ -109,6 +109,7 @@ void addGeomObject(const PSNode& geom, const Grid& grid, const MPMFlags& flags, 
     p.stress.push_back(Mat3::Zero());
     p.size.push_back(s.size);
   }
+  p.shrinkToFit();
 }
 
 }  // namespace
