@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iomanip>
+#include <regex>
 #include <sstream>
 
 #include "Core/Util/AtomicFile.h"
@@ -28,7 +29,7 @@ DataArchiver DataArchiver::fromInput(const PSNode& a, bool diffusion) {
     d.stepInterval_ = steps.value<int>();
     if (d.stepInterval_ < 1) steps.fail("<outputTimestepInterval> must be >= 1");
   }
-  for (const char* inert : {"outputInitTimestep", "outputLastTimestep", "compression", "checkpoint", "outputDoubleAsFloat"})
+  for (const char* inert : {"outputInitTimestep", "outputLastTimestep", "compression", "outputDoubleAsFloat"})
     a.acceptInert(inert);  // the first and last steps are always written; files are always compressed
   for (const PSNode& save : a.children("save")) {
     const std::string label = save.requireAttribute("label");
@@ -116,6 +117,64 @@ void DataArchiver::writeHistory() const {
     s << r.wallSeconds << '\n';
   }
   writeFileAtomically((fs::path(dir_) / "history.csv").string(), s.str());
+}
+
+namespace {
+
+void saveSeries(BinaryWriter& out, const PVDSeries& series) {
+  out.value<uint64_t>(series.entries().size());
+  for (const auto& [time, file] : series.entries()) {
+    out.value(time);
+    out.string(file);
+  }
+}
+
+PVDSeries loadSeries(BinaryReader& in) {
+  PVDSeries series;
+  for (uint64_t n = in.value<uint64_t>(); n > 0; --n) {
+    const double time = in.value<double>();
+    series.add(time, in.string());
+  }
+  return series;
+}
+
+}  // namespace
+
+void DataArchiver::saveState(BinaryWriter& out) const {
+  out.value(lastOutputTime_);
+  out.value(lastOutputStep_);
+  saveSeries(out, particleSeries_);
+  saveSeries(out, gridSeries_);
+  out.array(history_);
+}
+
+void DataArchiver::loadState(BinaryReader& in) {
+  lastOutputTime_ = in.value<double>();
+  lastOutputStep_ = in.value<long>();
+  particleSeries_ = loadSeries(in);
+  gridSeries_ = loadSeries(in);
+  in.array(history_);
+}
+
+void DataArchiver::removeOutputsAfter(long step) const {
+  static const std::regex output(R"(step_(\d+)\.vt[ui])");
+  for (const char* folder : {"particles", "grid"}) {
+    const fs::path path = fs::path(dir_) / folder;
+    if (!fs::is_directory(path)) continue;
+    std::vector<fs::path> later;
+    for (const fs::directory_entry& e : fs::directory_iterator(path)) {
+      std::smatch m;
+      const std::string name = e.path().filename().string();
+      if (std::regex_match(name, m, output) && std::stol(m[1].str()) > step) later.push_back(e.path());
+    }
+    for (const fs::path& p : later) fs::remove(p);
+  }
+}
+
+void DataArchiver::writeIndexFiles() const {
+  particleSeries_.write((fs::path(dir_) / "particles.pvd").string());
+  if (wantsGrid()) gridSeries_.write((fs::path(dir_) / "grid.pvd").string());
+  writeHistory();
 }
 
 }  // namespace anode

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "Components/MPM/MPM.h"
+#include "Core/Util/BinaryStream.h"
 #include "vis/VTKWriters.h"
 
 namespace anode {
@@ -28,6 +29,8 @@ class DataArchiver {
 
   // Creates the output directory and copies the input into it.
   void open(const std::string& dir, const std::string& inputFile);
+  // Continues in the directory of an earlier run (restart): loadState then sets the series.
+  void reopen(const std::string& dir) { dir_ = dir; }
   const std::string& directory() const { return dir_; }
 
   // True if the step that ended at `time` (number `step`) is an output step.
@@ -42,6 +45,18 @@ class DataArchiver {
   void recordHistory(const HistoryRow& row) { history_.push_back(row); }
   void writeHistory() const;
   int outputsWritten() const { return static_cast<int>(particleSeries_.entries().size()); }
+  const std::vector<HistoryRow>& history() const { return history_; }
+
+  // The output schedule, the .pvd series and the history, for checkpoints.
+  void saveState(BinaryWriter& out) const;
+  void loadState(BinaryReader& in);
+  // Writes the .pvd files and history.csv as the state has them: after a restart, outputs the
+  // interrupted run wrote after its checkpoint leave the series (the continued run writes them
+  // again under the same names).
+  void writeIndexFiles() const;
+  // Removes the particle and grid files of steps after `step` (an interrupted run's outputs
+  // beyond its checkpoint).
+  void removeOutputsAfter(long step) const;
 
  private:
   std::string filebase_;

@@ -41,15 +41,23 @@ SceneOutput SceneOutput::fromInput(const PSNode& root, const TimeControl& time, 
   return out;
 }
 
+namespace {
+
+// The first state at or after a scene time renders it (as <outputInterval> output steps).
+bool crossed(double time, double t) { return time <= t + 1e-12 * std::max(std::abs(time), std::abs(t)); }
+
+}  // namespace
+
+void SceneOutput::skipTimesUpTo(double t) {
+  for (size_t k = 0; k < scenes_.size(); ++k)
+    while (next_[k] < times_[k].size() && crossed(times_[k][next_[k]], t)) ++next_[k];
+}
+
 void SceneOutput::renderDue(double t, MPM& mpm, const std::string& outputDir) {
-  // The first state at or after a scene time renders it (as <outputInterval> output steps).
-  const auto crossed = [t](double time) {
-    return time <= t + 1e-12 * std::max(std::abs(time), std::abs(t));
-  };
   for (size_t k = 0; k < scenes_.size(); ++k) {
     const Scene& scene = scenes_[k];
     const std::vector<double>& times = times_[k];
-    if (next_[k] >= times.size() || !crossed(times[next_[k]])) continue;
+    if (next_[k] >= times.size() || !crossed(times[next_[k]], t)) continue;
     ScopedTimer timer(mpm.timers(), mpm.timers().task("render"));
     std::vector<std::string> labels = {scene.field.label};
     if (scene.field.label != "p.volume") labels.push_back("p.volume");
@@ -60,7 +68,7 @@ void SceneOutput::renderDue(double t, MPM& mpm, const std::string& outputDir) {
     const RenderedScene picture = renderer_->render(scene, makeSprites(scene, data), t);
     std::filesystem::create_directories(std::filesystem::path(outputDir) / "images");
     // One picture for every scene time this step crossed, each under its own name.
-    for (; next_[k] < times.size() && crossed(times[next_[k]]); ++next_[k]) {
+    for (; next_[k] < times.size() && crossed(times[next_[k]], t); ++next_[k]) {
       writePNG(picture.canvas,
                (std::filesystem::path(outputDir) / scene.imageFile(times[next_[k]])).string());
       ++imagesWritten_;

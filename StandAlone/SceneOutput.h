@@ -27,6 +27,8 @@ class SceneOutput {
 
   // Renders every scene time in (last call's time, t]; at the first call, every time <= t.
   void renderDue(double t, MPM& mpm, const std::string& outputDir);
+  // Marks every scene time <= t as rendered (a restarted run rendered them before).
+  void skipTimesUpTo(double t);
   int imagesWritten() const { return imagesWritten_; }
 
  private:

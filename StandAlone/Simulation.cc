@@ -1,11 +1,16 @@
 #include "StandAlone/Simulation.h"
 
+#include <omp.h>
 #include <sys/resource.h>
 
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <sstream>
 
+#include "Core/Util/AtomicFile.h"
 #include "StandAlone/Progress.h"
 
 namespace anode {
@@ -25,12 +30,14 @@ void Simulation::setup() {
   time_ = TimeControl::fromInput(root.requireChild("Time"));
   mpm_.problemSetup(root, time_.initTime, time_.maxTime);
   archiver_ = DataArchiver::fromInput(root.requireChild("DataArchiver"), mpm_.flags().doScalarDiffusion);
+  checkpoints_ = CheckpointSchedule::fromInput(root.requireChild("DataArchiver"));
   scenes_ = SceneOutput::fromInput(root, time_, mpm_);
   spec_->checkAllUsed();
   if (options_.maxTimesteps > 0 &&
       (time_.maxTimesteps == 0 || options_.maxTimesteps < time_.maxTimesteps))
     time_.maxTimesteps = options_.maxTimesteps;
   t_ = time_.initTime;
+  lastCheckpointTime_ = t_;
   dt_ = time_.nextTimestep(mpm_.computeStableTimestep(), 0.0, t_);
 }
 
@@ -53,17 +60,29 @@ void Simulation::advance() {
 void Simulation::run() {
   const auto start = std::chrono::steady_clock::now();
   auto wall = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
-  archiver_.open(chooseOutputDirectory(options_.outputDir, archiver_.filebase()), options_.input);
+  const bool restart = !options_.restartDir.empty();
+  std::string restartedFrom;
+  if (restart) {
+    archiver_.reopen(options_.restartDir);
+    removeTemporaryFiles(options_.restartDir);
+    restartedFrom = loadNewestCheckpoint();
+    scenes_.skipTimesUpTo(t_);
+  } else {
+    archiver_.open(chooseOutputDirectory(options_.outputDir, archiver_.filebase()), options_.input);
+  }
   const int outputTask = mpm_.timers().task("output");
   const int snapshotTask = mpm_.timers().task("lastGoodState");
   auto summaryRow = [&](double stepDt) {
     const StepSummary s = mpm_.summarize();
-    archiver_.recordHistory({step_, s.particles, t_, stepDt, s.kineticEnergy, s.minJ, s.maxJ, wall(), s.diffusion,
+    archiver_.recordHistory({step_, s.particles, t_, stepDt, s.kineticEnergy, s.minJ, s.maxJ,
+                             earlierWallSeconds_ + wall(), s.diffusion,
                              s.totalLithium, s.minConcentration, s.maxConcentration});
   };
-  auto output = [&] {
+  // Grid labels hold the last step's nodal values; before any step of this process (the start,
+  // or a restart with no step left) they are interpolated from the particles.
+  auto output = [&](bool afterStep) {
     ScopedTimer timer(mpm_.timers(), outputTask);
-    if (archiver_.wantsGrid() && step_ == 0) mpm_.interpolateToGridForOutput();
+    if (archiver_.wantsGrid() && !afterStep) mpm_.interpolateToGridForOutput();
     // Between steps the snapshot and the weights are not needed: the output's copy of the
     // particles takes their memory instead of adding to the peak.
     lastGood_.release();
@@ -73,11 +92,22 @@ void Simulation::run() {
   std::fprintf(stderr, "sus: %zu particles in %zu material(s), grid %dx%dx%d cells, output in %s\n",
                mpm_.numParticles(), mpm_.materials().size(), mpm_.grid().cells.x(),
                mpm_.grid().cells.y(), mpm_.grid().cells.z(), archiver_.directory().c_str());
-  summaryRow(0.0);
-  output();
-  scenes_.renderDue(t_, mpm_, archiver_.directory());
+  if (restart) {
+    std::fprintf(stderr, "sus: restarting from %s (step %ld, t = %.6e)\n", restartedFrom.c_str(), step_, t_);
+  } else {
+    summaryRow(0.0);
+    output(false);
+    scenes_.renderDue(t_, mpm_, archiver_.directory());
+  }
   ProgressReporter progress(time_.initTime, time_.maxTime, time_.maxTimesteps);
-  while (true) {
+  const auto finished = [&] {
+    return t_ >= time_.maxTime || (time_.maxTimesteps > 0 && step_ >= time_.maxTimesteps) ||
+           (time_.maxWallTime > 0 && wall() >= time_.maxWallTime);
+  };
+  // A checkpoint at the end of the run (killed before it wrote its last output) has no step left.
+  const bool nothingLeft = restart && finished();
+  if (nothingLeft && archiver_.lastOutputStep() != step_) output(false);
+  while (!nothingLeft) {
     const double stepDt = dt_;
     {
       ScopedTimer timer(mpm_.timers(), snapshotTask);
@@ -92,10 +122,13 @@ void Simulation::run() {
       throw;
     }
     summaryRow(stepDt);
-    const bool done = t_ >= time_.maxTime || (time_.maxTimesteps > 0 && step_ >= time_.maxTimesteps) ||
-                      (time_.maxWallTime > 0 && wall() >= time_.maxWallTime);
-    if (done || archiver_.isOutputStep(step_, t_)) output();
+    const bool done = finished();
+    if (done || archiver_.isOutputStep(step_, t_)) output(true);
     scenes_.renderDue(t_, mpm_, archiver_.directory());
+    if (checkpoints_.isDue(step_, t_, lastCheckpointTime_)) {
+      ScopedTimer timer(mpm_.timers(), mpm_.timers().task("checkpoint"));
+      writeCheckpoint(earlierWallSeconds_ + wall());
+    }
     if (options_.progress) progress.update(step_, t_, stepDt, particleSteps_, done);
     if (done) break;
   }
@@ -114,6 +147,93 @@ void Simulation::writeStateOnStop() {
   }
   std::fprintf(stderr, "sus: the last good state (step %ld, t = %.6e) is the last entry of %s/particles.pvd; "
                "the failing step's particles are in %s\n", step_, t_, archiver_.directory().c_str(), failed.c_str());
+}
+
+namespace {
+
+constexpr char kCheckpointMagic[] = "anode-mpm checkpoint";
+constexpr uint32_t kCheckpointVersion = 1;
+
+uint64_t fileHash(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  StreamHash h;
+  h.add(text.data(), text.size());
+  return h.value();
+}
+
+}  // namespace
+
+void Simulation::writeCheckpoint(double wallSeconds) {
+  const std::string dir = archiver_.directory();
+  std::filesystem::create_directories(std::filesystem::path(dir) / "checkpoints");
+  lastCheckpointTime_ = t_;
+  writeAtomically(checkpointPath(dir, step_), [&](const std::string& tmp) {
+    BinaryWriter out(tmp);
+    out.string(kCheckpointMagic);
+    out.value(kCheckpointVersion);
+    out.value<int32_t>(omp_get_max_threads());
+    out.value(fileHash((std::filesystem::path(dir) / "input.ups").string()));
+    out.value(t_);
+    out.value(dt_);
+    out.value(step_);
+    out.value(particleSteps_);
+    out.value(wallSeconds);
+    out.value(lastCheckpointTime_);
+    archiver_.saveState(out);
+    mpm_.saveState(out);
+    out.finish();
+  });
+  removeOldCheckpoints(dir, checkpoints_.cycle);
+}
+
+void Simulation::loadCheckpoint(const std::string& path) {
+  BinaryReader in(path);
+  if (in.string() != kCheckpointMagic) throw std::runtime_error(path + ": not a checkpoint of this code");
+  const auto version = in.value<uint32_t>();
+  if (version != kCheckpointVersion)
+    throw std::runtime_error(path + ": checkpoint format " + std::to_string(version) + ", this code reads " +
+                             std::to_string(kCheckpointVersion));
+  const auto threads = in.value<int32_t>();
+  const auto inputHash = in.value<uint64_t>();
+  t_ = in.value<double>();
+  dt_ = in.value<double>();
+  step_ = in.value<long>();
+  particleSteps_ = in.value<double>();
+  earlierWallSeconds_ = in.value<double>();
+  lastCheckpointTime_ = in.value<double>();
+  archiver_.loadState(in);
+  mpm_.loadState(in);
+  in.finish();
+  if (inputHash != fileHash(options_.input))
+    std::fprintf(stderr, "warning: %s changed since %s was written; the run continues with the changed input\n",
+                 options_.input.c_str(), path.c_str());
+  if (threads != omp_get_max_threads())
+    std::fprintf(stderr, "warning: %s was written with %d thread(s), this run has %d: the continued run "
+                 "matches an uninterrupted one to round-off, not bit for bit\n", path.c_str(), threads,
+                 omp_get_max_threads());
+}
+
+std::string Simulation::loadNewestCheckpoint() {
+  const std::vector<std::string> found = listCheckpoints(options_.restartDir);
+  if (found.empty())
+    throw std::runtime_error("no checkpoint in " + options_.restartDir + "/checkpoints (the input needs "
+                             "<checkpoint cycle=\"N\" interval=\"T\"/> in <DataArchiver>)");
+  for (const std::string& path : found) {
+    if (!hasIntactHash(path)) {
+      std::fprintf(stderr, "warning: skipping %s: incomplete or damaged (its hash does not match)\n", path.c_str());
+      continue;
+    }
+    try {
+      loadCheckpoint(path);
+      archiver_.removeOutputsAfter(step_);
+      archiver_.writeIndexFiles();
+      return path;
+    } catch (const std::runtime_error& e) {
+      std::fprintf(stderr, "warning: skipping %s: %s\n", path.c_str(), e.what());
+    }
+  }
+  throw std::runtime_error("no complete checkpoint in " + options_.restartDir + "/checkpoints");
 }
 
 void Simulation::printTimings() const {

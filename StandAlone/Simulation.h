@@ -6,6 +6,7 @@
 
 #include "Components/MPM/MPM.h"
 #include "Components/MPM/StateChecks.h"
+#include "StandAlone/Checkpoint.h"
 #include "StandAlone/DataArchiver.h"
 #include "StandAlone/SceneOutput.h"
 #include "StandAlone/TimeControl.h"
@@ -15,6 +16,7 @@ namespace anode {
 struct RunOptions {
   std::string input;
   std::string outputDir;        // empty: from <filebase>
+  std::string restartDir;       // continue the run in this directory from its newest checkpoint
   long maxTimesteps = 0;        // 0: as the input says
   bool ignoreUnsupported = false;
   bool progress = true;
@@ -46,6 +48,12 @@ class Simulation {
   void setup();
   // After a failed step: writes its particles and the last good state (DESIGN.md §8).
   void writeStateOnStop();
+  // Writes the state after step_ to a checkpoint (Checkpoint.h) and drops the oldest.
+  void writeCheckpoint(double wallSeconds);
+  // Loads the newest complete checkpoint of the restart directory; returns its path.
+  std::string loadNewestCheckpoint();
+  // Reads one checkpoint (everything writeCheckpoint wrote); throws std::runtime_error.
+  void loadCheckpoint(const std::string& path);
 
   RunOptions options_;
   std::unique_ptr<ProblemSpec> spec_;
@@ -55,9 +63,12 @@ class Simulation {
   SceneOutput scenes_;
   StateChecks checks_;
   ParticleSnapshot lastGood_;  // the particles at the start of the running step (run() only)
+  CheckpointSchedule checkpoints_;
   double t_ = 0, dt_ = 0;
   long step_ = 0;
   double particleSteps_ = 0, wallSeconds_ = 0;
+  double lastCheckpointTime_ = 0;
+  double earlierWallSeconds_ = 0;  // of the runs before a restart, for history.csv
 };
 
 }  // namespace anode

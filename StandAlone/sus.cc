@@ -14,7 +14,11 @@ namespace {
 
 const char* kUsage =
     "usage: sus [-o DIR] [--max-timesteps N] [--threads N] [--ignore-unsupported] input.ups\n"
+    "       sus -restart DIR [--max-timesteps N] [--threads N] [--ignore-unsupported]\n"
     "  -o DIR               output directory (default: <filebase> of the input, versioned)\n"
+    "  -restart DIR         continue the run in DIR from its newest checkpoint (<checkpoint> in\n"
+    "                       <DataArchiver>), with DIR/input.ups; the same thread count gives the\n"
+    "                       uninterrupted run's results bit for bit\n"
     "  --max-timesteps N    stop after N steps (at most; the input's max_Timesteps still holds)\n"
     "  --threads N          OpenMP threads (default: OMP_NUM_THREADS or all cores)\n"
     "  --ignore-unsupported run without features the input asks for but this code lacks,\n"
@@ -51,6 +55,13 @@ int main(int argc, char** argv) {
       }
       options.outputDir = next;
       ++i;
+    } else if (a == "-restart" || a == "--restart") {
+      if (!next) {
+        std::fprintf(stderr, "sus: %s needs a directory\n%s", a.c_str(), kUsage);
+        return 2;
+      }
+      options.restartDir = next;
+      ++i;
     } else if (a == "--max-timesteps") {
       options.maxTimesteps = positiveNumber("--max-timesteps", next);
       ++i;
@@ -68,6 +79,13 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "sus: more than one input file given\n%s", kUsage);
       return 2;
     }
+  }
+  if (!options.restartDir.empty()) {
+    if (!options.input.empty() || !options.outputDir.empty()) {
+      std::fprintf(stderr, "sus: -restart DIR takes the input and output directory from DIR\n%s", kUsage);
+      return 2;
+    }
+    options.input = options.restartDir + "/input.ups";
   }
   if (options.input.empty()) {
     std::fputs(kUsage, stderr);

@@ -12,6 +12,7 @@
 #include "Components/MPM/Materials/MPMMaterial.h"
 #include "Core/Grid/BoundaryConditions.h"
 #include "Core/Grid/Grid.h"
+#include "Core/Util/BinaryStream.h"
 #include "Core/Util/Timers.h"
 
 namespace anode {
@@ -48,6 +49,12 @@ class MPM {
   // lays them out again.
   void releaseInterpolationWeights();
   StepSummary summarize() const;
+
+  // The state a step starts from (every particle array and the scalars carried between steps),
+  // for checkpoints (MPMState.cc). loadState expects the materials of the same input and throws
+  // std::runtime_error when the saved state does not fit them.
+  void saveState(BinaryWriter& out) const;
+  void loadState(BinaryReader& in);
 
   const Grid& grid() const { return grid_; }
   const MPMFlags& flags() const { return flags_; }

@@ -1,0 +1,93 @@
+#include "StandAlone/Checkpoint.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <iomanip>
+#include <regex>
+#include <sstream>
+#include <stdexcept>
+
+namespace fs = std::filesystem;
+
+namespace anode {
+
+namespace {
+
+template <class T>
+std::optional<T> numberAttribute(const PSNode& node, const char* name) {
+  const std::optional<std::string> text = node.attribute(name);
+  if (!text) return std::nullopt;
+  try {
+    return parseValue<T>(*text);
+  } catch (const std::invalid_argument& e) {
+    node.fail(std::string("<checkpoint ") + name + "=\"" + *text + "\">: " + e.what());
+  }
+}
+
+}  // namespace
+
+CheckpointSchedule CheckpointSchedule::fromInput(const PSNode& archiver) {
+  CheckpointSchedule s;
+  const PSNode node = archiver.child("checkpoint");
+  if (!node) return s;
+  const std::optional<int> cycle = numberAttribute<int>(node, "cycle");
+  s.interval = numberAttribute<double>(node, "interval");
+  const std::optional<int> steps = numberAttribute<int>(node, "timestepInterval");
+  if (!cycle) node.fail("<checkpoint> needs cycle=\"N\": how many checkpoints to keep");
+  if (*cycle < 1) node.fail("<checkpoint cycle=\"" + std::to_string(*cycle) + "\">: must be at least 1");
+  if (s.interval && steps) node.fail("<checkpoint>: give interval or timestepInterval, not both");
+  if (!s.interval && !steps) node.fail("<checkpoint> needs interval=\"T\" (simulation time) or timestepInterval=\"N\"");
+  if (s.interval && !(*s.interval > 0 && std::isfinite(*s.interval)))
+    node.fail("<checkpoint interval=\"" + *node.attribute("interval") + "\">: must be a positive time");
+  if (steps && *steps < 1) node.fail("<checkpoint timestepInterval=\"" + std::to_string(*steps) + "\">: must be at least 1");
+  s.cycle = *cycle;
+  s.stepInterval = steps.value_or(0);
+  return s;
+}
+
+bool CheckpointSchedule::isDue(long step, double time, double lastTime) const {
+  if (!enabled()) return false;
+  if (stepInterval > 0) return step % stepInterval == 0;
+  // As output: the first step at or after each multiple of the interval.
+  const double next = (std::floor(lastTime / *interval + 1e-9) + 1) * *interval;
+  return time >= next * (1 - 1e-12);
+}
+
+std::string checkpointPath(const std::string& dir, long step) {
+  std::ostringstream name;
+  name << "step_" << std::setw(6) << std::setfill('0') << step << ".ckpt";
+  return (fs::path(dir) / "checkpoints" / name.str()).string();
+}
+
+std::vector<std::string> listCheckpoints(const std::string& dir) {
+  std::vector<std::pair<long, std::string>> found;
+  const fs::path folder = fs::path(dir) / "checkpoints";
+  if (!fs::is_directory(folder)) return {};
+  static const std::regex name(R"(step_(\d+)\.ckpt)");
+  for (const fs::directory_entry& e : fs::directory_iterator(folder)) {
+    std::smatch m;
+    const std::string file = e.path().filename().string();
+    if (std::regex_match(file, m, name)) found.emplace_back(std::stol(m[1].str()), e.path().string());
+  }
+  std::sort(found.begin(), found.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  std::vector<std::string> paths;
+  for (const auto& f : found) paths.push_back(f.second);
+  return paths;
+}
+
+void removeOldCheckpoints(const std::string& dir, int keep) {
+  const std::vector<std::string> all = listCheckpoints(dir);
+  for (size_t i = static_cast<size_t>(keep); i < all.size(); ++i) fs::remove(all[i]);
+}
+
+int removeTemporaryFiles(const std::string& dir) {
+  static const std::regex temporary(R"(.*\.tmp\d+)");
+  std::vector<fs::path> leftovers;
+  for (const fs::directory_entry& e : fs::recursive_directory_iterator(dir))
+    if (e.is_regular_file() && std::regex_match(e.path().filename().string(), temporary)) leftovers.push_back(e.path());
+  for (const fs::path& p : leftovers) fs::remove(p);
+  return static_cast<int>(leftovers.size());
+}
+
+}  // namespace anode

@@ -1,0 +1,40 @@
+// Checkpoints (UINTAH_UPS.md §2.3): <checkpoint cycle="N" interval="T"/> (or timestepInterval="S")
+// inside <DataArchiver> writes the state a step starts from to DIR/checkpoints/step_NNNNNN.ckpt
+// at the first step whose time reaches each multiple of T (or every S steps), keeping the newest
+// N. Each file is written under a temporary name, ends with a hash of its bytes and is renamed
+// into place; older ones are removed only after that. `sus -restart DIR` continues from the
+// newest complete one (DESIGN.md §6).
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "Core/ProblemSpec/ProblemSpec.h"
+
+namespace anode {
+
+struct CheckpointSchedule {
+  int cycle = 0;                   // checkpoints kept; 0: none written
+  std::optional<double> interval;  // simulation time between checkpoints
+  long stepInterval = 0;           // steps between checkpoints
+
+  // Reads <checkpoint> of the <DataArchiver> block if there is one.
+  static CheckpointSchedule fromInput(const PSNode& archiver);
+  bool enabled() const { return cycle > 0; }
+  // True if the step that ended at `time` (number `step`) writes a checkpoint, the last one
+  // having been written at `lastTime` (the start time before the first).
+  bool isDue(long step, double time, double lastTime) const;
+};
+
+// DIR/checkpoints/step_NNNNNN.ckpt
+std::string checkpointPath(const std::string& dir, long step);
+// The checkpoints in DIR/checkpoints, newest (highest step) first.
+std::vector<std::string> listCheckpoints(const std::string& dir);
+// Removes all but the newest `keep` checkpoints.
+void removeOldCheckpoints(const std::string& dir, int keep);
+// Removes the temporary files a killed run left in DIR (names ending in .tmp<pid>); returns
+// how many.
+int removeTemporaryFiles(const std::string& dir);
+
+}  // namespace anode

@@ -1,0 +1,271 @@
+// Pins checkpoint/restart (StandAlone/Checkpoint.h): a run interrupted after a checkpoint and
+// continued with `sus -restart DIR` writes the same files as the uninterrupted run, bit for bit
+// with the same thread count; a damaged newest checkpoint is skipped for the one before; a run
+// killed with SIGKILL at any moment leaves every file under its final name complete, and can be
+// continued to the uninterrupted run's result.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <tinyxml2.h>
+#include <unistd.h>
+#include <vtkSmartPointer.h>
+#include <vtkUnstructuredGrid.h>
+#include <vtkXMLUnstructuredGridReader.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <regex>
+#include <sstream>
+#include <thread>
+
+#include "Core/Util/BinaryStream.h"
+#include "StandAlone/Checkpoint.h"
+
+namespace fs = std::filesystem;
+
+namespace anode {
+namespace {
+
+const std::string kSus = ANODE_SUS;
+const std::string kSource = ANODE_SOURCE_DIR;
+
+std::string readFile(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// A scratch directory for one test, removed at the end.
+struct Scratch {
+  fs::path dir;
+  explicit Scratch(const std::string& name) {
+    dir = fs::temp_directory_path() / ("anode_checkpoint_" + name + "_" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+  }
+  ~Scratch() { fs::remove_all(dir); }
+};
+
+int sus(const std::string& args, const fs::path& log) {
+  const std::string cmd = kSus + " --threads 2 " + args + " > " + log.string() + " 2>&1";
+  const int status = std::system(cmd.c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+// The input with <checkpoint> added to <DataArchiver> (when `checkpoint` is not empty).
+fs::path withCheckpoint(const std::string& input, const std::string& checkpoint, const fs::path& to) {
+  std::string text = readFile(input);
+  if (!checkpoint.empty()) {
+    const size_t end = text.find("</DataArchiver>");
+    EXPECT_NE(end, std::string::npos);
+    text.insert(end, checkpoint);
+  }
+  std::ofstream(to) << text;
+  return to;
+}
+
+// history.csv without its last column (wall seconds, which differ run to run).
+std::string historyWithoutWallTime(const fs::path& dir) {
+  std::istringstream in(readFile(dir / "history.csv"));
+  std::string line, out;
+  while (std::getline(in, line)) out += line.substr(0, line.rfind(',')) + "\n";
+  return out;
+}
+
+// Every output file (all but checkpoints and history.csv) has the same bytes in both runs, and
+// history.csv the same rows but for the wall time.
+void expectSameOutputs(const fs::path& a, const fs::path& b) {
+  std::vector<std::string> files;
+  for (const auto& e : fs::recursive_directory_iterator(a)) {
+    const std::string rel = fs::relative(e.path(), a).string();
+    if (e.is_regular_file() && rel.rfind("checkpoints", 0) != 0 && rel != "history.csv") files.push_back(rel);
+  }
+  for (const auto& e : fs::recursive_directory_iterator(b)) {
+    const std::string rel = fs::relative(e.path(), b).string();
+    if (e.is_regular_file() && rel.rfind("checkpoints", 0) != 0 && rel != "history.csv") {
+      EXPECT_TRUE(fs::exists(a / rel)) << rel << " only in the restarted run";
+    }
+  }
+  ASSERT_GT(files.size(), 3u);
+  for (const std::string& f : files) {
+    ASSERT_TRUE(fs::exists(b / f)) << f << " missing in the restarted run";
+    EXPECT_TRUE(readFile(a / f) == readFile(b / f)) << f << " differs";
+  }
+  EXPECT_EQ(historyWithoutWallTime(a), historyWithoutWallTime(b));
+}
+
+struct RestartCase {
+  std::string name, input, checkpoint;  // checkpoint: element to add ("" if the input has one)
+  long interruptAt;                      // steps of the interrupted run
+  std::string stepsFlag;                 // e.g. "--max-timesteps 150" for both runs
+};
+
+void PrintTo(const RestartCase& c, std::ostream* os) { *os << c.name; }
+
+class Restart : public testing::TestWithParam<RestartCase> {};
+
+TEST_P(Restart, ContinuesBitForBit) {
+  const RestartCase& c = GetParam();
+  if (!fs::exists(c.input)) GTEST_SKIP() << "input not present: " << c.input;
+  Scratch s(c.name);
+  const fs::path input = withCheckpoint(c.input, c.checkpoint, s.dir / "input.ups");
+  ASSERT_EQ(sus(c.stepsFlag + " -o " + (s.dir / "whole").string() + " " + input.string(), s.dir / "whole.log"), 0)
+      << readFile(s.dir / "whole.log");
+  ASSERT_EQ(sus("--max-timesteps " + std::to_string(c.interruptAt) + " -o " + (s.dir / "parts").string() + " " +
+                    input.string(), s.dir / "first.log"), 0);
+  const std::vector<std::string> checkpoints = listCheckpoints((s.dir / "parts").string());
+  ASSERT_FALSE(checkpoints.empty()) << "the interrupted run wrote no checkpoint";
+  ASSERT_EQ(sus("-restart " + (s.dir / "parts").string() + " " + c.stepsFlag, s.dir / "second.log"), 0)
+      << readFile(s.dir / "second.log");
+  EXPECT_NE(readFile(s.dir / "second.log").find("restarting from " + checkpoints.front()), std::string::npos)
+      << readFile(s.dir / "second.log");
+  expectSameOutputs(s.dir / "whole", s.dir / "parts");
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Inputs, Restart,
+    testing::Values(
+        // 3-D CPDI pillar: flux BCs, non_linear1 with pressure, plasticity, a rendered scene.
+        RestartCase{"pillar", kSource + "/inputs/Pillar/PillarLithiation.ups",
+                    "<checkpoint cycle=\"2\" timestepInterval=\"40\"/>", 100, "--max-timesteps 150"},
+        // Uintah's 2-D pillar, unmodified (its own <checkpoint interval>): particle splitting.
+        RestartCase{"nanopillar2d", kSource + "/../shared/inputs/uintah/NanoPillar2D_FBC_Sym.ups", "", 500, ""},
+        // Auto-cycled flux, checkpoint after the first flip.
+        RestartCase{"autocycle", kSource + "/tests/checkpoint/AutoCycleSlab.ups", "", 1000, ""}),
+    [](const testing::TestParamInfo<RestartCase>& info) { return info.param.name; });
+
+TEST(Restart, SkipsADamagedNewestCheckpoint) {
+  Scratch s("damaged");
+  const std::string input = kSource + "/tests/checkpoint/AutoCycleSlab.ups";
+  ASSERT_EQ(sus("-o " + (s.dir / "whole").string() + " " + input, s.dir / "whole.log"), 0);
+  ASSERT_EQ(sus("--max-timesteps 1000 -o " + (s.dir / "parts").string() + " " + input, s.dir / "first.log"), 0);
+  const std::vector<std::string> checkpoints = listCheckpoints((s.dir / "parts").string());
+  ASSERT_EQ(checkpoints.size(), 2u);  // steps 900 and 600, cycle = 2
+  EXPECT_TRUE(hasIntactHash(checkpoints[0]));
+  fs::resize_file(checkpoints[0], fs::file_size(checkpoints[0]) / 2);
+  EXPECT_FALSE(hasIntactHash(checkpoints[0]));
+  ASSERT_EQ(sus("-restart " + (s.dir / "parts").string(), s.dir / "second.log"), 0) << readFile(s.dir / "second.log");
+  const std::string log = readFile(s.dir / "second.log");
+  EXPECT_NE(log.find("skipping " + checkpoints[0]), std::string::npos) << log;
+  EXPECT_NE(log.find("restarting from " + checkpoints[1]), std::string::npos) << log;
+  expectSameOutputs(s.dir / "whole", s.dir / "parts");
+}
+
+TEST(Restart, WithoutACheckpointIsAnError) {
+  Scratch s("none");
+  ASSERT_EQ(sus("--max-timesteps 3 -o " + (s.dir / "run").string() + " " + kSource + "/inputs/Pillar/PillarImpact.ups",
+                s.dir / "run.log"), 0);
+  EXPECT_EQ(sus("-restart " + (s.dir / "run").string(), s.dir / "restart.log"), 1);
+  EXPECT_NE(readFile(s.dir / "restart.log").find("no checkpoint in"), std::string::npos) << readFile(s.dir / "restart.log");
+}
+
+// Every file under its final name is complete: VTU files read with all particles, .pvd files
+// parse and list existing files, history.csv rows are whole, checkpoints carry their hash, PNGs
+// end with their IEND chunk.
+void expectEveryFileComplete(const fs::path& dir, long particles) {
+  static const std::regex temporary(R"(.*\.tmp\d+)");
+  for (const auto& e : fs::recursive_directory_iterator(dir)) {
+    if (!e.is_regular_file()) continue;
+    const fs::path& p = e.path();
+    const std::string name = p.filename().string();
+    if (std::regex_match(name, temporary)) continue;  // not a final name: removed on restart
+    if (p.extension() == ".vtu") {
+      auto reader = vtkSmartPointer<vtkXMLUnstructuredGridReader>::New();
+      reader->SetFileName(p.c_str());
+      reader->Update();
+      EXPECT_EQ(reader->GetOutput()->GetNumberOfPoints(), particles) << p;
+    } else if (p.extension() == ".pvd") {
+      tinyxml2::XMLDocument doc;
+      ASSERT_EQ(doc.LoadFile(p.c_str()), tinyxml2::XML_SUCCESS) << p;
+      const tinyxml2::XMLElement* collection = doc.RootElement()->FirstChildElement("Collection");
+      ASSERT_NE(collection, nullptr) << p;
+      for (const auto* d = collection->FirstChildElement("DataSet"); d; d = d->NextSiblingElement("DataSet"))
+        EXPECT_TRUE(fs::exists(dir / d->Attribute("file"))) << d->Attribute("file");
+    } else if (name == "history.csv") {
+      std::istringstream in(readFile(p));
+      std::string header, line;
+      std::getline(in, header);
+      const auto columns = std::count(header.begin(), header.end(), ',');
+      while (std::getline(in, line)) EXPECT_EQ(std::count(line.begin(), line.end(), ','), columns) << line;
+    } else if (p.extension() == ".ckpt") {
+      EXPECT_TRUE(hasIntactHash(p.string())) << p;
+    } else if (p.extension() == ".png") {
+      const std::string png = readFile(p);
+      EXPECT_TRUE(png.size() > 12 && png.compare(png.size() - 8, 4, "IEND") == 0) << p;
+    }
+  }
+}
+
+// Starts sus with `args` and kills it with SIGKILL after `delay`.
+void runAndKill(const std::vector<std::string>& args, std::chrono::milliseconds delay, const fs::path& log) {
+  const pid_t pid = fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    std::vector<char*> argv{const_cast<char*>(kSus.c_str())};
+    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    FILE* out = std::freopen(log.c_str(), "w", stderr);
+    (void)out;
+    execv(kSus.c_str(), argv.data());
+    _exit(127);
+  }
+  std::this_thread::sleep_for(delay);
+  kill(pid, SIGKILL);
+  int status = 0;
+  waitpid(pid, &status, 0);
+}
+
+// Kills: 5 by default; ANODE_KILLS=N for a longer study (docs/stability.md).
+int numberOfKills() {
+  const char* n = std::getenv("ANODE_KILLS");
+  return n ? std::max(1, std::atoi(n)) : 5;
+}
+
+int temporaryFiles(const fs::path& dir) {
+  static const std::regex temporary(R"(.*\.tmp\d+)");
+  int n = 0;
+  for (const auto& e : fs::recursive_directory_iterator(dir))
+    if (std::regex_match(e.path().filename().string(), temporary)) ++n;
+  return n;
+}
+
+TEST(Restart, KilledRunsLeaveCompleteFilesAndContinueToTheSameResult) {
+  Scratch s("killed");
+  // Output, a picture and a checkpoint every few steps, so kills land during each kind of write.
+  std::string text = readFile(kSource + "/inputs/Pillar/PillarLithiation.ups");
+  text = std::regex_replace(text, std::regex("<outputInterval>[^<]*</outputInterval>"),
+                            "<outputTimestepInterval>7</outputTimestepInterval>");
+  text.insert(text.find("</DataArchiver>"), "<checkpoint cycle=\"3\" timestepInterval=\"5\"/>");
+  const fs::path input = s.dir / "input.ups";
+  std::ofstream(input) << text;
+  ASSERT_EQ(sus("--max-timesteps 120 -o " + (s.dir / "whole").string() + " " + input.string(), s.dir / "whole.log"), 0)
+      << readFile(s.dir / "whole.log");
+  const std::string run = (s.dir / "killed").string();
+  std::mt19937 random(1);
+  std::uniform_int_distribution<int> delay(250, 1200);  // ms: from setup to a few outputs in
+  const int kills = numberOfKills();
+  int duringWrites = 0;
+  for (int k = 0; k < kills; ++k) {
+    const bool resume = !listCheckpoints(run).empty();
+    const std::vector<std::string> args =
+        resume ? std::vector<std::string>{"--threads", "2", "--max-timesteps", "120", "-restart", run}
+               : std::vector<std::string>{"--threads", "2", "--max-timesteps", "120", "-o", run, input.string()};
+    runAndKill(args, std::chrono::milliseconds(delay(random)), s.dir / "kill.log");
+    if (temporaryFiles(run) > 0) ++duringWrites;
+    expectEveryFileComplete(run, 12660);
+    if (testing::Test::HasFailure()) break;
+  }
+  std::printf("%d kills, %d of them during a write (a temporary file left behind)\n", kills, duringWrites);
+  ASSERT_FALSE(listCheckpoints(run).empty()) << "no checkpoint written before the kills";
+  ASSERT_EQ(sus("--max-timesteps 120 -restart " + run, s.dir / "last.log"), 0) << readFile(s.dir / "last.log");
+  expectEveryFileComplete(run, 12660);
+  expectSameOutputs(s.dir / "whole", run);
+}
+
+}  // namespace
+}  // namespace anode
