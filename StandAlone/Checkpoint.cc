@@ -54,21 +54,23 @@ bool CheckpointSchedule::isDue(long step, double time, double lastTime) const {
   return time >= next * (1 - 1e-12);
 }
 
-std::string checkpointPath(const std::string& dir, long step) {
-  std::ostringstream name;
-  name << "step_" << std::setw(6) << std::setfill('0') << step << ".ckpt";
-  return (fs::path(dir) / "checkpoints" / name.str()).string();
+namespace {
+
+const std::regex& checkpointName() {
+  static const std::regex name(R"((auto_)?step_(\d+)\.ckpt)");
+  return name;
 }
 
-std::vector<std::string> listCheckpoints(const std::string& dir) {
+// Checkpoints of the kinds asked for, newest first.
+std::vector<std::string> checkpoints(const std::string& dir, bool scheduled, bool automatic) {
   std::vector<std::pair<long, std::string>> found;
   const fs::path folder = fs::path(dir) / "checkpoints";
   if (!fs::is_directory(folder)) return {};
-  static const std::regex name(R"(step_(\d+)\.ckpt)");
   for (const fs::directory_entry& e : fs::directory_iterator(folder)) {
     std::smatch m;
     const std::string file = e.path().filename().string();
-    if (std::regex_match(file, m, name)) found.emplace_back(std::stol(m[1].str()), e.path().string());
+    if (!std::regex_match(file, m, checkpointName())) continue;
+    if (m[1].matched ? automatic : scheduled) found.emplace_back(std::stol(m[2].str()), e.path().string());
   }
   std::sort(found.begin(), found.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
   std::vector<std::string> paths;
@@ -76,9 +78,27 @@ std::vector<std::string> listCheckpoints(const std::string& dir) {
   return paths;
 }
 
-void removeOldCheckpoints(const std::string& dir, int keep) {
-  const std::vector<std::string> all = listCheckpoints(dir);
-  for (size_t i = static_cast<size_t>(keep); i < all.size(); ++i) fs::remove(all[i]);
+}  // namespace
+
+std::string checkpointPath(const std::string& dir, long step, CheckpointKind kind) {
+  std::ostringstream name;
+  name << (kind == CheckpointKind::Automatic ? "auto_" : "") << "step_" << std::setw(6) << std::setfill('0') << step
+       << ".ckpt";
+  return (fs::path(dir) / "checkpoints" / name.str()).string();
+}
+
+std::vector<std::string> listCheckpoints(const std::string& dir) { return checkpoints(dir, true, true); }
+
+void removeOldCheckpoints(const std::string& dir, CheckpointKind kind, int keep) {
+  const std::vector<std::string> all =
+      checkpoints(dir, kind == CheckpointKind::Scheduled, kind == CheckpointKind::Automatic);
+  for (size_t i = static_cast<size_t>(std::max(keep, 0)); i < all.size(); ++i) fs::remove(all[i]);
+}
+
+void removeAutomaticCheckpoints(const std::string& dir) {
+  removeOldCheckpoints(dir, CheckpointKind::Automatic, 0);
+  std::error_code notEmpty;
+  fs::remove(fs::path(dir) / "checkpoints", notEmpty);
 }
 
 int removeTemporaryFiles(const std::string& dir) {

@@ -27,12 +27,21 @@ struct CheckpointSchedule {
   bool isDue(long step, double time, double lastTime) const;
 };
 
-// DIR/checkpoints/step_NNNNNN.ckpt
-std::string checkpointPath(const std::string& dir, long step);
-// The checkpoints in DIR/checkpoints, newest (highest step) first.
+// Scheduled checkpoints are the input's <checkpoint>; the run also writes one of its own at the
+// start and every kReplayInterval seconds of wall time (an automatic one, at most one kept), so
+// that a run that stops can replay its last good state (Simulation::writeStateOnStop) and any
+// run can be restarted. Automatic ones are removed when the run ends.
+enum class CheckpointKind { Scheduled, Automatic };
+constexpr double kReplayInterval = 600;
+
+// DIR/checkpoints/step_NNNNNN.ckpt (scheduled) or auto_step_NNNNNN.ckpt (automatic)
+std::string checkpointPath(const std::string& dir, long step, CheckpointKind kind);
+// The checkpoints of both kinds in DIR/checkpoints, newest (highest step) first.
 std::vector<std::string> listCheckpoints(const std::string& dir);
-// Removes all but the newest `keep` checkpoints.
-void removeOldCheckpoints(const std::string& dir, int keep);
+// Removes all but the newest `keep` checkpoints of that kind.
+void removeOldCheckpoints(const std::string& dir, CheckpointKind kind, int keep);
+// At the end of a run: removes the automatic checkpoints, and DIR/checkpoints if that empties it.
+void removeAutomaticCheckpoints(const std::string& dir);
 // Removes the temporary files a killed run left in DIR (names ending in .tmp<pid>); returns
 // how many.
 int removeTemporaryFiles(const std::string& dir);

@@ -51,9 +51,13 @@ void Simulation::advance() {
     s << "step " << step_ + 1 << ", t = " << t_ + dt_ << ": " << e.what();
     throw SimulationError(s.str());
   }
+  particleSteps_ += static_cast<double>(mpm_.numParticles());
+  finishStep();
+}
+
+void Simulation::finishStep() {
   t_ += dt_;
   ++step_;
-  particleSteps_ += static_cast<double>(mpm_.numParticles());
   dt_ = time_.nextTimestep(mpm_.computeStableTimestep(), dt_, t_);
 }
 
@@ -66,12 +70,19 @@ void Simulation::run() {
     archiver_.reopen(options_.restartDir);
     removeTemporaryFiles(options_.restartDir);
     restartedFrom = loadNewestCheckpoint();
+    newestCheckpoint_ = restartedFrom;
     scenes_.skipTimesUpTo(t_);
   } else {
     archiver_.open(chooseOutputDirectory(options_.outputDir, archiver_.filebase()), options_.input);
   }
   const int outputTask = mpm_.timers().task("output");
-  const int snapshotTask = mpm_.timers().task("lastGoodState");
+  const int checkpointTask = mpm_.timers().task("checkpoint");
+  double lastAutomaticCheckpoint = 0;
+  auto checkpoint = [&](CheckpointKind kind) {
+    ScopedTimer timer(mpm_.timers(), checkpointTask);
+    writeCheckpoint(earlierWallSeconds_ + wall(), kind);
+    lastAutomaticCheckpoint = wall();
+  };
   auto summaryRow = [&](double stepDt) {
     const StepSummary s = mpm_.summarize();
     archiver_.recordHistory({step_, s.particles, t_, stepDt, s.kineticEnergy, s.minJ, s.maxJ,
@@ -83,9 +94,8 @@ void Simulation::run() {
   auto output = [&](bool afterStep) {
     ScopedTimer timer(mpm_.timers(), outputTask);
     if (archiver_.wantsGrid() && !afterStep) mpm_.interpolateToGridForOutput();
-    // Between steps the snapshot and the weights are not needed: the output's copy of the
-    // particles takes their memory instead of adding to the peak.
-    lastGood_.release();
+    // Between steps the weights are not needed: the output's copy of the particles takes their
+    // memory instead of adding to the peak.
     mpm_.releaseInterpolationWeights();
     archiver_.writeOutput(step_, t_, mpm_);
   };
@@ -98,6 +108,7 @@ void Simulation::run() {
     summaryRow(0.0);
     output(false);
     scenes_.renderDue(t_, mpm_, archiver_.directory());
+    checkpoint(CheckpointKind::Automatic);
   }
   ProgressReporter progress(time_.initTime, time_.maxTime, time_.maxTimesteps);
   const auto finished = [&] {
@@ -109,10 +120,6 @@ void Simulation::run() {
   if (nothingLeft && archiver_.lastOutputStep() != step_) output(false);
   while (!nothingLeft) {
     const double stepDt = dt_;
-    {
-      ScopedTimer timer(mpm_.timers(), snapshotTask);
-      lastGood_.save(mpm_);
-    }
     try {
       advance();
     } catch (const SimulationError&) {
@@ -125,28 +132,48 @@ void Simulation::run() {
     const bool done = finished();
     if (done || archiver_.isOutputStep(step_, t_)) output(true);
     scenes_.renderDue(t_, mpm_, archiver_.directory());
-    if (checkpoints_.isDue(step_, t_, lastCheckpointTime_)) {
-      ScopedTimer timer(mpm_.timers(), mpm_.timers().task("checkpoint"));
-      writeCheckpoint(earlierWallSeconds_ + wall());
-    }
+    if (checkpoints_.isDue(step_, t_, lastCheckpointTime_))
+      checkpoint(CheckpointKind::Scheduled);
+    else if (!done && wall() - lastAutomaticCheckpoint >= kReplayInterval)
+      checkpoint(CheckpointKind::Automatic);
     if (options_.progress) progress.update(step_, t_, stepDt, particleSteps_, done);
     if (done) break;
   }
   if (options_.progress) progress.finish();
+  removeAutomaticCheckpoints(archiver_.directory());
   wallSeconds_ = wall();
 }
 
 void Simulation::writeStateOnStop() {
   // The failing step's particles outside the .pvd series, then the last good state (the end of
-  // step_, saved before the failing step) as the series' last entry.
+  // step_) as the series' last entry.
   const std::string failed = archiver_.writeFailedState(step_ + 1, mpm_);
-  lastGood_.restore(mpm_);
+  replayToLastGoodState();
+  removeAutomaticCheckpoints(archiver_.directory());
   if (archiver_.lastOutputStep() != step_) {
     if (archiver_.wantsGrid()) mpm_.interpolateToGridForOutput();
     archiver_.writeOutput(step_, t_, mpm_);
   }
   std::fprintf(stderr, "sus: the last good state (step %ld, t = %.6e) is the last entry of %s/particles.pvd; "
                "the failing step's particles are in %s\n", step_, t_, archiver_.directory().c_str(), failed.c_str());
+}
+
+void Simulation::replayToLastGoodState() {
+  const long lastGood = step_;
+  loadCheckpoint(newestCheckpoint_, false);
+  if (step_ < lastGood)
+    std::fprintf(stderr, "sus: replaying steps %ld to %ld from %s for the last good state\n", step_ + 1, lastGood,
+                 newestCheckpoint_.c_str());
+  while (step_ < lastGood) {
+    mpm_.timeAdvance(t_, dt_);
+    finishStep();
+  }
+  // The replayed state must be the one the run had: its history row says what it was.
+  const StepSummary s = mpm_.summarize();
+  const HistoryRow& row = archiver_.history().back();
+  if (row.step != step_ || row.kineticEnergy != s.kineticEnergy || row.totalLithium != s.totalLithium)
+    std::fprintf(stderr, "warning: the replayed step %ld differs from the run's (kinetic energy %.17g, not %.17g)\n",
+                 step_, s.kineticEnergy, row.kineticEnergy);
 }
 
 namespace {
@@ -164,11 +191,12 @@ uint64_t fileHash(const std::string& path) {
 
 }  // namespace
 
-void Simulation::writeCheckpoint(double wallSeconds) {
+void Simulation::writeCheckpoint(double wallSeconds, CheckpointKind kind) {
   const std::string dir = archiver_.directory();
   std::filesystem::create_directories(std::filesystem::path(dir) / "checkpoints");
-  lastCheckpointTime_ = t_;
-  writeAtomically(checkpointPath(dir, step_), [&](const std::string& tmp) {
+  if (kind == CheckpointKind::Scheduled) lastCheckpointTime_ = t_;
+  newestCheckpoint_ = checkpointPath(dir, step_, kind);
+  writeAtomically(newestCheckpoint_, [&](const std::string& tmp) {
     BinaryWriter out(tmp);
     out.string(kCheckpointMagic);
     out.value(kCheckpointVersion);
@@ -184,10 +212,15 @@ void Simulation::writeCheckpoint(double wallSeconds) {
     mpm_.saveState(out);
     out.finish();
   });
-  removeOldCheckpoints(dir, checkpoints_.cycle);
+  if (kind == CheckpointKind::Scheduled) {
+    removeOldCheckpoints(dir, kind, checkpoints_.cycle);
+    removeOldCheckpoints(dir, CheckpointKind::Automatic, 0);  // the scheduled one is newer
+  } else {
+    removeOldCheckpoints(dir, kind, 1);
+  }
 }
 
-void Simulation::loadCheckpoint(const std::string& path) {
+void Simulation::loadCheckpoint(const std::string& path, bool outputs) {
   BinaryReader in(path);
   if (in.string() != kCheckpointMagic) throw std::runtime_error(path + ": not a checkpoint of this code");
   const auto version = in.value<uint32_t>();
@@ -202,7 +235,12 @@ void Simulation::loadCheckpoint(const std::string& path) {
   particleSteps_ = in.value<double>();
   earlierWallSeconds_ = in.value<double>();
   lastCheckpointTime_ = in.value<double>();
-  archiver_.loadState(in);
+  if (outputs) {
+    archiver_.loadState(in);
+  } else {
+    DataArchiver unused = archiver_;
+    unused.loadState(in);
+  }
   mpm_.loadState(in);
   in.finish();
   if (inputHash != fileHash(options_.input))
@@ -225,7 +263,7 @@ std::string Simulation::loadNewestCheckpoint() {
       continue;
     }
     try {
-      loadCheckpoint(path);
+      loadCheckpoint(path, true);
       archiver_.removeOutputsAfter(step_);
       archiver_.writeIndexFiles();
       return path;

@@ -46,14 +46,20 @@ class Simulation {
 
  private:
   void setup();
+  // The end of a step: time, step count and the next dt.
+  void finishStep();
   // After a failed step: writes its particles and the last good state (DESIGN.md §8).
   void writeStateOnStop();
-  // Writes the state after step_ to a checkpoint (Checkpoint.h) and drops the oldest.
-  void writeCheckpoint(double wallSeconds);
+  // Brings the state back to the end of step_ (the last good one) by loading the newest
+  // checkpoint and taking the same steps again (they are deterministic).
+  void replayToLastGoodState();
+  // Writes the state after step_ to a checkpoint (Checkpoint.h) and drops the oldest of its kind.
+  void writeCheckpoint(double wallSeconds, CheckpointKind kind);
   // Loads the newest complete checkpoint of the restart directory; returns its path.
   std::string loadNewestCheckpoint();
-  // Reads one checkpoint (everything writeCheckpoint wrote); throws std::runtime_error.
-  void loadCheckpoint(const std::string& path);
+  // Reads one checkpoint (everything writeCheckpoint wrote; the output series and history only
+  // if `outputs`); throws std::runtime_error.
+  void loadCheckpoint(const std::string& path, bool outputs);
 
   RunOptions options_;
   std::unique_ptr<ProblemSpec> spec_;
@@ -62,8 +68,8 @@ class Simulation {
   DataArchiver archiver_;
   SceneOutput scenes_;
   StateChecks checks_;
-  ParticleSnapshot lastGood_;  // the particles at the start of the running step (run() only)
   CheckpointSchedule checkpoints_;
+  std::string newestCheckpoint_;  // of either kind: where a replay to the last good state starts
   double t_ = 0, dt_ = 0;
   long step_ = 0;
   double particleSteps_ = 0, wallSeconds_ = 0;

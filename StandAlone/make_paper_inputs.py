@@ -164,6 +164,7 @@ def scenario(s):
     <save label="p.stress"/>
     <save label="p.plasticStrain"/>
     <save label="p.displacement"/>
+    <checkpoint cycle="2" interval="%g"/>
   </DataArchiver>
   <MPM>
     <interpolator>cpdi</interpolator>
@@ -206,7 +207,7 @@ def scenario(s):
   </Grid>
 </Uintah_specification>
 """ % (s["title"], s["section"], s["notes"], s["title"], s["maxTime"], steps, s["name"], s["maxTime"] / 20,
-       pillar, substrate, contact, flux_blocks, -L, -L, L, L, p["top"], cells[0], cells[1], cells[2])
+       s["maxTime"] / 40, pillar, substrate, contact, flux_blocks, -L, -L, L, L, p["top"], cells[0], cells[1], cells[2])
     with open(os.path.join(OUT, s["name"] + ".ups"), "w") as f:
         f.write(text)
 

@@ -164,6 +164,36 @@ TEST(Restart, WithoutACheckpointIsAnError) {
   EXPECT_NE(readFile(s.dir / "restart.log").find("no checkpoint in"), std::string::npos) << readFile(s.dir / "restart.log");
 }
 
+// A run stopped by a diagnostic (exit 3) writes the last good state by replaying from its newest
+// checkpoint: the automatic one at the start, or a scheduled one. That state is the one a run
+// ending normally at the same step writes, byte for byte.
+TEST(Restart, StoppedRunReplaysItsLastGoodState) {
+  const std::string unstable = kSource + "/inputs/Stability/Multiplier_0.8.ups";  // stops at step 33
+  for (const std::string& schedule : {std::string(), std::string("<checkpoint cycle=\"1\" timestepInterval=\"10\"/>")}) {
+    Scratch s(schedule.empty() ? "replay_auto" : "replay_scheduled");
+    const fs::path input = withCheckpoint(unstable, schedule, s.dir / "input.ups");
+    ASSERT_EQ(sus("-o " + (s.dir / "stopped").string() + " " + input.string(), s.dir / "stopped.log"), 3);
+    const std::string log = readFile(s.dir / "stopped.log");
+    const std::smatch m = [&] {
+      std::smatch found;
+      std::regex_search(log, found, std::regex(R"(last good state \(step (\d+),)"));
+      return found;
+    }();
+    ASSERT_FALSE(m.empty()) << log;
+    const long lastGood = std::stol(m[1].str());
+    EXPECT_NE(log.find(schedule.empty() ? "auto_step_000000.ckpt" : "step_000030.ckpt"), std::string::npos) << log;
+    EXPECT_EQ(log.find("warning"), std::string::npos) << log;
+    ASSERT_EQ(sus("--max-timesteps " + std::to_string(lastGood) + " -o " + (s.dir / "ended").string() + " " +
+                      input.string(), s.dir / "ended.log"), 0);
+    char name[64];
+    std::snprintf(name, sizeof name, "particles/step_%06ld.vtu", lastGood);
+    ASSERT_TRUE(fs::exists(s.dir / "stopped" / name)) << name;
+    EXPECT_TRUE(readFile(s.dir / "stopped" / name) == readFile(s.dir / "ended" / name)) << name;
+    // Automatic checkpoints do not outlive the run; scheduled ones stay.
+    EXPECT_EQ(fs::exists(s.dir / "stopped" / "checkpoints"), !schedule.empty());
+  }
+}
+
 // Every file under its final name is complete: VTU files read with all particles, .pvd files
 // parse and list existing files, history.csv rows are whole, checkpoints carry their hash, PNGs
 // end with their IEND chunk.
@@ -236,11 +266,12 @@ int temporaryFiles(const fs::path& dir) {
 
 TEST(Restart, KilledRunsLeaveCompleteFilesAndContinueToTheSameResult) {
   Scratch s("killed");
-  // Output, a picture and a checkpoint every few steps, so kills land during each kind of write.
+  // Output every 2 steps and a checkpoint every 3 (and pictures), so that kills often land during
+  // a write.
   std::string text = readFile(kSource + "/inputs/Pillar/PillarLithiation.ups");
   text = std::regex_replace(text, std::regex("<outputInterval>[^<]*</outputInterval>"),
-                            "<outputTimestepInterval>7</outputTimestepInterval>");
-  text.insert(text.find("</DataArchiver>"), "<checkpoint cycle=\"3\" timestepInterval=\"5\"/>");
+                            "<outputTimestepInterval>2</outputTimestepInterval>");
+  text.insert(text.find("</DataArchiver>"), "<checkpoint cycle=\"3\" timestepInterval=\"3\"/>");
   const fs::path input = s.dir / "input.ups";
   std::ofstream(input) << text;
   ASSERT_EQ(sus("--max-timesteps 120 -o " + (s.dir / "whole").string() + " " + input.string(), s.dir / "whole.log"), 0)

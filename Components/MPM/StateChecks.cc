@@ -194,42 +194,4 @@ void StateChecks::checkKineticEnergy(const MPM& mpm, double energy) {
   throw SimulationError(s.str());
 }
 
-namespace {
-
-// Calls f(a's array, b's array) for every array a step changes when no particle splits; the
-// others (ID, mass, size, flux-face ids and areas) change only in splitting.
-template <class A, class B, class F>
-void eachArrayAStepChanges(A& a, B& b, F f) {
-  f(a.x, b.x), f(a.velocity, b.velocity), f(a.displacement, b.displacement), f(a.volume, b.volume), f(a.F, b.F);
-  f(a.stress, b.stress), f(a.plasticStrain, b.plasticStrain), f(a.plasticStrainRate, b.plasticStrainRate);
-  f(a.concentration, b.concentration), f(a.concentrationGradient, b.concentrationGradient);
-  f(a.diffusivity, b.diffusivity), f(a.externalScalarFlux, b.externalScalarFlux);
-}
-
-}  // namespace
-
-void ParticleSnapshot::save(const MPM& mpm) {
-  const auto& materials = mpm.materials();
-  sets_.resize(materials.size());
-  // Copy-assignment keeps each array's storage: no allocation while the counts stay put.
-  for (size_t m = 0; m < materials.size(); ++m) {
-    const ParticleSet& current = materials[m].particles;
-    if (!current.refined.empty())
-      sets_[m] = current;
-    else
-      eachArrayAStepChanges(sets_[m], current, [](auto& copy, const auto& array) { copy = array; });
-  }
-}
-
-void ParticleSnapshot::restore(MPM& mpm) {
-  auto& materials = mpm.materials();
-  for (size_t m = 0; m < materials.size() && m < sets_.size(); ++m) {
-    ParticleSet& current = materials[m].particles;
-    if (!current.refined.empty())
-      std::swap(current, sets_[m]);
-    else
-      eachArrayAStepChanges(current, sets_[m], [](auto& array, auto& copy) { std::swap(array, copy); });
-  }
-}
-
 }  // namespace anode

@@ -65,20 +65,4 @@ class StateChecks {
   double energyBeforeGrowth_ = 0;
 };
 
-// The particles at the start of a step, so a run that stops can write the last good state.
-// A copy of every particle array a step changes (all of them with particle splitting; no
-// allocation once the count is stable): about 300 bytes per particle and a few per cent of a
-// step's time (docs/stability.md).
-class ParticleSnapshot {
- public:
-  void save(const MPM& mpm);
-  // Puts the saved particles back.
-  void restore(MPM& mpm);
-  // Frees the copy once the step it guarded has succeeded, so output can use the memory.
-  void release() { sets_ = {}; }
-
- private:
-  std::vector<ParticleSet> sets_;
-};
-
 }  // namespace anode
