@@ -1,6 +1,8 @@
 #include "StandAlone/TimeControl.h"
 
 #include <algorithm>
+#include <cstdio>
+#include <string>
 
 namespace anode {
 
@@ -15,8 +17,16 @@ TimeControl TimeControl::fromInput(const PSNode& time) {
   if (!(tc.deltMax > 0)) time.requireChild("delt_max").fail("<delt_max> must be positive");
   if (tc.deltMin > tc.deltMax) time.requireChild("delt_min").fail("<delt_min> exceeds <delt_max>");
   tc.multiplier = time.require<double>("timestep_multiplier");
-  if (!(tc.multiplier > 0))
-    time.requireChild("timestep_multiplier").fail("<timestep_multiplier> must be positive");
+  if (!(tc.multiplier > 0 && tc.multiplier <= 1)) {
+    char found[32];
+    std::snprintf(found, sizeof found, "%g", tc.multiplier);
+    time.requireChild("timestep_multiplier")
+        .fail(
+            "<timestep_multiplier> must be in (0, 1]: found " + std::string(found) +
+            "; dt = multiplier x the stable time step (Eqs. 43-44), and a dt beyond the stable one "
+            "makes the explicit update unstable (in 2-D and 3-D already above about 0.75, "
+            "docs/stability.md)");
+  }
   tc.maxTimesteps = time.get<int>("max_Timesteps", 0);
   if (tc.maxTimesteps < 0) time.requireChild("max_Timesteps").fail("<max_Timesteps> must be >= 0");
   tc.maxDeltIncrease = time.get<double>("max_delt_increase", 0.0);

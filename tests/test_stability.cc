@@ -1,7 +1,8 @@
 // The stiff and extreme cases in inputs/Stability (docs/stability.md), each a run of seconds: each
-// runs through sus as it is and either completes with bounded energy and c in range, or stops with exit code 3
-// and the expected diagnostic, having written the last good state. Also unit checks of the
-// instability diagnostics (StateChecks) on states made bad on purpose.
+// runs through sus as it is and either completes with bounded energy and c in range, stops with
+// exit code 3 and the expected diagnostic, having written the last good state, or is refused at
+// setup (exit code 2, file:line: message, nothing written). Also unit checks of the instability
+// diagnostics (StateChecks) on states made bad on purpose.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -83,8 +84,9 @@ double column(const std::vector<std::map<std::string, double>>& h, const std::st
 
 struct Expectation {
   long endStep;            // the step a completed run ends at (its max_Timesteps; 0: maxTime ends it)
-  int exitCode;            // 0 or 3
-  std::string message;     // exit 3: a regular expression the diagnostic matches
+  int exitCode;            // 0, 2 or 3
+  std::string message;     // exit 3 or 2: a regular expression the diagnostic matches (exit 2:
+                           // it starts with the tag whose line the error names)
   long stopStep;           // exit 3: the step it stops at (within +-2)
   std::function<void(const std::vector<std::map<std::string, double>>&)> check;  // on history.csv
 };
@@ -145,7 +147,8 @@ const std::map<std::string, Expectation>& expectations() {
          // Stopped before the oscillation shows in the energy: the last good state is still close.
          EXPECT_LT(column(h, "kinetic_energy", true), 2 * h.front().at("kinetic_energy"));
        }}},
-      {"Multiplier_1.5", {0, 3, "the particle velocities oscillate with growing amplitude", 5, nullptr}},
+      {"Multiplier_1.5",
+       {0, 2, "<timestep_multiplier> must be in \\(0, 1\\]: found 1\\.5; .*beyond the stable one", 0, nullptr}},
       {"Multiplier_diffusion_0.5", {1000, 0, "", 0, [](const auto& h) {
          EXPECT_GE(column(h, "min_c", false), 0.5 - 1e-9);
          EXPECT_LE(column(h, "max_c", true), 0.6);
@@ -205,8 +208,28 @@ TEST_P(StabilityCase, QuickVersionEndsAsExpected) {
   const auto it = expectations().find(GetParam());
   ASSERT_NE(it, expectations().end()) << GetParam() << ".ups has no expectation in test_stability.cc";
   const Expectation& e = it->second;
-  const SusRun r = runSus(kDir + "/" + GetParam() + ".ups");
+  const std::string input = kDir + "/" + GetParam() + ".ups";
+  const SusRun r = runSus(input);
   ASSERT_EQ(r.exitCode, e.exitCode) << r.output;
+  if (e.exitCode == 2) {
+    // Refused at setup: file:line: message, the line of the tag the message starts with, and
+    // nothing written.
+    const std::string tag = e.message.substr(0, e.message.find('>') + 1);
+    std::ifstream in(input);
+    int line = 0, tagLine = 0;
+    for (std::string text; tagLine == 0 && std::getline(in, text);) {
+      ++line;
+      const size_t p = text.find(tag);
+      if (p != std::string::npos && p == text.find_first_not_of(' ')) tagLine = line;
+    }
+    const std::string where = input + ":" + std::to_string(tagLine) + ": ";
+    const size_t at = r.output.find(where);
+    ASSERT_NE(at, std::string::npos) << "expected '" << where << "' in\n" << r.output;
+    EXPECT_TRUE(std::regex_search(r.output.substr(at + where.size()), std::regex("^" + e.message)))
+        << "expected /" << e.message << "/ after '" << where << "' in\n" << r.output;
+    EXPECT_FALSE(fs::exists(r.dir)) << r.output;
+    return;
+  }
   const auto history = readHistory(r.dir / "history.csv");
   ASSERT_GE(history.size(), 2u) << r.output;
   for (const auto& row : history) ASSERT_TRUE(std::isfinite(row.at("kinetic_energy"))) << r.output;

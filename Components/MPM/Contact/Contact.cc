@@ -1,6 +1,7 @@
 #include "Components/MPM/Contact/Contact.h"
 
 #include <algorithm>
+#include <string>
 
 namespace anode {
 
@@ -12,20 +13,30 @@ Contact Contact::fromInput(const PSNode& mpmMaterials, int numMaterials) {
   if (blocks.empty()) return c;
   const PSNode contact = blocks[0];
   const std::string type = contact.get<std::string>("type", "null");
+  if (type != "null" && type != "single_velocity")
+    contact.requireChild("type").fail("contact type \"" + type +
+                                      "\" is not supported; accepted: null, single_velocity");
+  const std::string existing = ", but there are " + std::to_string(numMaterials) +
+                               " material(s), indices 0 to " + std::to_string(numMaterials - 1);
   if (const PSNode list = contact.child("materials")) {
     c.materials.clear();
     for (int m : list.value<std::vector<int>>()) {
-      // Uintah's inputs list [0,1] even for one material; indices beyond the materials are inert.
       if (m < 0) list.fail("<materials> holds a negative material index");
-      if (m < numMaterials) c.materials.push_back(m);
+      if (m < numMaterials) {
+        c.materials.push_back(m);
+        continue;
+      }
+      // Uintah's own inputs list [0,1] with one material under null contact, which acts on none.
+      if (type != "null") list.fail("<materials> names material " + std::to_string(m) + existing);
     }
   }
   if (type == "null") return c;
-  if (type != "single_velocity")
-    contact.requireChild("type").fail("contact type \"" + type + "\" is not supported; accepted: null, single_velocity");
   c.type = Type::SingleVelocity;
   c.exchangeInterpolated = contact.get<int>("OneOrTwoStep", 2) == 2;
   const int exclude = contact.get<int>("ExcludeMaterial", -999);
+  if (exclude != -999 && (exclude < 0 || exclude >= numMaterials))
+    contact.requireChild("ExcludeMaterial")
+        .fail("<ExcludeMaterial> names material " + std::to_string(exclude) + existing);
   if (exclude != -999) c.materials.erase(std::remove(c.materials.begin(), c.materials.end(), exclude), c.materials.end());
   return c;
 }
