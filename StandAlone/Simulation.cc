@@ -179,7 +179,7 @@ void Simulation::replayToLastGoodState() {
 namespace {
 
 constexpr char kCheckpointMagic[] = "anode-mpm checkpoint";
-constexpr uint32_t kCheckpointVersion = 1;
+constexpr uint32_t kCheckpointVersion = 2;
 
 uint64_t fileHash(const std::string& path) {
   std::ifstream in(path, std::ios::binary);

@@ -149,6 +149,7 @@ TEST(Swelling, RigidRotationKeepsTheStressInvariants) {
   const RFElasticPlastic model(K, G, flow, eta);
   const double dt = 1e-3, dc = 2e-4;
   Mat3 sA = Mat3::Zero(), sB = Mat3::Zero(), FA = Mat3::Identity(), FB = Mat3::Identity();
+  Mat3 RA = Mat3::Identity(), RB = Mat3::Identity();
   double epA = 0, epB = 0, rA = 0, rB = 0;
   const Vec3 axis = Vec3(0.3, -1, 0.5).normalized();
   for (int n = 1; n <= 400; ++n) {
@@ -157,8 +158,8 @@ TEST(Swelling, RigidRotationKeepsTheStressInvariants) {
     const Mat3 FAn = U, FBn = Q * U;
     const Mat3 LA = (FAn - FA) / dt * (0.5 * (FAn + FA)).inverse();
     const Mat3 LB = (FBn - FB) / dt * (0.5 * (FBn + FB)).inverse();
-    sA = model.updateStress(sA, FA, FAn, LA, dc, dt, epA, rA);
-    sB = model.updateStress(sB, FB, FBn, LB, dc, dt, epB, rB);
+    sA = model.updateStress(sA, RA, FAn, LA, dc, dt, epA, rA);
+    sB = model.updateStress(sB, RB, FBn, LB, dc, dt, epB, rB);
     FA = FAn;
     FB = FBn;
   }

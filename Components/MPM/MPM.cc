@@ -3,6 +3,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -72,6 +73,13 @@ void MPM::problemSetup(const PSNode& root, double initTime, double maxTime) {
     iface.acceptInert("materials");
   }
   faceBCs_ = readFaceBCs(gridNode, static_cast<int>(materials_.size()), flags_.doScalarDiffusion);
+  for (size_t m = 0; m < materials_.size(); ++m) {
+    std::array<bool, 6> mirror{};
+    for (const FaceBC& b : faceBCs_)
+      if (b.kind == FaceBC::Kind::Symmetric && b.appliesTo(static_cast<int>(m)))
+        mirror[2 * b.axis + b.side] = true;
+    materials_[m].checkPiecesInsideGrid(grid_, mirror);
+  }
   if (const PSNode physical = root.child("PhysicalBC")) {
     fluxBCs_ = ScalarFluxBC::fromInput(physical);
     if (!fluxBCs_.empty() && !flags_.doScalarDiffusion)
@@ -101,15 +109,22 @@ void MPM::problemSetup(const PSNode& root, double initTime, double maxTime) {
   }
   if (flags_.doScalarDiffusion) {
     findDirichletNodes();
-    assignFluxBCs();
+    const std::vector<size_t> flagged = assignFluxBCs();
+    for (size_t b = 0; b < flagged.size(); ++b)
+      if (flagged[b] == 0)
+        root.child("PhysicalBC").child("MPM").children("scalar_flux")[b].requireChild("geom_object")
+            .fail("this <scalar_flux> flags no particle: its geometry selects no surface particle of a "
+                  "material that diffuses (selection rules in docs/diffusion.md), so its flux would "
+                  "go nowhere");
     computeDiffusivity(initTime);
     applyExternalScalarFlux(initTime);
   }
 }
 
-void MPM::assignFluxBCs() {
+std::vector<size_t> MPM::assignFluxBCs() {
   // Surface particles get, per BC that flags them, the area of the face that BC names
   // (UINTAH_UPS.md §3.1; unlike Uintah, not the area left by the last BC tested).
+  std::vector<size_t> flagged(fluxBCs_.size(), 0);
   for (size_t m = 0; m < materials_.size(); ++m) {
     MPMMaterial& mat = materials_[m];
     ParticleSet& p = mat.particles;
@@ -123,9 +138,11 @@ void MPM::assignFluxBCs() {
     for (size_t i = 0; i < p.count(); ++i) {
       if (!mat.surface.onSurface[i]) continue;
       int slot = 0;
-      for (size_t b = 0; b < fluxBCs_.size() && slot < 3; ++b) {
+      for (size_t b = 0; b < fluxBCs_.size(); ++b) {
         const double a = fluxBCs_[b].flaggedArea(p.x[i], mat.surface.spacing[i], mat.surface.faceArea[i]);
         if (a <= 0) continue;
+        ++flagged[b];
+        if (slot == 3) continue;  // a particle holds at most 3 load curves
         p.loadCurveID[i][slot] = static_cast<int>(b) + 1;
         p.area[i][slot] = a;
         ++slot;
@@ -133,6 +150,7 @@ void MPM::assignFluxBCs() {
     }
     mat.surface = {};
   }
+  return flagged;
 }
 
 void MPM::splitParticles() {
@@ -543,7 +561,7 @@ void MPM::interpolateToParticlesAndUpdate(double dt) {
         ep = p.plasticStrain[i];
         epdot = p.plasticStrainRate[i];
       }
-      p.stress[i] = model->updateStress(p.stress[i], p.F[i], F, gradV, swells ? dc : 0.0, dt, ep, epdot);
+      p.stress[i] = model->updateStress(p.stress[i], p.rotation[i], F, gradV, swells ? dc : 0.0, dt, ep, epdot);
       if (yields) {
         p.plasticStrain[i] = ep;
         p.plasticStrainRate[i] = epdot;

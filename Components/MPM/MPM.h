@@ -67,7 +67,8 @@ class MPM {
   const TaskTimers& timers() const { return timers_; }
 
  private:
-  void assignFluxBCs();
+  // Returns, per flux BC, the number of particles it flags.
+  std::vector<size_t> assignFluxBCs();
   void findDirichletNodes();
   // The step's tasks, in order (DESIGN.md §4).
   void computeInterpolationWeights();

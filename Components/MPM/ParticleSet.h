@@ -19,6 +19,7 @@ struct ParticleSet {
   std::vector<Mat3> F;               // p.deformationMeasure
   std::vector<Mat3> stress;          // p.stress (Cauchy, lab frame)
   std::vector<Mat3> size;            // p.size: reference domain edge vectors in grid-cell units
+  std::vector<Mat3> rotation;        // R of F = R U: the stress update's frame, kept so a step computes one
   std::vector<double> plasticStrain;      // p.plasticStrain (yielding materials only)
   std::vector<double> plasticStrainRate;  // p.plasticStrainRate (yielding materials only)
 
@@ -58,6 +59,7 @@ struct ParticleSet {
   template <class Self, class F>
   static void eachArray(Self& s, F& f) {
     f(s.id), f(s.x), f(s.velocity), f(s.displacement), f(s.mass), f(s.volume), f(s.F), f(s.stress), f(s.size);
+    f(s.rotation);
     f(s.plasticStrain), f(s.plasticStrainRate), f(s.concentration), f(s.concentrationGradient), f(s.diffusivity);
     f(s.externalScalarFlux), f(s.loadCurveID), f(s.area), f(s.refined);
   }

@@ -53,14 +53,20 @@ size_t splitStretchedParticles(ParticleSet& p, const Grid& grid, double ratio,
                                const std::vector<ScalarFluxBC>& bcs, int64_t& nextId) {
   const size_t n = p.count();
   const bool flux = !p.loadCurveID.empty();
-  // First the particles that split and along which edge, so every array grows once, exactly.
+  const auto axisOf = [&](size_t i) {
+    return p.refined[i] ? -1 : splitAxis(p.F[i] * p.size[i] * grid.dx.asDiagonal(), ratio, grid.ndim());
+  };
+  // Most steps split nothing: a parallel count finds out without storing anything.
+  long splitting = 0;
+#pragma omp parallel for schedule(static) reduction(+ : splitting)
+  for (long i = 0; i < static_cast<long>(n); ++i)
+    if (axisOf(i) >= 0) ++splitting;
+  if (splitting == 0) return 0;
+  // The particles that split and along which edge, so every array grows once, exactly.
   std::vector<std::pair<size_t, int>> splits;
-  for (size_t i = 0; i < n; ++i) {
-    if (p.refined[i]) continue;
-    const int axis = splitAxis(p.F[i] * p.size[i] * grid.dx.asDiagonal(), ratio, grid.ndim());
-    if (axis >= 0) splits.emplace_back(i, axis);
-  }
-  if (splits.empty()) return 0;
+  splits.reserve(splitting);
+  for (size_t i = 0; i < n; ++i)
+    if (const int axis = axisOf(i); axis >= 0) splits.emplace_back(i, axis);
   p.forEachArray([&](auto& v) {
     if (!v.empty()) v.reserve(n + 3 * splits.size());
   });

@@ -31,6 +31,54 @@ double fillCandidates(const Grid& grid, const GeometryPiece& piece, const Vec3i&
   return n;
 }
 
+bool placesParticlesOutside(const Grid& grid, const GeometryPiece& piece, const Vec3i& res,
+                            const std::array<bool, 6>& mirror) {
+  // Cell indices allowed per axis, [allowedLo, allowedHi); the cells of the bounding box (with
+  // fillParticles' margin), unclamped, in floating point: a far or unbounded piece must not
+  // overflow an integer.
+  const Bounds box = piece.bounds();
+  Vec3 allowedLo, allowedHi, first, count;
+  double all = res.cast<double>().prod(), allowed = all;
+  for (int d = 0; d < 3; ++d) {
+    if (!(box.lo[d] <= box.hi[d])) return false;
+    allowedLo[d] = mirror[2 * d] ? -HUGE_VAL : 0.0;
+    allowedHi[d] = mirror[2 * d + 1] ? HUGE_VAL : static_cast<double>(grid.cells[d]);
+    first[d] = std::floor((box.lo[d] - grid.lower[d]) / grid.dx[d]) - 1;
+    count[d] = std::floor((box.hi[d] - grid.lower[d]) / grid.dx[d]) + 2 - first[d];
+    all *= count[d];
+    allowed *= std::max(
+        0.0, std::min(first[d] + count[d], allowedHi[d]) - std::max(first[d], allowedLo[d]));
+  }
+  const double outside = all - allowed;
+  if (outside == 0) return false;
+  if (!(outside <= kMaxOutsideCandidates)) return true;
+  const Vec3 dxp = grid.dx.cwiseQuotient(res.cast<double>());
+  const auto isAllowed = [&](double cell, int d) {
+    return cell >= allowedLo[d] && cell < allowedHi[d];
+  };
+  for (long k = 0; k < static_cast<long>(count.z()); ++k)
+    for (long j = 0; j < static_cast<long>(count.y()); ++j) {
+      const double cj = first.y() + j, ck = first.z() + k;
+      const bool rowAllowed = isAllowed(cj, 1) && isAllowed(ck, 2);
+      for (long i = 0; i < static_cast<long>(count.x()); ++i) {
+        const double ci = first.x() + i;
+        if (rowAllowed && isAllowed(ci, 0)) {
+          if (mirror[1]) break;
+          i = static_cast<long>(allowedHi.x() - 1 - first.x());  // past the allowed cells
+          continue;
+        }
+        const Vec3 cell = grid.lower + Vec3(ci * grid.dx.x(), cj * grid.dx.y(), ck * grid.dx.z());
+        for (int c = 0; c < res.z(); ++c)
+          for (int b = 0; b < res.y(); ++b)
+            for (int a = 0; a < res.x(); ++a)
+              if (piece.inside(cell +
+                               Vec3((a + 0.5) * dxp.x(), (b + 0.5) * dxp.y(), (c + 0.5) * dxp.z())))
+                return true;
+      }
+    }
+  return false;
+}
+
 std::vector<Vec3> fillParticles(const Grid& grid, const GeometryPiece& piece, const Vec3i& res, size_t maxParticles) {
   std::vector<Vec3> out;
   Vec3i first, last;

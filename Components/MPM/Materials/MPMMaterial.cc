@@ -22,6 +22,16 @@ std::string count(double n) {
   return s;
 }
 
+std::string vec(const Vec3& v) {
+  char s[96];
+  std::snprintf(s, sizeof s, "[%g, %g, %g]", v.x(), v.y(), v.z());
+  return s;
+}
+
+std::string domain(const Grid& grid) {
+  return "the grid domain " + vec(grid.lower) + " to " + vec(grid.upper);
+}
+
 // Adds the particles of one <geom_object> (UINTAH_UPS.md §3.1).
 void addGeomObject(const PSNode& geom, const Grid& grid, const MPMFlags& flags, MPMMaterial& m,
                    GeometryPieceFactory& pieces, int64_t& nextId) {
@@ -82,6 +92,17 @@ void addGeomObject(const PSNode& geom, const Grid& grid, const MPMFlags& flags, 
     const Mat3 size = res.cast<double>().cwiseInverse().asDiagonal();
     const Vec3 faces(dxp.y() * dxp.z(), dxp.x() * dxp.z(), dxp.x() * dxp.y());  // normal to x, y, z
     for (const Vec3& x : points) seeds.push_back({x, dxp.prod(), size, faces});
+  }
+  // A smooth piece lays out every particle, inside the grid or not (grid-filled pieces are
+  // checked once the face BCs are read: checkPiecesInsideGrid).
+  if (smooth) {
+    for (const SmoothParticle& s : seeds)
+      if ((s.x.array() < grid.lower.array()).any() || (s.x.array() > grid.upper.array()).any())
+        pieceNodes[0].fail("<smoothcyl> places particles outside " + domain(grid) + ", e.g. at " +
+                           vec(s.x) + ": enlarge the <Grid><Box> or move the piece");
+  } else {
+    for (size_t k = 0; k < pieceNodes.size(); ++k)
+      m.filledPieces.push_back({pieceNodes[k], piece->pieces[k], res});
   }
   if (seeds.empty()) geom.fail("<geom_object> places no particle: its pieces contain no particle position of the grid");
 
@@ -150,6 +171,17 @@ MPMMaterial MPMMaterial::fromInput(const PSNode& node, const Grid& grid, const M
                                        " (Uintah deletes such particles)");
   m.model->initializeState(m.particles);
   return m;
+}
+
+void MPMMaterial::checkPiecesInsideGrid(const Grid& grid, const std::array<bool, 6>& mirror) {
+  // Uintah fills only the interior cells and drops the rest of a piece without a word.
+  for (const FilledPiece& f : filledPieces)
+    if (placesParticlesOutside(grid, *f.piece, f.res, mirror))
+      f.node.fail("<" + f.node.name() + "> places particles outside " + domain(grid) +
+                  ", beyond a face without a Symmetric BC, where they would be dropped: enlarge "
+                  "the <Grid><Box> or trim the piece");
+  filledPieces.clear();
+  filledPieces.shrink_to_fit();
 }
 
 }  // namespace anode

@@ -1,8 +1,10 @@
 // One <material> of <MaterialProperties><MPM>: density, constitutive model and its particles.
 #pragma once
 
+#include <array>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "Components/MPM/MPMFlags.h"
 #include "Components/MPM/Materials/Diffusion/ScalarDiffusionModel.h"
@@ -27,10 +29,23 @@ struct MPMMaterial {
     std::vector<Vec3> faceArea, spacing;
   } surface;
 
+  // Setup only: the grid-filled pieces of the geom_objects with their <res>, for
+  // checkPiecesInsideGrid (which needs the face BCs, read after the materials).
+  struct FilledPiece {
+    PSNode node;
+    GeometryPieceP piece;
+    Vec3i res;
+  };
+  std::vector<FilledPiece> filledPieces;
+
   // Reads the material and fills its particles; `nextId` numbers particles across materials.
   // `maxTime` bounds the diffusion model's diff_curve.
   static MPMMaterial fromInput(const PSNode& node, const Grid& grid, const MPMFlags& flags,
                                double maxTime, GeometryPieceFactory& pieces, int64_t& nextId);
+  // An error at the first piece whose particle lattice reaches beyond the grid, where they are
+  // dropped, other than beyond a face `mirror` marks (a symmetry BC for this material, index
+  // 2 axis + side): a piece crossing a symmetry plane models half of a symmetric body.
+  void checkPiecesInsideGrid(const Grid& grid, const std::array<bool, 6>& mirror);
 };
 
 // "particle ID of material M (name) at [x, y, z]", for diagnostics.

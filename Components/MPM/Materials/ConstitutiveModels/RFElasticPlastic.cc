@@ -65,16 +65,18 @@ std::unique_ptr<RFElasticPlastic> RFElasticPlastic::fromInput(const PSNode& node
 }
 
 void RFElasticPlastic::initializeState(ParticleSet& p) const {
+  p.rotation.resize(p.count());
+  for (size_t i = 0; i < p.count(); ++i) p.rotation[i] = rotationOf(p.F[i]);
   if (!canYield()) return;
   p.plasticStrain.assign(p.count(), 0.0);
   p.plasticStrainRate.assign(p.count(), 0.0);
 }
 
-Mat3 RFElasticPlastic::updateStress(const Mat3& stress, const Mat3& Fold, const Mat3& Fnew,
-                                    const Mat3& L, double dc, double dt, double& ep, double& epdot) const {
+Mat3 RFElasticPlastic::updateStress(const Mat3& stress, Mat3& rotation, const Mat3& Fnew, const Mat3& L,
+                                    double dc, double dt, double& ep, double& epdot) const {
   const Mat3 I = Mat3::Identity();
   // Unrotate the rate of deformation and the stress with R of the old F (Eqs. 26-29).
-  const Mat3 Rold = rotationOf(Fold);
+  const Mat3 Rold = rotation;
   const Mat3 D = 0.5 * (L + L.transpose());
   // Elastic-plus-plastic rate: the swelling rate eta dc/dt on each normal component removed
   // (Eqs. 25, 33, 36); c of this step, not the previous one as in Uintah.
@@ -112,8 +114,8 @@ Mat3 RFElasticPlastic::updateStress(const Mat3& stress, const Mat3& Fold, const 
   // default_hypo equation of state: p_{n+1} = p_n + K tr(D) dt (Eq. 38, volumetric part).
   const Mat3 sigmaBarNew = s + (mean + K_ * trD * dt) * I;
   // Rotate back with R of the new F (Eq. 39).
-  const Mat3 Rnew = rotationOf(Fnew);
-  return Rnew * sigmaBarNew * Rnew.transpose();
+  rotation = rotationOf(Fnew);
+  return rotation * sigmaBarNew * rotation.transpose();
 }
 
 }  // namespace anode

@@ -22,10 +22,11 @@ class RFElasticPlastic : public ConstitutiveModel {
   double dilatationalModulus() const override { return K_ + 4.0 * G_ / 3.0; }
   bool canYield() const override { return flow_.has_value(); }
 
-  // One particle: returns the new lab-frame stress; ep/epdot are the plastic strain and its rate
-  // (untouched for an elastic material); dc is the concentration change of the step.
-  Mat3 updateStress(const Mat3& stress, const Mat3& Fold, const Mat3& Fnew, const Mat3& L, double dc,
-                    double dt, double& ep, double& epdot) const;
+  // One particle: returns the new lab-frame stress; `rotation` is R of the old F on entry and R
+  // of Fnew on return; ep/epdot are the plastic strain and its rate (untouched for an elastic
+  // material); dc is the concentration change of the step.
+  Mat3 updateStress(const Mat3& stress, Mat3& rotation, const Mat3& Fnew, const Mat3& L, double dc, double dt,
+                    double& ep, double& epdot) const;
 
  private:
   double K_, G_, eta_;
