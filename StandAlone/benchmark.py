@@ -4,8 +4,12 @@ bytes per particle, for 1 and 2 threads, on the shared Uintah timing case (unmod
 figure compares directly with Uintah's) and this repository's inputs/Benchmarks.
 
   python3 StandAlone/benchmark.py [--repeats N] [--steps N] [--threads 1,2] [--csv FILE] [--quick]
+  python3 StandAlone/benchmark.py --scaling [--repeats N] [--steps N] [--threads 2] [--csv FILE]
 
 Writes one CSV row per case and thread count (default benchmarks.csv in the current directory).
+--scaling runs the shared timing case with 1, 8 and 27 particles per cell (<res> 1, 2, 3:
+17,675 to 477,225 particles, all else unmodified) and adds the memory per extra particle (the
+slope of peak memory against the particle count) to its report.
 """
 import argparse
 import os
@@ -48,6 +52,51 @@ def run(case, path, threads, steps):
     return result
 
 
+SHARED_CASE = CASES[0][1]
+
+
+def scaling(a):
+    """Cost against particle count: the shared case at <res> [1,1,1], [2,2,2], [3,3,3]."""
+    text = open(SHARED_CASE).read()
+    res_tag = re.compile(r"<res>\s*\[2,2,2\]\s*</res>")
+    if len(res_tag.findall(text)) != 1:
+        sys.exit("scaling: the shared case no longer has one <res> [2,2,2]")
+    threads = int(a.threads.split(",")[-1])
+    rows = []
+    with tempfile.TemporaryDirectory() as tmp:
+        for res in (1, 2, 3):
+            path = os.path.join(tmp, "res%d.ups" % res)
+            with open(path, "w") as f:
+                f.write(res_tag.sub("<res>[%d,%d,%d]</res>" % (res, res, res), text))
+            runs = [run("res%d" % res, path, threads, a.steps) for _ in range(a.repeats)]
+            median = sorted(runs, key=lambda r: r["rate"])[len(runs) // 2]
+            step_s = median["wall"] / median["steps"]
+            rows.append(dict(case="res%d" % res, threads=threads, particles=median["particles"],
+                             steps=median["steps"], repeats=a.repeats, rate_median=median["rate"],
+                             seconds_per_step=step_s, peak_MB=median["peak_MB"],
+                             bytes_per_particle=median["bytes_per_particle"]))
+            print("res %d: %7d particles, %.3e particle-steps/s, %.4f s/step, peak %.1f MB (median of %d, %d threads)"
+                  % (res, median["particles"], median["rate"], step_s, median["peak_MB"], a.repeats, threads))
+            sys.stdout.flush()
+    small, large = rows[0], rows[-1]
+    slope = (large["peak_MB"] - small["peak_MB"]) * 1e6 / (large["particles"] - small["particles"])
+    print("memory per extra particle (peak, res 1 to res 3): %.0f bytes" % slope)
+    for r in rows:
+        r["bytes_per_extra_particle"] = slope
+    return rows
+
+
+def write_csv(rows, path):
+    keys = []
+    for r in rows:
+        keys += [k for k in r if k not in keys]
+    with open(path, "w") as f:
+        f.write(",".join(keys) + "\n")
+        for r in rows:
+            f.write(",".join(str(r.get(k, "")) for k in keys) + "\n")
+    print("wrote", path)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--repeats", type=int, default=3)
@@ -55,9 +104,13 @@ def main():
     ap.add_argument("--threads", default="1,2")
     ap.add_argument("--csv", default="benchmarks.csv")
     ap.add_argument("--quick", action="store_true", help="1 repeat of 5 steps per case")
+    ap.add_argument("--scaling", action="store_true", help="cost against particle count (3 sizes)")
     a = ap.parse_args()
     if a.quick:
         a.repeats, a.steps = 1, 5
+    if a.scaling:
+        write_csv(scaling(a), a.csv)
+        return
     rows = []
     for case, path in CASES:
         if not os.path.exists(path):
@@ -78,14 +131,7 @@ def main():
                   "%.0f bytes/particle" % (case, threads, row["rate_median"], a.repeats, row["rate_min"],
                                            row["rate_max"], row["particles"], row["bytes_per_particle"]))
             sys.stdout.flush()
-    keys = []
-    for r in rows:
-        keys += [k for k in r if k not in keys]
-    with open(a.csv, "w") as f:
-        f.write(",".join(keys) + "\n")
-        for r in rows:
-            f.write(",".join(str(r.get(k, "")) for k in keys) + "\n")
-    print("wrote", a.csv)
+    write_csv(rows, a.csv)
 
 
 if __name__ == "__main__":
