@@ -58,12 +58,18 @@ int lineOf(const std::string& text, const std::string& needle) {
   return at == std::string::npos ? -1 : 1 + static_cast<int>(std::count(text.begin(), text.begin() + at, '\n'));
 }
 
-TEST(ParticleFill, BoundingBoxFillPlacesTheSameParticlesAsAWholeGridScan) {
+// A 30 x 15 x 15-cell grid off the origin, for the fill tests.
+Grid fillTestGrid() {
   Grid grid;
   grid.lower = Vec3(-1, 0, 0.5);
   grid.upper = Vec3(2, 1.5, 2);
   grid.cells = Vec3i(30, 15, 15);
   grid.dx = (grid.upper - grid.lower).cwiseQuotient(grid.cells.cast<double>());
+  return grid;
+}
+
+TEST(ParticleFill, BoundingBoxFillPlacesTheSameParticlesAsAWholeGridScan) {
+  const Grid grid = fillTestGrid();
   auto sphere = std::make_shared<SpherePiece>();
   sphere->origin = Vec3(0.3, 0.7, 1.1);
   sphere->radius = 0.45;
@@ -195,11 +201,7 @@ bool outsideByScan(const Grid& grid, const GeometryPiece& piece, const Vec3i& re
 }
 
 TEST(ParticleFill, PiecesBeyondTheGridAreFoundAsByAScanOfTheContinuedLattice) {
-  Grid grid;
-  grid.lower = Vec3(-1, 0, 0.5);
-  grid.upper = Vec3(2, 1.5, 2);
-  grid.cells = Vec3i(30, 15, 15);
-  grid.dx = (grid.upper - grid.lower).cwiseQuotient(grid.cells.cast<double>());
+  const Grid grid = fillTestGrid();
   auto sphere = std::make_shared<SpherePiece>();  // inside
   sphere->origin = Vec3(0.3, 0.7, 1.1);
   sphere->radius = 0.45;
