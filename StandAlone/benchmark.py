@@ -3,12 +3,12 @@
 bytes per particle, for 1 and 2 threads, on the shared Uintah timing case (unmodified, so the
 figure compares directly with Uintah's) and this repository's inputs/Benchmarks.
 
-  python3 StandAlone/benchmark.py [--repeats N] [--steps N] [--threads 1,2] [--csv FILE] [--quick]
-  python3 StandAlone/benchmark.py --scaling [--repeats N] [--steps N] [--threads 2] [--csv FILE]
+  python3 StandAlone/benchmark.py [--repeats N] [--steps N] [--threads 1,2] [--csv FILE] [--quick] [--sus PATH]
+  python3 StandAlone/benchmark.py --scaling [--repeats N] [--steps N] [--threads 2] [--csv FILE] [--sus PATH]
 
 Writes one CSV row per case and thread count (default benchmarks.csv in the current directory).
 --scaling runs the shared timing case with 1, 8 and 27 particles per cell (<res> 1, 2, 3:
-17,675 to 477,225 particles, all else unmodified) and adds the memory per extra particle (the
+17,900 to 478,200 particles, all else unmodified) and adds the memory per extra particle (the
 slope of peak memory against the particle count) to its report.
 """
 import argparse
@@ -31,10 +31,10 @@ CASES = [
 ]
 
 
-def run(case, path, threads, steps):
+def run(sus, case, path, threads, steps):
     with tempfile.TemporaryDirectory() as out:
         env = dict(os.environ, OMP_WAIT_POLICY="passive")
-        cmd = [SUS, "--threads", str(threads), "-o", os.path.join(out, "o"), path]
+        cmd = [sus, "--threads", str(threads), "-o", os.path.join(out, "o"), path]
         if steps:
             cmd[1:1] = ["--max-timesteps", str(steps)]
         p = subprocess.run(cmd, env=env, capture_output=True, text=True)
@@ -68,7 +68,7 @@ def scaling(a):
             path = os.path.join(tmp, "res%d.ups" % res)
             with open(path, "w") as f:
                 f.write(res_tag.sub("<res>[%d,%d,%d]</res>" % (res, res, res), text))
-            runs = [run("res%d" % res, path, threads, a.steps) for _ in range(a.repeats)]
+            runs = [run(a.sus, "res%d" % res, path, threads, a.steps) for _ in range(a.repeats)]
             median = sorted(runs, key=lambda r: r["rate"])[len(runs) // 2]
             step_s = median["wall"] / median["steps"]
             rows.append(dict(case="res%d" % res, threads=threads, particles=median["particles"],
@@ -105,6 +105,7 @@ def main():
     ap.add_argument("--csv", default="benchmarks.csv")
     ap.add_argument("--quick", action="store_true", help="1 repeat of 5 steps per case")
     ap.add_argument("--scaling", action="store_true", help="cost against particle count (3 sizes)")
+    ap.add_argument("--sus", default=SUS, help="the sus to run (default: build/StandAlone/sus)")
     a = ap.parse_args()
     if a.quick:
         a.repeats, a.steps = 1, 5
@@ -117,7 +118,7 @@ def main():
             print("skipping %s: %s not found" % (case, path))
             continue
         for threads in [int(t) for t in a.threads.split(",")]:
-            runs = [run(case, path, threads, a.steps) for _ in range(a.repeats)]
+            runs = [run(a.sus, case, path, threads, a.steps) for _ in range(a.repeats)]
             median = sorted(runs, key=lambda r: r["rate"])[len(runs) // 2]
             row = dict(case=case, threads=threads, particles=median["particles"], steps=median["steps"],
                        repeats=a.repeats, rate_median=median["rate"],
