@@ -45,7 +45,7 @@ void Simulation::advance() {
   try {
     mpm_.timeAdvance(t_, dt_);
     ScopedTimer timer(mpm_.timers(), mpm_.timers().task("stateChecks"));
-    checks_.afterStep(mpm_);
+    checks_.afterStep(mpm_, dt_);
   } catch (const SimulationError& e) {
     std::ostringstream s;
     s << "step " << step_ + 1 << ", t = " << t_ + dt_ << ": " << e.what();

@@ -312,7 +312,7 @@ class StateChecksTest : public ::testing::Test {
   ParticleSet& particles() { return sim.mpm().materials()[0].particles; }
   std::string failure() {
     try {
-      checks.afterStep(sim.mpm());
+      checks.afterStep(sim.mpm(), sim.dt());
     } catch (const SimulationError& e) {
       return e.what();
     }
@@ -391,6 +391,37 @@ TEST_F(StateChecksTest, StopsASlowOscillationThatPersistsTenSteps) {
   const int at = steps(1.1, 100);
   EXPECT_GE(at, 10);
   EXPECT_LE(at, 14);
+}
+
+TEST_F(StateChecksTest, StopsOneParticleWhoseVelocityOscillatesWithGrowingAmplitude) {
+  // The body accelerates steadily (its increments agree from step to step, so the whole-body
+  // watch stays quiet at first) while particle 4 flips sign every step with amplitude growing by
+  // `growth` from `start`: the local watch stops it once it reversed and grew 5 steps in a row,
+  // unless it grows by less than 1.2 or stays round-off (below 1e-3 of the rms speed, about 1).
+  std::vector<Vec3> base = particles().velocity;
+  auto steps = [&](double growth, double start, int n, std::string* f) {
+    double amplitude = start;
+    for (int k = 0; k < n; ++k) {
+      for (size_t i = 0; i < base.size(); ++i) particles().velocity[i] = base[i] + Vec3(0.01 * k, 0, 0);
+      particles().velocity[4] += Vec3(0, (k % 2 ? -1 : 1) * amplitude, 0);
+      amplitude *= growth;
+      *f = failure();
+      if (!f->empty()) return k + 1;
+    }
+    return 0;
+  };
+  std::string f;
+  // Growing by 1.1, it is left to the whole-body watch (which stops it once it dominates).
+  steps(1.1, 1e-2, 60, &f);
+  EXPECT_EQ(f.find("the velocity of particle"), std::string::npos) << f;
+  checks = StateChecks();
+  EXPECT_EQ(steps(1.3, 1e-9, 20, &f), 0) << f;  // 1.3^20 x 1e-9 = 2e-7: round-off all along
+  checks = StateChecks();
+  // Streaks count from the third step (the first increment that can reverse one before it).
+  EXPECT_EQ(steps(1.3, 1e-2, 60, &f), 7) << f;
+  EXPECT_NE(f.find("the velocity of particle 4 of material 0 (block) at ["), std::string::npos) << f;
+  EXPECT_NE(f.find("for 5 steps in a row its increment reversed the previous one and grew by 1.2 or more"),
+            std::string::npos) << f;
 }
 
 TEST_F(StateChecksTest, StopsAKineticEnergyThatDoublesTwentyStepsInARow) {

@@ -62,18 +62,24 @@ bool StateChecks::oscillates(Oscillation& o, double energy, double product, doub
   return *growth >= kOscillationGrowth || (o.steps >= kSustainedSteps && *growth >= kSustainedGrowth);
 }
 
-void StateChecks::afterStep(const MPM& mpm) {
+void StateChecks::afterStep(const MPM& mpm, double dt) {
   const auto& materials = mpm.materials();
   const size_t count = materials.size();
   if (velocity_.size() != count) {
     velocity_.assign(count, {});
     velocityIncrement_.assign(count, {});
+    localStreak_.assign(count, {});
     concentration_.assign(count, {});
     concentrationIncrement_.assign(count, {});
   }
   // One pass per material: finite values and J, kinetic energy, the increments of the step.
-  double energy = 0, velocityEnergy = 0, velocityProduct = 0, concentrationEnergy = 0, concentrationProduct = 0;
+  double energy = 0, totalMass = 0, velocityEnergy = 0, velocityProduct = 0, concentrationEnergy = 0,
+         concentrationProduct = 0;
   bool restart = false;
+  // Below this squared increment a particle's oscillation is not reported (round-off).
+  const double motion = kLocalMotion * mpm.grid().dx.minCoeff() / dt;
+  const double localFloor2 = std::max(
+      motion * motion, lastMass_ > 0 ? kLocalFloor * kLocalFloor * 2 * lastKineticEnergy_ / lastMass_ : 0.0);
   for (size_t m = 0; m < count; ++m) {
     const MPMMaterial& mat = materials[m];
     const ParticleSet& p = mat.particles;
@@ -83,25 +89,33 @@ void StateChecks::afterStep(const MPM& mpm) {
       // The first step, or particles split: the oscillation watch starts over.
       velocity_[m] = p.velocity;
       velocityIncrement_[m].assign(p.count(), Vec3::Zero());
+      localStreak_[m].assign(p.count(), 0);
       concentration_[m] = p.concentration;
       concentrationIncrement_[m].assign(p.concentration.size(), 0.0);
       restart = true;
     }
     Vec3* v = velocity_[m].data();
     Vec3* dv = velocityIncrement_[m].data();
+    uint8_t* streak = localStreak_[m].data();
     double* c = diffusion ? concentration_[m].data() : nullptr;
     double* dc = diffusion ? concentrationIncrement_[m].data() : nullptr;
-    long firstBad = n;
-    double kinetic = 0, ve = 0, vp = 0, ce = 0, cp = 0;
-#pragma omp parallel for schedule(static) reduction(min : firstBad) reduction(+ : kinetic, ve, vp, ce, cp)
+    long firstBad = n, firstLocal = n;
+    double kinetic = 0, mass = 0, ve = 0, vp = 0, ce = 0, cp = 0;
+#pragma omp parallel for schedule(static) reduction(min : firstBad, firstLocal) \
+    reduction(+ : kinetic, mass, ve, vp, ce, cp)
     for (long i = 0; i < n; ++i) {
       const double J = p.volume[i] * mat.density / p.mass[i];
       if (!p.x[i].allFinite() || !p.velocity[i].allFinite() || !p.stress[i].allFinite() || !(J >= kMinJ && J <= kMaxJ))
         firstBad = std::min(firstBad, i);
       const double half = 0.5 * p.mass[i];
       kinetic += half * p.velocity[i].squaredNorm();
+      mass += p.mass[i];
       const Vec3 d = p.velocity[i] - v[i];
-      ve += half * d.squaredNorm();
+      const double dd = d.squaredNorm(), pp = dv[i].squaredNorm();
+      const bool reversedAndGrew = d.dot(dv[i]) < kAlternation * std::sqrt(dd * pp) && dd > kLocalGrowth * kLocalGrowth * pp;
+      streak[i] = reversedAndGrew ? static_cast<uint8_t>(std::min(streak[i] + 1, 255)) : 0;
+      if (streak[i] >= kLocalSteps && dd > localFloor2) firstLocal = std::min(firstLocal, i);
+      ve += half * dd;
       vp += half * d.dot(dv[i]);
       v[i] = p.velocity[i];
       dv[i] = d;
@@ -114,7 +128,9 @@ void StateChecks::afterStep(const MPM& mpm) {
       }
     }
     if (firstBad < n) throw SimulationError(describeParticle(mat, m, firstBad) + " " + problemOf(mat, firstBad));
+    if (firstLocal < n && !restart) throwLocalOscillation(mat, m, firstLocal);
     energy += kinetic;
+    totalMass += mass;
     velocityEnergy += ve, velocityProduct += vp, concentrationEnergy += ce, concentrationProduct += cp;
   }
   if (restart) {
@@ -122,7 +138,18 @@ void StateChecks::afterStep(const MPM& mpm) {
   } else {
     checkOscillation(mpm, velocityEnergy, velocityProduct, concentrationEnergy, concentrationProduct);
   }
+  lastMass_ = totalMass;
   checkKineticEnergy(mpm, energy);
+}
+
+void StateChecks::throwLocalOscillation(const MPMMaterial& mat, size_t m, size_t i) const {
+  const ParticleSet& p = mat.particles;
+  std::ostringstream s;
+  s << "the velocity of " << describeParticle(mat, m, i) << " oscillates with growing amplitude: for "
+    << static_cast<int>(localStreak_[m][i]) << " steps in a row its increment reversed the previous one and grew by "
+    << kLocalGrowth << " or more, to " << vector(velocityIncrement_[m][i]) << " (p.velocity = " << vector(p.velocity[i])
+    << "): a local instability of the explicit update at this time step (lower <timestep_multiplier>)";
+  throw SimulationError(s.str());
 }
 
 void StateChecks::checkOscillation(const MPM& mpm, double velocityEnergy, double velocityProduct,

@@ -6,6 +6,7 @@
 // the particle (ID, material, position), the field and the offending value.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -38,9 +39,19 @@ class StateChecks {
   // power p of time, whose ratio per step (1 + 1/n)^p drops below 2 after about 1.44 p steps.
   static constexpr double kGrowthPerStep = 2;
   static constexpr int kGrowthSteps = 20;
+  // Local oscillation: the whole-body watch above sees an instability confined to a few particles
+  // only once it dominates the body's increments. Each particle is also watched: its velocity
+  // increment reversed the previous one (cosine below kAlternation) and grew by at least
+  // kLocalGrowth, kLocalSteps steps in a row (x2.5 in all), and is not round-off: above
+  // kLocalFloor times the body's rms speed and large enough to move the particle kLocalMotion
+  // of a cell in a step.
+  static constexpr int kLocalSteps = 5;
+  static constexpr double kLocalGrowth = 1.2;
+  static constexpr double kLocalFloor = 1e-3;
+  static constexpr double kLocalMotion = 1e-9;
 
-  // Checks the state after a step; throws SimulationError on the first problem found.
-  void afterStep(const MPM& mpm);
+  // Checks the state after a step of length dt; throws SimulationError on the first problem found.
+  void afterStep(const MPM& mpm, double dt);
 
  private:
   // The oscillation watch of one field (velocity or concentration).
@@ -54,13 +65,16 @@ class StateChecks {
   void checkOscillation(const MPM& mpm, double velocityEnergy, double velocityProduct, double concentrationEnergy,
                         double concentrationProduct);
   void checkKineticEnergy(const MPM& mpm, double energy);
+  [[noreturn]] void throwLocalOscillation(const MPMMaterial& mat, size_t m, size_t i) const;
 
-  // Per material: last step's velocities and concentrations, and their increments then.
+  // Per material: last step's velocities and concentrations, and their increments then; per
+  // particle, the steps in a row its velocity increment reversed and grew.
   std::vector<std::vector<Vec3>> velocity_, velocityIncrement_;
+  std::vector<std::vector<uint8_t>> localStreak_;
   std::vector<std::vector<double>> concentration_, concentrationIncrement_;
   Oscillation velocityOscillation_, concentrationOscillation_;
 
-  double lastKineticEnergy_ = 0;
+  double lastKineticEnergy_ = 0, lastMass_ = 0;
   int growingSteps_ = 0;
   double energyBeforeGrowth_ = 0;
 };
