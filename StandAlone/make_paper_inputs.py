@@ -5,28 +5,17 @@ One description per scenario below; every file states its paper section, paramet
 paper does not give (chosen here). Units: um, us, pg (1 GPa = 1e6, 1 kg/m^3 = 1e-3 pg/um^3,
 1 m^2/s = 1e6 um^2/us, a flux of 1 m/s = 1 um/us). Run: python3 StandAlone/make_paper_inputs.py
 """
-import math
 import os
 
-GPA = 1e6
+from ups_blocks import GPA, SILICON, data_archiver, flow_model, max_timesteps, non_linear1_diffusion, scalar_flux
+
 OUT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "inputs", "Paper")
 
-SILICON = dict(K=67.0, G=31.0, sigmaY=1.4, H=1.15)       # GPa
 SUBSTRATE = dict(K=180.4, G=76.0, sigmaY=0.7, H=1.15)    # GPa
 SMALL = dict(radius=0.05, height=0.1, dx=0.005, num_radial=10, num_axial=20, num_angular=64,
              lateral=0.15, top=0.3)
 LARGE = dict(radius=0.25, height=0.05, dx=0.01, num_radial=100, num_axial=20, num_angular=580,
              lateral=0.5, top=0.2)
-
-
-def flow_model(kind, m):
-    if kind == "elastic":
-        return ""
-    if kind == "perfect":
-        return ('<flow_model type="johnson_cook"><A>%g</A><B>0</B><C>0</C><n>0</n><m>1</m></flow_model>\n'
-                '          <yield_condition type="vonMises"/>' % (m["sigmaY"] * GPA))
-    return ('<flow_model type="isotropic_hardening"><sigma_Y>%g</sigma_Y><K>%g</K></flow_model>\n'
-            '          <yield_condition type="vonMises"/>' % (m["sigmaY"] * GPA, m["H"] * GPA))
 
 
 def time_points(points, value_tag):
@@ -54,16 +43,7 @@ def scenario(s):
     if lithiation_end:
         diff_curve = ("\n          <diff_curve>%s</diff_curve>" %
                       time_points([(0, "in"), (lithiation_end, "out"), (1e12, "out")], "flux_direction"))
-    diffusion = """<diffusion_model type="non_linear1">
-          <diffusivity>%g</diffusivity>
-          <max_concentration>1.0</max_concentration>
-          <use_pressure>true</use_pressure>
-          <tuning1>%g</tuning1>
-          <tuning2>%g</tuning2>
-          <tuning3>0.0</tuning3>
-          <tuning4>%g</tuning4>
-          <tuning5>1e-6</tuning5>%s
-        </diffusion_model>""" % (s["D0"] * 1e6, s.get("alpha", 6.0), s.get("beta", 0.5), s.get("pmax", 3.0), diff_curve)
+    diffusion = non_linear1_diffusion(s["D0"], s.get("alpha", 6.0), s.get("beta", 0.5), s.get("pmax", 3.0), diff_curve)
     density = s["density"] * 1e-3
     pillar = """      <material name="silicon">
         <density>%g</density>
@@ -130,12 +110,11 @@ def scenario(s):
             ("top", "<cylinder label=\"top\"><bottom>[0.0,0.0,%g]</bottom><top>[0.0,0.0,%g]</top>"
                     "<radius>%g</radius><cylinder_end>true</cylinder_end></cylinder>"
              % (top_bottom, top_bottom + dz, p["radius"]))]):
-        flux_blocks += """
-      <scalar_flux>
-        <geom_object>%s</geom_object>
-        <load_curve><id>%d</id>%s</load_curve>
-      </scalar_flux>""" % (piece, i + 1, time_points(load, "load"))
-    steps = "\n    <max_Timesteps>%d</max_Timesteps>" % s["max_steps"] if s.get("max_steps") else ""
+        flux_blocks += scalar_flux(i + 1, piece, time_points(load, "load"))
+    archiver = data_archiver(s["name"], s["maxTime"] / 20,
+                             ["p.x", "p.particleID", "p.volume", "p.concentration", "p.diffusivity", "p.stress",
+                              "p.plasticStrain", "p.displacement"],
+                             '    <checkpoint cycle="2" interval="%g"/>\n' % (s["maxTime"] / 40))
     text = """<?xml version='1.0' encoding='ISO-8859-1' ?>
 <!--
   %s (Gritton et al. %s)
@@ -153,19 +132,7 @@ def scenario(s):
     <delt_max>1.0e12</delt_max>
     <timestep_multiplier>0.2</timestep_multiplier>%s
   </Time>
-  <DataArchiver>
-    <filebase>%s.uda</filebase>
-    <outputInterval>%g</outputInterval>
-    <save label="p.x"/>
-    <save label="p.particleID"/>
-    <save label="p.volume"/>
-    <save label="p.concentration"/>
-    <save label="p.diffusivity"/>
-    <save label="p.stress"/>
-    <save label="p.plasticStrain"/>
-    <save label="p.displacement"/>
-    <checkpoint cycle="2" interval="%g"/>
-  </DataArchiver>
+%s
   <MPM>
     <interpolator>cpdi</interpolator>
     <do_scalar_diffusion>true</do_scalar_diffusion>
@@ -206,8 +173,8 @@ def scenario(s):
     </BoundaryConditions>
   </Grid>
 </Uintah_specification>
-""" % (s["title"], s["section"], s["notes"], s["title"], s["maxTime"], steps, s["name"], s["maxTime"] / 20,
-       s["maxTime"] / 40, pillar, substrate, contact, flux_blocks, -L, -L, L, L, p["top"], cells[0], cells[1], cells[2])
+""" % (s["title"], s["section"], s["notes"], s["title"], s["maxTime"], max_timesteps(s.get("max_steps")), archiver,
+       pillar, substrate, contact, flux_blocks, -L, -L, L, L, p["top"], cells[0], cells[1], cells[2])
     with open(os.path.join(OUT, s["name"] + ".ups"), "w") as f:
         f.write(text)
 

@@ -11,19 +11,13 @@ Run: python3 StandAlone/make_stability_inputs.py; tests/test_stability.cc runs t
 """
 import os
 
-GPA = 1e6
+from ups_blocks import GPA, SILICON, data_archiver, flow_model, max_timesteps, non_linear1_diffusion, scalar_flux
+
 OUT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "inputs", "Stability")
 
-BASE = dict(density=2.33e3, K=67.0, G=31.0, eta=0.56, model="hardening", D0=1e-10, alpha=6.0, beta=0.5,
+BASE = dict(density=2.33e3, K=SILICON["K"], G=SILICON["G"], eta=0.56, model="hardening", D0=1e-10, alpha=6.0, beta=0.5,
             pmax=3.0, flux=0.4, c0=0.0, velocity=0.0, multiplier=0.4, maxTime=1.0, diffusion="non_linear1",
             rate=0.0, confined=False, grid=(0.2, 0.25), steps=0)
-
-
-def flow_model(kind):
-    if kind == "elastic":
-        return ""
-    return ('<flow_model type="isotropic_hardening"><sigma_Y>%g</sigma_Y><K>%g</K></flow_model>\n'
-            '          <yield_condition type="vonMises"/>' % (1.4 * GPA, 1.15 * GPA))
 
 
 def diffusion_model(s):
@@ -35,16 +29,7 @@ def diffusion_model(s):
           <max_concentration>1.0</max_concentration>
           <constant_rate>%g</constant_rate>
         </diffusion_model>""" % s["rate"]
-    return """<diffusion_model type="non_linear1">
-          <diffusivity>%g</diffusivity>
-          <max_concentration>1.0</max_concentration>
-          <use_pressure>true</use_pressure>
-          <tuning1>%g</tuning1>
-          <tuning2>%g</tuning2>
-          <tuning3>0.0</tuning3>
-          <tuning4>%g</tuning4>
-          <tuning5>1e-6</tuning5>
-        </diffusion_model>""" % (s["D0"] * 1e6, s["alpha"], s["beta"], s["pmax"])
+    return non_linear1_diffusion(s["D0"], s["alpha"], s["beta"], s["pmax"])
 
 
 def flux_bcs(s):
@@ -54,19 +39,10 @@ def flux_bcs(s):
         s["flux"], s["flux"])
     # Zero-thickness boxes on the top and right faces: Uintah's rule (the box enlarged by the
     # particle spacing) selects exactly the top row and the right column.
-    return """
-  <PhysicalBC>
-    <MPM>
-      <scalar_flux>
-        <geom_object><box label="top"><min>[0.0, 0.15, 0.0]</min><max>[0.1, 0.15, 0.01]</max></box></geom_object>
-        <load_curve><id>1</id>%s</load_curve>
-      </scalar_flux>
-      <scalar_flux>
-        <geom_object><box label="side"><min>[0.1, 0.0, 0.0]</min><max>[0.1, 0.15, 0.01]</max></box></geom_object>
-        <load_curve><id>2</id>%s</load_curve>
-      </scalar_flux>
-    </MPM>
-  </PhysicalBC>""" % (load, load)
+    return ("\n  <PhysicalBC>\n    <MPM>" +
+            scalar_flux(1, '<box label="top"><min>[0.0, 0.15, 0.0]</min><max>[0.1, 0.15, 0.01]</max></box>', load) +
+            scalar_flux(2, '<box label="side"><min>[0.1, 0.0, 0.0]</min><max>[0.1, 0.15, 0.01]</max></box>', load) +
+            "\n    </MPM>\n  </PhysicalBC>")
 
 
 def write(name, notes, quick, **changes):
@@ -100,15 +76,7 @@ def write(name, notes, quick, **changes):
     <delt_max>1.0e12</delt_max>
     <timestep_multiplier>%g</timestep_multiplier>%s
   </Time>
-  <DataArchiver>
-    <filebase>%s.uda</filebase>
-    <outputInterval>%g</outputInterval>
-    <save label="p.x"/>
-    <save label="p.particleID"/>
-    <save label="p.volume"/>
-    <save label="p.velocity"/>
-    <save label="p.stress"/>%s
-  </DataArchiver>
+%s
   <MPM>
     <interpolator>cpdi</interpolator>%s
   </MPM>
@@ -147,14 +115,14 @@ def write(name, notes, quick, **changes):
     </BoundaryConditions>
   </Grid>
 </Uintah_specification>
-""" % ("\n".join("  " + l for l in notes), quick, name, s["maxTime"], s["multiplier"],
-       "\n    <max_Timesteps>%d</max_Timesteps>" % s["steps"] if s["steps"] else "", name, s["maxTime"] / 10,
-       '\n    <save label="p.concentration"/>\n    <save label="p.diffusivity"/>' if diffusion else "",
+""" % ("\n".join("  " + l for l in notes), quick, name, s["maxTime"], s["multiplier"], max_timesteps(s["steps"]),
+       data_archiver(name, s["maxTime"] / 10, ["p.x", "p.particleID", "p.volume", "p.velocity", "p.stress"] +
+                     (["p.concentration", "p.diffusivity"] if diffusion else [])),
        ("\n    <do_scalar_diffusion>true</do_scalar_diffusion>" +
         ("\n    <use_load_curves>true</use_load_curves>" if flux_bcs(s) else "")) if diffusion else "",
        s["density"] * 1e-3, s["K"] * GPA, s["G"] * GPA,
        "\n          <volume_expansion_coeff>%g</volume_expansion_coeff>" % s["eta"] if diffusion else "",
-       flow_model(s["model"]), diffusion_model(s), s["velocity"],
+       flow_model(s["model"], SILICON), diffusion_model(s), s["velocity"],
        "\n          <concentration>%g</concentration>" % s["c0"] if diffusion else "",
        flux_bcs(s), width, top, round(width / 0.01), round(top / 0.01),
        "\n".join('      <Face side="%s">%s</Face>' % (f, b) for f, b in faces.items()))
