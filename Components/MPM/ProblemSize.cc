@@ -1,21 +1,10 @@
 #include "Components/MPM/ProblemSize.h"
 
-#include <cstdio>
 #include <string>
 
 #include "Core/Util/MemoryBudget.h"
 
 namespace anode {
-
-namespace {
-
-std::string count(double n) {
-  char s[32];
-  std::snprintf(s, sizeof s, "%.4g", n);
-  return s;
-}
-
-}  // namespace
 
 double bytesPerParticle(const MPMFlags& flags) {
   // id, x, velocity, displacement, mass, volume, F, stress, size, plastic strain and its rate.
@@ -48,9 +37,10 @@ void checkProblemSize(const PSNode& gridNode, const Grid& grid, const MPMFlags& 
   PSNode where = box ? box.child("resolution") : PSNode();
   if (!where && level) where = level.child("spacing");
   if (!where) where = box ? box : gridNode;
-  where.fail("the grid's " + count(nodes) + " nodes (" + formatBytes(gridBytes) + " for " + std::to_string(materials) +
-             " material(s) and " + std::to_string(threads) + " thread(s)) and " + count(static_cast<double>(particles)) +
-             " particles (" + formatBytes(particleBytes) + ") exceed " + describeMemoryBudget());
+  where.fail("the grid's " + formatCount(nodes) + " nodes (" + formatBytes(gridBytes) + " for " +
+             std::to_string(materials) + " material(s) and " + std::to_string(threads) +
+             " thread(s)) and " + formatCount(static_cast<double>(particles)) + " particles (" +
+             formatBytes(particleBytes) + ") exceed " + describeMemoryBudget());
 }
 
 }  // namespace anode

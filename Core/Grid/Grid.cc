@@ -1,22 +1,11 @@
 #include "Core/Grid/Grid.h"
 
 #include <cmath>
-#include <cstdio>
 #include <string>
 
 #include "Core/Util/MemoryBudget.h"
 
 namespace anode {
-
-namespace {
-
-std::string formatCount(double n) {
-  char s[32];
-  std::snprintf(s, sizeof s, "%.4g", n);
-  return s;
-}
-
-}  // namespace
 
 Grid Grid::fromInput(const PSNode& gridNode) {
   const PSNode level = gridNode.requireChild("Level");

@@ -35,4 +35,10 @@ std::string formatBytes(double bytes) {
   return s;
 }
 
+std::string formatCount(double n) {
+  char s[32];
+  std::snprintf(s, sizeof s, "%.4g", n);
+  return s;
+}
+
 }  // namespace anode

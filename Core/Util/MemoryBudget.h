@@ -15,5 +15,7 @@ void setMemoryBudget(size_t bytes);
 std::string describeMemoryBudget();
 // "1.5 GB", "320 MB", ...
 std::string formatBytes(double bytes);
+// A node or particle count to 4 digits: "950", "1.266e+04", ...
+std::string formatCount(double n);
 
 }  // namespace anode

@@ -16,12 +16,6 @@ namespace anode {
 
 namespace {
 
-std::string count(double n) {
-  char s[32];
-  std::snprintf(s, sizeof s, "%.4g", n);
-  return s;
-}
-
 std::string vec(const Vec3& v) {
   char s[96];
   std::snprintf(s, sizeof s, "[%g, %g, %g]", v.x(), v.y(), v.z());
@@ -75,7 +69,9 @@ void addGeomObject(const PSNode& geom, const Grid& grid, const MPMFlags& flags, 
   if (smooth) {
     const double n = smooth->particleCount(grid, limit);
     if (n > limit)
-      pieceNodes[0].fail("the <smoothcyl> lays out " + (n > 2 * limit ? "more than " + count(limit) : count(n)) + beyond);
+      pieceNodes[0].fail("the <smoothcyl> lays out " +
+                         (n > 2 * limit ? "more than " + formatCount(limit) : formatCount(n)) +
+                         beyond);
     seeds = smooth->createParticles(grid);
   } else {
     for (const GeometryPieceP& g : piece->pieces)
@@ -84,11 +80,12 @@ void addGeomObject(const PSNode& geom, const Grid& grid, const MPMFlags& flags, 
     // Filling tests every candidate point: bound the work as well as the particles kept.
     const double candidates = fillCandidates(grid, *piece, res);
     if (candidates > 16 * limit + 1e6)
-      resNode.fail("<res> gives " + count(candidates) + " candidate positions in the cells the pieces' bounding box meets; at most " +
-                   count(limit) + beyond);
+      resNode.fail("<res> gives " + formatCount(candidates) +
+                   " candidate positions in the cells the pieces' bounding box meets; at most " +
+                   formatCount(limit) + beyond);
     const std::vector<Vec3> points = fillParticles(grid, *piece, res, static_cast<size_t>(limit));
     if (static_cast<double>(points.size()) > limit)
-      resNode.fail("the <geom_object> places more than " + count(limit) + beyond);
+      resNode.fail("the <geom_object> places more than " + formatCount(limit) + beyond);
     const Mat3 size = res.cast<double>().cwiseInverse().asDiagonal();
     const Vec3 faces(dxp.y() * dxp.z(), dxp.x() * dxp.z(), dxp.x() * dxp.y());  // normal to x, y, z
     for (const Vec3& x : points) seeds.push_back({x, dxp.prod(), size, faces});
