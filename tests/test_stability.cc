@@ -4,7 +4,6 @@
 // setup (exit code 2, file:line: message, nothing written). Also unit checks of the instability
 // diagnostics (StateChecks) on states made bad on purpose.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cmath>
@@ -18,6 +17,7 @@
 #include <vector>
 
 #include "Components/MPM/StateChecks.h"
+#include "RunSus.h"
 #include "StandAlone/Simulation.h"
 #include "TestInputs.h"
 
@@ -28,33 +28,17 @@ namespace {
 
 const std::string kDir = std::string(ANODE_SOURCE_DIR) + "/inputs/Stability";
 
-struct SusRun {
-  int exitCode = -1;
-  std::string output;
+struct SusRun : testing::SusResult {
   fs::path dir;
 };
 
-std::string quote(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
-
 // sus on one thread, so the step a diagnostic fires at does not depend on the machine.
-SusRun runSus(const std::string& input) {
-  SusRun r;
-  r.dir = fs::temp_directory_path() / ("anode_stability_" + fs::path(input).stem().string() + "_" + std::to_string(getpid()));
-  fs::remove_all(r.dir);
-  std::string command = quote(ANODE_SUS) + " --threads 1 -o " + quote(r.dir.string());
-  command += " " + quote(input) + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return r;
-  char buffer[4096];
-  size_t n;
-  while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) r.output.append(buffer, n);
-  const int status = pclose(pipe);
-  if (status != -1 && WIFEXITED(status)) r.exitCode = WEXITSTATUS(status);
-  return r;
+SusRun runOnOneThread(const std::string& input) {
+  const fs::path dir =
+      fs::temp_directory_path() /
+      ("anode_stability_" + fs::path(input).stem().string() + "_" + std::to_string(getpid()));
+  fs::remove_all(dir);
+  return {testing::runSus({"--threads", "1", "-o", dir.string(), input}), dir};
 }
 
 // history.csv as rows of named columns.
@@ -209,7 +193,7 @@ TEST_P(StabilityCase, QuickVersionEndsAsExpected) {
   ASSERT_NE(it, expectations().end()) << GetParam() << ".ups has no expectation in test_stability.cc";
   const Expectation& e = it->second;
   const std::string input = kDir + "/" + GetParam() + ".ups";
-  const SusRun r = runSus(input);
+  const SusRun r = runOnOneThread(input);
   ASSERT_EQ(r.exitCode, e.exitCode) << r.output;
   if (e.exitCode == 2) {
     // Refused at setup: file:line: message, the line of the tag the message starts with, and

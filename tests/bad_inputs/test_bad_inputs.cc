@@ -1,16 +1,16 @@
 // Pins the error contract of sus: each malformed input exits 2 naming FILE:LINE:, writes nothing.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cctype>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <regex>
 #include <string>
 #include <vector>
+
+#include "tests/RunSus.h"
 
 namespace fs = std::filesystem;
 
@@ -21,32 +21,8 @@ const std::string kValid = kDir + "/valid_minimal.ups";
 const std::string kValidDiffusion = kDir + "/valid_diffusion.ups";
 const std::string kUnsupported = kDir + "/unsupported_artificial_viscosity.ups";
 
-struct RunResult {
-  int exitCode = -1;
-  std::string output;  // stdout and stderr together
-};
-
-std::string shellQuote(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
-
-// Runs sus with the given arguments (each quoted), capturing stdout and stderr.
-RunResult runSus(const std::vector<std::string>& args) {
-  std::string command = shellQuote(ANODE_SUS);
-  for (const auto& a : args) command += " " + shellQuote(a);
-  command += " 2>&1";
-  RunResult r;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return r;
-  char buffer[4096];
-  size_t n;
-  while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) r.output.append(buffer, n);
-  const int status = pclose(pipe);
-  if (status != -1 && WIFEXITED(status)) r.exitCode = WEXITSTATUS(status);
-  return r;
-}
+using anode::testing::runSus;
+using anode::testing::SusResult;
 
 // A path in the temporary directory that does not exist yet.
 fs::path freshOutputDir(const std::string& tag) {
@@ -109,7 +85,7 @@ TEST_P(BadInput, ExitsWithCode2NamingFileAndLineAndWritesNothing) {
   ASSERT_FALSE(expect.message.empty()) << file << ": empty expected message";
 
   const fs::path out = freshOutputDir(fs::path(file).stem().string());
-  const RunResult r = runSus({"-o", out.string(), file});
+  const SusResult r = runSus({"-o", out.string(), file});
   EXPECT_EQ(r.exitCode, 2) << r.output;
   const std::string where = file + ":" + std::to_string(expect.line) + ":";
   EXPECT_NE(r.output.find(where), std::string::npos) << "expected '" << where << "' in:\n" << r.output;
@@ -148,7 +124,7 @@ class ValidInput : public testing::TestWithParam<std::string> {};
 
 TEST_P(ValidInput, RunsAndWritesParticles) {
   const fs::path out = freshOutputDir("valid");
-  const RunResult r = runSus({"-o", out.string(), GetParam()});
+  const SusResult r = runSus({"-o", out.string(), GetParam()});
   EXPECT_EQ(r.exitCode, 0) << r.output;
   EXPECT_TRUE(fs::exists(out / "particles.pvd")) << r.output;
   EXPECT_EQ(r.output.find("warning:"), std::string::npos) << r.output;
@@ -157,7 +133,7 @@ TEST_P(ValidInput, RunsAndWritesParticles) {
 
 TEST_P(ValidInput, UnknownCommandLineOptionExitsWithCode2) {
   const fs::path out = freshOutputDir("unknown_option");
-  const RunResult r = runSus({"--no-such-option", "-o", out.string(), GetParam()});
+  const SusResult r = runSus({"--no-such-option", "-o", out.string(), GetParam()});
   EXPECT_EQ(r.exitCode, 2) << r.output;
   EXPECT_NE(r.output.find("unknown option --no-such-option"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(out));
@@ -172,7 +148,7 @@ TEST_P(UnsupportedInput, RunsWithAWarningUnderIgnoreUnsupported) {
   const std::string file = GetParam();
   const Expectation expect = readExpectation(file);
   const fs::path out = freshOutputDir("ignore_unsupported");
-  const RunResult r = runSus({"--ignore-unsupported", "-o", out.string(), file});
+  const SusResult r = runSus({"--ignore-unsupported", "-o", out.string(), file});
   EXPECT_EQ(r.exitCode, 0) << r.output;
   EXPECT_NE(r.output.find("warning: " + file + ":" + std::to_string(expect.line) + ":"),
             std::string::npos)
