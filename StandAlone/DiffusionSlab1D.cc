@@ -1,26 +1,20 @@
 #include "StandAlone/DiffusionSlab1D.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <limits>
 #include <stdexcept>
 
 #include "Core/Util/Errors.h"
-#include "StandAlone/Simulation.h"
+#include "StandAlone/StudyInput.h"
+#include "StandAlone/VerificationRun.h"
 
 namespace anode {
 
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-
-std::string number(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
 
 }  // namespace
 
@@ -50,107 +44,67 @@ double diffusionSlabExact(double x, double t, double D, int terms) {
 
 std::string diffusionSlabInput(const DiffusionSlabCase& c) {
   if (c.cells < 2) throw std::invalid_argument("diffusion slab: need at least 2 cells");
-  if (c.interpolator != "linear" && c.interpolator != "gimp" && c.interpolator != "cpdi")
-    throw std::invalid_argument("diffusion slab: interpolator must be linear, gimp or cpdi");
+  requireInterpolator("diffusion slab", c.interpolator);
   if (c.dirichlet != "particle" && c.dirichlet != "nodal")
     throw std::invalid_argument("diffusion slab: dirichlet must be particle or nodal");
-  const std::string hs = number(c.h());
+  std::string material;
+  material += "      <material name=\"slab\">\n";
+  material += "        <density>2.33e9</density>\n";
+  material += "        <thermal_conductivity>0</thermal_conductivity>\n";
+  material += "        <specific_heat>5</specific_heat>\n";
+  material += upsElasticModel(6.5e6, 3.9e6, true);
+  material += "        <diffusion_model type=\"jg\">\n";
+  material += "          <diffusivity>" + upsNumber(c.diffusivity) + "</diffusivity>\n";
+  material +=
+      "          <min_concentration>" + upsNumber(c.minConcentration) + "</min_concentration>\n";
+  material +=
+      "          <max_concentration>" + upsNumber(c.maxConcentration) + "</max_concentration>\n";
+  material += "        </diffusion_model>\n";
+  material += upsParticleBox("slab", 1, c.h(), 298, true);
+  material += "      </material>\n";
+  std::string faces;
+  faces += "      <Face side=\"x-\">\n";
+  faces += "        <BCType id=\"all\" label=\"Symmetric\" var=\"symmetry\"/>\n";
+  faces +=
+      "        <BCType id=\"all\" label=\"SD-Type\" var=\"Dirichlet\"><value>1</value></BCType>\n";
+  faces += "      </Face>\n";
+  faces += "      <Face side=\"x+\">\n";
+  faces += "        <BCType id=\"all\" label=\"Symmetric\" var=\"symmetry\"/>\n";
+  faces +=
+      "        <BCType id=\"all\" label=\"SD-Type\" var=\"Dirichlet\"><value>0</value></BCType>\n";
+  faces += "      </Face>\n";
+  for (const char* side : {"y-", "y+", "z-", "z+"}) faces += upsSymmetricFace(side);
+
+  const std::string comment =
+      "1-D diffusion (paper section 2.2): c(x,0) = 0, c(0,t) = 1, c(1,t) = 0, D = " +
+      upsNumber(c.diffusivity) +
+      ".\n"
+      "     Mechanics is inert: no swelling, zero stress, wave speed 0.07 so the mechanical dt\n"
+      "     (14 h) is far above the diffusion dt (h^2/(2D)).";
+  const std::string title = "1-D diffusion slab, " + c.interpolator + ", " +
+                            std::to_string(c.cells) + " cells, " + c.dirichlet + " Dirichlet";
+
   std::string s;
-  s += "<?xml version=\"1.0\" encoding=\"iso-8859-1\"?>\n";
-  s += "<!-- 1-D diffusion (paper section 2.2): c(x,0) = 0, c(0,t) = 1, c(1,t) = 0, D = " +
-       number(c.diffusivity) +
-       ".\n     Mechanics is inert: no swelling, zero stress, wave speed 0.07 so the mechanical dt\n"
-       "     (14 h) is far above the diffusion dt (h^2/(2D)). -->\n";
-  s += "<Uintah_specification>\n";
-  s += "  <Meta><title>1-D diffusion slab, " + c.interpolator + ", " + std::to_string(c.cells) +
-       " cells, " + c.dirichlet + " Dirichlet</title></Meta>\n";
-  s += "  <SimulationComponent type=\"amrmpm\"/>\n";
+  s += upsOpening(comment, title, "amrmpm");
   s += "  <AMR><useLockStep>true</useLockStep></AMR>\n";
-  s += "  <Time>\n";
-  s += "    <initTime>0</initTime>\n";
-  s += "    <maxTime>" + number(c.endTime) + "</maxTime>\n";
-  s += "    <delt_min>0</delt_min>\n";
-  s += "    <delt_max>1</delt_max>\n";
-  s += "    <timestep_multiplier>" + number(c.timestepMultiplier) + "</timestep_multiplier>\n";
-  s += "    <end_at_max_time_exactly>true</end_at_max_time_exactly>\n";
-  s += "  </Time>\n";
-  s += "  <DataArchiver>\n";
-  s += "    <filebase>diffusion_1d.uda</filebase>\n";
-  s += "    <outputTimestepInterval>100000000</outputTimestepInterval>\n";
-  s += "  </DataArchiver>\n";
-  s += "  <MPM>\n";
-  s += "    <time_integrator>explicit</time_integrator>\n";
-  s += "    <interpolator>" + c.interpolator + "</interpolator>\n";
-  s += "    <do_scalar_diffusion>true</do_scalar_diffusion>\n";
-  s += "    <concentration_dirichlet>" + c.dirichlet + "</concentration_dirichlet>\n";
-  s += "  </MPM>\n";
-  s += "  <PhysicalConstants><gravity>[0,0,0]</gravity></PhysicalConstants>\n";
-  s += "  <MaterialProperties>\n";
-  s += "    <MPM>\n";
-  s += "      <material name=\"slab\">\n";
-  s += "        <density>2.33e9</density>\n";
-  s += "        <thermal_conductivity>0</thermal_conductivity>\n";
-  s += "        <specific_heat>5</specific_heat>\n";
-  s += "        <constitutive_model type=\"rf_elastic_plastic\">\n";
-  s += "          <bulk_modulus>6.5e6</bulk_modulus>\n";
-  s += "          <shear_modulus>3.9e6</shear_modulus>\n";
-  s += "          <volume_expansion_coeff>0</volume_expansion_coeff>\n";
-  s += "          <equation_of_state type=\"default_hypo\"/>\n";
-  s += "        </constitutive_model>\n";
-  s += "        <diffusion_model type=\"jg\">\n";
-  s += "          <diffusivity>" + number(c.diffusivity) + "</diffusivity>\n";
-  s += "          <min_concentration>" + number(c.minConcentration) + "</min_concentration>\n";
-  s += "          <max_concentration>" + number(c.maxConcentration) + "</max_concentration>\n";
-  s += "        </diffusion_model>\n";
-  s += "        <geom_object>\n";
-  s += "          <box label=\"slab\"><min>[0,0,0]</min><max>[1," + hs + "," + hs + "]</max></box>\n";
-  s += "          <res>[2,1,1]</res>\n";
-  s += "          <velocity>[0,0,0]</velocity>\n";
-  s += "          <temperature>298</temperature>\n";
-  s += "          <concentration>0</concentration>\n";
-  s += "        </geom_object>\n";
-  s += "      </material>\n";
-  s += "      <contact><type>null</type></contact>\n";
-  s += "      <diffusion_interface><type>null</type></diffusion_interface>\n";
-  s += "    </MPM>\n";
-  s += "  </MaterialProperties>\n";
-  s += "  <Grid>\n";
-  s += "    <BoundaryConditions>\n";
-  s += "      <Face side=\"x-\">\n";
-  s += "        <BCType id=\"all\" label=\"Symmetric\" var=\"symmetry\"/>\n";
-  s += "        <BCType id=\"all\" label=\"SD-Type\" var=\"Dirichlet\"><value>1</value></BCType>\n";
-  s += "      </Face>\n";
-  s += "      <Face side=\"x+\">\n";
-  s += "        <BCType id=\"all\" label=\"Symmetric\" var=\"symmetry\"/>\n";
-  s += "        <BCType id=\"all\" label=\"SD-Type\" var=\"Dirichlet\"><value>0</value></BCType>\n";
-  s += "      </Face>\n";
-  for (const char* side : {"y-", "y+", "z-", "z+"})
-    s += std::string("      <Face side=\"") + side +
-         "\"><BCType id=\"all\" label=\"Symmetric\" var=\"symmetry\"/></Face>\n";
-  s += "    </BoundaryConditions>\n";
-  s += "    <Level>\n";
-  s += "      <Box label=\"1\">\n";
-  s += "        <lower>[0,0,0]</lower>\n";
-  s += "        <upper>[1," + hs + "," + hs + "]</upper>\n";
-  s += "        <resolution>[" + std::to_string(c.cells) + ",1,1]</resolution>\n";
-  s += "        <extraCells>[1,1,1]</extraCells>\n";
-  s += "        <patches>[1,1,1]</patches>\n";
-  s += "      </Box>\n";
-  s += "    </Level>\n";
-  s += "  </Grid>\n";
+  s += upsTimeAndArchiver(c.endTime, 1, c.timestepMultiplier, "diffusion_1d.uda");
+  s += upsMPM(c.interpolator,
+              "    <do_scalar_diffusion>true</do_scalar_diffusion>\n"
+              "    <concentration_dirichlet>" +
+                  c.dirichlet + "</concentration_dirichlet>\n");
+  s += upsMaterialProperties(
+      material, "      <diffusion_interface><type>null</type></diffusion_interface>\n");
+  s += upsGrid(faces, 1, c.h(), c.cells, 1, "[1,1,1]");
   s += "</Uintah_specification>\n";
   return s;
 }
 
 DiffusionSlabResult runDiffusionSlab(const DiffusionSlabCase& c) {
-  const auto start = std::chrono::steady_clock::now();
-  RunOptions options;
-  options.progress = false;
-  const std::string name = "diffusion_1d_" + c.interpolator + "_" + std::to_string(c.cells) + "_" +
-                           c.variant() + ".ups";
-  Simulation sim(diffusionSlabInput(c), name, options);
-  if (sim.mpm().materials().size() != 1) throw std::logic_error("diffusion slab: expected one material");
-  ParticleSet& p = sim.mpm().materials()[0].particles;
+  VerificationRun run("diffusion slab", diffusionSlabInput(c),
+                      "diffusion_1d_" + c.interpolator + "_" + std::to_string(c.cells) + "_" +
+                          c.variant() + ".ups");
+  Simulation& sim = run.simulation();
+  ParticleSet& p = run.particles();
 
   DiffusionSlabResult r;
   r.interpolator = c.interpolator;
@@ -174,10 +128,8 @@ DiffusionSlabResult runDiffusionSlab(const DiffusionSlabCase& c) {
   };
   track(sim.time());
 
-  const double endTime = sim.timeControl().maxTime;
   try {
-    // end_at_max_time_exactly makes the last step land on endTime (up to rounding).
-    while (sim.time() < endTime * (1 - 1e-12)) {
+    while (run.beforeEndTime()) {
       sim.advance();
       if (c.clampAfterStep)
         for (double& x : p.concentration) x = std::clamp(x, 0.0, 1.0);
@@ -200,7 +152,7 @@ DiffusionSlabResult runDiffusionSlab(const DiffusionSlabCase& c) {
     }
     r.steps = sim.step() + 1;
     r.finalTime = sim.time() + sim.dt();
-    r.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    r.wallSeconds = run.wallSeconds();
     return r;
   }
 
@@ -237,7 +189,7 @@ DiffusionSlabResult runDiffusionSlab(const DiffusionSlabCase& c) {
   r.rmsAbsolute = std::sqrt(sumAbs2 / n);
   r.interiorRmsAbsolute = interior ? std::sqrt(interiorAbs2 / interior) : 0.0;
   r.interiorRmsRelative = interior ? std::sqrt(interiorRel2 / interior) : 0.0;
-  r.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  r.wallSeconds = run.wallSeconds();
   return r;
 }
 

@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "StandAlone/RunSummary.h"
+
 namespace anode {
 
 struct DiffusionSlabCase {
@@ -35,14 +37,10 @@ struct DiffusionSlabCase {
   bool wideRange() const { return minConcentration < 0 || maxConcentration > 1; }
 };
 
-struct DiffusionSlabResult {
-  std::string interpolator, variant;
-  int cells = 0;
+// steps and finalTime: up to the step that stopped the run, if one did.
+struct DiffusionSlabResult : RunSummary {
+  std::string variant;
   double h = 0;
-  size_t particles = 0;
-  long steps = 0;           // steps taken (up to the stop if stopped)
-  double wallSeconds = 0;   // building the Simulation + stepping + the error evaluation
-  double finalTime = 0;
   double firstDt = 0;       // the dt of the first step, = multiplier h^2/(2D) when mechanics is irrelevant
   // false: a SimulationError stopped the run; stopMessage is "stopped: c = <the value out of
   // range> at step <k> (t = ...)" for the range check, else "stopped: " + the error.

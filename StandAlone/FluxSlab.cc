@@ -3,13 +3,12 @@
 #include <omp.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <stdexcept>
 
 #include "Components/MPM/Materials/Diffusion/ScalarFluxBC.h"
-#include "StandAlone/Simulation.h"
+#include "StandAlone/StudyInput.h"
+#include "StandAlone/VerificationRun.h"
 
 namespace anode {
 
@@ -17,20 +16,10 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-std::string number(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
-
-std::string vec(double x, double y, double z) {
-  return "[" + number(x) + "," + number(y) + "," + number(z) + "]";
-}
-
 std::string loadCurve(int id, const std::vector<std::pair<double, double>>& points) {
   std::string s = "        <load_curve>\n          <id>" + std::to_string(id) + "</id>\n";
   for (const auto& [t, J] : points)
-    s += "          <time_point><time>" + number(t) + "</time><load>" + number(J) +
+    s += "          <time_point><time>" + upsNumber(t) + "</time><load>" + upsNumber(J) +
          "</load></time_point>\n";
   return s + "        </load_curve>\n";
 }
@@ -80,111 +69,61 @@ double fluxSlabAnalytic(double x, double t, double J, double L, double D) {
 std::string fluxSlabInput(const FluxSlabCase& c) {
   if (c.cells < 2) throw std::invalid_argument("flux slab: need at least 2 cells along x");
   if (c.thickness < 1) throw std::invalid_argument("flux slab: thickness must be >= 1 cell");
-  if (c.interpolator != "linear" && c.interpolator != "gimp" && c.interpolator != "cpdi")
-    throw std::invalid_argument("flux slab: interpolator must be linear, gimp or cpdi");
+  requireInterpolator("flux slab", c.interpolator);
   const double L = c.length, h = L / c.cells, w = c.thickness * h;
   const std::string extra = c.interpolator == "linear" ? "[0,0,0]" : "[1,1,1]";
   std::vector<std::pair<double, double>> curve = c.loadCurve;
   if (curve.empty()) curve = {{0.0, c.flux}};
+  std::string material;
+  material += "      <material name=\"slab\">\n";
+  material += "        <density>" + upsNumber(c.density) + "</density>\n";
+  material += upsElasticModel(c.bulkModulus, c.shearModulus, true);
+  material += "        <diffusion_model type=\"jg\">\n";
+  material += "          <diffusivity>" + upsNumber(c.diffusivity) + "</diffusivity>\n";
+  material += "          <max_concentration>1.0</max_concentration>\n";
+  material += "        </diffusion_model>\n";
+  material += upsParticleBox("slab", L, w, 298, true);
+  material += "      </material>\n";
+  std::string faces;
+  for (const char* side : {"x-", "x+", "y-", "y+", "z-", "z+"}) faces += upsSymmetricFace(side);
+
   std::string s;
-  s += "<?xml version=\"1.0\" encoding=\"iso-8859-1\"?>\n";
-  s += "<!-- Slab 0 <= x <= L with a constant lithium flux into its x+ face, insulated elsewhere\n"
-       "     (Carslaw & Jaeger). Mechanics is inert: no swelling, no flow model, zero velocity. "
-       "-->\n";
-  s += "<Uintah_specification>\n";
-  s += "  <Meta><title>Flux slab, " + c.interpolator + ", " + std::to_string(c.cells) +
-       " cells</title></Meta>\n";
-  s += "  <SimulationComponent type=\"mpm\"/>\n";
-  s += "  <Time>\n";
-  s += "    <initTime>0</initTime>\n";
-  s += "    <maxTime>" + number(c.endTime()) + "</maxTime>\n";
-  s += "    <delt_min>0</delt_min>\n";
-  s += "    <delt_max>" + number(c.endTime()) + "</delt_max>\n";
-  s += "    <timestep_multiplier>" + number(c.timestepMultiplier) + "</timestep_multiplier>\n";
-  s += "    <end_at_max_time_exactly>true</end_at_max_time_exactly>\n";
-  s += "  </Time>\n";
-  s += "  <DataArchiver>\n";
-  s += "    <filebase>flux_slab.uda</filebase>\n";
-  s += "    <outputTimestepInterval>1000000</outputTimestepInterval>\n";
-  s += "  </DataArchiver>\n";
-  s += "  <MPM>\n";
-  s += "    <time_integrator>explicit</time_integrator>\n";
-  s += "    <interpolator>" + c.interpolator + "</interpolator>\n";
-  s += "    <do_scalar_diffusion>true</do_scalar_diffusion>\n";
-  s += "    <use_load_curves>true</use_load_curves>\n";
-  s += "  </MPM>\n";
-  s += "  <PhysicalConstants><gravity>[0,0,0]</gravity></PhysicalConstants>\n";
-  s += "  <MaterialProperties>\n";
-  s += "    <MPM>\n";
-  s += "      <material name=\"slab\">\n";
-  s += "        <density>" + number(c.density) + "</density>\n";
-  s += "        <constitutive_model type=\"rf_elastic_plastic\">\n";
-  s += "          <bulk_modulus>" + number(c.bulkModulus) + "</bulk_modulus>\n";
-  s += "          <shear_modulus>" + number(c.shearModulus) + "</shear_modulus>\n";
-  s += "          <volume_expansion_coeff>0</volume_expansion_coeff>\n";
-  s += "          <equation_of_state type=\"default_hypo\"/>\n";
-  s += "        </constitutive_model>\n";
-  s += "        <diffusion_model type=\"jg\">\n";
-  s += "          <diffusivity>" + number(c.diffusivity) + "</diffusivity>\n";
-  s += "          <max_concentration>1.0</max_concentration>\n";
-  s += "        </diffusion_model>\n";
-  s += "        <geom_object>\n";
-  s += "          <box label=\"slab\"><min>[0,0,0]</min><max>" + vec(L, w, w) + "</max></box>\n";
-  s += "          <res>[2,1,1]</res>\n";
-  s += "          <velocity>[0,0,0]</velocity>\n";
-  s += "          <temperature>298</temperature>\n";
-  s += "          <concentration>0</concentration>\n";
-  s += "        </geom_object>\n";
-  s += "      </material>\n";
-  s += "      <contact><type>null</type></contact>\n";
-  s += "    </MPM>\n";
-  s += "  </MaterialProperties>\n";
+  s += upsOpening(
+      "Slab 0 <= x <= L with a constant lithium flux into its x+ face, insulated elsewhere\n"
+      "     (Carslaw & Jaeger). Mechanics is inert: no swelling, no flow model, zero velocity.",
+      "Flux slab, " + c.interpolator + ", " + std::to_string(c.cells) + " cells", "mpm");
+  s += upsTimeAndArchiver(c.endTime(), c.endTime(), c.timestepMultiplier, "flux_slab.uda");
+  s += upsMPM(c.interpolator,
+              "    <do_scalar_diffusion>true</do_scalar_diffusion>\n"
+              "    <use_load_curves>true</use_load_curves>\n");
+  s += upsMaterialProperties(material, "");
   s += "  <PhysicalBC>\n";
   s += "    <MPM>\n";
   s += "      <scalar_flux>\n";
-  s += "        <geom_object><box label=\"x+ face\"><min>" + vec(L, 0, 0) + "</min><max>" +
-       vec(L, w, w) + "</max></box></geom_object>\n";
+  s += "        <geom_object><box label=\"x+ face\"><min>" + upsVector(L, 0, 0) + "</min><max>" +
+       upsVector(L, w, w) + "</max></box></geom_object>\n";
   s += loadCurve(1, curve);
   s += "      </scalar_flux>\n";
   if (c.fluxAtZero != 0) {
     s += "      <scalar_flux>\n";
-    s += "        <geom_object><box label=\"x- face\"><min>[0,0,0]</min><max>" + vec(0, w, w) +
-         "</max></box></geom_object>\n";
+    s += "        <geom_object><box label=\"x- face\"><min>[0,0,0]</min><max>" +
+         upsVector(0, w, w) + "</max></box></geom_object>\n";
     s += loadCurve(2, {{0.0, c.fluxAtZero}});
     s += "      </scalar_flux>\n";
   }
   s += "    </MPM>\n";
   s += "  </PhysicalBC>\n";
-  s += "  <Grid>\n";
-  s += "    <BoundaryConditions>\n";
-  for (const char* side : {"x-", "x+", "y-", "y+", "z-", "z+"})
-    s += std::string("      <Face side=\"") + side +
-         "\"><BCType id=\"all\" label=\"Symmetric\" var=\"symmetry\"/></Face>\n";
-  s += "    </BoundaryConditions>\n";
-  s += "    <Level>\n";
-  s += "      <Box label=\"1\">\n";
-  s += "        <lower>[0,0,0]</lower>\n";
-  s += "        <upper>" + vec(L, w, w) + "</upper>\n";
-  s += "        <resolution>[" + std::to_string(c.cells) + "," + std::to_string(c.thickness) + "," +
-       std::to_string(c.thickness) + "]</resolution>\n";
-  s += "        <extraCells>" + extra + "</extraCells>\n";
-  s += "        <patches>[1,1,1]</patches>\n";
-  s += "      </Box>\n";
-  s += "    </Level>\n";
-  s += "  </Grid>\n";
+  s += upsGrid(faces, L, w, c.cells, c.thickness, extra);
   s += "</Uintah_specification>\n";
   return s;
 }
 
 FluxSlabResult runFluxSlab(const FluxSlabCase& c) {
-  const auto start = std::chrono::steady_clock::now();
   const ThreadScope threads(c.threads);
-  RunOptions options;
-  options.progress = false;
-  const std::string name = "flux_slab_" + c.interpolator + "_" + std::to_string(c.cells) + ".ups";
-  Simulation sim(fluxSlabInput(c), name, options);
-  if (sim.mpm().materials().size() != 1) throw std::logic_error("flux slab: expected one material");
-  const ParticleSet& p = sim.mpm().materials()[0].particles;
+  VerificationRun run("flux slab", fluxSlabInput(c),
+                      "flux_slab_" + c.interpolator + "_" + std::to_string(c.cells) + ".ups");
+  Simulation& sim = run.simulation();
+  const ParticleSet& p = run.particles();
   if (p.externalScalarFlux.size() != p.count())
     throw std::logic_error("flux slab: the flux BC was not assigned");
 
@@ -197,8 +136,7 @@ FluxSlabResult runFluxSlab(const FluxSlabCase& c) {
   r.minConcentration = 0;
   double maxFlagged = 0;
 
-  const double endTime = sim.timeControl().maxTime;
-  while (sim.time() < endTime * (1 - 1e-12)) {
+  while (run.beforeEndTime()) {
     const double dt = sim.dt();
     if (sim.step() == 0) r.dt = dt;
     double rate = 0;  // sum_p m_p rate_p of this step's start
@@ -242,7 +180,7 @@ FluxSlabResult runFluxSlab(const FluxSlabCase& c) {
   }
   r.steps = sim.step();
   r.finalTime = t;
-  r.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  r.wallSeconds = run.wallSeconds();
   return r;
 }
 

@@ -14,6 +14,8 @@
 #include <utility>
 #include <vector>
 
+#include "StandAlone/RunSummary.h"
+
 namespace anode {
 
 struct FluxSlabCase {
@@ -39,13 +41,7 @@ struct FluxSlabCase {
   double endTime() const { return fourier * length * length / diffusivity; }
 };
 
-struct FluxSlabResult {
-  std::string interpolator;
-  int cells = 0;
-  size_t particles = 0;
-  long steps = 0;
-  double wallSeconds = 0;
-  double finalTime = 0;
+struct FluxSlabResult : RunSummary {
   double dt = 0;  // the (constant) step size
   // Against the analytic c at the particles at the end:
   double l2Error = 0;                  // sqrt(sum (c_p - c(x_p))^2 / sum c(x_p)^2)

@@ -1,24 +1,17 @@
 #include "StandAlone/VibratingBar.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <stdexcept>
 
-#include "StandAlone/Simulation.h"
+#include "StandAlone/StudyInput.h"
+#include "StandAlone/VerificationRun.h"
 
 namespace anode {
 
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-
-std::string number(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
 
 double kineticEnergy(const ParticleSet& p) {
   double e = 0;
@@ -61,94 +54,45 @@ double VibratingBarCase::period() const {
 std::string vibratingBarInput(const VibratingBarCase& c) {
   if (c.cells < 2)
     throw std::invalid_argument("vibrating bar: need at least 2 cells along the bar");
-  if (c.interpolator != "linear" && c.interpolator != "gimp" && c.interpolator != "cpdi")
-    throw std::invalid_argument("vibrating bar: interpolator must be linear, gimp or cpdi");
+  requireInterpolator("vibrating bar", c.interpolator);
   const double h = c.length / c.cells;
   // The free end sits inside the grid, which reaches ~1.25 L (at least two cells beyond L).
   const int gridCells = c.cells + std::max(2, (c.cells + 3) / 4);
   const std::string extra = c.interpolator == "linear" ? "[0,0,0]" : "[1,1,1]";
-  const std::string hs = number(h);
+  std::string material;
+  material += "      <material name=\"bar\">\n";
+  material += "        <density>" + upsNumber(c.density) + "</density>\n";
+  material += "        <thermal_conductivity>0</thermal_conductivity>\n";
+  material += "        <specific_heat>1</specific_heat>\n";
+  material += upsElasticModel(c.bulkModulus, c.shearModulus, false);
+  material += upsParticleBox("bar", c.length, h, 294, false);
+  material += "      </material>\n";
+  std::string faces;
+  faces += "      <Face side=\"x-\">\n";
+  faces +=
+      "        <BCType id=\"all\" label=\"Velocity\" "
+      "var=\"Dirichlet\"><value>[0,0,0]</value></BCType>\n";
+  faces += "      </Face>\n";
+  for (const char* side : {"y-", "y+", "z-", "z+"}) faces += upsSymmetricFace(side);
+
   std::string s;
-  s += "<?xml version=\"1.0\" encoding=\"iso-8859-1\"?>\n";
-  s += "<!-- Axial vibrating bar: fixed at x = 0, free at x = L, uniaxial strain (one cell\n"
-       "     thick, Symmetric y and z faces). The caller sets the initial velocity. -->\n";
-  s += "<Uintah_specification>\n";
-  s += "  <Meta><title>Axial vibrating bar, " + c.interpolator + ", " + std::to_string(c.cells) +
-       " cells</title></Meta>\n";
-  s += "  <SimulationComponent type=\"mpm\"/>\n";
-  s += "  <Time>\n";
-  s += "    <initTime>0</initTime>\n";
-  s += "    <maxTime>" + number(c.periods * c.period()) + "</maxTime>\n";
-  s += "    <delt_min>0</delt_min>\n";
-  s += "    <delt_max>1</delt_max>\n";
-  s += "    <timestep_multiplier>" + number(c.timestepMultiplier) + "</timestep_multiplier>\n";
-  s += "    <end_at_max_time_exactly>true</end_at_max_time_exactly>\n";
-  s += "  </Time>\n";
-  s += "  <DataArchiver>\n";
-  s += "    <filebase>vibrating_bar.uda</filebase>\n";
-  s += "    <outputTimestepInterval>1000000</outputTimestepInterval>\n";
-  s += "  </DataArchiver>\n";
-  s += "  <MPM>\n";
-  s += "    <time_integrator>explicit</time_integrator>\n";
-  s += "    <interpolator>" + c.interpolator + "</interpolator>\n";
-  s += "  </MPM>\n";
-  s += "  <PhysicalConstants><gravity>[0,0,0]</gravity></PhysicalConstants>\n";
-  s += "  <MaterialProperties>\n";
-  s += "    <MPM>\n";
-  s += "      <material name=\"bar\">\n";
-  s += "        <density>" + number(c.density) + "</density>\n";
-  s += "        <thermal_conductivity>0</thermal_conductivity>\n";
-  s += "        <specific_heat>1</specific_heat>\n";
-  s += "        <constitutive_model type=\"rf_elastic_plastic\">\n";
-  s += "          <bulk_modulus>" + number(c.bulkModulus) + "</bulk_modulus>\n";
-  s += "          <shear_modulus>" + number(c.shearModulus) + "</shear_modulus>\n";
-  s += "          <equation_of_state type=\"default_hypo\"/>\n";
-  s += "        </constitutive_model>\n";
-  s += "        <geom_object>\n";
-  s += "          <box label=\"bar\"><min>[0,0,0]</min><max>[" + number(c.length) + "," + hs + "," +
-       hs + "]</max></box>\n";
-  s += "          <res>[2,1,1]</res>\n";
-  s += "          <velocity>[0,0,0]</velocity>\n";
-  s += "          <temperature>294</temperature>\n";
-  s += "        </geom_object>\n";
-  s += "      </material>\n";
-  s += "      <contact><type>null</type></contact>\n";
-  s += "    </MPM>\n";
-  s += "  </MaterialProperties>\n";
-  s += "  <Grid>\n";
-  s += "    <BoundaryConditions>\n";
-  s += "      <Face side=\"x-\">\n";
-  s += "        <BCType id=\"all\" label=\"Velocity\" "
-       "var=\"Dirichlet\"><value>[0,0,0]</value></BCType>\n";
-  s += "      </Face>\n";
-  for (const char* side : {"y-", "y+", "z-", "z+"})
-    s += std::string("      <Face side=\"") + side +
-         "\"><BCType id=\"all\" label=\"Symmetric\" var=\"symmetry\"/></Face>\n";
-  s += "    </BoundaryConditions>\n";
-  s += "    <Level>\n";
-  s += "      <Box label=\"1\">\n";
-  s += "        <lower>[0,0,0]</lower>\n";
-  s += "        <upper>[" + number(gridCells * h) + "," + hs + "," + hs + "]</upper>\n";
-  s += "        <resolution>[" + std::to_string(gridCells) + ",1,1]</resolution>\n";
-  s += "        <extraCells>" + extra + "</extraCells>\n";
-  s += "        <patches>[1,1,1]</patches>\n";
-  s += "      </Box>\n";
-  s += "    </Level>\n";
-  s += "  </Grid>\n";
+  s += upsOpening(
+      "Axial vibrating bar: fixed at x = 0, free at x = L, uniaxial strain (one cell\n"
+      "     thick, Symmetric y and z faces). The caller sets the initial velocity.",
+      "Axial vibrating bar, " + c.interpolator + ", " + std::to_string(c.cells) + " cells", "mpm");
+  s += upsTimeAndArchiver(c.periods * c.period(), 1, c.timestepMultiplier, "vibrating_bar.uda");
+  s += upsMPM(c.interpolator, "");
+  s += upsMaterialProperties(material, "");
+  s += upsGrid(faces, gridCells * h, h, gridCells, 1, extra);
   s += "</Uintah_specification>\n";
   return s;
 }
 
 VibratingBarResult runVibratingBar(const VibratingBarCase& c) {
-  const auto start = std::chrono::steady_clock::now();
-  RunOptions options;
-  options.progress = false;
-  const std::string name =
-      "vibrating_bar_" + c.interpolator + "_" + std::to_string(c.cells) + ".ups";
-  Simulation sim(vibratingBarInput(c), name, options);
-  if (sim.mpm().materials().size() != 1)
-    throw std::logic_error("vibrating bar: expected one material");
-  ParticleSet& p = sim.mpm().materials()[0].particles;
+  VerificationRun run("vibrating bar", vibratingBarInput(c),
+                      "vibrating_bar_" + c.interpolator + "_" + std::to_string(c.cells) + ".ups");
+  Simulation& sim = run.simulation();
+  ParticleSet& p = run.particles();
   const double K = c.bulkModulus, G = c.shearModulus;
 
   const double L = c.length, v0 = c.amplitudeRatio * c.waveSpeed(), w = c.omega();
@@ -168,9 +112,7 @@ VibratingBarResult runVibratingBar(const VibratingBarCase& c) {
   std::vector<Vec3> previousVelocity;
   double previousStrainEnergy = strainEnergy(p, K, G), leapfrogE0 = 0;
 
-  const double endTime = sim.timeControl().maxTime;
-  // end_at_max_time_exactly makes the last step land on endTime (up to rounding).
-  while (sim.time() < endTime * (1 - 1e-12)) {
+  while (run.beforeEndTime()) {
     const double dt = sim.dt();
     previousVelocity = p.velocity;
     sim.advance();
@@ -203,7 +145,7 @@ VibratingBarResult runVibratingBar(const VibratingBarCase& c) {
   r.velocityL2Error = std::sqrt(err2 / ref2);
   r.steps = sim.step();
   r.finalTime = t;
-  r.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  r.wallSeconds = run.wallSeconds();
   return r;
 }
 

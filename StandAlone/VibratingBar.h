@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "StandAlone/RunSummary.h"
+
 namespace anode {
 
 struct VibratingBarCase {
@@ -31,13 +33,7 @@ struct VibratingBarCase {
 // project defines it (velocity taken at t^n, kinetic + strain energy at t^n), which carries an
 // O(dt) term, and staggered (exact solution at t^n - dt/2; the leapfrog energy below), which
 // isolates the spatial error.
-struct VibratingBarResult {
-  std::string interpolator;
-  int cells = 0;
-  size_t particles = 0;
-  long steps = 0;
-  double wallSeconds = 0;
-  double finalTime = 0;
+struct VibratingBarResult : RunSummary {
   // max over t = 0 and every step of |v_cm - (2 v0/pi) cos(w t^n)| / (2 v0/pi)
   double centreOfMassError = 0;
   // the same against (2 v0/pi) cos(w (t^n - dt/2)), dt the step just taken
