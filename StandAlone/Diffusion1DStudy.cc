@@ -15,7 +15,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>
 #include <exception>
 #include <filesystem>
 #include <fstream>
@@ -28,6 +27,7 @@
 #include <vector>
 
 #include "StandAlone/DiffusionSlab1D.h"
+#include "StandAlone/StudyTools.h"
 
 namespace {
 
@@ -64,13 +64,6 @@ std::vector<std::string> split(const std::string& s) {
   while (std::getline(in, item, ','))
     if (!item.empty()) out.push_back(item);
   return out;
-}
-
-std::string order(double coarse, double fine, double ratio) {
-  if (!(coarse > 0) || !(fine > 0) || !(ratio > 1)) return "";
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.2f", std::log(coarse / fine) / std::log(ratio));
-  return buf;
 }
 
 std::string sci(double v) {
@@ -179,55 +172,29 @@ int main(int argc, char** argv) {
   std::vector<std::string> variants = {"particle", "nodal", "particle-wide", "nodal-wide"};
   std::vector<int> cells;
   int threads = 1, jobs = 2;
-  for (int i = 1; i < argc; ++i) {
-    const bool hasValue = i + 1 < argc;
-    auto positiveInt = [&](const char* what) {
-      const int v = std::atoi(argv[++i]);
-      if (v < 1) {
-        std::fprintf(stderr, "diffusion_1d_study: %s needs a positive integer\n", what);
-        std::exit(2);
-      }
-      return v;
-    };
-    if (!std::strcmp(argv[i], "--quick")) {
-      quick = true;
-    } else if (!std::strcmp(argv[i], "--csv") && hasValue) {
-      csvPath = argv[++i];
-    } else if (!std::strcmp(argv[i], "--plots") && hasValue) {
-      plotDir = argv[++i];
-      plotsGiven = true;
-    } else if (!std::strcmp(argv[i], "--no-plots")) {
-      plots = false;
-    } else if (!std::strcmp(argv[i], "--replot")) {
-      replot = true;
-    } else if (!std::strcmp(argv[i], "--finest-all")) {
-      finestAll = true;
-    } else if (!std::strcmp(argv[i], "--interpolators") && hasValue) {
-      interpolators = split(argv[++i]);
-    } else if (!std::strcmp(argv[i], "--variants") && hasValue) {
-      variants = split(argv[++i]);
-    } else if (!std::strcmp(argv[i], "--cells") && hasValue) {
-      for (const std::string& s : split(argv[++i])) {
-        const int n = std::atoi(s.c_str());
-        if (n < 2) {
-          std::fprintf(stderr, "diffusion_1d_study: --cells needs integers >= 2\n");
-          return 2;
-        }
-        cells.push_back(n);
-      }
-      finestAll = true;  // explicit resolutions are run for every interpolator
-    } else if (!std::strcmp(argv[i], "--threads") && hasValue) {
-      threads = positiveInt("--threads");
-    } else if (!std::strcmp(argv[i], "--jobs") && hasValue) {
-      jobs = positiveInt("--jobs");
-    } else if (!std::strcmp(argv[i], "--help") || !std::strcmp(argv[i], "-h")) {
-      usage(stdout);
-      return 0;
-    } else {
-      usage(stderr);
-      return 2;
+  anode::StudyCommandLine args("diffusion_1d_study", usage);
+  args.flag("--quick", [&] { quick = true; });
+  args.option("--csv", [&](const char* path) { csvPath = path; });
+  args.option("--plots", [&](const char* dir) {
+    plotDir = dir;
+    plotsGiven = true;
+  });
+  args.flag("--no-plots", [&] { plots = false; });
+  args.flag("--replot", [&] { replot = true; });
+  args.flag("--finest-all", [&] { finestAll = true; });
+  args.option("--interpolators", [&](const char* list) { interpolators = split(list); });
+  args.option("--variants", [&](const char* list) { variants = split(list); });
+  args.option("--cells", [&](const char* list) {
+    for (const std::string& item : split(list)) {
+      const int n = std::atoi(item.c_str());
+      if (n < 2) args.fail("--cells needs integers >= 2");
+      cells.push_back(n);
     }
-  }
+    finestAll = true;  // explicit resolutions are run for every interpolator
+  });
+  args.positiveInteger("--threads", threads);
+  args.positiveInteger("--jobs", jobs);
+  if (const auto exitCode = args.parse(argc, argv)) return *exitCode;
   if (cells.empty()) cells = quick ? anode::diffusionSlabQuickCells() : anode::diffusionSlabStudyCells();
   if (csvPath.empty()) csvPath = quick ? "verification/diffusion_1d_quick.csv" : "verification/diffusion_1d.csv";
   if (quick && !plotsGiven) plots = false;
@@ -319,10 +286,7 @@ int main(int argc, char** argv) {
     std::printf("\n%-6s %-13s %6s %5s %6s %8s | %9s %5s | %9s %5s | %9s %5s | %9s %5s | %9s %5s | %10s %10s\n",
                 "interp", "variant", "h", "parts", "steps", "wall [s]", "Eq. 15", "order", "RMS rel",
                 "order", "RMS abs", "order", "interior", "order", "max abs", "order", "min c", "max c");
-    const std::filesystem::path path(csvPath);
-    if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
-    std::ofstream csv(path);
-    if (!csv) throw std::runtime_error("cannot write " + csvPath);
+    std::ofstream csv = anode::createOutputFile(csvPath);
     csv << "interpolator,variant,h,cells,particles,steps,wall_seconds,first_dt,final_time,completed,"
            "status,paper_norm,paper_norm_order,rms_relative,rms_relative_order,rms_absolute,"
            "rms_absolute_order,interior_rms_absolute,interior_order,interior_rms_relative,"
@@ -339,7 +303,9 @@ int main(int argc, char** argv) {
         previous = &results[i - 1];
       const bool ok = r.completed;
       auto ord = [&](double DiffusionSlabResult::*metric) {
-        return ok && previous ? order(previous->*metric, r.*metric, previous->h / r.h) : std::string();
+        return ok && previous
+                   ? anode::convergenceOrder(previous->*metric, r.*metric, previous->h / r.h)
+                   : std::string();
       };
       const std::string o1 = ord(&DiffusionSlabResult::paperNorm);
       const std::string o2 = ord(&DiffusionSlabResult::rmsRelative);
