@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <chrono>
 #include <string>
 
 #include "Core/Geometry/ParticleFill.h"
@@ -256,6 +257,22 @@ TEST(ParticleFill, PiecesBeyondTheGridAreFoundAsByAScanOfTheContinuedLattice) {
   huge->lo = Vec3::Constant(-1e6);
   huge->hi = Vec3::Constant(1e6);
   EXPECT_TRUE(placesParticlesOutside(grid, *huge, one, none));
+}
+
+TEST(ParticleFill, AFarReachAcrossASymmetryPlaneIsCheckedWithoutVisitingItsCells) {
+  // Found by the fuzzer: a box reaching 1e9 beyond a symmetric face had its 1e12 rows of cells
+  // visited one by one (a hang); only rows holding a cell that counts are visited now.
+  const Grid grid = fillTestGrid();
+  BoxPiece far;
+  far.lo = Vec3(0, 0.5, 1.0);
+  far.hi = Vec3(0.5, 1e9, 1.5);
+  std::array<bool, 6> mirror{};
+  mirror[3] = true;  // y+
+  const auto start = std::chrono::steady_clock::now();
+  EXPECT_FALSE(placesParticlesOutside(grid, far, Vec3i(2, 2, 2), mirror));
+  mirror[3] = false;
+  EXPECT_TRUE(placesParticlesOutside(grid, far, Vec3i(2, 2, 2), mirror));
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 5.0);
 }
 
 TEST(ParticleFill, APieceMayCrossASymmetryPlaneButNoOtherFace) {

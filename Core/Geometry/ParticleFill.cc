@@ -53,29 +53,46 @@ bool placesParticlesOutside(const Grid& grid, const GeometryPiece& piece, const 
   if (outside == 0) return false;
   if (!(outside <= kMaxOutsideCandidates)) return true;
   const Vec3 dxp = grid.dx.cwiseQuotient(res.cast<double>());
-  const auto isAllowed = [&](double cell, int d) {
-    return cell >= allowedLo[d] && cell < allowedHi[d];
+  // Per axis, the box's allowed cells as offsets [lo, hi) within [0, count).
+  Vec3 lo, hi;
+  for (int d = 0; d < 3; ++d) {
+    lo[d] = std::clamp(allowedLo[d] - first[d], 0.0, count[d]);
+    hi[d] = std::clamp(allowedHi[d] - first[d], 0.0, count[d]);
+  }
+  const bool xOutside = lo.x() > 0 || hi.x() < count.x();
+  const bool yOutside = lo.y() > 0 || hi.y() < count.y();
+  const auto placesInside = [&](long i, long j, long k) {
+    const Vec3 cell = grid.lower + (first + Vec3(i, j, k)).cwiseProduct(grid.dx);
+    for (int c = 0; c < res.z(); ++c)
+      for (int b = 0; b < res.y(); ++b)
+        for (int a = 0; a < res.x(); ++a)
+          if (piece.inside(cell + Vec3((a + 0.5) * dxp.x(), (b + 0.5) * dxp.y(), (c + 0.5) * dxp.z()))) return true;
+    return false;
   };
-  for (long k = 0; k < static_cast<long>(count.z()); ++k)
-    for (long j = 0; j < static_cast<long>(count.y()); ++j) {
-      const double cj = first.y() + j, ck = first.z() + k;
-      const bool rowAllowed = isAllowed(cj, 1) && isAllowed(ck, 2);
-      for (long i = 0; i < static_cast<long>(count.x()); ++i) {
-        const double ci = first.x() + i;
-        if (rowAllowed && isAllowed(ci, 0)) {
-          if (mirror[1]) break;
-          i = static_cast<long>(allowedHi.x() - 1 - first.x());  // past the allowed cells
-          continue;
-        }
-        const Vec3 cell = grid.lower + Vec3(ci * grid.dx.x(), cj * grid.dx.y(), ck * grid.dx.z());
-        for (int c = 0; c < res.z(); ++c)
-          for (int b = 0; b < res.y(); ++b)
-            for (int a = 0; a < res.x(); ++a)
-              if (piece.inside(cell +
-                               Vec3((a + 0.5) * dxp.x(), (b + 0.5) * dxp.y(), (c + 0.5) * dxp.z())))
-                return true;
-      }
+  // Only the rows of cells (j, k) with a cell outside are visited, and in them only those cells,
+  // so the work is bounded by `outside` however far the box reaches.
+  const auto rowPlacesOutside = [&](long j, long k, bool rowAllowed) {
+    for (long i = 0; i < static_cast<long>(count.x()); ++i) {
+      if (rowAllowed && i == static_cast<long>(lo.x())) i = static_cast<long>(hi.x());
+      if (i < static_cast<long>(count.x()) && placesInside(i, j, k)) return true;
     }
+    return false;
+  };
+  for (long k = 0; k < static_cast<long>(count.z()); ++k) {
+    const bool kAllowed = k >= static_cast<long>(lo.z()) && k < static_cast<long>(hi.z());
+    if (kAllowed && !xOutside && !yOutside) {
+      k = static_cast<long>(hi.z()) - 1;
+      continue;
+    }
+    for (long j = 0; j < static_cast<long>(count.y()); ++j) {
+      const bool rowAllowed = kAllowed && j >= static_cast<long>(lo.y()) && j < static_cast<long>(hi.y());
+      if (rowAllowed && !xOutside) {
+        j = static_cast<long>(hi.y()) - 1;
+        continue;
+      }
+      if (rowPlacesOutside(j, k, rowAllowed)) return true;
+    }
+  }
   return false;
 }
 
