@@ -62,13 +62,16 @@ size_t splitStretchedParticles(ParticleSet& p, const Grid& grid, double ratio,
   for (long i = 0; i < static_cast<long>(n); ++i)
     if (axisOf(i) >= 0) ++splitting;
   if (splitting == 0) return 0;
-  // The particles that split and along which edge, so every array grows once, exactly.
+  // The particles that split and along which edge. Each array grows at most once per step, with
+  // 1/16 to spare: splits come a few at a time over many steps, and growing each time to the
+  // exact size would copy every array at each of them.
   std::vector<std::pair<size_t, int>> splits;
   splits.reserve(splitting);
   for (size_t i = 0; i < n; ++i)
     if (const int axis = axisOf(i); axis >= 0) splits.emplace_back(i, axis);
+  const size_t needed = n + 3 * splits.size();
   p.forEachArray([&](auto& v) {
-    if (!v.empty()) v.reserve(n + 3 * splits.size());
+    if (!v.empty() && v.capacity() < needed) v.reserve(needed + needed / 16);
   });
   for (const auto& [i, axis] : splits) {
     const Vec3 edge = (p.F[i] * p.size[i] * grid.dx.asDiagonal()).col(axis);
