@@ -239,6 +239,15 @@ void checkScene(const Scene& s, const SceneContext& context) {
                                 "' must be letters, digits, '_', '.' or '-' (it names files)");
   if (s.times.empty() == (s.interval <= 0))
     throw std::invalid_argument("give <times> or <interval> (exactly one)");
+  // Each time is a picture (and an entry in memory): the fuzzer found an interval that asked for
+  // 4.7e15 of them.
+  constexpr double kMaxPictures = 1e5;
+  if (s.interval > 0 && !((context.maxTime - context.initTime) / s.interval < kMaxPictures)) {
+    char count[32];
+    std::snprintf(count, sizeof count, "%.3g", (context.maxTime - context.initTime) / s.interval + 1);
+    throw std::invalid_argument("<interval> asks for " + std::string(count) +
+                                " pictures between initTime and maxTime; at most 100000");
+  }
   for (double t : s.times) {
     if (t < context.initTime)
       throw std::invalid_argument("time " + std::to_string(t) + " is before initTime " +
