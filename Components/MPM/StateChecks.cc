@@ -10,12 +10,6 @@ namespace anode {
 
 namespace {
 
-std::string vector(const Vec3& v) {
-  std::ostringstream s;
-  s << "[" << v.x() << ", " << v.y() << ", " << v.z() << "]";
-  return s.str();
-}
-
 double jacobian(const MPMMaterial& mat, size_t i) {
   return mat.particles.volume[i] * mat.density / mat.particles.mass[i];
 }
@@ -26,9 +20,9 @@ std::string problemOf(const MPMMaterial& mat, size_t i) {
   std::ostringstream s;
   const double J = jacobian(mat, i);
   if (!p.x[i].allFinite()) {
-    s << "has a non-finite position p.x = " << vector(p.x[i]);
+    s << "has a non-finite position p.x = " << formatVector(p.x[i]);
   } else if (!p.velocity[i].allFinite()) {
-    s << "has a non-finite velocity p.velocity = " << vector(p.velocity[i]);
+    s << "has a non-finite velocity p.velocity = " << formatVector(p.velocity[i]);
   } else if (!p.stress[i].allFinite()) {
     s << "has a non-finite stress p.stress = [";
     for (int k = 0; k < 9; ++k) s << (k ? ", " : "") << p.stress[i](k / 3, k % 3);
@@ -147,8 +141,8 @@ void StateChecks::throwLocalOscillation(const MPMMaterial& mat, size_t m, size_t
   std::ostringstream s;
   s << "the velocity of " << describeParticle(mat, m, i) << " oscillates with growing amplitude: for "
     << static_cast<int>(localStreak_[m][i]) << " steps in a row its increment reversed the previous one and grew by "
-    << kLocalGrowth << " or more, to " << vector(velocityIncrement_[m][i]) << " (p.velocity = " << vector(p.velocity[i])
-    << "): a local instability of the explicit update at this time step (lower <timestep_multiplier>)";
+    << kLocalGrowth << " or more, to " << formatVector(velocityIncrement_[m][i])
+    << " (p.velocity = " << formatVector(p.velocity[i]) << "): a local instability of the explicit update at this time step (lower <timestep_multiplier>)";
   throw SimulationError(s.str());
 }
 
@@ -181,7 +175,8 @@ void StateChecks::checkOscillation(const MPM& mpm, double velocityEnergy, double
     << " update is unstable at this time step (lower <timestep_multiplier>); the largest increment is at "
     << describeParticle(materials[worstM], worstM, worstI);
   if (velocity)
-    s << ": p.velocity = " << vector(p.velocity[worstI]) << " after a change of " << vector(velocityIncrement_[worstM][worstI]);
+    s << ": p.velocity = " << formatVector(p.velocity[worstI]) << " after a change of "
+      << formatVector(velocityIncrement_[worstM][worstI]);
   else
     s << ": p.concentration = " << p.concentration[worstI] << " after a change of " << concentrationIncrement_[worstM][worstI];
   throw SimulationError(s.str());
@@ -217,7 +212,7 @@ void StateChecks::checkKineticEnergy(const MPM& mpm, double energy) {
       << ": a numerical instability (a time step beyond the stable one: lower <timestep_multiplier>)";
   }
   s << "; the fastest is " << describeParticle(materials[fastM], fastM, fastI)
-    << " with p.velocity = " << vector(materials[fastM].particles.velocity[fastI]);
+    << " with p.velocity = " << formatVector(materials[fastM].particles.velocity[fastI]);
   throw SimulationError(s.str());
 }
 

@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 
 #include "Components/MPM/Materials/Diffusion/ScalarFluxBC.h"
 #include "Components/MPM/ProblemSize.h"
@@ -16,14 +15,8 @@ namespace anode {
 
 namespace {
 
-std::string vec(const Vec3& v) {
-  char s[96];
-  std::snprintf(s, sizeof s, "[%g, %g, %g]", v.x(), v.y(), v.z());
-  return s;
-}
-
 std::string domain(const Grid& grid) {
-  return "the grid domain " + vec(grid.lower) + " to " + vec(grid.upper);
+  return "the grid domain " + formatVector(grid.lower) + " to " + formatVector(grid.upper);
 }
 
 // Adds the particles of one <geom_object> (UINTAH_UPS.md §3.1).
@@ -96,7 +89,7 @@ void addGeomObject(const PSNode& geom, const Grid& grid, const MPMFlags& flags, 
     for (const SmoothParticle& s : seeds)
       if ((s.x.array() < grid.lower.array()).any() || (s.x.array() > grid.upper.array()).any())
         pieceNodes[0].fail("<smoothcyl> places particles outside " + domain(grid) + ", e.g. at " +
-                           vec(s.x) + ": enlarge the <Grid><Box> or move the piece");
+                           formatVector(s.x) + ": enlarge the <Grid><Box> or move the piece");
   } else {
     for (size_t k = 0; k < pieceNodes.size(); ++k)
       m.filledPieces.push_back({pieceNodes[k], piece->pieces[k], res});
@@ -132,12 +125,17 @@ void addGeomObject(const PSNode& geom, const Grid& grid, const MPMFlags& flags, 
 
 }  // namespace
 
+std::string formatVector(const Vec3& v) {
+  std::ostringstream s;
+  s << "[" << v.x() << ", " << v.y() << ", " << v.z() << "]";
+  return s.str();
+}
+
 std::string describeParticle(const MPMMaterial& mat, size_t matl, size_t i) {
   std::ostringstream s;
-  const Vec3& x = mat.particles.x[i];
   s << "particle " << mat.particles.id[i] << " of material " << matl;
   if (!mat.name.empty()) s << " (" << mat.name << ")";
-  s << " at [" << x.x() << ", " << x.y() << ", " << x.z() << "]";
+  s << " at " << formatVector(mat.particles.x[i]);
   return s.str();
 }
 

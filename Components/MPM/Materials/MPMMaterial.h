@@ -48,6 +48,8 @@ struct MPMMaterial {
   void checkPiecesInsideGrid(const Grid& grid, const std::array<bool, 6>& mirror);
 };
 
+// "[x, y, z]", for diagnostics.
+std::string formatVector(const Vec3& v);
 // "particle ID of material M (name) at [x, y, z]", for diagnostics.
 std::string describeParticle(const MPMMaterial& mat, size_t matl, size_t i);
 
