@@ -15,6 +15,21 @@
 
 namespace anode {
 
+namespace {
+
+constexpr char kCheckpointMagic[] = "anode-mpm checkpoint";
+constexpr uint32_t kCheckpointVersion = 2;
+
+uint64_t fileHash(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  StreamHash h;
+  h.add(text.data(), text.size());
+  return h.value();
+}
+
+}  // namespace
+
 Simulation::Simulation(const RunOptions& options)
     : options_(options), spec_(std::make_unique<ProblemSpec>(options.input, options.ignoreUnsupported)) {
   setup();
@@ -65,6 +80,7 @@ void Simulation::run() {
   const auto start = std::chrono::steady_clock::now();
   auto wall = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
   const bool restart = !options_.restartDir.empty();
+  inputHash_ = fileHash(options_.input);
   std::string restartedFrom;
   if (restart) {
     archiver_.reopen(options_.restartDir);
@@ -176,21 +192,6 @@ void Simulation::replayToLastGoodState() {
                  step_, s.kineticEnergy, row.kineticEnergy);
 }
 
-namespace {
-
-constexpr char kCheckpointMagic[] = "anode-mpm checkpoint";
-constexpr uint32_t kCheckpointVersion = 2;
-
-uint64_t fileHash(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  StreamHash h;
-  h.add(text.data(), text.size());
-  return h.value();
-}
-
-}  // namespace
-
 void Simulation::writeCheckpoint(double wallSeconds, CheckpointKind kind) {
   const std::string dir = archiver_.directory();
   std::filesystem::create_directories(std::filesystem::path(dir) / "checkpoints");
@@ -201,7 +202,7 @@ void Simulation::writeCheckpoint(double wallSeconds, CheckpointKind kind) {
     out.string(kCheckpointMagic);
     out.value(kCheckpointVersion);
     out.value<int32_t>(omp_get_max_threads());
-    out.value(fileHash((std::filesystem::path(dir) / "input.ups").string()));
+    out.value(inputHash_);
     out.value(t_);
     out.value(dt_);
     out.value(step_);
@@ -238,12 +239,12 @@ void Simulation::loadCheckpoint(const std::string& path, bool outputs) {
   if (outputs) {
     archiver_.loadState(in);
   } else {
-    DataArchiver unused = archiver_;
+    DataArchiver unused;
     unused.loadState(in);
   }
   mpm_.loadState(in);
   in.finish();
-  if (inputHash != fileHash(options_.input))
+  if (inputHash != inputHash_)
     std::fprintf(stderr, "warning: %s changed since %s was written; the run continues with the changed input\n",
                  options_.input.c_str(), path.c_str());
   if (threads != omp_get_max_threads())

@@ -75,6 +75,7 @@ class Simulation {
   double particleSteps_ = 0, wallSeconds_ = 0;
   double lastCheckpointTime_ = 0;
   double earlierWallSeconds_ = 0;  // of the runs before a restart, for history.csv
+  uint64_t inputHash_ = 0;          // of the input file, stored in checkpoints
 };
 
 }  // namespace anode
