@@ -24,21 +24,18 @@
 
 #include "Core/Util/BinaryStream.h"
 #include "StandAlone/Checkpoint.h"
+#include "RunSus.h"
+#include "TestFiles.h"
 
 namespace fs = std::filesystem;
 
 namespace anode {
 namespace {
 
+using testing::readFile;
+
 const std::string kSus = ANODE_SUS;
 const std::string kSource = ANODE_SOURCE_DIR;
-
-std::string readFile(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 // A scratch directory for one test, removed at the end.
 struct Scratch {
@@ -51,10 +48,11 @@ struct Scratch {
   ~Scratch() { fs::remove_all(dir); }
 };
 
-int sus(const std::string& args, const fs::path& log) {
-  const std::string cmd = kSus + " --threads 2 " + args + " > " + log.string() + " 2>&1";
-  const int status = std::system(cmd.c_str());
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+// sus with 2 threads and `args`, then `more`.
+testing::SusResult sus(std::vector<std::string> args, const std::vector<std::string>& more = {}) {
+  args.insert(args.begin(), {"--threads", "2"});
+  args.insert(args.end(), more.begin(), more.end());
+  return testing::runSus(args);
 }
 
 // The input with <checkpoint> added to <DataArchiver> (when `checkpoint` is not empty).
@@ -102,55 +100,55 @@ void expectSameOutputs(const fs::path& a, const fs::path& b) {
 struct RestartCase {
   std::string name, input, checkpoint;  // checkpoint: element to add ("" if the input has one)
   long interruptAt;                      // steps of the interrupted run
-  std::string stepsFlag;                 // e.g. "--max-timesteps 150" for both runs
+  std::vector<std::string> steps;        // e.g. {"--max-timesteps", "150"} for both runs
 };
 
 void PrintTo(const RestartCase& c, std::ostream* os) { *os << c.name; }
 
-class Restart : public testing::TestWithParam<RestartCase> {};
+class Restart : public ::testing::TestWithParam<RestartCase> {};
 
 TEST_P(Restart, ContinuesBitForBit) {
   const RestartCase& c = GetParam();
   if (!fs::exists(c.input)) GTEST_SKIP() << "input not present: " << c.input;
   Scratch s(c.name);
   const fs::path input = withCheckpoint(c.input, c.checkpoint, s.dir / "input.ups");
-  ASSERT_EQ(sus(c.stepsFlag + " -o " + (s.dir / "whole").string() + " " + input.string(), s.dir / "whole.log"), 0)
-      << readFile(s.dir / "whole.log");
-  ASSERT_EQ(sus("--max-timesteps " + std::to_string(c.interruptAt) + " -o " + (s.dir / "parts").string() + " " +
-                    input.string(), s.dir / "first.log"), 0);
+  const testing::SusResult whole = sus(c.steps, {"-o", (s.dir / "whole").string(), input.string()});
+  ASSERT_EQ(whole.exitCode, 0) << whole.output;
+  ASSERT_EQ(sus({"--max-timesteps", std::to_string(c.interruptAt), "-o", (s.dir / "parts").string(), input.string()})
+                .exitCode, 0);
   const std::vector<std::string> checkpoints = listCheckpoints((s.dir / "parts").string());
   ASSERT_FALSE(checkpoints.empty()) << "the interrupted run wrote no checkpoint";
-  ASSERT_EQ(sus("-restart " + (s.dir / "parts").string() + " " + c.stepsFlag, s.dir / "second.log"), 0)
-      << readFile(s.dir / "second.log");
-  EXPECT_NE(readFile(s.dir / "second.log").find("restarting from " + checkpoints.front()), std::string::npos)
-      << readFile(s.dir / "second.log");
+  const testing::SusResult second = sus({"-restart", (s.dir / "parts").string()}, c.steps);
+  ASSERT_EQ(second.exitCode, 0) << second.output;
+  EXPECT_NE(second.output.find("restarting from " + checkpoints.front()), std::string::npos) << second.output;
   expectSameOutputs(s.dir / "whole", s.dir / "parts");
 }
 
 INSTANTIATE_TEST_SUITE_P(
     Inputs, Restart,
-    testing::Values(
+    ::testing::Values(
         // 3-D CPDI pillar: flux BCs, non_linear1 with pressure, plasticity, a rendered scene.
         RestartCase{"pillar", kSource + "/inputs/Pillar/PillarLithiation.ups",
-                    "<checkpoint cycle=\"2\" timestepInterval=\"40\"/>", 100, "--max-timesteps 150"},
+                    "<checkpoint cycle=\"2\" timestepInterval=\"40\"/>", 100, {"--max-timesteps", "150"}},
         // Uintah's 2-D pillar, unmodified (its own <checkpoint interval>): particle splitting.
-        RestartCase{"nanopillar2d", kSource + "/../shared/inputs/uintah/NanoPillar2D_FBC_Sym.ups", "", 500, ""},
+        RestartCase{"nanopillar2d", kSource + "/../shared/inputs/uintah/NanoPillar2D_FBC_Sym.ups", "", 500, {}},
         // Auto-cycled flux, checkpoint after the first flip.
-        RestartCase{"autocycle", kSource + "/tests/checkpoint/AutoCycleSlab.ups", "", 1000, ""}),
-    [](const testing::TestParamInfo<RestartCase>& info) { return info.param.name; });
+        RestartCase{"autocycle", kSource + "/tests/checkpoint/AutoCycleSlab.ups", "", 1000, {}}),
+    [](const ::testing::TestParamInfo<RestartCase>& info) { return info.param.name; });
 
 TEST(Restart, SkipsADamagedNewestCheckpoint) {
   Scratch s("damaged");
   const std::string input = kSource + "/tests/checkpoint/AutoCycleSlab.ups";
-  ASSERT_EQ(sus("-o " + (s.dir / "whole").string() + " " + input, s.dir / "whole.log"), 0);
-  ASSERT_EQ(sus("--max-timesteps 1000 -o " + (s.dir / "parts").string() + " " + input, s.dir / "first.log"), 0);
+  ASSERT_EQ(sus({"-o", (s.dir / "whole").string(), input}).exitCode, 0);
+  ASSERT_EQ(sus({"--max-timesteps", "1000", "-o", (s.dir / "parts").string(), input}).exitCode, 0);
   const std::vector<std::string> checkpoints = listCheckpoints((s.dir / "parts").string());
   ASSERT_EQ(checkpoints.size(), 2u);  // steps 900 and 600, cycle = 2
   EXPECT_TRUE(hasIntactHash(checkpoints[0]));
   fs::resize_file(checkpoints[0], fs::file_size(checkpoints[0]) / 2);
   EXPECT_FALSE(hasIntactHash(checkpoints[0]));
-  ASSERT_EQ(sus("-restart " + (s.dir / "parts").string(), s.dir / "second.log"), 0) << readFile(s.dir / "second.log");
-  const std::string log = readFile(s.dir / "second.log");
+  const testing::SusResult second = sus({"-restart", (s.dir / "parts").string()});
+  ASSERT_EQ(second.exitCode, 0) << second.output;
+  const std::string& log = second.output;
   EXPECT_NE(log.find("skipping " + checkpoints[0]), std::string::npos) << log;
   EXPECT_NE(log.find("restarting from " + checkpoints[1]), std::string::npos) << log;
   expectSameOutputs(s.dir / "whole", s.dir / "parts");
@@ -158,10 +156,11 @@ TEST(Restart, SkipsADamagedNewestCheckpoint) {
 
 TEST(Restart, WithoutACheckpointIsAnError) {
   Scratch s("none");
-  ASSERT_EQ(sus("--max-timesteps 3 -o " + (s.dir / "run").string() + " " + kSource + "/inputs/Pillar/PillarImpact.ups",
-                s.dir / "run.log"), 0);
-  EXPECT_EQ(sus("-restart " + (s.dir / "run").string(), s.dir / "restart.log"), 1);
-  EXPECT_NE(readFile(s.dir / "restart.log").find("no checkpoint in"), std::string::npos) << readFile(s.dir / "restart.log");
+  ASSERT_EQ(sus({"--max-timesteps", "3", "-o", (s.dir / "run").string(), kSource + "/inputs/Pillar/PillarImpact.ups"})
+                .exitCode, 0);
+  const testing::SusResult restart = sus({"-restart", (s.dir / "run").string()});
+  EXPECT_EQ(restart.exitCode, 1);
+  EXPECT_NE(restart.output.find("no checkpoint in"), std::string::npos) << restart.output;
 }
 
 // A run stopped by a diagnostic (exit 3) writes the last good state by replaying from its newest
@@ -172,8 +171,9 @@ TEST(Restart, StoppedRunReplaysItsLastGoodState) {
   for (const std::string& schedule : {std::string(), std::string("<checkpoint cycle=\"1\" timestepInterval=\"10\"/>")}) {
     Scratch s(schedule.empty() ? "replay_auto" : "replay_scheduled");
     const fs::path input = withCheckpoint(unstable, schedule, s.dir / "input.ups");
-    ASSERT_EQ(sus("-o " + (s.dir / "stopped").string() + " " + input.string(), s.dir / "stopped.log"), 3);
-    const std::string log = readFile(s.dir / "stopped.log");
+    const testing::SusResult stopped = sus({"-o", (s.dir / "stopped").string(), input.string()});
+    ASSERT_EQ(stopped.exitCode, 3) << stopped.output;
+    const std::string& log = stopped.output;
     const std::smatch m = [&] {
       std::smatch found;
       std::regex_search(log, found, std::regex(R"(last good state \(step (\d+),)"));
@@ -183,8 +183,8 @@ TEST(Restart, StoppedRunReplaysItsLastGoodState) {
     const long lastGood = std::stol(m[1].str());
     EXPECT_NE(log.find(schedule.empty() ? "auto_step_000000.ckpt" : "step_000030.ckpt"), std::string::npos) << log;
     EXPECT_EQ(log.find("warning"), std::string::npos) << log;
-    ASSERT_EQ(sus("--max-timesteps " + std::to_string(lastGood) + " -o " + (s.dir / "ended").string() + " " +
-                      input.string(), s.dir / "ended.log"), 0);
+    ASSERT_EQ(sus({"--max-timesteps", std::to_string(lastGood), "-o", (s.dir / "ended").string(), input.string()})
+                  .exitCode, 0);
     char name[64];
     std::snprintf(name, sizeof name, "particles/step_%06ld.vtu", lastGood);
     ASSERT_TRUE(fs::exists(s.dir / "stopped" / name)) << name;
@@ -274,8 +274,8 @@ TEST(Restart, KilledRunsLeaveCompleteFilesAndContinueToTheSameResult) {
   text.insert(text.find("</DataArchiver>"), "<checkpoint cycle=\"3\" timestepInterval=\"3\"/>");
   const fs::path input = s.dir / "input.ups";
   std::ofstream(input) << text;
-  ASSERT_EQ(sus("--max-timesteps 120 -o " + (s.dir / "whole").string() + " " + input.string(), s.dir / "whole.log"), 0)
-      << readFile(s.dir / "whole.log");
+  const testing::SusResult whole = sus({"--max-timesteps", "120", "-o", (s.dir / "whole").string(), input.string()});
+  ASSERT_EQ(whole.exitCode, 0) << whole.output;
   const std::string run = (s.dir / "killed").string();
   std::mt19937 random(1);
   std::uniform_int_distribution<int> delay(250, 1200);  // ms: from setup to a few outputs in
@@ -289,11 +289,12 @@ TEST(Restart, KilledRunsLeaveCompleteFilesAndContinueToTheSameResult) {
     runAndKill(args, std::chrono::milliseconds(delay(random)), s.dir / "kill.log");
     if (temporaryFiles(run) > 0) ++duringWrites;
     expectEveryFileComplete(run, 12660);
-    if (testing::Test::HasFailure()) break;
+    if (::testing::Test::HasFailure()) break;
   }
   std::printf("%d kills, %d of them during a write (a temporary file left behind)\n", kills, duringWrites);
   ASSERT_FALSE(listCheckpoints(run).empty()) << "no checkpoint written before the kills";
-  ASSERT_EQ(sus("--max-timesteps 120 -restart " + run, s.dir / "last.log"), 0) << readFile(s.dir / "last.log");
+  const testing::SusResult last = sus({"--max-timesteps", "120", "-restart", run});
+  ASSERT_EQ(last.exitCode, 0) << last.output;
   expectEveryFileComplete(run, 12660);
   expectSameOutputs(s.dir / "whole", run);
 }

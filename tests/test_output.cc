@@ -16,6 +16,7 @@
 #include <sstream>
 
 #include "StandAlone/Simulation.h"
+#include "TestFiles.h"
 #include "TestInputs.h"
 
 namespace fs = std::filesystem;
@@ -23,12 +24,7 @@ namespace fs = std::filesystem;
 namespace anode {
 namespace {
 
-std::string readFile(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using testing::readFile;
 
 struct OutputRun {
   fs::path dir;
