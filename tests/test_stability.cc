@@ -302,6 +302,25 @@ class StateChecksTest : public ::testing::Test {
     }
     return "";
   }
+  // For k = 0, 1, ..., n - 1: gives particle i the velocity velocity(k, i) and checks. Returns
+  // the step (from 1) the checks stopped, or 0; their message in *message.
+  int stepsUntilStopped(int n, const std::function<Vec3(int k, size_t i)>& velocity, std::string* message = nullptr) {
+    for (int k = 0; k < n; ++k) {
+      for (size_t i = 0; i < particles().count(); ++i) particles().velocity[i] = velocity(k, i);
+      const std::string f = failure();
+      if (message) *message = f;
+      if (!f.empty()) return k + 1;
+    }
+    return 0;
+  }
+  // stepsUntilStopped with the starting velocities plus one that flips sign every step along
+  // `axis`, of amplitude 1e-3 growing by `growth` per step.
+  int stepsOfAnAlternation(int axis, double growth, int n) {
+    const std::vector<Vec3> base = particles().velocity;
+    return stepsUntilStopped(n, [&](int k, size_t i) -> Vec3 {
+      return base[i] + (k % 2 ? -1 : 1) * 1e-3 * std::pow(growth, k) * Vec3::Unit(axis);
+    });
+  }
   Simulation sim;
   StateChecks checks;
 };
@@ -339,20 +358,9 @@ TEST_F(StateChecksTest, NamesJOutsideItsBounds) {
 TEST_F(StateChecksTest, StopsAnOscillationThatGrowsButNotOneThatDoesNot) {
   // Velocities that flip sign every step: growing by 1.5 per step trips the check once the
   // energy of two increments grew 100-fold (about 6 steps); a constant amplitude never does.
-  std::vector<Vec3> base = particles().velocity;
-  auto steps = [&](double growth, int n) {
-    double amplitude = 1e-3;
-    for (int k = 0; k < n; ++k) {
-      for (size_t i = 0; i < base.size(); ++i) particles().velocity[i] = base[i] + Vec3(0, (k % 2 ? -1 : 1) * amplitude, 0);
-      amplitude *= growth;
-      const std::string f = failure();
-      if (!f.empty()) return k + 1;
-    }
-    return 0;
-  };
-  EXPECT_EQ(steps(1.0, 200), 0);
+  EXPECT_EQ(stepsOfAnAlternation(1, 1.0, 200), 0);
   checks = StateChecks();
-  const int at = steps(1.5, 200);
+  const int at = stepsOfAnAlternation(1, 1.5, 200);
   EXPECT_GE(at, 5);
   EXPECT_LE(at, 10);
 }
@@ -360,19 +368,9 @@ TEST_F(StateChecksTest, StopsAnOscillationThatGrowsButNotOneThatDoesNot) {
 TEST_F(StateChecksTest, StopsASlowOscillationThatPersistsTenSteps) {
   // Energy growing 1.1-fold per step: past 2 after 8 steps, stopped once the run is 10 long;
   // the same oscillation decaying 0.9-fold per step is never stopped.
-  std::vector<Vec3> base = particles().velocity;
-  auto steps = [&](double growth, int n) {
-    double amplitude = 1e-3;
-    for (int k = 0; k < n; ++k) {
-      for (size_t i = 0; i < base.size(); ++i) particles().velocity[i] = base[i] + Vec3(0, 0, (k % 2 ? -1 : 1) * amplitude);
-      amplitude *= std::sqrt(growth);
-      if (!failure().empty()) return k + 1;
-    }
-    return 0;
-  };
-  EXPECT_EQ(steps(0.9, 100), 0);
+  EXPECT_EQ(stepsOfAnAlternation(2, std::sqrt(0.9), 100), 0);
   checks = StateChecks();
-  const int at = steps(1.1, 100);
+  const int at = stepsOfAnAlternation(2, std::sqrt(1.1), 100);
   EXPECT_GE(at, 10);
   EXPECT_LE(at, 14);
 }
@@ -382,17 +380,15 @@ TEST_F(StateChecksTest, StopsOneParticleWhoseVelocityOscillatesWithGrowingAmplit
   // watch stays quiet at first) while particle 4 flips sign every step with amplitude growing by
   // `growth` from `start`: the local watch stops it once it reversed and grew 5 steps in a row,
   // unless it grows by less than 1.2 or stays round-off (below 1e-3 of the rms speed, about 1).
-  std::vector<Vec3> base = particles().velocity;
+  const std::vector<Vec3> base = particles().velocity;
   auto steps = [&](double growth, double start, int n, std::string* f) {
-    double amplitude = start;
-    for (int k = 0; k < n; ++k) {
-      for (size_t i = 0; i < base.size(); ++i) particles().velocity[i] = base[i] + Vec3(0.01 * k, 0, 0);
-      particles().velocity[4] += Vec3(0, (k % 2 ? -1 : 1) * amplitude, 0);
-      amplitude *= growth;
-      *f = failure();
-      if (!f->empty()) return k + 1;
-    }
-    return 0;
+    return stepsUntilStopped(
+        n,
+        [&](int k, size_t i) -> Vec3 {
+          const double flip = i == 4 ? (k % 2 ? -1 : 1) * start * std::pow(growth, k) : 0.0;
+          return base[i] + Vec3(0.01 * k, flip, 0);
+        },
+        f);
   };
   std::string f;
   // Growing by 1.1, it is left to the whole-body watch (which stops it once it dominates).
@@ -409,15 +405,10 @@ TEST_F(StateChecksTest, StopsOneParticleWhoseVelocityOscillatesWithGrowingAmplit
 }
 
 TEST_F(StateChecksTest, StopsAKineticEnergyThatDoublesTwentyStepsInARow) {
-  std::vector<Vec3> base = particles().velocity;
-  int stopped = 0;
+  const std::vector<Vec3> base = particles().velocity;
   std::string f;
-  for (int k = 1; k <= 40 && f.empty(); ++k) {
-    // Same direction every step (no oscillation): the energy grows by 2.25 per step.
-    for (size_t i = 0; i < base.size(); ++i) particles().velocity[i] = base[i] * std::pow(1.5, k);
-    f = failure();
-    stopped = k;
-  }
+  // Same direction every step (no oscillation): the energy grows by 2.25 per step.
+  const int stopped = stepsUntilStopped(40, [&](int k, size_t i) -> Vec3 { return base[i] * std::pow(1.5, k + 1); }, &f);
   EXPECT_EQ(stopped, 21) << f;
   EXPECT_NE(f.find("the kinetic energy grew by a factor of at least 2 at each of the last 20 steps"), std::string::npos) << f;
   EXPECT_NE(f.find("; the fastest is particle "), std::string::npos) << f;
@@ -425,11 +416,8 @@ TEST_F(StateChecksTest, StopsAKineticEnergyThatDoublesTwentyStepsInARow) {
 
 TEST_F(StateChecksTest, PowerLawGrowthFromRestIsNotABlowUp) {
   // A body starting from rest under a load that grows linearly: v ~ t^3, KE ~ t^6.
-  std::vector<Vec3> base(particles().count(), Vec3(1, 0, 0));
-  for (int k = 1; k <= 500; ++k) {
-    for (size_t i = 0; i < base.size(); ++i) particles().velocity[i] = base[i] * std::pow(k, 3.0);
-    ASSERT_EQ(failure(), "") << "step " << k;
-  }
+  std::string f;
+  EXPECT_EQ(stepsUntilStopped(500, [](int k, size_t) -> Vec3 { return Vec3(std::pow(k + 1, 3.0), 0, 0); }, &f), 0) << f;
 }
 
 }  // namespace
