@@ -31,6 +31,15 @@ CheckpointSchedule CheckpointSchedule::fromInput(const PSNode& archiver) {
   CheckpointSchedule s;
   const PSNode node = archiver.child("checkpoint");
   if (!node) return s;
+  bool byWallTime = false;
+  for (const std::string& a : node.attributeNames()) {
+    if (a == "cycle" || a == "interval" || a == "timestepInterval") continue;
+    if (a != "walltimeStart" && a != "walltimeInterval")
+      node.fail("<checkpoint>: unknown attribute " + a + "; accepted: cycle, interval, timestepInterval");
+    node.unsupported("<checkpoint " + a + ">: checkpoints by wall time");
+    byWallTime = true;
+  }
+  if (byWallTime && !node.attribute("interval") && !node.attribute("timestepInterval")) return s;
   const std::optional<int> cycle = numberAttribute<int>(node, "cycle");
   s.interval = numberAttribute<double>(node, "interval");
   const std::optional<int> steps = numberAttribute<int>(node, "timestepInterval");

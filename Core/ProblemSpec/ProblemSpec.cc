@@ -181,6 +181,12 @@ std::optional<std::string> PSNode::attribute(const char* attr) const {
   return trim(v);
 }
 
+std::vector<std::string> PSNode::attributeNames() const {
+  std::vector<std::string> names;
+  for (const tinyxml2::XMLAttribute* a = e_->FirstAttribute(); a; a = a->Next()) names.push_back(a->Name());
+  return names;
+}
+
 std::string PSNode::requireAttribute(const char* attr) const {
   auto v = attribute(attr);
   if (!v) fail("<" + name() + "> requires the attribute " + attr + "=\"...\"");

@@ -55,6 +55,8 @@ class PSNode {
   std::string text() const;
   std::optional<std::string> attribute(const char* name) const;
   std::string requireAttribute(const char* name) const;
+  // The names of this element's attributes, in document order.
+  std::vector<std::string> attributeNames() const;
 
   // Accept a child tag (and everything inside it) that changes nothing in this code.
   void acceptInert(const char* tag) const;
