@@ -17,14 +17,18 @@ struct GridFields {
   std::vector<double> concentration;       // g.concentration: sum m c S / m (Eq. 5), then BCs
   std::vector<double> concentrationNoBC;   // the same before the SD-Type BCs
   std::vector<double> diffusionRate;       // -sum m (grad S . q) during P2G (Eq. 7 numerator)
-  std::vector<double> externalScalarFlux;  // sum m rate S (Eq. 18 numerator)
+  std::vector<double> externalScalarFlux;  // sum m rate S (Eq. 18 numerator), then G / W
+  std::vector<double> receiverWeightIn;    // W = sum m S R(c) of the particles an inflow can reach
+  std::vector<double> receiverWeightOut;   // the same with R(1 - c), for an outflow
   std::vector<double> concentrationStar;   // c + dc/dt dt, then BCs
   std::vector<double> concentrationRate;   // g.concentrationRate: drives the particles (Eq. 8)
 
-  void resizeDiffusion(int nodes) {
+  void resizeDiffusion(int nodes, bool flux) {
     for (auto* f : {&concentration, &concentrationNoBC, &diffusionRate, &externalScalarFlux,
                     &concentrationStar, &concentrationRate})
       f->assign(nodes, 0.0);
+    if (flux)
+      for (auto* f : {&receiverWeightIn, &receiverWeightOut}) f->assign(nodes, 0.0);
   }
 
   void resize(int nodes) {

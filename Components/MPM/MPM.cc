@@ -96,7 +96,7 @@ void MPM::problemSetup(const PSNode& root, double initTime, double maxTime) {
   fields_.resize(materials_.size());
   for (auto& f : fields_) {
     f.resize(nodes);
-    if (flags_.doScalarDiffusion) f.resizeDiffusion(nodes);
+    if (flags_.doScalarDiffusion) f.resizeDiffusion(nodes, !fluxBCs_.empty());
   }
   weights_.resize(materials_.size());
   capacity_.resize(materials_.size());
@@ -105,7 +105,7 @@ void MPM::problemSetup(const PSNode& root, double initTime, double maxTime) {
     t.mass.resize(nodes);
     t.velocity.resize(nodes);
     t.internalForce.resize(nodes);
-    if (flags_.doScalarDiffusion) t.resizeDiffusion(nodes);
+    if (flags_.doScalarDiffusion) t.resizeDiffusion(nodes, !fluxBCs_.empty());
   }
   if (flags_.doScalarDiffusion) {
     findDirichletNodes();
@@ -279,31 +279,39 @@ struct ScatterTarget {
   double* massConcentration;  // sum m c S (Eq. 5 numerator)
   double* diffusionRate;      // -sum m (grad S . D grad c) (Eq. 7 numerator)
   double* fluxSource;         // sum m rate S (Eq. 18 numerator)
+  double* receiverWeightIn;   // sum m S R(c)
+  double* receiverWeightOut;  // sum m S R(1 - c)
 
   static ScatterTarget of(GridFields& g) {
-    const bool d = !g.concentration.empty();
+    const bool d = !g.concentration.empty(), f = !g.receiverWeightIn.empty();
     return {g.mass.data(), g.velocity.data(), g.internalForce.data(),
             d ? g.concentration.data() : nullptr, d ? g.diffusionRate.data() : nullptr,
-            d ? g.externalScalarFlux.data() : nullptr};
+            d ? g.externalScalarFlux.data() : nullptr, f ? g.receiverWeightIn.data() : nullptr,
+            f ? g.receiverWeightOut.data() : nullptr};
   }
 };
 
 // P2G of particles [begin, end): mass, momentum, internal force (f = -sum V sigma grad S) and,
 // with diffusion, concentration, flux divergence (q_p = D_p grad c_p of the previous step) and
-// the flux source.
+// the flux source with the weights of the particles that can receive it (cmax: the material's
+// max_concentration).
 template <bool Diffusion, bool Flux>
 void scatterToGrid(const ParticleSet& p, const InterpolationWeights& W, long begin, long end,
-                   const ScatterTarget& g) {
+                   double cmax, const ScatterTarget& g) {
   for (long i = begin; i < end; ++i) {
     const double mp = p.mass[i];
     const Vec3 mv = mp * p.velocity[i];
     const Mat3 Vsigma = p.volume[i] * p.stress[i];
-    double mc = 0, mrate = 0;
+    double mc = 0, mrate = 0, mIn = 0, mOut = 0;
     Vec3 mq = Vec3::Zero();
     if constexpr (Diffusion) {
       mc = mp * p.concentration[i];
       mq = mp * p.diffusivity[i] * p.concentrationGradient[i];
-      if constexpr (Flux) mrate = mp * p.externalScalarFlux[i];
+      if constexpr (Flux) {
+        mrate = mp * p.externalScalarFlux[i];
+        mIn = mp * fluxRestriction(p.concentration[i] / cmax);
+        mOut = mp * fluxRestriction(1 - p.concentration[i] / cmax);
+      }
     }
     const size_t b = W.offset[i];
     for (int e = 0; e < W.count[i]; ++e) {
@@ -316,20 +324,24 @@ void scatterToGrid(const ParticleSet& p, const InterpolationWeights& W, long beg
       if constexpr (Diffusion) {
         g.massConcentration[n] += mc * w;
         g.diffusionRate[n] -= grad.dot(mq);
-        if constexpr (Flux) g.fluxSource[n] += mrate * w;
+        if constexpr (Flux) {
+          g.fluxSource[n] += mrate * w;
+          g.receiverWeightIn[n] += mIn * w;
+          g.receiverWeightOut[n] += mOut * w;
+        }
       }
     }
   }
 }
 
 void scatter(bool diffusion, bool flux, const ParticleSet& p, const InterpolationWeights& W, long begin,
-             long end, const ScatterTarget& g) {
+             long end, double cmax, const ScatterTarget& g) {
   if (!diffusion)
-    scatterToGrid<false, false>(p, W, begin, end, g);
+    scatterToGrid<false, false>(p, W, begin, end, cmax, g);
   else if (!flux)
-    scatterToGrid<true, false>(p, W, begin, end, g);
+    scatterToGrid<true, false>(p, W, begin, end, cmax, g);
   else
-    scatterToGrid<true, true>(p, W, begin, end, g);
+    scatterToGrid<true, true>(p, W, begin, end, cmax, g);
 }
 
 template <class T>
@@ -345,6 +357,8 @@ void clearScatterFields(GridFields& g, long begin, long end) {
   zero(g.concentration, begin, end, 0.0);
   zero(g.diffusionRate, begin, end, 0.0);
   zero(g.externalScalarFlux, begin, end, 0.0);
+  zero(g.receiverWeightIn, begin, end, 0.0);
+  zero(g.receiverWeightOut, begin, end, 0.0);
 }
 
 // Zeroes every field on nodes [begin, end).
@@ -367,9 +381,10 @@ void MPM::interpolateParticlesToGrid() {
     GridFields& g = fields_[m];
     const long n = static_cast<long>(p.count());
     const bool flux = !p.externalScalarFlux.empty();
+    const double cmax = diffusion ? materials_[m].diffusion->maxConcentration : 1.0;
     clearAllFields(g, std::min(begin, previous_.begin), std::max(end, previous_.end));
     if (threadScatter_.empty()) {
-      scatter(diffusion, flux, p, weights_[m], 0, n, ScatterTarget::of(g));
+      scatter(diffusion, flux, p, weights_[m], 0, n, cmax, ScatterTarget::of(g));
     } else {
       // Each thread scatters a contiguous block of particles into its own buffer; the buffers are
       // summed in thread order, so results do not depend on scheduling.
@@ -379,7 +394,8 @@ void MPM::interpolateParticlesToGrid() {
         const int t = omp_get_thread_num();
         GridFields& s = threadScatter_[t];
         clearScatterFields(s, begin, end);
-        scatter(diffusion, flux, p, weights_[m], n * t / threads, n * (t + 1) / threads, ScatterTarget::of(s));
+        scatter(diffusion, flux, p, weights_[m], n * t / threads, n * (t + 1) / threads, cmax,
+                ScatterTarget::of(s));
 #pragma omp barrier
 #pragma omp for schedule(static)
         for (long k = begin; k < end; ++k)
@@ -392,6 +408,10 @@ void MPM::interpolateParticlesToGrid() {
               g.concentration[k] += b.concentration[k];
               g.diffusionRate[k] += b.diffusionRate[k];
               g.externalScalarFlux[k] += b.externalScalarFlux[k];
+            }
+            if (flux) {
+              g.receiverWeightIn[k] += b.receiverWeightIn[k];
+              g.receiverWeightOut[k] += b.receiverWeightOut[k];
             }
           }
       }
@@ -442,28 +462,35 @@ void MPM::integrateGridMomentum(double dt) {
 }
 
 void MPM::integrateConcentration(double dt) {
-  // Eq. 18: c* = c + (R/m + G/m) dt, then the SD-Type BCs on c*; the rate that drives the
-  // particles is (c* - c_noBC)/dt. Unlike Uintah (UINTAH_UPS.md §6 step 7) the flux source is
-  // part of c*, so the next step's gradient sees the lithium that entered.
+  // Eq. 18: c* = c + (R/m + G/m) dt, then the SD-Type BCs on c*. Unlike Uintah (UINTAH_UPS.md
+  // §6 step 7) the flux source is part of c*, so the next step's gradient sees the lithium that
+  // entered. The nodal rate that drives the particles, (c° - c_noBC)/dt with c° = c + (R/m) dt
+  // under the same BCs, leaves the source out: each node hands its G to the particles it reaches
+  // in proportion to m S R, R the restriction of Eq. 17 at each particle's own c (R(1 - c) for
+  // an outflow), so a full (or emptied) particle receives nothing from its neighbours' sources
+  // and the node delivers all of G. externalScalarFlux becomes G / sum m S R.
   const long begin = active_.begin, end = active_.end;
   for (size_t m = 0; m < materials_.size(); ++m) {
     GridFields& g = fields_[m];
     const double constantRate = materials_[m].diffusion->constantRate();
+    const bool source = !materials_[m].particles.externalScalarFlux.empty();
+    std::vector<double>& withoutSource = source ? g.concentrationRate : g.concentrationStar;
 #pragma omp parallel for schedule(static)
     for (long k = begin; k < end; ++k) {
-      const double rate =
-          g.mass[k] > 0 ? (g.diffusionRate[k] + g.externalScalarFlux[k]) / g.mass[k] + constantRate : 0.0;
-      g.concentrationStar[k] = g.concentration[k] + rate * dt;
+      const double invMass = g.mass[k] > 0 ? 1.0 / g.mass[k] : 0.0;
+      const double rate = invMass > 0 ? g.diffusionRate[k] * invMass + constantRate : 0.0;
+      withoutSource[k] = g.concentration[k] + rate * dt;
+      if (!source) continue;
+      const double G = g.externalScalarFlux[k];
+      g.concentrationStar[k] = withoutSource[k] + G * invMass * dt;
+      const double receivers = G >= 0 ? g.receiverWeightIn[k] : g.receiverWeightOut[k];
+      g.externalScalarFlux[k] = receivers > 0 ? G / receivers : 0.0;
     }
     applyConcentrationBCs(grid_, faceBCs_, static_cast<int>(m), g.concentrationStar);
+    if (source) applyConcentrationBCs(grid_, faceBCs_, static_cast<int>(m), g.concentrationRate);
 #pragma omp parallel for schedule(static)
-    for (long k = begin; k < end; ++k) {
-      if (!(g.mass[k] > 0)) {
-        g.concentrationRate[k] = 0;
-        continue;
-      }
-      g.concentrationRate[k] = (g.concentrationStar[k] - g.concentrationNoBC[k]) / dt;
-    }
+    for (long k = begin; k < end; ++k)
+      g.concentrationRate[k] = g.mass[k] > 0 ? (withoutSource[k] - g.concentrationNoBC[k]) / dt : 0.0;
   }
 }
 
@@ -509,12 +536,14 @@ void MPM::interpolateToParticlesAndUpdate(double dt) {
     if (!model) throw std::logic_error("interpolateToParticlesAndUpdate: unknown constitutive model");
     const bool yields = model->canYield(), swells = diffusion && model->swells();
     const double* wallMask = particleDirichlet ? dirichletMask_[m].data() : nullptr;
+    const bool flux = diffusion && !p.externalScalarFlux.empty();
+    const double cmax = diffusion ? mat.diffusion->maxConcentration : 1.0;
     long firstInverted = n;
 #pragma omp parallel for schedule(static) reduction(min : firstInverted)
     for (long i = 0; i < n; ++i) {
       Mat3 gradV = Mat3::Zero();
       Vec3 acc = Vec3::Zero(), vel = Vec3::Zero(), gradC = Vec3::Zero();
-      double cRate = 0, cGrid = 0;
+      double cRate = 0, cGrid = 0, inflow = 0, outflow = 0;
       bool touchesWall = false;
       const size_t b = W.offset[i];
       for (int e = 0; e < W.count[i]; ++e) {
@@ -526,6 +555,10 @@ void MPM::interpolateToParticlesAndUpdate(double dt) {
         if (diffusion) {
           gradC += g.concentrationStar[k] * W.gradient[b + e];  // grad c for the next step's flux
           cRate += g.concentrationRate[k] * w;
+          if (flux) {
+            const double source = g.externalScalarFlux[k] * w;
+            (source >= 0 ? inflow : outflow) += source;
+          }
           if (wallMask) {
             cGrid += g.concentrationStar[k] * w;
             touchesWall |= wallMask[k] > 0;
@@ -546,8 +579,12 @@ void MPM::interpolateToParticlesAndUpdate(double dt) {
       double dc = 0;
       if (diffusion) {
         p.concentrationGradient[i] = gradC;
-        // Eq. 8; next to a Dirichlet wall, a convex combination of nodal values instead.
-        const double c = touchesWall ? cGrid : p.concentration[i] + dt * cRate;
+        // Eq. 8 plus the flux source this particle receives (integrateConcentration); next to a
+        // Dirichlet wall, a convex combination of nodal values instead.
+        const double c0 = p.concentration[i];
+        const double received = inflow == 0 && outflow == 0 ? 0.0
+            : inflow * fluxRestriction(c0 / cmax) + outflow * fluxRestriction(1 - c0 / cmax);
+        const double c = touchesWall ? cGrid : c0 + dt * (cRate + received);
         dc = c - p.concentration[i];
         p.concentration[i] = c;
       }
