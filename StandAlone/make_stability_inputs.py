@@ -166,17 +166,24 @@ case("Beta_2_confined", ["As Beta_0.5_confined with beta = 2 1/GPa: D varies 400
                          "Eqs. 6-7 is not monotone under such contrast: a particle between high- and",
                          "low-D neighbours undershoots below c = 0, independently of the time step (0.4 and",
                          "0.2 stop at the same time), and the run stops with the range diagnostic."],
-     "stops at step 56 (exit 3): concentration below 0 (the range diagnostic).",
+     "stops at step 55 (exit 3): concentration below 0 (the range diagnostic).",
      flux=1e-3, beta=2.0, confined=True, steps=600, **SLOW)
 case("Flux_1e-10", ["Flux 1e-10 m/s into the top and the right side; D0 = 1e-14 m^2/s, alpha = beta = 0,",
                     "density 2.33e24 kg/m^3: the flux restriction never acts (c stays ~1e-3)."],
      "300 steps complete; c in [0, 1].", flux=1e-10, steps=300, **FLUX)
 case("Flux_1e-6", ["Flux 1e-6 m/s, otherwise as Flux_1e-10: the surface fills and the restriction",
-                   "(Eq. 17) shuts the flux off as c -> 1 - e^-4. Once the surface particles are full",
-                   "the source of their still-filling neighbours, spread through the shape functions,",
-                   "pushes a full particle past 1: the run stops with the range diagnostic (no clamp)."],
-     "stops at step 1162 (exit 3): concentration 1.00005 above 1 (the range diagnostic).", flux=1e-6, steps=3000,
-     **FLUX)
+                   "(Eq. 17) shuts the flux off as c -> 1 - e^-4 = 0.9817. Each particle receives the",
+                   "source restricted by its own c, so a full particle takes nothing from its still-filling",
+                   "neighbours and the surface stays below the root. The block swells 8-fold (J up to 8.5);",
+                   "there the diffusion update pushes one particle past 1 and the range diagnostic stops",
+                   "the run (no clamp)."],
+     "stops at step 1761 (exit 3): concentration 1.0005 above 1 (the range diagnostic); max c stays below "
+     "0.9817 until then.", flux=1e-6, steps=3000, **FLUX)
+case("Flux_out_1e-6", ["Delithiation: initial concentration 0.9, flux 1e-6 m/s out of the top and the right side,",
+                       "otherwise as Flux_1e-6. The outflow restriction R(1 - c) shuts the flux off as",
+                       "c -> e^-4 = 0.0183; an emptied particle receives none of its neighbours' sinks, so c",
+                       "stays above 0."],
+     "2000 steps complete; c in [0, 1]; the surface empties to the root.", flux=-1e-6, c0=0.9, steps=2000, **FLUX)
 case("Concentration_0.999", ["Initial concentration 0.999 (above the restriction's root 1 - e^-4 = 0.9817), flux",
                              "1e-6 m/s: the restriction admits no lithium and nothing changes."],
      "300 steps complete; c stays 0.999.", flux=1e-6, c0=0.999, steps=300, **FLUX)
