@@ -20,6 +20,7 @@ struct GridFields {
   std::vector<double> externalScalarFlux;  // sum m rate S (Eq. 18 numerator), then G / W
   std::vector<double> receiverWeightIn;    // W = sum m S R(c) of the particles an inflow can reach
   std::vector<double> receiverWeightOut;   // the same with R(1 - c), for an outflow
+  std::vector<unsigned char> sourceReached;  // 1 on the nodes of particles with a flux rate
   std::vector<double> concentrationStar;   // c + dc/dt dt, then BCs
   std::vector<double> concentrationRate;   // g.concentrationRate: drives the particles (Eq. 8)
 
@@ -27,8 +28,10 @@ struct GridFields {
     for (auto* f : {&concentration, &concentrationNoBC, &diffusionRate, &externalScalarFlux,
                     &concentrationStar, &concentrationRate})
       f->assign(nodes, 0.0);
-    if (flux)
+    if (flux) {
       for (auto* f : {&receiverWeightIn, &receiverWeightOut}) f->assign(nodes, 0.0);
+      sourceReached.assign(nodes, 0);
+    }
   }
 
   void resize(int nodes) {

@@ -291,17 +291,50 @@ struct ScatterTarget {
   }
 };
 
+// The nodes a flux source reaches (those of the particles with a nonzero flux rate: bit 1 an
+// inflow, bit 2 an outflow), and the material's max_concentration for the restriction of the
+// particles that receive it there.
+struct SourceNodes {
+  const unsigned char* reached;
+  double cmax;
+};
+
+// Marks, on nodes [begin, end), the nodes the flux sources of this step reach.
+void markSourceNodes(const ParticleSet& p, const InterpolationWeights& W, std::vector<unsigned char>& reached,
+                     long begin, long end) {
+  std::fill(reached.begin() + begin, reached.begin() + end, 0);
+  unsigned char* mark = reached.data();
+  const long n = static_cast<long>(p.count());
+#pragma omp parallel for schedule(static)
+  for (long i = 0; i < n; ++i) {
+    const double rate = p.externalScalarFlux[i];
+    if (rate == 0) continue;
+    const unsigned char bit = rate > 0 ? 1 : 2;
+    for (int e = 0; e < W.count[i]; ++e) {
+      unsigned char& node = mark[W.node[W.offset[i] + e]];
+      unsigned char seen;
+#pragma omp atomic read
+      seen = node;
+      if (!(seen & bit)) {
+#pragma omp atomic update
+        node |= bit;
+      }
+    }
+  }
+}
+
 // P2G of particles [begin, end): mass, momentum, internal force (f = -sum V sigma grad S) and,
 // with diffusion, concentration, flux divergence (q_p = D_p grad c_p of the previous step) and
-// the flux source with the weights of the particles that can receive it (cmax: the material's
-// max_concentration).
+// the flux source with, on the nodes a source reaches, the weights of the particles that can
+// receive it.
 template <bool Diffusion, bool Flux>
 void scatterToGrid(const ParticleSet& p, const InterpolationWeights& W, long begin, long end,
-                   double cmax, const ScatterTarget& g) {
+                   const SourceNodes& sources, const ScatterTarget& g) {
   for (long i = begin; i < end; ++i) {
     const double mp = p.mass[i];
     const Vec3 mv = mp * p.velocity[i];
     const Mat3 Vsigma = p.volume[i] * p.stress[i];
+    const size_t b = W.offset[i];
     double mc = 0, mrate = 0, mIn = 0, mOut = 0;
     Vec3 mq = Vec3::Zero();
     if constexpr (Diffusion) {
@@ -309,11 +342,13 @@ void scatterToGrid(const ParticleSet& p, const InterpolationWeights& W, long beg
       mq = mp * p.diffusivity[i] * p.concentrationGradient[i];
       if constexpr (Flux) {
         mrate = mp * p.externalScalarFlux[i];
-        mIn = mp * fluxRestriction(p.concentration[i] / cmax);
-        mOut = mp * fluxRestriction(1 - p.concentration[i] / cmax);
+        // A particle's weights matter only on the nodes a source reaches (elsewhere G = 0).
+        unsigned char reached = 0;
+        for (int e = 0; e < W.count[i]; ++e) reached |= sources.reached[W.node[b + e]];
+        if (reached & 1) mIn = mp * fluxRestriction(p.concentration[i] / sources.cmax);
+        if (reached & 2) mOut = mp * fluxRestriction(1 - p.concentration[i] / sources.cmax);
       }
     }
-    const size_t b = W.offset[i];
     for (int e = 0; e < W.count[i]; ++e) {
       const int n = W.node[b + e];
       const double w = W.weight[b + e];
@@ -335,13 +370,13 @@ void scatterToGrid(const ParticleSet& p, const InterpolationWeights& W, long beg
 }
 
 void scatter(bool diffusion, bool flux, const ParticleSet& p, const InterpolationWeights& W, long begin,
-             long end, double cmax, const ScatterTarget& g) {
+             long end, const SourceNodes& sources, const ScatterTarget& g) {
   if (!diffusion)
-    scatterToGrid<false, false>(p, W, begin, end, cmax, g);
+    scatterToGrid<false, false>(p, W, begin, end, sources, g);
   else if (!flux)
-    scatterToGrid<true, false>(p, W, begin, end, cmax, g);
+    scatterToGrid<true, false>(p, W, begin, end, sources, g);
   else
-    scatterToGrid<true, true>(p, W, begin, end, cmax, g);
+    scatterToGrid<true, true>(p, W, begin, end, sources, g);
 }
 
 template <class T>
@@ -381,10 +416,15 @@ void MPM::interpolateParticlesToGrid() {
     GridFields& g = fields_[m];
     const long n = static_cast<long>(p.count());
     const bool flux = !p.externalScalarFlux.empty();
-    const double cmax = diffusion ? materials_[m].diffusion->maxConcentration : 1.0;
     clearAllFields(g, std::min(begin, previous_.begin), std::max(end, previous_.end));
+    SourceNodes sources{nullptr, 1.0};
+    if (diffusion && flux) {
+      markSourceNodes(p, weights_[m], g.sourceReached, std::min(begin, previous_.begin),
+                      std::max(end, previous_.end));
+      sources = {g.sourceReached.data(), materials_[m].diffusion->maxConcentration};
+    }
     if (threadScatter_.empty()) {
-      scatter(diffusion, flux, p, weights_[m], 0, n, cmax, ScatterTarget::of(g));
+      scatter(diffusion, flux, p, weights_[m], 0, n, sources, ScatterTarget::of(g));
     } else {
       // Each thread scatters a contiguous block of particles into its own buffer; the buffers are
       // summed in thread order, so results do not depend on scheduling.
@@ -394,7 +434,7 @@ void MPM::interpolateParticlesToGrid() {
         const int t = omp_get_thread_num();
         GridFields& s = threadScatter_[t];
         clearScatterFields(s, begin, end);
-        scatter(diffusion, flux, p, weights_[m], n * t / threads, n * (t + 1) / threads, cmax,
+        scatter(diffusion, flux, p, weights_[m], n * t / threads, n * (t + 1) / threads, sources,
                 ScatterTarget::of(s));
 #pragma omp barrier
 #pragma omp for schedule(static)
