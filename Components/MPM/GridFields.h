@@ -20,18 +20,26 @@ struct GridFields {
   std::vector<double> externalScalarFlux;  // sum m rate S (Eq. 18 numerator), then G / W
   std::vector<double> receiverWeightIn;    // W = sum m S R(c) of the particles an inflow can reach
   std::vector<double> receiverWeightOut;   // the same with R(1 - c), for an outflow
-  std::vector<unsigned char> sourceReached;  // 1 on the nodes of particles with a flux rate
+  std::vector<unsigned char> sourceReached;  // bit 1 (2): an inflow (outflow) source reaches the node
   std::vector<double> concentrationStar;   // c + dc/dt dt, then BCs
   std::vector<double> concentrationRate;   // g.concentrationRate: drives the particles (Eq. 8)
 
-  void resizeDiffusion(int nodes, bool flux) {
-    for (auto* f : {&concentration, &concentrationNoBC, &diffusionRate, &externalScalarFlux,
-                    &concentrationStar, &concentrationRate})
-      f->assign(nodes, 0.0);
-    if (flux) {
-      for (auto* f : {&receiverWeightIn, &receiverWeightOut}) f->assign(nodes, 0.0);
-      sourceReached.assign(nodes, 0);
-    }
+  // The diffusion fields a P2G scatter accumulates (all a thread's private buffer needs).
+  void resizeDiffusionScatter(int nodes) {
+    for (auto* f : {&concentration, &diffusionRate, &externalScalarFlux}) f->assign(nodes, 0.0);
+  }
+  void resizeFluxScatter(int nodes) {
+    for (auto* f : {&receiverWeightIn, &receiverWeightOut}) f->assign(nodes, 0.0);
+  }
+
+  void resizeDiffusion(int nodes) {
+    resizeDiffusionScatter(nodes);
+    for (auto* f : {&concentrationNoBC, &concentrationStar, &concentrationRate}) f->assign(nodes, 0.0);
+  }
+  // Only for a material whose particles receive a flux BC.
+  void resizeFlux(int nodes) {
+    resizeFluxScatter(nodes);
+    sourceReached.assign(nodes, 0);
   }
 
   void resize(int nodes) {

@@ -96,7 +96,7 @@ void MPM::problemSetup(const PSNode& root, double initTime, double maxTime) {
   fields_.resize(materials_.size());
   for (auto& f : fields_) {
     f.resize(nodes);
-    if (flags_.doScalarDiffusion) f.resizeDiffusion(nodes, !fluxBCs_.empty());
+    if (flags_.doScalarDiffusion) f.resizeDiffusion(nodes);
   }
   weights_.resize(materials_.size());
   capacity_.resize(materials_.size());
@@ -105,11 +105,19 @@ void MPM::problemSetup(const PSNode& root, double initTime, double maxTime) {
     t.mass.resize(nodes);
     t.velocity.resize(nodes);
     t.internalForce.resize(nodes);
-    if (flags_.doScalarDiffusion) t.resizeDiffusion(nodes, !fluxBCs_.empty());
+    if (flags_.doScalarDiffusion) t.resizeDiffusionScatter(nodes);
   }
   if (flags_.doScalarDiffusion) {
     findDirichletNodes();
     const std::vector<size_t> flagged = assignFluxBCs();
+    bool anyFlux = false;
+    for (size_t m = 0; m < materials_.size(); ++m)
+      if (!materials_[m].particles.externalScalarFlux.empty()) {
+        fields_[m].resizeFlux(nodes);
+        anyFlux = true;
+      }
+    if (anyFlux)
+      for (auto& t : threadScatter_) t.resizeFluxScatter(nodes);
     for (size_t b = 0; b < flagged.size(); ++b)
       if (flagged[b] == 0)
         root.child("PhysicalBC").child("MPM").children("scalar_flux")[b].requireChild("geom_object")
@@ -262,7 +270,7 @@ void MPM::applyExternalScalarFlux(double t) {
       }
       // Eq. 17 restricts inflow as c -> 1; outflow is restricted the same way as c -> 0.
       const double c = p.concentration[i] / cmax;
-      p.externalScalarFlux[i] = rate / p.volume[i] * fluxRestriction(rate >= 0 ? c : 1 - c) * cmax;
+      p.externalScalarFlux[i] = rate / p.volume[i] * fluxRestriction(c, rate >= 0) * cmax;
       kmax = std::max(kmax, k / p.volume[i]);
     }
     maxFluxRateCoefficient_ = std::max(maxFluxRateCoefficient_, kmax);
@@ -345,8 +353,9 @@ void scatterToGrid(const ParticleSet& p, const InterpolationWeights& W, long beg
         // A particle's weights matter only on the nodes a source reaches (elsewhere G = 0).
         unsigned char reached = 0;
         for (int e = 0; e < W.count[i]; ++e) reached |= sources.reached[W.node[b + e]];
-        if (reached & 1) mIn = mp * fluxRestriction(p.concentration[i] / sources.cmax);
-        if (reached & 2) mOut = mp * fluxRestriction(1 - p.concentration[i] / sources.cmax);
+        const double c = p.concentration[i] / sources.cmax;
+        if (reached & 1) mIn = mp * fluxRestriction(c, true);
+        if (reached & 2) mOut = mp * fluxRestriction(c, false);
       }
     }
     for (int e = 0; e < W.count[i]; ++e) {
@@ -622,8 +631,9 @@ void MPM::interpolateToParticlesAndUpdate(double dt) {
         // Eq. 8 plus the flux source this particle receives (integrateConcentration); next to a
         // Dirichlet wall, a convex combination of nodal values instead.
         const double c0 = p.concentration[i];
-        const double received = inflow == 0 && outflow == 0 ? 0.0
-            : inflow * fluxRestriction(c0 / cmax) + outflow * fluxRestriction(1 - c0 / cmax);
+        double received = 0;
+        if (inflow != 0) received += inflow * fluxRestriction(c0 / cmax, true);
+        if (outflow != 0) received += outflow * fluxRestriction(c0 / cmax, false);
         const double c = touchesWall ? cGrid : c0 + dt * (cRate + received);
         dc = c - p.concentration[i];
         p.concentration[i] = c;
