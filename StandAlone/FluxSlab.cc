@@ -6,7 +6,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "Components/MPM/Materials/Diffusion/ScalarFluxBC.h"
+#include "Components/MPM/ReactiveFlow/ScalarFluxBC.h"
 #include "StandAlone/StudyInput.h"
 #include "StandAlone/VerificationRun.h"
 

@@ -193,9 +193,13 @@ GridData gatherGrid(const MPM& mpm, const std::vector<std::string>& labels) {
     for (size_t m = 0; m < nm; ++m) {
       const GridFields& f = mpm.gridFields()[m];
       const std::string name = nm > 1 ? label + "_m" + std::to_string(m) : label;
-      if (label == "g.mass" || label == "g.concentration" || label == "g.concentrationRate") {
-        out.arrays.push_back({name, 1, label == "g.mass" ? f.mass : label == "g.concentration" ? f.concentration
-                                                                                                 : f.concentrationRate, {}});
+      if (label == "g.concentration" || label == "g.concentrationRate") {
+        const ConcentrationGridFields& c = mpm.diffusion()->gridFields()[m];
+        out.arrays.push_back({name, 1, label == "g.concentration" ? c.concentration : c.concentrationRate, {}});
+        continue;
+      }
+      if (label == "g.mass") {
+        out.arrays.push_back({name, 1, f.mass, {}});
         continue;
       }
       const std::vector<Vec3>& v = label == "g.velocity"        ? f.velocity

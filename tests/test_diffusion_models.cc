@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "Components/MPM/Materials/Diffusion/ScalarDiffusionModel.h"
-#include "Components/MPM/Materials/Diffusion/ScalarFluxBC.h"
+#include "Components/MPM/ReactiveFlow/ScalarDiffusionModel.h"
+#include "Components/MPM/ReactiveFlow/ScalarFluxBC.h"
 #include "Core/Geometry/GeometryPiece.h"
 #include "Core/ProblemSpec/ProblemSpec.h"
 #include "Core/Util/Errors.h"

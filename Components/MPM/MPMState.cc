@@ -10,9 +10,7 @@ void MPM::saveState(BinaryWriter& out) const {
   out.value<uint64_t>(materials_.size());
   for (const MPMMaterial& mat : materials_) mat.particles.forEachArray([&](const auto& array) { out.array(array); });
   out.value(nextParticleId_);
-  out.value(fluxSign_);
-  out.value(maxDiffusivity_);
-  out.value(maxFluxRateCoefficient_);
+  if (diffusion_) diffusion_->saveState(materials_, out);
 }
 
 void MPM::loadState(BinaryReader& in) {
@@ -35,9 +33,7 @@ void MPM::loadState(BinaryReader& in) {
     });
   }
   nextParticleId_ = in.value<int64_t>();
-  fluxSign_ = in.value<double>();
-  maxDiffusivity_ = in.value<double>();
-  maxFluxRateCoefficient_ = in.value<double>();
+  if (diffusion_) diffusion_->loadState(materials_, in);
 }
 
 }  // namespace anode

@@ -5,11 +5,13 @@
 #include <cstdint>
 #include <vector>
 
+#include "Components/MPM/ReactiveFlow/DiffusionParticles.h"
 #include "Core/Math/Types.h"
 
 namespace anode {
 
-struct ParticleSet {
+// The diffusion subcomponent declares its own arrays (ReactiveFlow/DiffusionParticles.h).
+struct ParticleSet : DiffusionParticles {
   std::vector<int64_t> id;           // p.particleID, stable for the run
   std::vector<Vec3> x;               // p.x
   std::vector<Vec3> velocity;        // p.velocity
@@ -23,14 +25,6 @@ struct ParticleSet {
   std::vector<double> plasticStrain;      // p.plasticStrain (yielding materials only)
   std::vector<double> plasticStrainRate;  // p.plasticStrainRate (yielding materials only)
 
-  // Diffusion (only with <do_scalar_diffusion>true).
-  std::vector<double> concentration;        // p.concentration, normalised
-  std::vector<Vec3> concentrationGradient;  // p.concentrationGradient, from the previous step
-  std::vector<double> diffusivity;          // p.diffusivity
-  // Flux boundary conditions (only when <scalar_flux> blocks exist).
-  std::vector<double> externalScalarFlux;   // p.externalScalarFlux: dc/dt from the flux BCs
-  std::vector<Vec3i> loadCurveID;           // p.loadCurveID: up to 3 load curves (0: none)
-  std::vector<Vec3> area;                   // p.area: face area of each of those curves
   // Particle splitting (only with <refine_particles>true): 1 once a particle or its parent split.
   std::vector<uint8_t> refined;
 

@@ -5,7 +5,7 @@
 
 #include <vector>
 
-#include "Components/MPM/Materials/Diffusion/ScalarFluxBC.h"
+#include "Components/MPM/ReactiveFlow/ScalarFluxBC.h"
 #include "Components/MPM/ParticleSet.h"
 #include "Core/Grid/Grid.h"
 

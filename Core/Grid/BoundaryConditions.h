@@ -4,6 +4,7 @@
 #include <optional>
 #include <vector>
 
+#include "Core/Grid/Grid.h"
 #include "Core/Math/Types.h"
 #include "Core/ProblemSpec/ProblemSpec.h"
 
@@ -23,6 +24,19 @@ struct FaceBC {
 
 // Reads every <Face>; `numMaterials` bounds the id attribute; SD-Type (concentration) conditions
 // need `diffusion`.
+// Calls f(node) for every node on the face of `bc` or outside it (the extra nodes beyond).
+template <class Fn>
+void forFaceNodes(const Grid& g, const FaceBC& bc, Fn f) {
+  Vec3i lo = -g.extra, hi = g.cells + g.extra;
+  if (bc.side == 0)
+    hi[bc.axis] = 0;
+  else
+    lo[bc.axis] = g.cells[bc.axis];
+  for (int k = lo.z(); k <= hi.z(); ++k)
+    for (int j = lo.y(); j <= hi.y(); ++j)
+      for (int i = lo.x(); i <= hi.x(); ++i) f(g.nodeIndex(i, j, k));
+}
+
 std::vector<FaceBC> readFaceBCs(const PSNode& gridNode, int numMaterials, bool diffusion);
 
 }  // namespace anode

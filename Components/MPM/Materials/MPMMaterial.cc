@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "Components/MPM/Materials/Diffusion/ScalarFluxBC.h"
+#include "Components/MPM/ReactiveFlow/ScalarFluxBC.h"
 #include "Components/MPM/ProblemSize.h"
 #include "Core/Geometry/ParticleFill.h"
 #include "Core/Geometry/SmoothCylinder.h"

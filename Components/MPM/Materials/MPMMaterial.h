@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "Components/MPM/MPMFlags.h"
-#include "Components/MPM/Materials/Diffusion/ScalarDiffusionModel.h"
+#include "Components/MPM/ReactiveFlow/ScalarDiffusionModel.h"
 #include "Components/MPM/Materials/ConstitutiveModels/ConstitutiveModel.h"
 #include "Components/MPM/ParticleSet.h"
 #include "Core/Geometry/GeometryPiece.h"

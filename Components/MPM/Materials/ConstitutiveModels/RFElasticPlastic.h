@@ -21,6 +21,7 @@ class RFElasticPlastic : public ConstitutiveModel {
   bool swells() const override { return eta_ != 0; }
   double dilatationalModulus() const override { return K_ + 4.0 * G_ / 3.0; }
   bool canYield() const override { return flow_.has_value(); }
+  ConcreteConstitutiveModel concrete() const override { return this; }
 
   // One particle: returns the new lab-frame stress; `rotation` is R of the old F on entry and R
   // of Fnew on return; ep/epdot are the plastic strain and its rate (untouched for an elastic

@@ -1,7 +1,8 @@
-#include "Components/MPM/Materials/Diffusion/ScalarDiffusionModel.h"
+#include "Components/MPM/ReactiveFlow/ScalarDiffusionModel.h"
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 namespace anode {
 
@@ -80,6 +81,18 @@ class NonLinear1 : public ScalarDiffusionModel {
       dmax = std::max(dmax, p.diffusivity[i]);
     }
     return dmax;
+  }
+
+  // The diff_curve's current interval: it advances at most once per step, so a restart cannot
+  // recompute it from the time.
+  void saveState(BinaryWriter& out) const override {
+    if (curve) out.value<uint64_t>(curve->interval);
+  }
+  void loadState(BinaryReader& in) override {
+    if (!curve) return;
+    const uint64_t interval = in.value<uint64_t>();
+    if (interval >= curve->times.size()) throw std::runtime_error("the checkpoint's <diff_curve> interval is beyond the curve");
+    curve->interval = interval;
   }
 };
 

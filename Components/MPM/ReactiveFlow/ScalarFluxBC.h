@@ -8,21 +8,12 @@
 #include <memory>
 #include <vector>
 
-#include "Components/MPM/ParticleSet.h"
+#include "Components/MPM/ReactiveFlow/FluxRestriction.h"
 #include "Core/Geometry/GeometryPiece.h"
 #include "Core/Grid/Grid.h"
 #include "Core/Util/LoadCurve.h"
 
 namespace anode {
-
-// Eq. 17 with Uintah's clamp: max(0, 1 + ln(1 - c)/4) for normalised c; 0 for c >= 1.
-double fluxRestriction(double c);
-// The restriction of a flux into (inflow) or out of a particle at normalised c: R(c), or its
-// mirror R(1 - c), which vanishes as the particle empties (docs/diffusion.md).
-inline double fluxRestriction(double c, bool inflow) { return fluxRestriction(inflow ? c : 1 - c); }
-// The restriction's steepest slope before it reaches zero, |R'| at c = 1 - e^-4: a particle
-// whose unrestricted rate is k cannot step past the zero of R when dt k kRestrictionSlope <= 1.
-constexpr double kRestrictionSlope = 13.649537508286059;  // e^4 / 4 = 13.649537508286059769...
 
 struct ScalarFluxBC {
   enum class Face { Box, CylinderSide, CylinderEnd, Sphere } face = Face::Box;

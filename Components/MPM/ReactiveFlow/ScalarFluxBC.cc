@@ -1,14 +1,9 @@
-#include "Components/MPM/Materials/Diffusion/ScalarFluxBC.h"
+#include "Components/MPM/ReactiveFlow/ScalarFluxBC.h"
 
 #include <cmath>
 #include <string>
 
 namespace anode {
-
-double fluxRestriction(double c) {
-  if (c >= 1) return 0.0;
-  return std::max(0.0, 1.0 + 0.25 * std::log(1.0 - c));
-}
 
 bool onSurface(const GeometryPiece& piece, const Vec3& x, const Vec3& dxp, int ndim) {
   const int dims = ndim == 3 ? 3 : 2;

@@ -9,6 +9,7 @@
 
 #include "Components/MPM/ParticleSet.h"
 #include "Core/ProblemSpec/ProblemSpec.h"
+#include "Core/Util/BinaryStream.h"
 
 namespace anode {
 
@@ -25,6 +26,9 @@ class ScalarDiffusionModel {
   virtual double scaledPressure(const Mat3&) const { return 0.0; }
   // False when the model has no flux at all (constant_rate, or a zero diffusivity everywhere).
   virtual bool diffuses() const { return D0 > 0; }
+  // What the model carries from step to step besides the particle arrays (checkpoints).
+  virtual void saveState(BinaryWriter&) const {}
+  virtual void loadState(BinaryReader&) {}
 
   double D0 = 0;                 // <diffusivity>
   double maxConcentration = 1;   // <max_concentration>

@@ -1,0 +1,35 @@
+#include "Components/MPM/ReactiveFlow/DiffusionInterface.h"
+
+namespace anode {
+
+DiffusionInterface DiffusionInterface::fromInput(const PSNode& mpmMaterials, bool diffusion, size_t materials) {
+  DiffusionInterface interface;
+  const PSNode iface = mpmMaterials.child("diffusion_interface");
+  if (!iface) return interface;
+  const std::string type = iface.get<std::string>("type", "null");
+  if (type == "common") {
+    if (!diffusion) iface.fail("diffusion_interface \"common\" needs <do_scalar_diffusion>true");
+    interface.common = materials > 1;
+  } else if (type != "null") {
+    iface.requireChild("type").fail("diffusion_interface type \"" + type + "\" is not supported; accepted: null, common");
+  }
+  iface.acceptInert("materials");
+  return interface;
+}
+
+void DiffusionInterface::apply(const std::vector<GridFields>& mechanics, std::vector<ConcentrationGridFields>& fields,
+                               long begin, long end) const {
+  if (!common) return;
+#pragma omp parallel for schedule(static)
+  for (long k = begin; k < end; ++k) {
+    double mass = 0, mc = 0;
+    for (size_t m = 0; m < fields.size(); ++m) {
+      mass += mechanics[m].mass[k];
+      mc += mechanics[m].mass[k] * fields[m].concentration[k];
+    }
+    if (mass > 0)
+      for (ConcentrationGridFields& g : fields) g.concentration[k] = mc / mass;
+  }
+}
+
+}  // namespace anode

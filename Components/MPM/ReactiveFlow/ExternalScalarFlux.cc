@@ -1,0 +1,120 @@
+#include "Components/MPM/ReactiveFlow/ExternalScalarFlux.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace anode {
+
+std::vector<size_t> ExternalScalarFlux::assignToParticles(std::vector<MPMMaterial>& materials) const {
+  // Surface particles get, per BC that flags them, the area of the face that BC names
+  // (UINTAH_UPS.md §3.1; unlike Uintah, not the area left by the last BC tested).
+  std::vector<size_t> flagged(bcs_.size(), 0);
+  for (MPMMaterial& mat : materials) {
+    ParticleSet& p = mat.particles;
+    if (bcs_.empty() || !mat.diffusion->diffuses()) {
+      mat.surface = {};
+      continue;  // a material without diffusivity gets no lithium
+    }
+    p.externalScalarFlux.assign(p.count(), 0.0);
+    p.loadCurveID.assign(p.count(), Vec3i::Zero());
+    p.area.assign(p.count(), Vec3::Zero());
+    for (size_t i = 0; i < p.count(); ++i) {
+      if (!mat.surface.onSurface[i]) continue;
+      int slot = 0;
+      for (size_t b = 0; b < bcs_.size(); ++b) {
+        const double a = bcs_[b].flaggedArea(p.x[i], mat.surface.spacing[i], mat.surface.faceArea[i]);
+        if (a <= 0) continue;
+        ++flagged[b];
+        if (slot == 3) continue;  // a particle holds at most 3 load curves
+        p.loadCurveID[i][slot] = static_cast<int>(b) + 1;
+        p.area[i][slot] = a;
+        ++slot;
+      }
+    }
+    mat.surface = {};
+  }
+  return flagged;
+}
+
+void ExternalScalarFlux::computeFluxRates(std::vector<MPMMaterial>& materials, double t) {
+  maxRateCoefficient_ = 0;
+  if (bcs_.empty()) return;
+  std::vector<double> J(bcs_.size());
+  for (size_t b = 0; b < bcs_.size(); ++b) J[b] = sign_ * bcs_[b].load.at(t);
+  for (MPMMaterial& mat : materials) {
+    ParticleSet& p = mat.particles;
+    if (p.loadCurveID.empty()) continue;
+    const double cmax = mat.diffusion->maxConcentration;
+    const long n = static_cast<long>(p.count());
+    double kmax = 0;
+#pragma omp parallel for schedule(static) reduction(max : kmax)
+    for (long i = 0; i < n; ++i) {
+      double rate = 0, k = 0;
+      for (int s = 0; s < 3 && p.loadCurveID[i][s] > 0; ++s) {
+        rate += J[p.loadCurveID[i][s] - 1] * p.area[i][s];
+        k += std::abs(J[p.loadCurveID[i][s] - 1]) * p.area[i][s];
+      }
+      // Eq. 17 restricts inflow as c -> 1; outflow is restricted the same way as c -> 0.
+      const double c = p.concentration[i] / cmax;
+      p.externalScalarFlux[i] = rate / p.volume[i] * fluxRestriction(c, rate >= 0) * cmax;
+      kmax = std::max(kmax, k / p.volume[i]);
+    }
+    maxRateCoefficient_ = std::max(maxRateCoefficient_, kmax);
+  }
+}
+
+void ExternalScalarFlux::updateAutoCycle(const std::vector<MPMMaterial>& materials, const MPMFlags& flags) {
+  // Mean (or min and max) normalised concentration of the particles that receive flux.
+  double sum = 0, lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  size_t n = 0;
+  for (const MPMMaterial& mat : materials) {
+    if (mat.particles.loadCurveID.empty()) continue;
+    const double cmax = mat.diffusion->maxConcentration;
+    for (double c : mat.particles.concentration) {
+      sum += c / cmax;
+      lo = std::min(lo, c / cmax);
+      hi = std::max(hi, c / cmax);
+    }
+    n += mat.particles.count();
+  }
+  if (n == 0) return;
+  const double mean = sum / n;
+  if (sign_ > 0 && (flags.autoCycleUseMinMax ? lo : mean) > flags.autoCycleMax) sign_ = -1;
+  if (sign_ < 0 && (flags.autoCycleUseMinMax ? hi : mean) < flags.autoCycleMin) sign_ = 1;
+}
+
+void ExternalScalarFlux::saveState(BinaryWriter& out) const {
+  out.value(sign_);
+  out.value(maxRateCoefficient_);
+}
+
+void ExternalScalarFlux::loadState(BinaryReader& in) {
+  sign_ = in.value<double>();
+  maxRateCoefficient_ = in.value<double>();
+}
+
+void markSourceNodes(const ParticleSet& p, const InterpolationWeights& W, std::vector<unsigned char>& reached,
+                     long begin, long end) {
+  std::fill(reached.begin() + begin, reached.begin() + end, 0);
+  unsigned char* mark = reached.data();
+  const long n = static_cast<long>(p.count());
+#pragma omp parallel for schedule(static)
+  for (long i = 0; i < n; ++i) {
+    const double rate = p.externalScalarFlux[i];
+    if (rate == 0) continue;
+    const unsigned char bit = rate > 0 ? 1 : 2;
+    for (int e = 0; e < W.count[i]; ++e) {
+      unsigned char& node = mark[W.node[W.offset[i] + e]];
+      unsigned char seen;
+#pragma omp atomic read
+      seen = node;
+      if (!(seen & bit)) {
+#pragma omp atomic update
+        node |= bit;
+      }
+    }
+  }
+}
+
+}  // namespace anode

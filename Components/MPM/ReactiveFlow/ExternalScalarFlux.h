@@ -1,0 +1,50 @@
+// The flux boundary conditions at work (paper Eqs. 16-17, docs/diffusion.md step 1): which
+// particles each <scalar_flux> flags and with what area, their flux rate at time t, the nodes
+// their sources reach, and the sign flips of <do_auto_cycle_bc>.
+#pragma once
+
+#include <vector>
+
+#include "Components/MPM/Interpolator.h"
+#include "Components/MPM/MPMFlags.h"
+#include "Components/MPM/Materials/MPMMaterial.h"
+#include "Components/MPM/ReactiveFlow/ScalarFluxBC.h"
+#include "Core/Util/BinaryStream.h"
+
+namespace anode {
+
+class ExternalScalarFlux {
+ public:
+  ExternalScalarFlux() = default;
+  explicit ExternalScalarFlux(std::vector<ScalarFluxBC> bcs) : bcs_(std::move(bcs)) {}
+
+  bool empty() const { return bcs_.empty(); }
+  const std::vector<ScalarFluxBC>& bcs() const { return bcs_; }
+
+  // Gives the surface particles of each material that diffuses, per BC that flags them, the
+  // area of the face that BC names, and frees the materials' surface seeds. Returns, per BC,
+  // the number of particles it flags.
+  std::vector<size_t> assignToParticles(std::vector<MPMMaterial>& materials) const;
+  // Eqs. 16-17: rate_p = R(c_p) sum_k J_k(t) A_k / V_p, the restriction applied once; also the
+  // largest unrestricted rate coefficient sum |J| A / V for the time-step limit.
+  void computeFluxRates(std::vector<MPMMaterial>& materials, double t);
+  double maxRateCoefficient() const { return maxRateCoefficient_; }
+  // <do_auto_cycle_bc>: flips the sign of every flux when the concentration of the particles
+  // that receive flux crosses the thresholds.
+  void updateAutoCycle(const std::vector<MPMMaterial>& materials, const MPMFlags& flags);
+
+  void saveState(BinaryWriter& out) const;
+  void loadState(BinaryReader& in);
+
+ private:
+  std::vector<ScalarFluxBC> bcs_;
+  double sign_ = 1;                  // do_auto_cycle_bc: +1 lithiates, -1 delithiates
+  double maxRateCoefficient_ = 0;    // max unrestricted sum |J| A / V over particles
+};
+
+// Marks, on nodes [begin, end), the nodes the flux sources of this step reach: those of the
+// particles with a nonzero flux rate, bit 1 for an inflow, bit 2 for an outflow.
+void markSourceNodes(const ParticleSet& p, const InterpolationWeights& W, std::vector<unsigned char>& reached,
+                     long begin, long end);
+
+}  // namespace anode

@@ -1,0 +1,184 @@
+#include "Components/MPM/ReactiveFlow/ReactiveFlow.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "Components/MPM/ReactiveFlow/ConcentrationBCs.h"
+#include "Core/Util/Errors.h"
+
+namespace anode {
+
+namespace {
+
+// <PhysicalBC><MPM><scalar_flux> with the checks that do not depend on the materials.
+std::vector<ScalarFluxBC> readFluxBCs(const PSNode& root, const MPMFlags& flags) {
+  const PSNode physical = root.child("PhysicalBC");
+  if (!physical) return {};
+  std::vector<ScalarFluxBC> bcs = ScalarFluxBC::fromInput(physical);
+  if (!bcs.empty() && !flags.doScalarDiffusion) physical.fail("<scalar_flux> needs <MPM><do_scalar_diffusion>true");
+  if (flags.autoCycle && bcs.empty())
+    root.requireChild("MPM")
+        .requireChild("do_auto_cycle_bc")
+        .fail("<do_auto_cycle_bc>true needs <scalar_flux> boundary conditions");
+  if (!bcs.empty() && !flags.useLoadCurves)
+    physical.fail("<scalar_flux> needs <MPM><use_load_curves>true (without it Uintah applies no flux)");
+  return bcs;
+}
+
+}  // namespace
+
+ReactiveFlow::ReactiveFlow(const PSNode& root, const MPMFlags& flags, size_t materials)
+    : flags_(flags),
+      interface_(DiffusionInterface::fromInput(root.requireChild("MaterialProperties").requireChild("MPM"), true,
+                                               materials)),
+      flux_(readFluxBCs(root, flags)) {}
+
+void ReactiveFlow::rejectWithoutDiffusion(const PSNode& root, const MPMFlags& flags) {
+  DiffusionInterface::fromInput(root.requireChild("MaterialProperties").requireChild("MPM"), false, 0);
+  readFluxBCs(root, flags);
+}
+
+void ReactiveFlow::initialize(const PSNode& root, const Grid& grid, const std::vector<FaceBC>& faceBCs,
+                              std::vector<MPMMaterial>& materials, int threads, double initTime) {
+  grid_ = grid;
+  faceBCs_ = faceBCs;
+  dirichletMask_ = dirichletNodeMasks(grid, faceBCs, materials.size());
+  const std::vector<size_t> flagged = flux_.assignToParticles(materials);
+  for (size_t b = 0; b < flagged.size(); ++b)
+    if (flagged[b] == 0)
+      root.child("PhysicalBC")
+          .child("MPM")
+          .children("scalar_flux")[b]
+          .requireChild("geom_object")
+          .fail("this <scalar_flux> flags no particle: its geometry selects no surface particle of a "
+                "material that diffuses (selection rules in docs/diffusion.md), so its flux would go nowhere");
+  const int nodes = grid.numNodes();
+  bool anyFlux = false;
+  for (const MPMMaterial& mat : materials) {
+    const bool flux = !mat.particles.externalScalarFlux.empty();
+    anyFlux |= flux;
+    receivesFlux_.push_back(flux);
+    cmax_.push_back(mat.diffusion->maxConcentration);
+    constantRate_.push_back(mat.diffusion->constantRate());
+    fields_.emplace_back().resize(nodes, flux);
+  }
+  threadScatter_.resize(threads > 1 ? threads : 0);
+  for (ConcentrationScatterFields& t : threadScatter_) t.resize(nodes, anyFlux);
+  computeDiffusivity(materials, initTime);
+  flux_.computeFluxRates(materials, initTime);
+}
+
+void ReactiveFlow::computeNodalConcentration(size_t m, const GridFields& mechanics, long begin, long end) {
+  ConcentrationGridFields& g = fields_[m];
+#pragma omp parallel for schedule(static)
+  for (long k = begin; k < end; ++k) {
+    const double c = mechanics.mass[k] > 0 ? g.massConcentration[k] / mechanics.mass[k] : 0.0;  // Eq. 5
+    g.concentrationNoBC[k] = c;
+    g.concentration[k] = c;
+  }
+  applyConcentrationBCs(grid_, faceBCs_, static_cast<int>(m), g.concentration);
+}
+
+void ReactiveFlow::applyDiffusionInterface(const std::vector<GridFields>& mechanics, long begin, long end) {
+  interface_.apply(mechanics, fields_, begin, end);
+}
+
+void ReactiveFlow::integrateConcentration(const std::vector<GridFields>& mechanics, double dt, long begin,
+                                          long end) {
+  // Eq. 18: c* = c + (R/m + G/m) dt, then the SD-Type BCs on c*. Unlike Uintah (UINTAH_UPS.md
+  // §6 step 7) the flux source is part of c*, so the next step's gradient sees the lithium that
+  // entered. The nodal rate that drives the particles, (c° - c_noBC)/dt with c° = c + (R/m) dt
+  // under the same BCs, leaves the source out: each node hands its G to the particles it reaches
+  // in proportion to m S R, R the restriction of Eq. 17 at each particle's own c (R(1 - c) for
+  // an outflow), so a full (or emptied) particle receives nothing from its neighbours' sources
+  // and the node delivers all of G (G / W, W = sum m S R).
+  for (size_t m = 0; m < fields_.size(); ++m) {
+    ConcentrationGridFields& g = fields_[m];
+    const std::vector<double>& mass = mechanics[m].mass;
+    const double constantRate = constantRate_[m];
+    const bool source = receivesFlux_[m];
+    std::vector<double>& noSource = source ? g.concentrationNoSource : g.concentrationStar;
+#pragma omp parallel for schedule(static)
+    for (long k = begin; k < end; ++k) {
+      const double invMass = mass[k] > 0 ? 1.0 / mass[k] : 0.0;
+      const double rate = invMass > 0 ? g.diffusionRate[k] * invMass + constantRate : 0.0;
+      noSource[k] = g.concentration[k] + rate * dt;
+      if (!source) continue;
+      const double G = g.fluxSource[k];
+      g.concentrationStar[k] = noSource[k] + G * invMass * dt;
+      const double receivers = G >= 0 ? g.receiverWeightIn[k] : g.receiverWeightOut[k];
+      g.sourcePerWeight[k] = receivers > 0 ? G / receivers : 0.0;
+    }
+    applyConcentrationBCs(grid_, faceBCs_, static_cast<int>(m), g.concentrationStar);
+    if (source) applyConcentrationBCs(grid_, faceBCs_, static_cast<int>(m), g.concentrationNoSource);
+#pragma omp parallel for schedule(static)
+    for (long k = begin; k < end; ++k)
+      g.concentrationRate[k] = mass[k] > 0 ? (noSource[k] - g.concentrationNoBC[k]) / dt : 0.0;
+  }
+}
+
+void ReactiveFlow::updateDiffusionState(std::vector<MPMMaterial>& materials, double t) {
+  checkConcentrationRange(materials, t);
+  if (flags_.autoCycle) flux_.updateAutoCycle(materials, flags_);
+  computeDiffusivity(materials, t);
+  flux_.computeFluxRates(materials, t);
+}
+
+void ReactiveFlow::computeDiffusivity(std::vector<MPMMaterial>& materials, double t) {
+  maxDiffusivity_ = 0;
+  for (MPMMaterial& mat : materials)
+    maxDiffusivity_ = std::max(maxDiffusivity_, mat.diffusion->computeDiffusivity(mat.particles, t));
+}
+
+void ReactiveFlow::checkConcentrationRange(const std::vector<MPMMaterial>& materials, double t) const {
+  for (size_t m = 0; m < materials.size(); ++m) {
+    const ParticleSet& p = materials[m].particles;
+    const ScalarDiffusionModel& d = *materials[m].diffusion;
+    const double tol = kConcentrationTolerance * (d.maxConcentration - d.minConcentration);
+    for (size_t i = 0; i < p.count(); ++i) {
+      const double c = p.concentration[i];
+      if (c >= d.minConcentration - tol && c <= d.maxConcentration + tol) continue;
+      std::ostringstream s;
+      s << describeParticle(materials[m], m, i) << " has concentration " << c << " at t = " << t << ", outside ["
+        << d.minConcentration << ", " << d.maxConcentration << "] by more than " << tol << " (no clamp is applied)";
+      throw SimulationError(s.str());
+    }
+  }
+}
+
+double ReactiveFlow::stableTimestep(const Grid& grid) const {
+  double dt = std::numeric_limits<double>::infinity();
+  const double dx = grid.dx.minCoeff();
+  if (maxDiffusivity_ > 0) dt = std::min(dt, dx * dx / (2 * maxDiffusivity_));  // Eq. 44
+  // The flux limit: no particle steps past the restriction's root in one step.
+  if (flux_.maxRateCoefficient() > 0) dt = std::min(dt, 1.0 / (kRestrictionSlope * flux_.maxRateCoefficient()));
+  return dt;
+}
+
+void ReactiveFlow::summarize(const std::vector<MPMMaterial>& materials, StepSummary& s) const {
+  s.diffusion = true;
+  for (const MPMMaterial& mat : materials) {
+    const ParticleSet& p = mat.particles;
+    for (size_t i = 0; i < p.count(); ++i) {
+      s.totalLithium += p.mass[i] * p.concentration[i];
+      s.minConcentration = std::min(s.minConcentration, p.concentration[i]);
+      s.maxConcentration = std::max(s.maxConcentration, p.concentration[i]);
+    }
+  }
+}
+
+void ReactiveFlow::saveState(const std::vector<MPMMaterial>& materials, BinaryWriter& out) const {
+  out.value(maxDiffusivity_);
+  flux_.saveState(out);
+  for (const MPMMaterial& mat : materials) mat.diffusion->saveState(out);
+}
+
+void ReactiveFlow::loadState(std::vector<MPMMaterial>& materials, BinaryReader& in) {
+  maxDiffusivity_ = in.value<double>();
+  flux_.loadState(in);
+  for (MPMMaterial& mat : materials) mat.diffusion->loadState(in);
+}
+
+}  // namespace anode

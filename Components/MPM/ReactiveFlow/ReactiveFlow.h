@@ -1,0 +1,122 @@
+// ReactiveFlow: the diffusion subcomponent of MPM (paper §2, Eqs. 2-8, 16-18, 23-24, 44; the
+// method step by step in docs/diffusion.md). It exists only with <do_scalar_diffusion>true and
+// owns everything diffusion: its particle arrays (DiffusionParticles), its grid fields, the
+// diffusivity models, the flux BCs with their restriction and receivers, the SD-Type conditions,
+// the diffusion interface, its time-step limit and its checkpoint state. MPM calls it at named
+// points of the step; the per-particle work runs inside MPM's fused particle loops through the
+// kernels it hands out (ConcentrationKernels.h), so diffusion adds no pass over the particles.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "Components/MPM/GridFields.h"
+#include "Components/MPM/Interpolator.h"
+#include "Components/MPM/MPMFlags.h"
+#include "Components/MPM/Materials/MPMMaterial.h"
+#include "Components/MPM/ReactiveFlow/ConcentrationKernels.h"
+#include "Components/MPM/ReactiveFlow/DiffusionGridFields.h"
+#include "Components/MPM/ReactiveFlow/DiffusionInterface.h"
+#include "Components/MPM/ReactiveFlow/ExternalScalarFlux.h"
+#include "Components/MPM/StepSummary.h"
+#include "Core/Grid/BoundaryConditions.h"
+#include "Core/Util/BinaryStream.h"
+
+namespace anode {
+
+// A concentration may leave [min, max] by this much (relative to max - min) before the run is
+// stopped: round-off of the explicit update, never a clamp.
+constexpr double kConcentrationTolerance = 1e-6;
+
+class ReactiveFlow {
+ public:
+  // Reads <diffusion_interface> and <PhysicalBC><MPM><scalar_flux>.
+  ReactiveFlow(const PSNode& root, const MPMFlags& flags, size_t materials);
+  // A run without diffusion: the tags that would need it are errors, not silently dropped.
+  static void rejectWithoutDiffusion(const PSNode& root, const MPMFlags& flags);
+
+  // Flags the flux particles, lays out the grid fields and computes the initial state's
+  // diffusivity and flux rates. `faceBCs` holds the SD-Type conditions.
+  void initialize(const PSNode& root, const Grid& grid, const std::vector<FaceBC>& faceBCs,
+                  std::vector<MPMMaterial>& materials, int threads, double initTime);
+
+  // --- the step's diffusion tasks, in the order MPM::timeAdvance calls them ---
+
+  // Before P2G of material m: zeroes its fields on nodes [begin, end) and marks the nodes its
+  // flux sources reach; then calls f with the material's P2G kernel.
+  template <class F>
+  void withScatter(size_t m, const ParticleSet& p, const InterpolationWeights& W, long begin, long end, F&& f);
+  // Eq. 5: c = (mc)/m, then the SD-Type conditions; after all materials, the interface.
+  void computeNodalConcentration(size_t m, const GridFields& mechanics, long begin, long end);
+  void applyDiffusionInterface(const std::vector<GridFields>& mechanics, long begin, long end);
+  // Eq. 18: c* = c + (R + G)/m dt and the nodal rate that drives Eq. 8.
+  void integrateConcentration(const std::vector<GridFields>& mechanics, double dt, long begin, long end);
+  // Calls f with material m's G2P kernel (Eq. 8).
+  template <class F>
+  void withGather(size_t m, ParticleSet& p, F&& f);
+  // After G2P at time t: the range diagnostic, the auto-cycle switch, and the new state's
+  // diffusivity (Eq. 23 or 24) and flux rates (Eqs. 16-17), which output, the next time step
+  // and the next step use.
+  void updateDiffusionState(std::vector<MPMMaterial>& materials, double t);
+  // Eq. 44 and the flux limit (docs/diffusion.md, "Time step").
+  double stableTimestep(const Grid& grid) const;
+
+  // Adds the total lithium and the concentration range (initialised by the caller).
+  void summarize(const std::vector<MPMMaterial>& materials, StepSummary& s) const;
+  void saveState(const std::vector<MPMMaterial>& materials, BinaryWriter& out) const;
+  void loadState(std::vector<MPMMaterial>& materials, BinaryReader& in);
+
+  const std::vector<ConcentrationGridFields>& gridFields() const { return fields_; }
+  const std::vector<ScalarFluxBC>& fluxBCs() const { return flux_.bcs(); }
+
+ private:
+  void computeDiffusivity(std::vector<MPMMaterial>& materials, double t);
+  void checkConcentrationRange(const std::vector<MPMMaterial>& materials, double t) const;
+
+  MPMFlags flags_;
+  Grid grid_;
+  std::vector<FaceBC> faceBCs_;
+  DiffusionInterface interface_;
+  ExternalScalarFlux flux_;
+  std::vector<std::vector<double>> dirichletMask_;  // per material, per node: 1 on Dirichlet nodes
+  std::vector<double> cmax_;                        // per material: max_concentration
+  std::vector<double> constantRate_;                // per material: constant_rate (0 for the others)
+  std::vector<bool> receivesFlux_;                  // per material
+  double maxDiffusivity_ = 0;                       // over all particles, for Eq. 44
+  std::vector<ConcentrationGridFields> fields_;     // per material
+  std::vector<ConcentrationScatterFields> threadScatter_;  // per thread, for P2G without locks
+};
+
+template <class F>
+void ReactiveFlow::withScatter(size_t m, const ParticleSet& p, const InterpolationWeights& W, long begin, long end,
+                               F&& f) {
+  ConcentrationGridFields& g = fields_[m];
+  g.clearAll(begin, end);
+  if (receivesFlux_[m]) {
+    markSourceNodes(p, W, g.sourceReached, begin, end);
+    f(ConcentrationScatter<true>(p, W, g.sourceReached.data(), cmax_[m], g, threadScatter_));
+  } else {
+    f(ConcentrationScatter<false>(p, W, nullptr, cmax_[m], g, threadScatter_));
+  }
+}
+
+template <class F>
+void ReactiveFlow::withGather(size_t m, ParticleSet& p, F&& f) {
+  // Particle treatment of SD-Type Dirichlet (docs/diffusion.md): a particle touching a boundary
+  // node takes the grid solution instead of Uintah's nodal rate.
+  const double* wall = flags_.particleDirichlet && !dirichletMask_.empty() ? dirichletMask_[m].data() : nullptr;
+  const ConcentrationGridFields& g = fields_[m];
+  if (receivesFlux_[m]) {
+    if (wall)
+      f(ConcentrationGather<true, true>(p, g, wall, cmax_[m]));
+    else
+      f(ConcentrationGather<true, false>(p, g, wall, cmax_[m]));
+  } else {
+    if (wall)
+      f(ConcentrationGather<false, true>(p, g, wall, cmax_[m]));
+    else
+      f(ConcentrationGather<false, false>(p, g, wall, cmax_[m]));
+  }
+}
+
+}  // namespace anode

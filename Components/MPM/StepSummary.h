@@ -1,0 +1,17 @@
+// The global quantities of the state after a step (history.csv, the progress line).
+#pragma once
+
+#include <cstddef>
+
+namespace anode {
+
+struct StepSummary {
+  double kineticEnergy = 0;
+  double minJ = 1, maxJ = 1;
+  size_t particles = 0;
+  bool diffusion = false;
+  double totalLithium = 0;  // sum m c over all materials
+  double minConcentration = 0, maxConcentration = 0;
+};
+
+}  // namespace anode
