@@ -133,7 +133,9 @@ INSTANTIATE_TEST_SUITE_P(
         // Uintah's 2-D pillar, unmodified (its own <checkpoint interval>): particle splitting.
         RestartCase{"nanopillar2d", kSource + "/../shared/inputs/uintah/NanoPillar2D_FBC_Sym.ups", "", 500, {}},
         // Auto-cycled flux, checkpoint after the first flip.
-        RestartCase{"autocycle", kSource + "/tests/checkpoint/AutoCycleSlab.ups", "", 1000, {}}),
+        RestartCase{"autocycle", kSource + "/tests/checkpoint/AutoCycleSlab.ups", "", 1000, {}},
+        // A <diff_curve> past its second switch at the checkpoint: the curve's interval is state.
+        RestartCase{"diffcurve", kSource + "/tests/checkpoint/DiffCurveSlab.ups", "", 800, {}}),
     [](const ::testing::TestParamInfo<RestartCase>& info) { return info.param.name; });
 
 TEST(Restart, SkipsADamagedNewestCheckpoint) {
