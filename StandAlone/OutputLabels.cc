@@ -5,64 +5,70 @@
 #include <functional>
 #include <map>
 #include <stdexcept>
+#include <type_traits>
 
 namespace anode {
 
 namespace {
 
-using ParticleGetter = std::function<void(const MPMMaterial&, const Grid&, size_t, double*)>;
-struct ParticleLabel {
-  int components;
-  ParticleGetter get;
-};
-
 void putVec(const Vec3& v, double* out) {
   for (int d = 0; d < 3; ++d) out[d] = v[d];
 }
 
-void putMat(const Mat3& m, double* out) {
+// One particle array entry as real numbers (tensors row by row).
+void put(double v, double* out) { out[0] = v; }
+void put(uint8_t v, double* out) { out[0] = v; }
+void put(int64_t v, double* out) { out[0] = static_cast<double>(v); }
+void put(const Vec3& v, double* out) { putVec(v, out); }
+void put(const Vec3i& v, double* out) { putVec(v.cast<double>(), out); }
+void put(const Mat3& m, double* out) {
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 3; ++c) out[3 * r + c] = m(r, c);
 }
+template <class T>
+constexpr int componentsOf() {
+  if constexpr (std::is_same_v<T, Mat3>) return 9;
+  if constexpr (std::is_same_v<T, Vec3> || std::is_same_v<T, Vec3i>) return 3;
+  return 1;
+}
 
-const std::map<std::string, ParticleLabel>& particleLabels() {
-  static const std::map<std::string, ParticleLabel> labels = {
-      {"p.mass", {1, [](const MPMMaterial& m, const Grid&, size_t i, double* o) { o[0] = m.particles.mass[i]; }}},
-      {"p.volume", {1, [](const MPMMaterial& m, const Grid&, size_t i, double* o) { o[0] = m.particles.volume[i]; }}},
-      {"p.velocity", {3, [](const MPMMaterial& m, const Grid&, size_t i, double* o) {
-         putVec(m.particles.velocity[i], o); }}},
-      {"p.displacement", {3, [](const MPMMaterial& m, const Grid&, size_t i, double* o) {
-         putVec(m.particles.displacement[i], o); }}},
-      {"p.stress", {9, [](const MPMMaterial& m, const Grid&, size_t i, double* o) { putMat(m.particles.stress[i], o); }}},
-      {"p.deformationMeasure", {9, [](const MPMMaterial& m, const Grid&, size_t i, double* o) {
-         putMat(m.particles.F[i], o); }}},
+// The components of the particle array saved as `label` (ParticleSet's one list), 0 if none.
+int fieldComponents(const std::string& label) {
+  int components = 0;
+  ParticleSet().forEachField([&](const auto& v, const auto& field) {
+    if (field.label && label == field.label) components = componentsOf<typename std::decay_t<decltype(v)>::value_type>();
+  });
+  return components;
+}
+
+// Writes particle `indices` of the array saved as `label` to out (zeros where the material's
+// physics does not have that array).
+void copyField(const ParticleSet& p, const std::string& label, const std::vector<size_t>& indices, double* out) {
+  p.forEachField([&](const auto& v, const auto& field) {
+    if (!field.label || label != field.label) return;
+    constexpr int n = componentsOf<typename std::decay_t<decltype(v)>::value_type>();
+    if (v.empty()) {
+      std::fill(out, out + n * indices.size(), 0.0);
+      return;
+    }
+    for (size_t k = 0; k < indices.size(); ++k) put(v[indices[k]], out + n * k);
+  });
+}
+
+// Labels computed from the particle arrays (not stored): value of particle i.
+using DerivedGetter = std::function<void(const MPMMaterial&, const Grid&, size_t, double*)>;
+struct DerivedLabel {
+  int components;
+  DerivedGetter get;
+};
+
+const std::map<std::string, DerivedLabel>& derivedLabels() {
+  static const std::map<std::string, DerivedLabel> labels = {
       // Current physical particle domain F*size*diag(dx), computed only when written.
       {"p.scalefactor", {9, [](const MPMMaterial& m, const Grid& g, size_t i, double* o) {
-         putMat(m.particles.F[i] * m.particles.size[i] * g.dx.asDiagonal().toDenseMatrix(), o); }}},
-      {"p.size", {9, [](const MPMMaterial& m, const Grid&, size_t i, double* o) { putMat(m.particles.size[i], o); }}},
+         put(Mat3(m.particles.F[i] * m.particles.size[i] * g.dx.asDiagonal().toDenseMatrix()), o); }}},
       // No external mechanical loads exist in this code: the external force is zero.
       {"p.externalforce", {3, [](const MPMMaterial&, const Grid&, size_t, double* o) { o[0] = o[1] = o[2] = 0; }}},
-      {"p.plasticStrain", {1, [](const MPMMaterial& m, const Grid&, size_t i, double* o) {
-         o[0] = m.particles.plasticStrain.empty() ? 0.0 : m.particles.plasticStrain[i]; }}},
-      {"p.plasticStrainRate", {1, [](const MPMMaterial& m, const Grid&, size_t i, double* o) {
-         o[0] = m.particles.plasticStrainRate.empty() ? 0.0 : m.particles.plasticStrainRate[i]; }}},
-      {"p.concentration", {1, [](const MPMMaterial& m, const Grid&, size_t i, double* o) {
-         o[0] = m.particles.concentration.empty() ? 0.0 : m.particles.concentration[i]; }}},
-      {"p.diffusivity", {1, [](const MPMMaterial& m, const Grid&, size_t i, double* o) {
-         o[0] = m.particles.diffusivity.empty() ? 0.0 : m.particles.diffusivity[i]; }}},
-      {"p.concentrationGradient", {3, [](const MPMMaterial& m, const Grid&, size_t i, double* o) {
-         putVec(m.particles.concentrationGradient.empty() ? Vec3(Vec3::Zero()) : m.particles.concentrationGradient[i], o); }}},
-      // Flux BCs: the dc/dt they apply, the load curves of each particle (0: none) and the face
-      // area of each of those curves.
-      {"p.externalScalarFlux", {1, [](const MPMMaterial& m, const Grid&, size_t i, double* o) {
-         o[0] = m.particles.externalScalarFlux.empty() ? 0.0 : m.particles.externalScalarFlux[i]; }}},
-      {"p.loadCurveID", {3, [](const MPMMaterial& m, const Grid&, size_t i, double* o) {
-         putVec(m.particles.loadCurveID.empty() ? Vec3(Vec3::Zero()) : Vec3(m.particles.loadCurveID[i].cast<double>()), o); }}},
-      {"p.area", {3, [](const MPMMaterial& m, const Grid&, size_t i, double* o) {
-         putVec(m.particles.area.empty() ? Vec3(Vec3::Zero()) : m.particles.area[i], o); }}},
-      // 1 for particles made by splitting (or split themselves), 0 otherwise.
-      {"p.refinedMPM", {1, [](const MPMMaterial& m, const Grid&, size_t i, double* o) {
-         o[0] = m.particles.refined.empty() ? 0.0 : m.particles.refined[i]; }}},
       // Removed Uintah labels kept as aliases: the concentration and the scaled pressure that the
       // diffusivity uses (Eq. 23), and the von Mises equivalent stress.
       {"p.concentrationInterp", {1, [](const MPMMaterial& m, const Grid&, size_t i, double* o) {
@@ -77,9 +83,36 @@ const std::map<std::string, ParticleLabel>& particleLabels() {
   return labels;
 }
 
+// The components of a particle label written as real numbers (0: none); the positions and IDs
+// are written as points and integers.
+int realComponents(const std::string& label) {
+  if (label == "p.x" || label == "p.particleID") return 0;
+  if (const int n = fieldComponents(label)) return n;
+  const auto it = derivedLabels().find(label);
+  return it == derivedLabels().end() ? 0 : it->second.components;
+}
+
+// Writes the values of `label` for particle `indices` of material `mat` to out.
+void gatherLabel(const MPMMaterial& mat, const Grid& grid, const std::string& label, const std::vector<size_t>& indices,
+                 double* out) {
+  if (fieldComponents(label) > 0) {
+    copyField(mat.particles, label, indices, out);
+    return;
+  }
+  const DerivedLabel& d = derivedLabels().at(label);
+  for (size_t k = 0; k < indices.size(); ++k) d.get(mat, grid, indices[k], out + d.components * k);
+}
+
+std::vector<size_t> allParticles(const ParticleSet& p) {
+  std::vector<size_t> all(p.count());
+  for (size_t i = 0; i < all.size(); ++i) all[i] = i;
+  return all;
+}
+
 const std::vector<std::string>& gridLabelNames() {
   static const std::vector<std::string> names = {"g.mass", "g.velocity", "g.velocity_star", "g.acceleration",
-                                                 "g.internalforce", "g.concentration", "g.concentrationRate"};
+                                                 "g.internalforce", "g.concentration", "g.concentrationRate",
+                                                 "g.concentrationStar", "g.concentrationnobc"};
   return names;
 }
 
@@ -88,15 +121,17 @@ const std::vector<std::string>& diffusionLabels() {
   static const std::vector<std::string> names = {
       "p.concentration", "p.diffusivity", "p.concentrationGradient", "p.externalScalarFlux",
       "p.externalscalarflux", "p.loadCurveID", "p.area", "p.concentrationInterp", "p.pressure_t1",
-      "g.concentration", "g.concentrationRate"};
+      "g.concentration", "g.concentrationRate", "g.concentrationStar", "g.concentrationnobc"};
   return names;
 }
 
-// Labels of Uintah features this code does not have yet (diffusion, splitting, ...).
+// Labels Uintah saves that this code does not write: quantities it does not compute (the
+// previous concentration, the particle flux vector, energies), computes with another meaning
+// (g.externalscalarflux: here the flux source is handed to receivers, docs/diffusion.md step 5)
+// or does not have (the hydrostatic stress of the Gauss solver).
 const std::vector<std::string>& unsupportedLabels() {
-  static const std::vector<std::string> names = {
-      "p.concPrevious", "p.flux", "p.energy", "g.concentrationStar", "g.externalscalarflux", "g.concentrationnobc",
-      "g.hydrostaticStressRD"};
+  static const std::vector<std::string> names = {"p.concPrevious", "p.flux", "p.energy", "g.externalscalarflux",
+                                                 "g.hydrostaticStressRD"};
   return names;
 }
 
@@ -109,7 +144,7 @@ bool contains(const std::vector<std::string>& v, const std::string& s) {
 LabelStatus classifyLabel(const std::string& label, bool diffusion) {
   if (!diffusion && contains(diffusionLabels(), label)) return LabelStatus::NeedsDiffusion;
   if (label == "p.externalscalarflux") return LabelStatus::Particle;
-  if (label == "p.x" || label == "p.particleID" || particleLabels().count(label)) return LabelStatus::Particle;
+  if (label == "p.x" || label == "p.particleID" || realComponents(label) > 0) return LabelStatus::Particle;
   if (contains(gridLabelNames(), label)) return LabelStatus::Grid;
   if (contains(unsupportedLabels(), label)) return LabelStatus::Unsupported;
   return LabelStatus::Unknown;
@@ -135,13 +170,12 @@ ParticleData gatherParticles(const MPM& mpm, const std::vector<std::string>& lab
   for (const std::string& saved : labels) {
     // The label as saved in the input names the array; the old spelling reads the same field.
     const std::string label = saved == "p.externalscalarflux" ? "p.externalScalarFlux" : saved;
-    auto it = particleLabels().find(label);
-    if (it == particleLabels().end()) continue;
-    NamedArray a{saved, it->second.components, std::vector<double>(n * it->second.components), {}};
+    const int components = realComponents(label);
+    if (components == 0) continue;
+    NamedArray a{saved, components, std::vector<double>(n * components), {}};
     size_t offset = 0;
     for (const MPMMaterial& mat : mpm.materials()) {
-      for (size_t i = 0; i < mat.particles.count(); ++i)
-        it->second.get(mat, mpm.grid(), i, &a.real[(offset + i) * a.components]);
+      gatherLabel(mat, mpm.grid(), label, allParticles(mat.particles), &a.real[offset * components]);
       offset += mat.particles.count();
     }
     out.arrays.push_back(std::move(a));
@@ -149,10 +183,7 @@ ParticleData gatherParticles(const MPM& mpm, const std::vector<std::string>& lab
   return out;
 }
 
-int particleLabelComponents(const std::string& label) {
-  const auto it = particleLabels().find(label);
-  return it == particleLabels().end() ? 0 : it->second.components;
-}
+int particleLabelComponents(const std::string& label) { return realComponents(label); }
 
 ParticleData gatherParticlesWhere(const MPM& mpm, const std::vector<std::string>& labels,
                                   const std::function<bool(size_t material, const double* x)>& keep) {
@@ -167,12 +198,14 @@ ParticleData gatherParticlesWhere(const MPM& mpm, const std::vector<std::string>
       }
   }
   for (const std::string& label : labels) {
-    const auto it = particleLabels().find(label);
-    if (it == particleLabels().end()) throw std::logic_error("no particle label " + label);
-    NamedArray a{label, it->second.components, std::vector<double>(out.count() * it->second.components), {}};
-    size_t k = 0;
-    for (size_t m = 0; m < kept.size(); ++m)
-      for (size_t i : kept[m]) it->second.get(mpm.materials()[m], mpm.grid(), i, &a.real[a.components * k++]);
+    const int components = realComponents(label);
+    if (components == 0) throw std::logic_error("no particle label " + label);
+    NamedArray a{label, components, std::vector<double>(out.count() * components), {}};
+    size_t offset = 0;
+    for (size_t m = 0; m < kept.size(); ++m) {
+      gatherLabel(mpm.materials()[m], mpm.grid(), label, kept[m], &a.real[offset * components]);
+      offset += kept[m].size();
+    }
     out.arrays.push_back(std::move(a));
   }
   return out;
@@ -193,9 +226,13 @@ GridData gatherGrid(const MPM& mpm, const std::vector<std::string>& labels) {
     for (size_t m = 0; m < nm; ++m) {
       const GridFields& f = mpm.gridFields()[m];
       const std::string name = nm > 1 ? label + "_m" + std::to_string(m) : label;
-      if (label == "g.concentration" || label == "g.concentrationRate") {
+      if (label.rfind("g.concentration", 0) == 0) {
         const ConcentrationGridFields& c = mpm.diffusion()->gridFields()[m];
-        out.arrays.push_back({name, 1, label == "g.concentration" ? c.concentration : c.concentrationRate, {}});
+        const std::vector<double>& v = label == "g.concentration"       ? c.concentration
+                                       : label == "g.concentrationRate" ? c.concentrationRate
+                                       : label == "g.concentrationStar" ? c.concentrationStar
+                                                                        : c.concentrationNoBC;
+        out.arrays.push_back({name, 1, v, {}});
         continue;
       }
       if (label == "g.mass") {

@@ -15,6 +15,7 @@
 #include <regex>
 #include <sstream>
 
+#include "StandAlone/OutputLabels.h"
 #include "StandAlone/Simulation.h"
 #include "TestFiles.h"
 #include "TestInputs.h"
@@ -138,6 +139,29 @@ TEST(Output, GridFilesOnlyForSavedGridLabels) {
   EXPECT_NEAR(total, in.density * 0.125, 1e-12) << "grid mass equals particle mass (Eq. 4)";
   EXPECT_TRUE(img->GetPointData()->GetArray("g.velocity"));
   EXPECT_FALSE(img->GetPointData()->GetArray("g.acceleration"));
+}
+
+TEST(Output, DiffusionGridLabelsNameTheirFields) {
+  // A slab taking up lithium through x+ (no SD-Type BC): after the first step c_noBC = c, and
+  // c* - c = (R + G)/m dt with R = 0 (c = 0 everywhere before the step) and G > 0 only on the
+  // nodes the flux particles reach, while the nodal rate leaves G out (docs/diffusion.md).
+  RunOptions quiet;
+  quiet.progress = false;
+  Simulation sim(readFile(std::string(ANODE_SOURCE_DIR) + "/tests/checkpoint/DiffCurveSlab.ups"), "slab.ups", quiet);
+  sim.advance();
+  const GridData g = gatherGrid(
+      sim.mpm(), {"g.concentration", "g.concentrationnobc", "g.concentrationStar", "g.concentrationRate"});
+  ASSERT_EQ(g.arrays.size(), 4u);
+  const std::vector<double>&c = g.arrays[0].real, &noBC = g.arrays[1].real, &star = g.arrays[2].real,
+                       &rate = g.arrays[3].real;
+  int sourceNodes = 0;
+  for (size_t k = 0; k < c.size(); ++k) {
+    EXPECT_EQ(noBC[k], c[k]);
+    EXPECT_EQ(rate[k], 0.0);
+    EXPECT_GE(star[k], c[k]);
+    if (star[k] > c[k]) ++sourceNodes;
+  }
+  EXPECT_GT(sourceNodes, 0);
 }
 
 TEST(Output, DefaultDirectoryIsVersionedWhenTaken) {

@@ -61,7 +61,7 @@ void MPM::problemSetup(const PSNode& root, double initTime, double maxTime) {
                                   ", but there are " + std::to_string(materials_.size()));
   for (size_t m = 0; m < materials_.size(); ++m)
     if (flags_.refineParticles && (flags_.refineMaterial < 0 || flags_.refineMaterial == static_cast<int>(m)))
-      materials_[m].particles.refined.assign(materials_[m].particles.count(), 0);
+      materials_[m].particles.enable(Physics::Splitting);
   contact_ = Contact::fromInput(mpmMats, static_cast<int>(materials_.size()));
   if (flags_.doScalarDiffusion)
     diffusion_ = std::make_unique<ReactiveFlow>(root, flags_, materials_.size());

@@ -1,40 +1,71 @@
-// Particle state of one material, stored as structure-of-arrays. Plasticity arrays exist only for
-// materials that can yield.
+// Particle state of one material, stored as structure-of-arrays. Every array is declared once,
+// in eachArray below (the diffusion subcomponent's in DiffusionParticles.h): its Uintah label (the
+// name it is saved under), the physics it belongs to (it exists only when the material has that
+// physics), its initial value and what particle splitting does to it. Checkpoints, output,
+// splitting and setup all go through that one list, so a new array is one member and one line.
 #pragma once
 
 #include <cstdint>
 #include <vector>
 
+#include "Components/MPM/ParticleField.h"
 #include "Components/MPM/ReactiveFlow/DiffusionParticles.h"
 #include "Core/Math/Types.h"
 
 namespace anode {
 
-// The diffusion subcomponent declares its own arrays (ReactiveFlow/DiffusionParticles.h).
 struct ParticleSet : DiffusionParticles {
-  std::vector<int64_t> id;           // p.particleID, stable for the run
-  std::vector<Vec3> x;               // p.x
-  std::vector<Vec3> velocity;        // p.velocity
-  std::vector<Vec3> displacement;    // p.displacement
-  std::vector<double> mass;          // p.mass (constant)
-  std::vector<double> volume;        // p.volume = mass/rho0 * det F
-  std::vector<Mat3> F;               // p.deformationMeasure
-  std::vector<Mat3> stress;          // p.stress (Cauchy, lab frame)
-  std::vector<Mat3> size;            // p.size: reference domain edge vectors in grid-cell units
-  std::vector<Mat3> rotation;        // R of F = R U: the stress update's frame, kept so a step computes one
+  std::vector<int64_t> id;                // p.particleID, stable for the run
+  std::vector<Vec3> x;                    // p.x
+  std::vector<Vec3> velocity;             // p.velocity
+  std::vector<Vec3> displacement;         // p.displacement
+  std::vector<double> mass;               // p.mass (constant)
+  std::vector<double> volume;             // p.volume = mass/rho0 * det F
+  std::vector<Mat3> F;                    // p.deformationMeasure
+  std::vector<Mat3> stress;               // p.stress (Cauchy, lab frame)
+  std::vector<Mat3> size;                 // p.size: reference domain edge vectors in grid-cell units
+  std::vector<Mat3> rotation;             // R of F = R U: the stress update's frame, kept so a step computes one
   std::vector<double> plasticStrain;      // p.plasticStrain (yielding materials only)
   std::vector<double> plasticStrainRate;  // p.plasticStrainRate (yielding materials only)
-
   // Particle splitting (only with <refine_particles>true): 1 once a particle or its parent split.
   std::vector<uint8_t> refined;
 
   size_t count() const { return x.size(); }
 
-  // Calls f(array) for every array above, in declaration order (the one list of them).
+  // Calls f(array, field) for every array, in declaration order (the one list of them).
   template <class F>
-  void forEachArray(F&& f) { eachArray(*this, f); }
+  void forEachField(F&& f) {
+    eachArray(*this, f);
+  }
   template <class F>
-  void forEachArray(F&& f) const { eachArray(*this, f); }
+  void forEachField(F&& f) const {
+    eachArray(*this, f);
+  }
+  // Calls f(array) for every array.
+  template <class F>
+  void forEachArray(F&& f) {
+    forEachField([&f](auto& v, const auto&) { f(v); });
+  }
+  template <class F>
+  void forEachArray(F&& f) const {
+    forEachField([&f](const auto& v, const auto&) { f(v); });
+  }
+
+  bool has(Physics physics) const { return physics_ & bit(physics); }
+  // Creates the arrays of `physics`, each holding its initial value for every particle.
+  void enable(Physics physics) {
+    physics_ |= bit(physics);
+    const size_t n = count();
+    forEachField([&](auto& v, const auto& field) {
+      if (field.physics == physics) v.assign(n, field.initial);
+    });
+  }
+  // Makes room for n particles in every array that exists; new entries get the initial value.
+  void resize(size_t n) {
+    forEachField([&](auto& v, const auto& field) {
+      if (has(field.physics)) v.resize(n, field.initial);
+    });
+  }
 
   // Appends a copy of particle i (every array that exists) and returns its index.
   size_t duplicate(size_t i) {
@@ -44,19 +75,31 @@ struct ParticleSet : DiffusionParticles {
     return count() - 1;
   }
 
-  // Frees the spare capacity of every array (growth by appending leaves up to half unused).
-  void shrinkToFit() {
-    forEachArray([](auto& v) { v.shrink_to_fit(); });
-  }
-
  private:
+  static uint8_t bit(Physics physics) { return static_cast<uint8_t>(1u << static_cast<int>(physics)); }
+
   template <class Self, class F>
   static void eachArray(Self& s, F& f) {
-    f(s.id), f(s.x), f(s.velocity), f(s.displacement), f(s.mass), f(s.volume), f(s.F), f(s.stress), f(s.size);
-    f(s.rotation);
-    f(s.plasticStrain), f(s.plasticStrainRate), f(s.concentration), f(s.concentrationGradient), f(s.diffusivity);
-    f(s.externalScalarFlux), f(s.loadCurveID), f(s.area), f(s.refined);
+    using P = Physics;
+    using S = OnSplit;
+    const Mat3 I = Mat3::Identity(), zero = Mat3::Zero();
+    f(s.id, ParticleField<int64_t>{"p.particleID", P::Mechanics, 0, S::Own});
+    f(s.x, ParticleField<Vec3>{"p.x", P::Mechanics, Vec3::Zero(), S::Own});
+    f(s.velocity, ParticleField<Vec3>{"p.velocity", P::Mechanics, Vec3::Zero(), S::Copy});
+    f(s.displacement, ParticleField<Vec3>{"p.displacement", P::Mechanics, Vec3::Zero(), S::Copy});
+    f(s.mass, ParticleField<double>{"p.mass", P::Mechanics, 0.0, S::Quarter});
+    f(s.volume, ParticleField<double>{"p.volume", P::Mechanics, 0.0, S::Quarter});
+    f(s.F, ParticleField<Mat3>{"p.deformationMeasure", P::Mechanics, I, S::Copy});
+    f(s.stress, ParticleField<Mat3>{"p.stress", P::Mechanics, zero, S::Copy});
+    f(s.size, ParticleField<Mat3>{"p.size", P::Mechanics, I, S::Own});
+    f(s.rotation, ParticleField<Mat3>{nullptr, P::Mechanics, I, S::Copy});
+    f(s.plasticStrain, ParticleField<double>{"p.plasticStrain", P::Plasticity, 0.0, S::Copy});
+    f(s.plasticStrainRate, ParticleField<double>{"p.plasticStrainRate", P::Plasticity, 0.0, S::Copy});
+    eachDiffusionArray(s, f);
+    f(s.refined, ParticleField<uint8_t>{"p.refinedMPM", P::Splitting, 0, S::Own});
   }
+
+  uint8_t physics_ = bit(Physics::Mechanics);
 };
 
 }  // namespace anode

@@ -1,6 +1,7 @@
 #include "Components/MPM/ParticleSplitting.h"
 
 #include <cmath>
+#include <type_traits>
 
 namespace anode {
 
@@ -76,8 +77,10 @@ size_t splitStretchedParticles(ParticleSet& p, const Grid& grid, double ratio,
   for (const auto& [i, axis] : splits) {
     const Vec3 edge = (p.F[i] * p.size[i] * grid.dx.asDiagonal()).col(axis);
     const Vec3 x = p.x[i];
-    p.mass[i] *= 0.25;
-    p.volume[i] *= 0.25;
+    p.forEachField([i](auto& v, const auto& field) {
+      if constexpr (std::is_same_v<typename std::decay_t<decltype(v)>::value_type, double>)
+        if (field.split == OnSplit::Quarter) v[i] *= 0.25;
+    });
     p.size[i].col(axis) *= 0.25;
     p.refined[i] = 1;
     // Children at x -/+ 0.375 and 0.125 of the edge; the parent becomes the first.

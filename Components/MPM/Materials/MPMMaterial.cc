@@ -97,7 +97,11 @@ void addGeomObject(const PSNode& geom, const Grid& grid, const MPMFlags& flags, 
   if (seeds.empty()) geom.fail("<geom_object> places no particle: its pieces contain no particle position of the grid");
 
   const bool findSurface = flags.doScalarDiffusion && flags.useLoadCurves;
-  for (const SmoothParticle& s : seeds) {
+  const size_t first = p.count();
+  p.resize(first + seeds.size());  // every array of the material's physics, at its initial value
+  for (size_t k = 0; k < seeds.size(); ++k) {
+    const SmoothParticle& s = seeds[k];
+    const size_t i = first + k;
     if (findSurface) {
       // Smooth pieces are not searched for their surface: every particle is tested by the flux
       // BCs (UINTAH_UPS.md §3.2), with the spacing dx/res.
@@ -106,21 +110,16 @@ void addGeomObject(const PSNode& geom, const Grid& grid, const MPMFlags& flags, 
       m.surface.spacing.push_back(dxp);
     }
     if (flags.doScalarDiffusion) {
-      p.concentration.push_back(c0);
-      p.concentrationGradient.push_back(Vec3::Zero());
-      p.diffusivity.push_back(m.diffusion->D0);
+      p.concentration[i] = c0;
+      p.diffusivity[i] = m.diffusion->D0;
     }
-    p.id.push_back(nextId++);
-    p.x.push_back(s.x);
-    p.velocity.push_back(velocity);
-    p.displacement.push_back(Vec3::Zero());
-    p.mass.push_back(m.density * s.volume);
-    p.volume.push_back(s.volume);
-    p.F.push_back(Mat3::Identity());
-    p.stress.push_back(Mat3::Zero());
-    p.size.push_back(s.size);
+    p.id[i] = nextId++;
+    p.x[i] = s.x;
+    p.velocity[i] = velocity;
+    p.mass[i] = m.density * s.volume;
+    p.volume[i] = s.volume;
+    p.size[i] = s.size;
   }
-  p.shrinkToFit();
 }
 
 }  // namespace
@@ -155,6 +154,7 @@ MPMMaterial MPMMaterial::fromInput(const PSNode& node, const Grid& grid, const M
   if (const PSNode rigid = node.child("is_rigid"))
     if (rigid.value<bool>()) rigid.unsupported("rigid materials <is_rigid>");
   m.model = createConstitutiveModel(node.requireChild("constitutive_model"), flags.doScalarDiffusion);
+  if (flags.doScalarDiffusion) m.particles.enable(Physics::Diffusion);
 
   const auto geoms = node.children("geom_object");
   if (geoms.empty()) node.fail("<material> needs at least one <geom_object>");

@@ -16,9 +16,7 @@ std::vector<size_t> ExternalScalarFlux::assignToParticles(std::vector<MPMMateria
       mat.surface = {};
       continue;  // a material without diffusivity gets no lithium
     }
-    p.externalScalarFlux.assign(p.count(), 0.0);
-    p.loadCurveID.assign(p.count(), Vec3i::Zero());
-    p.area.assign(p.count(), Vec3::Zero());
+    p.enable(Physics::FluxBC);
     for (size_t i = 0; i < p.count(); ++i) {
       if (!mat.surface.onSurface[i]) continue;
       int slot = 0;

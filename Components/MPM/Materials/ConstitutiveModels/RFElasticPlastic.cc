@@ -65,11 +65,8 @@ std::unique_ptr<RFElasticPlastic> RFElasticPlastic::fromInput(const PSNode& node
 }
 
 void RFElasticPlastic::initializeState(ParticleSet& p) const {
-  p.rotation.resize(p.count());
   for (size_t i = 0; i < p.count(); ++i) p.rotation[i] = rotationOf(p.F[i]);
-  if (!canYield()) return;
-  p.plasticStrain.assign(p.count(), 0.0);
-  p.plasticStrainRate.assign(p.count(), 0.0);
+  if (canYield()) p.enable(Physics::Plasticity);
 }
 
 Mat3 RFElasticPlastic::updateStress(const Mat3& stress, Mat3& rotation, const Mat3& Fnew, const Mat3& L,
