@@ -438,6 +438,24 @@ ScalarFluxBC boxBC(const Vec3& lo, const Vec3& hi) {
   return bc;
 }
 
+TEST(ScalarFluxBCArea, AreaStretchIsNanson) {
+  // a / A = J |F^-T N| for the x+ face (N = x): a stretch along the normal leaves the face as it
+  // is, a stretch across it grows it, a shear that slides the face within its plane leaves it.
+  const ScalarFluxBC bc = boxBC(Vec3(1, 0, 0), Vec3(1, 0.5, 0.5));
+  const Vec3 X(1, 0.2, 0.2);
+  EXPECT_NEAR(bc.areaStretch(Vec3(2, 1, 1).asDiagonal().toDenseMatrix(), X), 1.0, 1e-15);
+  EXPECT_NEAR(bc.areaStretch(Vec3(1, 2, 3).asDiagonal().toDenseMatrix(), X), 6.0, 1e-14);
+  Mat3 shear = Mat3::Identity();
+  shear(1, 0) = 0.5;  // y += 0.5 X: the face X = 1 slides within its plane
+  EXPECT_NEAR(bc.areaStretch(shear, X), 1.0, 1e-15);
+  shear = Mat3::Identity();
+  shear(0, 1) = 0.5;  // x += 0.5 Y: the face tilts, its edge along Y becomes (0.5, 1, 0)
+  EXPECT_NEAR(bc.areaStretch(shear, X), std::sqrt(1.25), 1e-15);
+  // A rotation changes no area.
+  const Mat3 R = Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized()).toRotationMatrix();
+  EXPECT_NEAR(bc.areaStretch(R * Vec3(1, 2, 3).asDiagonal().toDenseMatrix(), X), 6.0, 1e-13);
+}
+
 TEST(ScalarFluxBCArea, BoxFlagsWithinTheBoxEnlargedByDxp) {
   // The x+ face of a body [0,1] x [0,0.5] x [0,0.5]; particles dxp = (0.05, 0.1, 0.2).
   const ScalarFluxBC bc = boxBC(Vec3(1, 0, 0), Vec3(1, 0.5, 0.5));

@@ -50,8 +50,11 @@ void ExternalScalarFlux::computeFluxRates(std::vector<MPMMaterial>& materials, d
     for (long i = 0; i < n; ++i) {
       double rate = 0, k = 0;
       for (int s = 0; s < 3 && p.loadCurveID[i][s] > 0; ++s) {
-        rate += J[p.loadCurveID[i][s] - 1] * p.area[i][s];
-        k += std::abs(J[p.loadCurveID[i][s] - 1]) * p.area[i][s];
+        const int b = p.loadCurveID[i][s] - 1;
+        const double area = bcs_[b].deformedArea ? p.area[i][s] * bcs_[b].areaStretch(p.F[i], p.x[i] - p.displacement[i])
+                                                 : p.area[i][s];
+        rate += J[b] * area;
+        k += std::abs(J[b]) * area;
       }
       // Eq. 17 restricts inflow as c -> 1; outflow is restricted the same way as c -> 0.
       const double c = p.concentration[i] / cmax;

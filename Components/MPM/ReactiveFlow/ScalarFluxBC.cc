@@ -52,6 +52,14 @@ std::vector<ScalarFluxBC> ScalarFluxBC::fromInput(const PSNode& physicalBC) {
     } else {
       piece.fail("a <scalar_flux> geometry must be a box, cylinder or sphere, found <" + type + ">");
     }
+    if (const PSNode update = block.child("area_update")) {
+      const std::string rule = update.value<std::string>();
+      if (rule == "deformed")
+        bc.deformedArea = true;
+      else if (rule != "constant")
+        update.fail("<area_update> must be constant (Uintah's fixed face area) or deformed (Nanson), found \"" +
+                    rule + "\"");
+    }
     block.acceptInert("outward_normal");
     block.acceptInert("auto_cycle");
     block.acceptInert("numberOfParticlesOnLoadSurface");
@@ -85,6 +93,11 @@ Vec3 ScalarFluxBC::normalAt(const Vec3& x) const {
       return (x - center).norm() > 0 ? Vec3((x - center).normalized()) : Vec3::UnitX();
   }
   return Vec3::UnitX();
+}
+
+double ScalarFluxBC::areaStretch(const Mat3& F, const Vec3& X) const {
+  // Nanson: a n = J F^-T A N, so |a| / A = J |F^-T N| with N the face normal at X.
+  return F.determinant() * (F.inverse().transpose() * normalAt(X)).norm();
 }
 
 double ScalarFluxBC::distanceToFace(const Vec3& x) const {

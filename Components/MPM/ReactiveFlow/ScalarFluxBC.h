@@ -22,6 +22,9 @@ struct ScalarFluxBC {
   double radius = 0;            // cylinder, sphere
   Vec3 center;                  // sphere
   LoadCurve load{{0.0}, {0.0}};
+  // <area_update>deformed: a flagged particle's face area follows its deformation (Nanson);
+  // constant (default, as Uintah): the area it was given at the start.
+  bool deformedArea = false;
   int line = 0;
 
   static std::vector<ScalarFluxBC> fromInput(const PSNode& physicalBC);
@@ -34,6 +37,9 @@ struct ScalarFluxBC {
   // sharing a flux face among split particles).
   Vec3 normalAt(const Vec3& x) const;
   double distanceToFace(const Vec3& x) const;
+  // The ratio of a particle face's current area to its area A0 at the start, J |F^-T N| (Nanson),
+  // for deformation gradient F and N this BC's normal at the reference position X.
+  double areaStretch(const Mat3& F, const Vec3& X) const;
   // The same for an axis-aligned grid-filled particle of edge lengths dxp.
   double flaggedArea(const Vec3& x, const Vec3& dxp) const {
     return flaggedArea(x, dxp, Vec3(dxp.y() * dxp.z(), dxp.x() * dxp.z(), dxp.x() * dxp.y()));
