@@ -53,8 +53,9 @@ void MPM::problemSetup(const PSNode& root, double initTime, double maxTime) {
   int64_t nextId = 0;
   const auto materialNodes = mpmMats.children("material");
   if (materialNodes.empty()) mpmMats.fail("<MaterialProperties><MPM> needs at least one <material>");
-  for (const PSNode& m : materialNodes)
-    materials_.push_back(MPMMaterial::fromInput(m, grid_, flags_, maxTime, pieces, nextId));
+  std::vector<MaterialSeeds> seeds(materialNodes.size());
+  for (size_t m = 0; m < materialNodes.size(); ++m)
+    materials_.push_back(MPMMaterial::fromInput(materialNodes[m], grid_, flags_, maxTime, pieces, nextId, seeds[m]));
   nextParticleId_ = nextId;
   if (flags_.refineMaterial >= static_cast<int>(materials_.size()))
     root.requireChild("AMR").fail("the stretchRatio names material " + std::to_string(flags_.refineMaterial) +
@@ -72,7 +73,7 @@ void MPM::problemSetup(const PSNode& root, double initTime, double maxTime) {
     std::array<bool, 6> mirror{};
     for (const FaceBC& b : faceBCs_)
       if (b.kind == FaceBC::Kind::Symmetric && b.appliesTo(static_cast<int>(m))) mirror[2 * b.axis + b.side] = true;
-    materials_[m].checkPiecesInsideGrid(grid_, mirror);
+    seeds[m].checkPiecesInsideGrid(grid_, mirror);
   }
   readOtherPhysicalBCs(root);
 
@@ -85,7 +86,8 @@ void MPM::problemSetup(const PSNode& root, double initTime, double maxTime) {
   threadScatter_.resize(omp_get_max_threads() > 1 ? omp_get_max_threads() : 0);
   for (GridFields& t : threadScatter_) t.resizeScatter(nodes);
   if (diffusion_)
-    diffusion_->initialize(root, grid_, faceBCs_, materials_, static_cast<int>(threadScatter_.size()), initTime);
+    diffusion_->initialize(root, grid_, faceBCs_, materials_, seeds, static_cast<int>(threadScatter_.size()),
+                           initTime);
   tasks_ = {timers_.task("computeInterpolationWeights"), timers_.task("interpolateParticlesToGrid"),
             timers_.task("integrateGrid"),               timers_.task("interpolateToParticlesAndUpdate"),
             timers_.task("splitParticles"),              timers_.task("updateDiffusionState")};

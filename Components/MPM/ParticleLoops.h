@@ -74,7 +74,7 @@ long updateParticles(ParticleSet& p, const ParticleUpdate& u, const Model& model
     for (int e = 0; e < W.count[i]; ++e) {
       const int k = W.node[b + e];
       const double w = W.weight[b + e];
-      gradV += g.velocityStar[k] * W.gradient[b + e].transpose();
+      gradV.noalias() += g.velocityStar[k] * W.gradient[b + e].transpose();
       acc += g.acceleration[k] * w;
       vel += g.velocityStar[k] * w;
       concentration.gather(c, k, w, W.gradient[b + e]);

@@ -21,7 +21,7 @@ std::string domain(const Grid& grid) {
 
 // Adds the particles of one <geom_object> (UINTAH_UPS.md §3.1).
 void addGeomObject(const PSNode& geom, const Grid& grid, const MPMFlags& flags, MPMMaterial& m,
-                   GeometryPieceFactory& pieces, int64_t& nextId) {
+                   GeometryPieceFactory& pieces, int64_t& nextId, MaterialSeeds& out) {
   ParticleSet& p = m.particles;
   auto piece = std::make_shared<UnionPiece>();
   const std::vector<PSNode> pieceNodes = geom.childrenWhere(GeometryPieceFactory::isPieceTag);
@@ -92,7 +92,7 @@ void addGeomObject(const PSNode& geom, const Grid& grid, const MPMFlags& flags, 
                            formatVector(s.x) + ": enlarge the <Grid><Box> or move the piece");
   } else {
     for (size_t k = 0; k < pieceNodes.size(); ++k)
-      m.filledPieces.push_back({pieceNodes[k], piece->pieces[k], res});
+      out.filledPieces.push_back({pieceNodes[k], piece->pieces[k], res});
   }
   if (seeds.empty()) geom.fail("<geom_object> places no particle: its pieces contain no particle position of the grid");
 
@@ -105,9 +105,9 @@ void addGeomObject(const PSNode& geom, const Grid& grid, const MPMFlags& flags, 
     if (findSurface) {
       // Smooth pieces are not searched for their surface: every particle is tested by the flux
       // BCs (UINTAH_UPS.md §3.2), with the spacing dx/res.
-      m.surface.onSurface.push_back(smooth || onSurface(*piece, s.x, dxp, grid.ndim()));
-      m.surface.faceArea.push_back(s.faceArea);
-      m.surface.spacing.push_back(dxp);
+      out.onSurface.push_back(smooth || onSurface(*piece, s.x, dxp, grid.ndim()));
+      out.faceArea.push_back(s.faceArea);
+      out.spacing.push_back(dxp);
     }
     if (flags.doScalarDiffusion) {
       p.concentration[i] = c0;
@@ -138,8 +138,8 @@ std::string describeParticle(const MPMMaterial& mat, size_t matl, size_t i) {
   return s.str();
 }
 
-MPMMaterial MPMMaterial::fromInput(const PSNode& node, const Grid& grid, const MPMFlags& flags,
-                                   double maxTime, GeometryPieceFactory& pieces, int64_t& nextId) {
+MPMMaterial MPMMaterial::fromInput(const PSNode& node, const Grid& grid, const MPMFlags& flags, double maxTime,
+                                   GeometryPieceFactory& pieces, int64_t& nextId, MaterialSeeds& seeds) {
   MPMMaterial m;
   m.name = node.attribute("name").value_or("");
   m.density = node.require<double>("density");
@@ -158,7 +158,7 @@ MPMMaterial MPMMaterial::fromInput(const PSNode& node, const Grid& grid, const M
 
   const auto geoms = node.children("geom_object");
   if (geoms.empty()) node.fail("<material> needs at least one <geom_object>");
-  for (const PSNode& g : geoms) addGeomObject(g, grid, flags, m, pieces, nextId);
+  for (const PSNode& g : geoms) addGeomObject(g, grid, flags, m, pieces, nextId, seeds);
   if (m.particles.mass.front() <= flags.minimumParticleMass)
     node.requireChild("density").fail("particle mass " + std::to_string(m.particles.mass.front()) +
                                        " is at or below <minimum_particle_mass> " +
@@ -168,15 +168,13 @@ MPMMaterial MPMMaterial::fromInput(const PSNode& node, const Grid& grid, const M
   return m;
 }
 
-void MPMMaterial::checkPiecesInsideGrid(const Grid& grid, const std::array<bool, 6>& mirror) {
+void MaterialSeeds::checkPiecesInsideGrid(const Grid& grid, const std::array<bool, 6>& mirror) const {
   // Uintah fills only the interior cells and drops the rest of a piece without a word.
   for (const FilledPiece& f : filledPieces)
     if (placesParticlesOutside(grid, *f.piece, f.res, mirror))
       f.node.fail("<" + f.node.name() + "> places particles outside " + domain(grid) +
                   ", beyond a face without a Symmetric BC, where they would be dropped: enlarge "
                   "the <Grid><Box> or trim the piece");
-  filledPieces.clear();
-  filledPieces.shrink_to_fit();
 }
 
 }  // namespace anode

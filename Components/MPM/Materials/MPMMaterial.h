@@ -15,22 +15,15 @@
 
 namespace anode {
 
-struct MPMMaterial {
-  std::string name;
-  double density = 0;  // rho0; particle mass = rho0 * V0
-  std::unique_ptr<ConstitutiveModel> model;
-  std::unique_ptr<ScalarDiffusionModel> diffusion;  // only with <do_scalar_diffusion>true
-  ParticleSet particles;
-  // Setup only, for flux BCs: which particles lie on the surface of their geometry, their face
-  // areas (normal to x, y, z; for smooth pieces normal to r, r, axis) and the spacing the BCs
-  // select them with.
-  struct SurfaceSeeds {
-    std::vector<uint8_t> onSurface;
-    std::vector<Vec3> faceArea, spacing;
-  } surface;
-
-  // Setup only: the grid-filled pieces of the geom_objects with their <res>, for
-  // checkPiecesInsideGrid (which needs the face BCs, read after the materials).
+// What setup learns while filling a material's particles and needs once the rest of the input
+// is read: which particles lie on the surface of their geometry (for the flux BCs), and the
+// grid-filled pieces (checked against the grid once the face BCs are known). Setup only.
+struct MaterialSeeds {
+  // Per particle: on the surface, its face areas (normal to x, y, z; for smooth pieces normal to
+  // r, r, axis) and the spacing the flux BCs select it with (only with flux BCs possible).
+  std::vector<uint8_t> onSurface;
+  std::vector<Vec3> faceArea, spacing;
+  // The grid-filled pieces of the geom_objects with their <res>.
   struct FilledPiece {
     PSNode node;
     GeometryPieceP piece;
@@ -38,14 +31,23 @@ struct MPMMaterial {
   };
   std::vector<FilledPiece> filledPieces;
 
-  // Reads the material and fills its particles; `nextId` numbers particles across materials.
-  // `maxTime` bounds the diffusion model's diff_curve.
-  static MPMMaterial fromInput(const PSNode& node, const Grid& grid, const MPMFlags& flags,
-                               double maxTime, GeometryPieceFactory& pieces, int64_t& nextId);
   // An error at the first piece whose particle lattice reaches beyond the grid, where they are
   // dropped, other than beyond a face `mirror` marks (a symmetry BC for this material, index
   // 2 axis + side): a piece crossing a symmetry plane models half of a symmetric body.
-  void checkPiecesInsideGrid(const Grid& grid, const std::array<bool, 6>& mirror);
+  void checkPiecesInsideGrid(const Grid& grid, const std::array<bool, 6>& mirror) const;
+};
+
+struct MPMMaterial {
+  std::string name;
+  double density = 0;  // rho0; particle mass = rho0 * V0
+  std::unique_ptr<ConstitutiveModel> model;
+  std::unique_ptr<ScalarDiffusionModel> diffusion;  // only with <do_scalar_diffusion>true
+  ParticleSet particles;
+
+  // Reads the material and fills its particles; `nextId` numbers particles across materials.
+  // `maxTime` bounds the diffusion model's diff_curve. `seeds` receives what setup needs later.
+  static MPMMaterial fromInput(const PSNode& node, const Grid& grid, const MPMFlags& flags, double maxTime,
+                               GeometryPieceFactory& pieces, int64_t& nextId, MaterialSeeds& seeds);
 };
 
 // "[x, y, z]", for diagnostics.

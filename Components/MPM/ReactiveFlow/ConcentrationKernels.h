@@ -25,6 +25,21 @@ struct NoConcentration {
   double update(long, const Particle&, double) const { return 0.0; }
 };
 
+// The nodal accumulators one P2G scatter writes into (the grid's own, or a thread's buffer), as
+// plain pointers so the scatter loop keeps them in registers.
+struct ConcentrationScatterTarget {
+  double* massConcentration;
+  double* diffusionRate;
+  double* fluxSource;
+  double* receiverWeightIn;
+  double* receiverWeightOut;
+
+  static ConcentrationScatterTarget of(ConcentrationScatterFields& f) {
+    return {f.massConcentration.data(), f.diffusionRate.data(), f.fluxSource.data(), f.receiverWeightIn.data(),
+            f.receiverWeightOut.data()};
+  }
+};
+
 // P2G: (mc)_i = sum m c S (Eq. 5), R_i = -sum m grad S . q with q_p = D_p grad c_p of the
 // previous step (Eqs. 6-7) and, with flux BCs, G_i = sum m rate S (Eq. 18) with, on the nodes a
 // source reaches, the weights W of the particles that can receive it.
@@ -41,7 +56,13 @@ class ConcentrationScatter {
   ConcentrationScatter(const ParticleSet& p, const InterpolationWeights& W, const unsigned char* reached,
                        double cmax, ConcentrationScatterFields& grid,
                        std::vector<ConcentrationScatterFields>& threadBuffers)
-      : p_(p), W_(W), reached_(reached), cmax_(cmax), grid_(&grid), buffers_(&threadBuffers), target_(&grid) {}
+      : p_(p),
+        W_(W),
+        reached_(reached),
+        cmax_(cmax),
+        grid_(&grid),
+        buffers_(&threadBuffers),
+        target_(ConcentrationScatterTarget::of(grid)) {}
 
   Particle particle(long i) const {
     const double mp = p_.mass[i];
@@ -60,20 +81,21 @@ class ConcentrationScatter {
   }
 
   void scatter(const Particle& d, int n, double w, const Vec3& grad) const {
-    target_->massConcentration[n] += d.mc * w;
-    target_->diffusionRate[n] -= grad.dot(d.mq);
+    target_.massConcentration[n] += d.mc * w;
+    target_.diffusionRate[n] -= grad.dot(d.mq);
     if constexpr (Flux) {
-      target_->fluxSource[n] += d.mrate * w;
-      target_->receiverWeightIn[n] += d.mIn * w;
-      target_->receiverWeightOut[n] += d.mOut * w;
+      target_.fluxSource[n] += d.mrate * w;
+      target_.receiverWeightIn[n] += d.mIn * w;
+      target_.receiverWeightOut[n] += d.mOut * w;
     }
   }
 
   // The same kernel writing into thread t's buffer, zeroed first on nodes [begin, end).
   ConcentrationScatter forThread(int t, long begin, long end) const {
     ConcentrationScatter k = *this;
-    k.target_ = &(*buffers_)[t];
-    k.target_->clear(begin, end);
+    ConcentrationScatterFields& buffer = (*buffers_)[t];
+    buffer.clear(begin, end);
+    k.target_ = ConcentrationScatterTarget::of(buffer);
     return k;
   }
 
@@ -98,7 +120,7 @@ class ConcentrationScatter {
   double cmax_;
   ConcentrationScatterFields* grid_;
   std::vector<ConcentrationScatterFields>* buffers_;
-  ConcentrationScatterFields* target_;
+  ConcentrationScatterTarget target_;
 };
 
 // G2P (Eq. 8): c_p += dt (sum S c-rate + s_p), s_p the flux source the particle receives,

@@ -6,22 +6,22 @@
 
 namespace anode {
 
-std::vector<size_t> ExternalScalarFlux::assignToParticles(std::vector<MPMMaterial>& materials) const {
+std::vector<size_t> ExternalScalarFlux::assignToParticles(std::vector<MPMMaterial>& materials,
+                                                          const std::vector<MaterialSeeds>& seeds) const {
   // Surface particles get, per BC that flags them, the area of the face that BC names
   // (UINTAH_UPS.md §3.1; unlike Uintah, not the area left by the last BC tested).
   std::vector<size_t> flagged(bcs_.size(), 0);
-  for (MPMMaterial& mat : materials) {
+  for (size_t m = 0; m < materials.size(); ++m) {
+    MPMMaterial& mat = materials[m];
+    const MaterialSeeds& surface = seeds[m];
     ParticleSet& p = mat.particles;
-    if (bcs_.empty() || !mat.diffusion->diffuses()) {
-      mat.surface = {};
-      continue;  // a material without diffusivity gets no lithium
-    }
+    if (bcs_.empty() || !mat.diffusion->diffuses()) continue;  // a material without diffusivity gets no lithium
     p.enable(Physics::FluxBC);
     for (size_t i = 0; i < p.count(); ++i) {
-      if (!mat.surface.onSurface[i]) continue;
+      if (!surface.onSurface[i]) continue;
       int slot = 0;
       for (size_t b = 0; b < bcs_.size(); ++b) {
-        const double a = bcs_[b].flaggedArea(p.x[i], mat.surface.spacing[i], mat.surface.faceArea[i]);
+        const double a = bcs_[b].flaggedArea(p.x[i], surface.spacing[i], surface.faceArea[i]);
         if (a <= 0) continue;
         ++flagged[b];
         if (slot == 3) continue;  // a particle holds at most 3 load curves
@@ -30,7 +30,6 @@ std::vector<size_t> ExternalScalarFlux::assignToParticles(std::vector<MPMMateria
         ++slot;
       }
     }
-    mat.surface = {};
   }
   return flagged;
 }

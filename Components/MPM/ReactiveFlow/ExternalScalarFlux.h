@@ -21,10 +21,11 @@ class ExternalScalarFlux {
   bool empty() const { return bcs_.empty(); }
   const std::vector<ScalarFluxBC>& bcs() const { return bcs_; }
 
-  // Gives the surface particles of each material that diffuses, per BC that flags them, the
-  // area of the face that BC names, and frees the materials' surface seeds. Returns, per BC,
-  // the number of particles it flags.
-  std::vector<size_t> assignToParticles(std::vector<MPMMaterial>& materials) const;
+  // Gives the surface particles of each material that diffuses (per material in `seeds`), per BC
+  // that flags them, the area of the face that BC names. Returns, per BC, the number of
+  // particles it flags.
+  std::vector<size_t> assignToParticles(std::vector<MPMMaterial>& materials,
+                                        const std::vector<MaterialSeeds>& seeds) const;
   // Eqs. 16-17: rate_p = R(c_p) sum_k J_k(t) A_k / V_p, the restriction applied once; also the
   // largest unrestricted rate coefficient sum |J| A / V for the time-step limit.
   void computeFluxRates(std::vector<MPMMaterial>& materials, double t);

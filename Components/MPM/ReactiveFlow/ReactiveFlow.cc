@@ -41,11 +41,12 @@ void ReactiveFlow::rejectWithoutDiffusion(const PSNode& root, const MPMFlags& fl
 }
 
 void ReactiveFlow::initialize(const PSNode& root, const Grid& grid, const std::vector<FaceBC>& faceBCs,
-                              std::vector<MPMMaterial>& materials, int threads, double initTime) {
+                              std::vector<MPMMaterial>& materials, const std::vector<MaterialSeeds>& seeds, int threads,
+                  double initTime) {
   grid_ = grid;
   faceBCs_ = faceBCs;
   dirichletMask_ = dirichletNodeMasks(grid, faceBCs, materials.size());
-  const std::vector<size_t> flagged = flux_.assignToParticles(materials);
+  const std::vector<size_t> flagged = flux_.assignToParticles(materials, seeds);
   for (size_t b = 0; b < flagged.size(); ++b)
     if (flagged[b] == 0)
       root.child("PhysicalBC")

@@ -36,9 +36,11 @@ class ReactiveFlow {
   static void rejectWithoutDiffusion(const PSNode& root, const MPMFlags& flags);
 
   // Flags the flux particles, lays out the grid fields and computes the initial state's
-  // diffusivity and flux rates. `faceBCs` holds the SD-Type conditions.
+  // diffusivity and flux rates. `faceBCs` holds the SD-Type conditions, `seeds` the surface
+  // particles.
   void initialize(const PSNode& root, const Grid& grid, const std::vector<FaceBC>& faceBCs,
-                  std::vector<MPMMaterial>& materials, int threads, double initTime);
+                  std::vector<MPMMaterial>& materials, const std::vector<MaterialSeeds>& seeds, int threads,
+                  double initTime);
 
   // --- the step's diffusion tasks, in the order MPM::timeAdvance calls them ---
 
