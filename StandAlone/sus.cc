@@ -8,7 +8,7 @@
 #include <cstring>
 #include <string>
 
-#include "StandAlone/Simulation.h"
+#include "StandAlone/Driver/Simulation.h"
 
 namespace {
 

@@ -1,4 +1,4 @@
-// Pins checkpoint/restart (StandAlone/Checkpoint.h): a run interrupted after a checkpoint and
+// Pins checkpoint/restart (StandAlone/Driver/Checkpoint.h): a run interrupted after a checkpoint and
 // continued with `sus -restart DIR` writes the same files as the uninterrupted run, bit for bit
 // with the same thread count; a damaged newest checkpoint is skipped for the one before; a run
 // killed with SIGKILL at any moment leaves every file under its final name complete, and can be
@@ -23,7 +23,7 @@
 #include <thread>
 
 #include "Core/Util/BinaryStream.h"
-#include "StandAlone/Checkpoint.h"
+#include "StandAlone/Driver/Checkpoint.h"
 #include "RunSus.h"
 #include "TestFiles.h"
 

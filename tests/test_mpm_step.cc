@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "StandAlone/Simulation.h"
+#include "StandAlone/Driver/Simulation.h"
 #include "TestInputs.h"
 
 namespace anode {

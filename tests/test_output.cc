@@ -15,8 +15,8 @@
 #include <regex>
 #include <sstream>
 
-#include "StandAlone/OutputLabels.h"
-#include "StandAlone/Simulation.h"
+#include "StandAlone/Driver/OutputLabels.h"
+#include "StandAlone/Driver/Simulation.h"
 #include "TestFiles.h"
 #include "TestInputs.h"
 

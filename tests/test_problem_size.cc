@@ -12,7 +12,7 @@
 #include "Core/Geometry/ParticleFill.h"
 #include "Core/Geometry/SmoothCylinder.h"
 #include "Core/Util/MemoryBudget.h"
-#include "StandAlone/Simulation.h"
+#include "StandAlone/Driver/Simulation.h"
 #include "TestInputs.h"
 
 namespace anode {

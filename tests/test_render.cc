@@ -15,8 +15,8 @@
 #include <fstream>
 #include <regex>
 
-#include "StandAlone/OutputLabels.h"
-#include "StandAlone/Simulation.h"
+#include "StandAlone/Driver/OutputLabels.h"
+#include "StandAlone/Driver/Simulation.h"
 #include "TestInputs.h"
 #include "vis/ColourMap.h"
 #include "vis/SceneRenderer.h"

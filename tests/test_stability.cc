@@ -18,7 +18,7 @@
 
 #include "Components/MPM/StateChecks.h"
 #include "RunSus.h"
-#include "StandAlone/Simulation.h"
+#include "StandAlone/Driver/Simulation.h"
 #include "TestInputs.h"
 
 namespace fs = std::filesystem;

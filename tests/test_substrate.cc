@@ -6,7 +6,7 @@
 
 #include <sstream>
 
-#include "StandAlone/Simulation.h"
+#include "StandAlone/Driver/Simulation.h"
 
 namespace anode {
 namespace {

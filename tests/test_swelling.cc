@@ -8,7 +8,7 @@
 #include <cmath>
 
 #include "Components/MPM/Materials/ConstitutiveModels/RFElasticPlastic.h"
-#include "StandAlone/Simulation.h"
+#include "StandAlone/Driver/Simulation.h"
 
 namespace anode {
 namespace {

@@ -21,7 +21,7 @@
 
 #include "Core/Util/Errors.h"
 #include "Core/Util/MemoryBudget.h"
-#include "StandAlone/Simulation.h"
+#include "StandAlone/Driver/Simulation.h"
 
 namespace fs = std::filesystem;
 

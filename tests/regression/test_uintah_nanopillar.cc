@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "StandAlone/Simulation.h"
+#include "StandAlone/Driver/Simulation.h"
 
 namespace anode {
 namespace {

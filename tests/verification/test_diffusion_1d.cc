@@ -1,4 +1,4 @@
-// The paper's 1-D diffusion verification (§2.2, StandAlone/DiffusionSlab1D.h) at the quick
+// The paper's 1-D diffusion verification (§2.2, StandAlone/Studies/DiffusionSlab1D.h) at the quick
 // resolutions of `diffusion_1d_study --quick` (h = 1/20, 1/40, 1/80), for both SD-Type Dirichlet
 // treatments. Uintah's nodal treatment overshoots [0, 1] (docs/verification.md, "1-D diffusion"),
 // so the accuracy runs use the "-wide" variants, whose input declares the range [-1, 2]; with
@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "StandAlone/DiffusionSlab1D.h"
+#include "StandAlone/Studies/DiffusionSlab1D.h"
 
 namespace {
 

@@ -12,7 +12,7 @@
 #include <string>
 
 #include "Components/MPM/ReactiveFlow/FluxRestriction.h"
-#include "StandAlone/Simulation.h"
+#include "StandAlone/Driver/Simulation.h"
 #include "tests/TestFiles.h"
 
 namespace anode {

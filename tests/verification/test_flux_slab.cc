@@ -1,4 +1,4 @@
-// Flux boundary condition against Carslaw & Jaeger's slab solution (StandAlone/FluxSlab.h), at
+// Flux boundary condition against Carslaw & Jaeger's slab solution (StandAlone/Studies/FluxSlab.h), at
 // the quick resolutions of `flux_slab_study --quick`, and the lithium balance of the flux BC.
 // Bounds are the values measured with timestep_multiplier 0.2 (docs/verification.md, "Flux
 // boundary condition (Carslaw & Jaeger slab)") plus a margin of ~10 %; orders are asserted below
@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "StandAlone/FluxSlab.h"
+#include "StandAlone/Studies/FluxSlab.h"
 
 namespace {
 

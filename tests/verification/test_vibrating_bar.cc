@@ -1,4 +1,4 @@
-// Axial vibrating bar against its small-amplitude analytic solution (StandAlone/VibratingBar.h),
+// Axial vibrating bar against its small-amplitude analytic solution (StandAlone/Studies/VibratingBar.h),
 // at the quick resolutions of `vibrating_bar_study --quick`. Bounds are the values measured with
 // timestep_multiplier 0.2 (docs/verification.md, "Axial vibrating bar") plus a modest margin;
 // orders are asserted below the measured ones.
@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "StandAlone/VibratingBar.h"
+#include "StandAlone/Studies/VibratingBar.h"
 
 namespace {
 

@@ -1,4 +1,4 @@
-#include "StandAlone/DiffusionSlab1D.h"
+#include "StandAlone/Studies/DiffusionSlab1D.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,8 +7,8 @@
 #include <stdexcept>
 
 #include "Core/Util/Errors.h"
-#include "StandAlone/StudyInput.h"
-#include "StandAlone/VerificationRun.h"
+#include "StandAlone/Studies/StudyInput.h"
+#include "StandAlone/Studies/VerificationRun.h"
 
 namespace anode {
 

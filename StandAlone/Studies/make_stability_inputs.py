@@ -7,13 +7,13 @@ CPDI), its base (y-) fixed, lithiated through its top (y+) and right side (x+). 
 paper: K = 67 GPa, G = 31 GPa, eta = 0.56, D = D0 exp(alpha c - beta clamp(p, 0, p_max)) with
 p_max = 3 GPa; linear hardening, yield 1.4 GPa, modulus 1.15 GPa. Each case changes one thing.
 Units: um, us, pg (1 GPa = 1e6, 1 kg/m^3 = 1e-3 pg/um^3, 1 m^2/s = 1e6 um^2/us, 1 m/s = 1 um/us).
-Run: python3 StandAlone/make_stability_inputs.py; tests/test_stability.cc runs the quick versions.
+Run: python3 StandAlone/Studies/make_stability_inputs.py; tests/test_stability.cc runs the quick versions.
 """
 import os
 
 from ups_blocks import GPA, SILICON, data_archiver, flow_model, max_timesteps, non_linear1_diffusion, scalar_flux
 
-OUT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "inputs", "Stability")
+OUT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "inputs", "Stability")
 
 BASE = dict(density=2.33e3, K=SILICON["K"], G=SILICON["G"], eta=0.56, model="hardening", D0=1e-10, alpha=6.0, beta=0.5,
             pmax=3.0, flux=0.4, c0=0.0, velocity=0.0, multiplier=0.4, maxTime=1.0, diffusion="non_linear1",
@@ -62,7 +62,7 @@ def write(name, notes, quick, **changes):
 <!--
 %s
   Expected (tests/test_stability.cc runs this file as it is): %s
-  Base case (StandAlone/make_stability_inputs.py, which writes this file; edit it, not this file):
+  Base case (StandAlone/Studies/make_stability_inputs.py, which writes this file; edit it, not this file):
   a plane-strain silicon block 0.1 x 0.15 um, 600 CPDI particles, base fixed, flux on top and right.
   Units: um, us, pg (1 GPa = 1e6, density in pg/um^3 = 1e-3 kg/m^3, D in um^2/us, flux in um/us).
 -->

@@ -1,4 +1,4 @@
-#include "StandAlone/Checkpoint.h"
+#include "StandAlone/Driver/Checkpoint.h"
 
 #include <algorithm>
 #include <cmath>

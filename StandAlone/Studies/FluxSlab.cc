@@ -1,4 +1,4 @@
-#include "StandAlone/FluxSlab.h"
+#include "StandAlone/Studies/FluxSlab.h"
 
 #include <omp.h>
 
@@ -7,8 +7,8 @@
 #include <stdexcept>
 
 #include "Components/MPM/ReactiveFlow/ScalarFluxBC.h"
-#include "StandAlone/StudyInput.h"
-#include "StandAlone/VerificationRun.h"
+#include "StandAlone/Studies/StudyInput.h"
+#include "StandAlone/Studies/VerificationRun.h"
 
 namespace anode {
 

@@ -1,4 +1,4 @@
-#include "StandAlone/Progress.h"
+#include "StandAlone/Driver/Progress.h"
 
 #include <unistd.h>
 

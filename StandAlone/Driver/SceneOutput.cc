@@ -1,10 +1,10 @@
-#include "StandAlone/SceneOutput.h"
+#include "StandAlone/Driver/SceneOutput.h"
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 
-#include "StandAlone/OutputLabels.h"
+#include "StandAlone/Driver/OutputLabels.h"
 #include "vis/SceneRenderer.h"
 
 namespace anode {

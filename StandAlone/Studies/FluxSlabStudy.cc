@@ -1,6 +1,6 @@
 // flux_slab_study [--quick] [--csv FILE] [--profile FILE] [--threads N] [--timestep-multiplier M]
 // [--flux J] [--fourier F]:
-// convergence study of the flux-BC slab (StandAlone/FluxSlab.h, Carslaw & Jaeger) for the linear,
+// convergence study of the flux-BC slab (StandAlone/Studies/FluxSlab.h, Carslaw & Jaeger) for the linear,
 // GIMP and CPDI interpolators. Prints a table and writes a CSV (default verification/flux_slab.csv,
 // relative to the working directory). Orders are log(error ratio)/log(resolution ratio) between
 // successive resolutions. The lithium balance column is |sum m c(t) - sum m c(0) - sum_steps dt
@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "StandAlone/FluxSlab.h"
-#include "StandAlone/StudyTools.h"
+#include "StandAlone/Studies/FluxSlab.h"
+#include "StandAlone/Studies/StudyTools.h"
 
 namespace {
 

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "StandAlone/RunSummary.h"
+#include "StandAlone/Driver/RunSummary.h"
 
 namespace anode {
 

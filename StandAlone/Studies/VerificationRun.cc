@@ -1,4 +1,4 @@
-#include "StandAlone/VerificationRun.h"
+#include "StandAlone/Studies/VerificationRun.h"
 
 #include <stdexcept>
 

@@ -3,8 +3,8 @@
 bytes per particle, for 1 and 2 threads, on the shared Uintah timing case (unmodified, so the
 figure compares directly with Uintah's) and this repository's inputs/Benchmarks.
 
-  python3 StandAlone/benchmark.py [--repeats N] [--steps N] [--threads 1,2] [--csv FILE] [--quick] [--sus PATH]
-  python3 StandAlone/benchmark.py --scaling [--repeats N] [--steps N] [--threads 2] [--csv FILE] [--sus PATH]
+  python3 StandAlone/Studies/benchmark.py [--repeats N] [--steps N] [--threads 1,2] [--csv FILE] [--quick] [--sus PATH]
+  python3 StandAlone/Studies/benchmark.py --scaling [--repeats N] [--steps N] [--threads 2] [--csv FILE] [--sus PATH]
 
 Writes one CSV row per case and thread count (default benchmarks.csv in the current directory).
 --scaling runs the shared timing case with 1, 8 and 27 particles per cell (<res> 1, 2, 3:
@@ -19,7 +19,7 @@ import subprocess
 import sys
 import tempfile
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 SUS = os.path.join(ROOT, "build", "StandAlone", "sus")
 CASES = [
     ("uintah_Pillar3D_CPDI_diffusion", os.path.join(ROOT, "..", "shared", "inputs", "benchmarks",

@@ -1,4 +1,4 @@
-#include "StandAlone/StudyTools.h"
+#include "StandAlone/Studies/StudyTools.h"
 
 #include <cmath>
 #include <cstdlib>

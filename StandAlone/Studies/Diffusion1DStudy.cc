@@ -1,6 +1,6 @@
 // diffusion_1d_study [--quick] [--csv FILE] [--plots DIR] [--no-plots] [--replot] [--finest-all]
 // [--interpolators LIST] [--variants LIST] [--cells LIST] [--jobs N] [--threads N]: the paper's
-// 1-D diffusion verification (§2.2, StandAlone/DiffusionSlab1D.h) for the linear, GIMP and CPDI
+// 1-D diffusion verification (§2.2, StandAlone/Studies/DiffusionSlab1D.h) for the linear, GIMP and CPDI
 // interpolators and the SD-Type Dirichlet treatments (variants particle, nodal, particle-wide,
 // nodal-wide, nodal-clamp; see setDiffusionSlabVariant). Prints a table, writes a CSV (default
 // verification/diffusion_1d.csv, relative to the working directory) and, with gnuplot, PNG plots
@@ -26,8 +26,8 @@
 #include <thread>
 #include <vector>
 
-#include "StandAlone/DiffusionSlab1D.h"
-#include "StandAlone/StudyTools.h"
+#include "StandAlone/Studies/DiffusionSlab1D.h"
+#include "StandAlone/Studies/StudyTools.h"
 
 namespace {
 

@@ -1,4 +1,4 @@
-#include "StandAlone/TimeControl.h"
+#include "StandAlone/Driver/TimeControl.h"
 
 #include <algorithm>
 #include <cstdio>

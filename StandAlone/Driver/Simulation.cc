@@ -1,4 +1,4 @@
-#include "StandAlone/Simulation.h"
+#include "StandAlone/Driver/Simulation.h"
 
 #include <omp.h>
 #include <sys/resource.h>
@@ -11,7 +11,7 @@
 #include <sstream>
 
 #include "Core/Util/AtomicFile.h"
-#include "StandAlone/Progress.h"
+#include "StandAlone/Driver/Progress.h"
 
 namespace anode {
 

@@ -1,4 +1,4 @@
-#include "StandAlone/StudyInput.h"
+#include "StandAlone/Studies/StudyInput.h"
 
 #include <cstdio>
 #include <stdexcept>

@@ -6,10 +6,10 @@
 
 #include "Components/MPM/MPM.h"
 #include "Components/MPM/StateChecks.h"
-#include "StandAlone/Checkpoint.h"
-#include "StandAlone/DataArchiver.h"
-#include "StandAlone/SceneOutput.h"
-#include "StandAlone/TimeControl.h"
+#include "StandAlone/Driver/Checkpoint.h"
+#include "StandAlone/Driver/DataArchiver.h"
+#include "StandAlone/Driver/SceneOutput.h"
+#include "StandAlone/Driver/TimeControl.h"
 
 namespace anode {
 

@@ -1,4 +1,4 @@
-#include "StandAlone/DataArchiver.h"
+#include "StandAlone/Driver/DataArchiver.h"
 
 #include <cmath>
 #include <cstdio>
@@ -8,7 +8,7 @@
 #include <sstream>
 
 #include "Core/Util/AtomicFile.h"
-#include "StandAlone/OutputLabels.h"
+#include "StandAlone/Driver/OutputLabels.h"
 
 namespace fs = std::filesystem;
 

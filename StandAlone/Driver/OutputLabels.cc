@@ -1,4 +1,4 @@
-#include "StandAlone/OutputLabels.h"
+#include "StandAlone/Driver/OutputLabels.h"
 
 #include <algorithm>
 #include <cmath>

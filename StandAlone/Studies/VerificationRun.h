@@ -6,7 +6,7 @@
 #include <chrono>
 #include <string>
 
-#include "StandAlone/Simulation.h"
+#include "StandAlone/Driver/Simulation.h"
 
 namespace anode {
 

@@ -14,7 +14,7 @@
 #include <utility>
 #include <vector>
 
-#include "StandAlone/RunSummary.h"
+#include "StandAlone/Driver/RunSummary.h"
 
 namespace anode {
 

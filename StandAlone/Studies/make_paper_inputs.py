@@ -3,13 +3,13 @@
 
 One description per scenario below; every file states its paper section, parameters and what the
 paper does not give (chosen here). Units: um, us, pg (1 GPa = 1e6, 1 kg/m^3 = 1e-3 pg/um^3,
-1 m^2/s = 1e6 um^2/us, a flux of 1 m/s = 1 um/us). Run: python3 StandAlone/make_paper_inputs.py
+1 m^2/s = 1e6 um^2/us, a flux of 1 m/s = 1 um/us). Run: python3 StandAlone/Studies/make_paper_inputs.py
 """
 import os
 
 from ups_blocks import GPA, SILICON, data_archiver, flow_model, max_timesteps, non_linear1_diffusion, scalar_flux
 
-OUT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "inputs", "Paper")
+OUT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "inputs", "Paper")
 
 SUBSTRATE = dict(K=180.4, G=76.0, sigmaY=0.7, H=1.15)    # GPa
 SMALL = dict(radius=0.05, height=0.1, dx=0.005, num_radial=10, num_axial=20, num_angular=64,
@@ -120,7 +120,7 @@ def scenario(s):
   %s (Gritton et al. %s)
 %s
   Units: um, us, pg (1 GPa = 1e6; density in pg/um^3 = 1e-3 kg/m^3; D in um^2/us = 1e-6 m^2/s;
-  flux in um/us = m/s). Written by StandAlone/make_paper_inputs.py; edit the script, not this file.
+  flux in um/us = m/s). Written by StandAlone/Studies/make_paper_inputs.py; edit the script, not this file.
 -->
 <Uintah_specification>
   <Meta><title>%s</title></Meta>

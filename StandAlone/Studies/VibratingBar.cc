@@ -1,11 +1,11 @@
-#include "StandAlone/VibratingBar.h"
+#include "StandAlone/Studies/VibratingBar.h"
 
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
-#include "StandAlone/StudyInput.h"
-#include "StandAlone/VerificationRun.h"
+#include "StandAlone/Studies/StudyInput.h"
+#include "StandAlone/Studies/VerificationRun.h"
 
 namespace anode {
 
