@@ -18,12 +18,4 @@ Mat3 rotationOf(const Mat3& F) {
   return R;
 }
 
-PolarDecomposition polarDecompose(const Mat3& F) {
-  PolarDecomposition pd;
-  pd.R = rotationOf(F);
-  const Mat3 U = pd.R.transpose() * F;
-  pd.U = 0.5 * (U + U.transpose());
-  return pd;
-}
-
 }  // namespace anode

@@ -1,4 +1,5 @@
-// Polar decomposition F = R U (paper Eq. 26): R proper orthogonal, U symmetric positive definite.
+// Polar decomposition F = R U (paper Eq. 26): R proper orthogonal, U = R^T F symmetric positive
+// definite. The stress update needs R only.
 #pragma once
 
 #include "Core/Math/Types.h"
@@ -7,10 +8,5 @@ namespace anode {
 
 // Requires det F > 0. Scaled Newton iteration (Higham 1986), converged to round-off.
 Mat3 rotationOf(const Mat3& F);
-
-struct PolarDecomposition {
-  Mat3 R, U;
-};
-PolarDecomposition polarDecompose(const Mat3& F);
 
 }  // namespace anode

@@ -44,7 +44,6 @@ class DataArchiver {
   std::string writeFailedState(long step, const MPM& mpm) const;
   void recordHistory(const HistoryRow& row) { history_.push_back(row); }
   void writeHistory() const;
-  int outputsWritten() const { return static_cast<int>(particleSeries_.entries().size()); }
   const std::vector<HistoryRow>& history() const { return history_; }
 
   // The output schedule, the .pvd series and the history, for checkpoints.
