@@ -82,7 +82,8 @@ int main(int argc, char** argv) {
   }
   if (!options.restartDir.empty()) {
     if (!options.input.empty() || !options.outputDir.empty()) {
-      std::fprintf(stderr, "sus: -restart DIR takes the input and output directory from DIR\n%s", kUsage);
+      std::fprintf(stderr, "sus: -restart DIR takes the input and output directory from DIR\n%s",
+                   kUsage);
       return 2;
     }
     options.input = options.restartDir + "/input.ups";

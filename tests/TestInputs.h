@@ -13,8 +13,8 @@ struct BlockInput {
   std::string velocity = "[0,0,0]";
   std::string gridLower = "[0,0,0]", gridUpper = "[1,1,1]", cells = "[10,10,10]";
   std::string extraCells = "[1,1,1]";
-  std::string flowModel;       // empty: linear elastic
-  std::string faces;           // <Face> elements
+  std::string flowModel;  // empty: linear elastic
+  std::string faces;      // <Face> elements
   std::string saves = "<save label=\"p.stress\"/>";
   std::string extraMaterials;  // further <material> elements
   std::string contact;         // <contact> element
@@ -43,7 +43,8 @@ struct BlockInput {
       << contact << "</MPM></MaterialProperties>\n"
       << "<Grid><Level><Box><lower>" << gridLower << "</lower><upper>" << gridUpper
       << "</upper><resolution>" << cells << "</resolution><extraCells>" << extraCells
-      << "</extraCells></Box></Level><BoundaryConditions>" << faces << "</BoundaryConditions></Grid>\n"
+      << "</extraCells></Box></Level><BoundaryConditions>" << faces
+      << "</BoundaryConditions></Grid>\n"
       << "</Uintah_specification>\n";
     return s.str();
   }

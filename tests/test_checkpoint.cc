@@ -1,5 +1,5 @@
-// Pins checkpoint/restart (StandAlone/Driver/Checkpoint.h): a run interrupted after a checkpoint and
-// continued with `sus -restart DIR` writes the same files as the uninterrupted run, bit for bit
+// Pins checkpoint/restart (StandAlone/Driver/Checkpoint.h): a run interrupted after a checkpoint
+// and continued with `sus -restart DIR` writes the same files as the uninterrupted run, bit for bit
 // with the same thread count; a damaged newest checkpoint is skipped for the one before; a run
 // killed with SIGKILL at any moment leaves every file under its final name complete, and can be
 // continued to the uninterrupted run's result.
@@ -23,8 +23,8 @@
 #include <thread>
 
 #include "Core/Util/BinaryStream.h"
-#include "StandAlone/Driver/Checkpoint.h"
 #include "RunSus.h"
+#include "StandAlone/Driver/Checkpoint.h"
 #include "TestFiles.h"
 
 namespace fs = std::filesystem;
@@ -41,7 +41,8 @@ const std::string kSource = ANODE_SOURCE_DIR;
 struct Scratch {
   fs::path dir;
   explicit Scratch(const std::string& name) {
-    dir = fs::temp_directory_path() / ("anode_checkpoint_" + name + "_" + std::to_string(::getpid()));
+    dir =
+        fs::temp_directory_path() / ("anode_checkpoint_" + name + "_" + std::to_string(::getpid()));
     fs::remove_all(dir);
     fs::create_directories(dir);
   }
@@ -56,7 +57,8 @@ testing::SusResult sus(std::vector<std::string> args, const std::vector<std::str
 }
 
 // The input with <checkpoint> added to <DataArchiver> (when `checkpoint` is not empty).
-fs::path withCheckpoint(const std::string& input, const std::string& checkpoint, const fs::path& to) {
+fs::path withCheckpoint(const std::string& input, const std::string& checkpoint,
+                        const fs::path& to) {
   std::string text = readFile(input);
   if (!checkpoint.empty()) {
     const size_t end = text.find("</DataArchiver>");
@@ -81,7 +83,8 @@ void expectSameOutputs(const fs::path& a, const fs::path& b) {
   std::vector<std::string> files;
   for (const auto& e : fs::recursive_directory_iterator(a)) {
     const std::string rel = fs::relative(e.path(), a).string();
-    if (e.is_regular_file() && rel.rfind("checkpoints", 0) != 0 && rel != "history.csv") files.push_back(rel);
+    if (e.is_regular_file() && rel.rfind("checkpoints", 0) != 0 && rel != "history.csv")
+      files.push_back(rel);
   }
   for (const auto& e : fs::recursive_directory_iterator(b)) {
     const std::string rel = fs::relative(e.path(), b).string();
@@ -99,11 +102,13 @@ void expectSameOutputs(const fs::path& a, const fs::path& b) {
 
 struct RestartCase {
   std::string name, input, checkpoint;  // checkpoint: element to add ("" if the input has one)
-  long interruptAt;                      // steps of the interrupted run
-  std::vector<std::string> steps;        // e.g. {"--max-timesteps", "150"} for both runs
+  long interruptAt;                     // steps of the interrupted run
+  std::vector<std::string> steps;       // e.g. {"--max-timesteps", "150"} for both runs
 };
 
-void PrintTo(const RestartCase& c, std::ostream* os) { *os << c.name; }
+void PrintTo(const RestartCase& c, std::ostream* os) {
+  *os << c.name;
+}
 
 class Restart : public ::testing::TestWithParam<RestartCase> {};
 
@@ -114,13 +119,16 @@ TEST_P(Restart, ContinuesBitForBit) {
   const fs::path input = withCheckpoint(c.input, c.checkpoint, s.dir / "input.ups");
   const testing::SusResult whole = sus(c.steps, {"-o", (s.dir / "whole").string(), input.string()});
   ASSERT_EQ(whole.exitCode, 0) << whole.output;
-  ASSERT_EQ(sus({"--max-timesteps", std::to_string(c.interruptAt), "-o", (s.dir / "parts").string(), input.string()})
-                .exitCode, 0);
+  ASSERT_EQ(sus({"--max-timesteps", std::to_string(c.interruptAt), "-o", (s.dir / "parts").string(),
+                 input.string()})
+                .exitCode,
+            0);
   const std::vector<std::string> checkpoints = listCheckpoints((s.dir / "parts").string());
   ASSERT_FALSE(checkpoints.empty()) << "the interrupted run wrote no checkpoint";
   const testing::SusResult second = sus({"-restart", (s.dir / "parts").string()}, c.steps);
   ASSERT_EQ(second.exitCode, 0) << second.output;
-  EXPECT_NE(second.output.find("restarting from " + checkpoints.front()), std::string::npos) << second.output;
+  EXPECT_NE(second.output.find("restarting from " + checkpoints.front()), std::string::npos)
+      << second.output;
   expectSameOutputs(s.dir / "whole", s.dir / "parts");
 }
 
@@ -128,10 +136,17 @@ INSTANTIATE_TEST_SUITE_P(
     Inputs, Restart,
     ::testing::Values(
         // 3-D CPDI pillar: flux BCs, non_linear1 with pressure, plasticity, a rendered scene.
-        RestartCase{"pillar", kSource + "/inputs/Pillar/PillarLithiation.ups",
-                    "<checkpoint cycle=\"2\" timestepInterval=\"40\"/>", 100, {"--max-timesteps", "150"}},
+        RestartCase{"pillar",
+                    kSource + "/inputs/Pillar/PillarLithiation.ups",
+                    "<checkpoint cycle=\"2\" timestepInterval=\"40\"/>",
+                    100,
+                    {"--max-timesteps", "150"}},
         // Uintah's 2-D pillar, unmodified (its own <checkpoint interval>): particle splitting.
-        RestartCase{"nanopillar2d", kSource + "/../shared/inputs/uintah/NanoPillar2D_FBC_Sym.ups", "", 500, {}},
+        RestartCase{"nanopillar2d",
+                    kSource + "/../shared/inputs/uintah/NanoPillar2D_FBC_Sym.ups",
+                    "",
+                    500,
+                    {}},
         // Auto-cycled flux, checkpoint after the first flip.
         RestartCase{"autocycle", kSource + "/tests/checkpoint/AutoCycleSlab.ups", "", 1000, {}},
         // A <diff_curve> past its second switch at the checkpoint: the curve's interval is state.
@@ -158,8 +173,10 @@ TEST(Restart, SkipsADamagedNewestCheckpoint) {
 
 TEST(Restart, WithoutACheckpointIsAnError) {
   Scratch s("none");
-  ASSERT_EQ(sus({"--max-timesteps", "3", "-o", (s.dir / "run").string(), kSource + "/inputs/Pillar/PillarImpact.ups"})
-                .exitCode, 0);
+  ASSERT_EQ(sus({"--max-timesteps", "3", "-o", (s.dir / "run").string(),
+                 kSource + "/inputs/Pillar/PillarImpact.ups"})
+                .exitCode,
+            0);
   const testing::SusResult restart = sus({"-restart", (s.dir / "run").string()});
   EXPECT_EQ(restart.exitCode, 1);
   EXPECT_NE(restart.output.find("no checkpoint in"), std::string::npos) << restart.output;
@@ -169,8 +186,10 @@ TEST(Restart, WithoutACheckpointIsAnError) {
 // checkpoint: the automatic one at the start, or a scheduled one. That state is the one a run
 // ending normally at the same step writes, byte for byte.
 TEST(Restart, StoppedRunReplaysItsLastGoodState) {
-  const std::string unstable = kSource + "/inputs/Stability/Multiplier_0.8.ups";  // stops at step 33
-  for (const std::string& schedule : {std::string(), std::string("<checkpoint cycle=\"1\" timestepInterval=\"10\"/>")}) {
+  const std::string unstable =
+      kSource + "/inputs/Stability/Multiplier_0.8.ups";  // stops at step 33
+  for (const std::string& schedule :
+       {std::string(), std::string("<checkpoint cycle=\"1\" timestepInterval=\"10\"/>")}) {
     Scratch s(schedule.empty() ? "replay_auto" : "replay_scheduled");
     const fs::path input = withCheckpoint(unstable, schedule, s.dir / "input.ups");
     const testing::SusResult stopped = sus({"-o", (s.dir / "stopped").string(), input.string()});
@@ -183,10 +202,14 @@ TEST(Restart, StoppedRunReplaysItsLastGoodState) {
     }();
     ASSERT_FALSE(m.empty()) << log;
     const long lastGood = std::stol(m[1].str());
-    EXPECT_NE(log.find(schedule.empty() ? "auto_step_000000.ckpt" : "step_000030.ckpt"), std::string::npos) << log;
+    EXPECT_NE(log.find(schedule.empty() ? "auto_step_000000.ckpt" : "step_000030.ckpt"),
+              std::string::npos)
+        << log;
     EXPECT_EQ(log.find("warning"), std::string::npos) << log;
-    ASSERT_EQ(sus({"--max-timesteps", std::to_string(lastGood), "-o", (s.dir / "ended").string(), input.string()})
-                  .exitCode, 0);
+    ASSERT_EQ(sus({"--max-timesteps", std::to_string(lastGood), "-o", (s.dir / "ended").string(),
+                   input.string()})
+                  .exitCode,
+              0);
     char name[64];
     std::snprintf(name, sizeof name, "particles/step_%06ld.vtu", lastGood);
     ASSERT_TRUE(fs::exists(s.dir / "stopped" / name)) << name;
@@ -216,14 +239,16 @@ void expectEveryFileComplete(const fs::path& dir, long particles) {
       ASSERT_EQ(doc.LoadFile(p.c_str()), tinyxml2::XML_SUCCESS) << p;
       const tinyxml2::XMLElement* collection = doc.RootElement()->FirstChildElement("Collection");
       ASSERT_NE(collection, nullptr) << p;
-      for (const auto* d = collection->FirstChildElement("DataSet"); d; d = d->NextSiblingElement("DataSet"))
+      for (const auto* d = collection->FirstChildElement("DataSet"); d;
+           d = d->NextSiblingElement("DataSet"))
         EXPECT_TRUE(fs::exists(dir / d->Attribute("file"))) << d->Attribute("file");
     } else if (name == "history.csv") {
       std::istringstream in(readFile(p));
       std::string header, line;
       std::getline(in, header);
       const auto columns = std::count(header.begin(), header.end(), ',');
-      while (std::getline(in, line)) EXPECT_EQ(std::count(line.begin(), line.end(), ','), columns) << line;
+      while (std::getline(in, line))
+        EXPECT_EQ(std::count(line.begin(), line.end(), ','), columns) << line;
     } else if (p.extension() == ".ckpt") {
       EXPECT_TRUE(hasIntactHash(p.string())) << p;
     } else if (p.extension() == ".png") {
@@ -234,7 +259,8 @@ void expectEveryFileComplete(const fs::path& dir, long particles) {
 }
 
 // Starts sus with `args` and kills it with SIGKILL after `delay`.
-void runAndKill(const std::vector<std::string>& args, std::chrono::milliseconds delay, const fs::path& log) {
+void runAndKill(const std::vector<std::string>& args, std::chrono::milliseconds delay,
+                const fs::path& log) {
   const pid_t pid = fork();
   ASSERT_GE(pid, 0);
   if (pid == 0) {
@@ -276,7 +302,8 @@ TEST(Restart, KilledRunsLeaveCompleteFilesAndContinueToTheSameResult) {
   text.insert(text.find("</DataArchiver>"), "<checkpoint cycle=\"3\" timestepInterval=\"3\"/>");
   const fs::path input = s.dir / "input.ups";
   std::ofstream(input) << text;
-  const testing::SusResult whole = sus({"--max-timesteps", "120", "-o", (s.dir / "whole").string(), input.string()});
+  const testing::SusResult whole =
+      sus({"--max-timesteps", "120", "-o", (s.dir / "whole").string(), input.string()});
   ASSERT_EQ(whole.exitCode, 0) << whole.output;
   const std::string run = (s.dir / "killed").string();
   std::mt19937 random(1);
@@ -286,14 +313,17 @@ TEST(Restart, KilledRunsLeaveCompleteFilesAndContinueToTheSameResult) {
   for (int k = 0; k < kills; ++k) {
     const bool resume = !listCheckpoints(run).empty();
     const std::vector<std::string> args =
-        resume ? std::vector<std::string>{"--threads", "2", "--max-timesteps", "120", "-restart", run}
-               : std::vector<std::string>{"--threads", "2", "--max-timesteps", "120", "-o", run, input.string()};
+        resume
+            ? std::vector<std::string>{"--threads", "2", "--max-timesteps", "120", "-restart", run}
+            : std::vector<std::string>{"--threads", "2", "--max-timesteps", "120",
+                                       "-o",        run, input.string()};
     runAndKill(args, std::chrono::milliseconds(delay(random)), s.dir / "kill.log");
     if (temporaryFiles(run) > 0) ++duringWrites;
     expectEveryFileComplete(run, 12660);
     if (::testing::Test::HasFailure()) break;
   }
-  std::printf("%d kills, %d of them during a write (a temporary file left behind)\n", kills, duringWrites);
+  std::printf("%d kills, %d of them during a write (a temporary file left behind)\n", kills,
+              duringWrites);
   ASSERT_FALSE(listCheckpoints(run).empty()) << "no checkpoint written before the kills";
   const testing::SusResult last = sus({"--max-timesteps", "120", "-restart", run});
   ASSERT_EQ(last.exitCode, 0) << last.output;

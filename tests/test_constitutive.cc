@@ -94,7 +94,7 @@ TEST(Objectivity, RigidRotationRotatesTheStressAndKeepsItsInvariants) {
   double ep = 0, epdot = 0;
   for (int i = 1; i <= 500; ++i) {
     const Mat3 Fnew = Eigen::AngleAxisd(omega * dt * i, axis).toRotationMatrix();
-    const Mat3 W = Fnew * F.inverse();  // incremental rotation
+    const Mat3 W = Fnew * F.inverse();              // incremental rotation
     const Mat3 L = (W - W.transpose()) / (2 * dt);  // spin only: no rate of deformation
     stress = model.updateStress(stress, R, Fnew, L, 0.0, dt, ep, epdot);
     F = Fnew;

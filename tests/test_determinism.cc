@@ -25,7 +25,8 @@ double relativeDifference(const ParticleSet& a, const ParticleSet& b) {
   double diff = 0, scale = 0;
   for (size_t i = 0; i < a.count(); ++i) {
     diff = std::max({diff, (a.stress[i] - b.stress[i]).norm() / (1e-300 + a.stress[i].norm() + 1),
-                     std::abs(a.concentration[i] - b.concentration[i]) / (1e-300 + std::abs(a.concentration[i]) + 1e-12),
+                     std::abs(a.concentration[i] - b.concentration[i]) /
+                         (1e-300 + std::abs(a.concentration[i]) + 1e-12),
                      (a.x[i] - b.x[i]).norm() / a.x[i].norm(), (a.F[i] - b.F[i]).norm()});
     scale = std::max(scale, a.stress[i].norm());
   }

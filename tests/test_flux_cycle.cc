@@ -15,21 +15,31 @@ namespace {
 std::string slab(const std::string& mpmExtra, double load0, double load1) {
   std::ostringstream s;
   s << "<Uintah_specification><SimulationComponent type=\"mpm\"/>"
-    << "<Time><maxTime>100</maxTime><initTime>0</initTime><delt_min>0</delt_min><delt_max>1e-2</delt_max>"
+    << "<Time><maxTime>100</maxTime><initTime>0</initTime><delt_min>0</delt_min><delt_max>1e-2</"
+       "delt_max>"
     << "<timestep_multiplier>0.4</timestep_multiplier></Time>"
-    << "<DataArchiver><filebase>c.uda</filebase><outputTimestepInterval>100000</outputTimestepInterval></DataArchiver>"
+    << "<DataArchiver><filebase>c.uda</filebase><outputTimestepInterval>100000</"
+       "outputTimestepInterval></DataArchiver>"
     << "<MPM><interpolator>linear</interpolator><do_scalar_diffusion>true</do_scalar_diffusion>"
     << "<use_load_curves>true</use_load_curves>" << mpmExtra << "</MPM>"
     << "<MaterialProperties><MPM><material><density>1e9</density>"
-    << "<constitutive_model type=\"rf_elastic_plastic\"><bulk_modulus>1e6</bulk_modulus><shear_modulus>1e6</shear_modulus>"
+    << "<constitutive_model "
+       "type=\"rf_elastic_plastic\"><bulk_modulus>1e6</bulk_modulus><shear_modulus>1e6</"
+       "shear_modulus>"
     << "<volume_expansion_coeff>0</volume_expansion_coeff></constitutive_model>"
-    << "<diffusion_model type=\"jg\"><diffusivity>0.1</diffusivity><max_concentration>1</max_concentration></diffusion_model>"
+    << "<diffusion_model "
+       "type=\"jg\"><diffusivity>0.1</diffusivity><max_concentration>1</max_concentration></"
+       "diffusion_model>"
     << "<geom_object><box><min>[0,0,0]</min><max>[1,0.1,0.1]</max></box><res>[2,1,1]</res>"
-    << "<velocity>[0,0,0]</velocity><concentration>0</concentration></geom_object></material></MPM></MaterialProperties>"
-    << "<PhysicalBC><MPM><scalar_flux><geom_object><box><min>[0.99,0,0]</min><max>[1.01,0.1,0.1]</max></box></geom_object>"
+    << "<velocity>[0,0,0]</velocity><concentration>0</concentration></geom_object></material></"
+       "MPM></MaterialProperties>"
+    << "<PhysicalBC><MPM><scalar_flux><geom_object><box><min>[0.99,0,0]</min><max>[1.01,0.1,0.1]</"
+       "max></box></geom_object>"
     << "<load_curve><id>1</id><time_point><time>0</time><load>" << load0 << "</load></time_point>"
-    << "<time_point><time>1e6</time><load>" << load1 << "</load></time_point></load_curve></scalar_flux></MPM></PhysicalBC>"
-    << "<Grid><Level><Box><lower>[0,0,0]</lower><upper>[1,0.1,0.1]</upper><resolution>[10,1,1]</resolution>"
+    << "<time_point><time>1e6</time><load>" << load1
+    << "</load></time_point></load_curve></scalar_flux></MPM></PhysicalBC>"
+    << "<Grid><Level><Box><lower>[0,0,0]</lower><upper>[1,0.1,0.1]</upper><resolution>[10,1,1]</"
+       "resolution>"
     << "<extraCells>[0,0,0]</extraCells></Box></Level><BoundaryConditions>"
     << "<Face side=\"x-\"><BCType id=\"all\" label=\"Symmetric\" var=\"symmetry\"/></Face>"
     << "<Face side=\"x+\"><BCType id=\"all\" label=\"Symmetric\" var=\"symmetry\"/></Face>"
@@ -52,9 +62,11 @@ RunOptions quiet() {
 }
 
 TEST(FluxCycle, AutoCycleFlipsAtTheMeanThresholds) {
-  Simulation sim(slab("<do_auto_cycle_bc>true</do_auto_cycle_bc><auto_cycle_max>0.3</auto_cycle_max>"
-                      "<auto_cycle_min>0.1</auto_cycle_min>", 0.05, 0.05),
-                 "cycle.ups", quiet());
+  Simulation sim(
+      slab("<do_auto_cycle_bc>true</do_auto_cycle_bc><auto_cycle_max>0.3</auto_cycle_max>"
+           "<auto_cycle_min>0.1</auto_cycle_min>",
+           0.05, 0.05),
+      "cycle.ups", quiet());
   // Lithiate until the mean passes 0.3, then delithiate until it falls below 0.1, then again.
   double peak = 0, trough = 1;
   int phase = 0;  // 0: rising, 1: falling, 2: rising again
@@ -79,7 +91,8 @@ TEST(FluxCycle, OutflowIsRestrictedAsConcentrationVanishes) {
   // Start full (c = 0.5 everywhere) and extract for a long time: lithium falls monotonically and
   // the face particle approaches the restriction's zero c = e^-4 from above, never below 0.
   std::string text = slab("", -0.05, -0.05);
-  text.replace(text.find("<concentration>0</concentration>"), 32, "<concentration>0.5</concentration>");
+  text.replace(text.find("<concentration>0</concentration>"), 32,
+               "<concentration>0.5</concentration>");
   Simulation sim(text, "outflow.ups", quiet());
   double lithium = 1e300;
   while (sim.time() < 60) {

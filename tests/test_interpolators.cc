@@ -70,7 +70,8 @@ TEST(Interpolators, LinearReproducesLinearFields) {
 
 TEST(Interpolators, GimpReproducesLinearFields) {
   const Grid g = testGrid();
-  for (const Mat3& size : {Mat3(Vec3(0.5, 0.5, 0.5).asDiagonal()), Mat3(Vec3(1.0, 0.5, 1.0 / 3).asDiagonal())}) {
+  for (const Mat3& size :
+       {Mat3(Vec3(0.5, 0.5, 0.5).asDiagonal()), Mat3(Vec3(1.0, 0.5, 1.0 / 3).asDiagonal())}) {
     for (const Vec3& x : interiorPoints(g, 50)) {
       Weights W;
       W.count = gimpWeights(g, x, size, W.node, W.w, W.grad);
@@ -163,7 +164,8 @@ TEST(Interpolators, ReportParticlesBeyondTheGrid) {
   const Vec3 outside = g.upper + Vec3(0.9, 0, 0);
   EXPECT_EQ(linearWeights(g, outside, W.node, W.w, W.grad), -1);
   EXPECT_EQ(gimpWeights(g, outside, Mat3::Identity() * 0.5, W.node, W.w, W.grad), -1);
-  EXPECT_EQ(cpdiWeights(g, outside, Mat3::Identity() * 0.5, Mat3::Identity(), W.node, W.w, W.grad), -1);
+  EXPECT_EQ(cpdiWeights(g, outside, Mat3::Identity() * 0.5, Mat3::Identity(), W.node, W.w, W.grad),
+            -1);
 }
 
 }  // namespace

@@ -22,7 +22,8 @@ RunOptions quiet() {
 Vec3 totalMomentum(Simulation& sim) {
   Vec3 p = Vec3::Zero();
   for (const MPMMaterial& m : sim.mpm().materials())
-    for (size_t i = 0; i < m.particles.count(); ++i) p += m.particles.mass[i] * m.particles.velocity[i];
+    for (size_t i = 0; i < m.particles.count(); ++i)
+      p += m.particles.mass[i] * m.particles.velocity[i];
   return p;
 }
 
@@ -51,7 +52,8 @@ TEST_P(RigidTranslation, CrossesCellsWithoutStress) {
   EXPECT_LT(maxStress, 1e-6);  // K = 1e6: relative 1e-12
 }
 
-INSTANTIATE_TEST_SUITE_P(Interpolators, RigidTranslation, ::testing::Values("linear", "gimp", "cpdi"));
+INSTANTIATE_TEST_SUITE_P(Interpolators, RigidTranslation,
+                         ::testing::Values("linear", "gimp", "cpdi"));
 
 TEST(MPMStep, MomentumIsConservedForAFreeBodyWithCpdi) {
   // A spinning, expanding block with no boundary conditions: internal forces sum to zero.
@@ -96,10 +98,13 @@ TEST(MPMStep, StopsAfterTheFirstStepPastMaxTime) {
 }
 
 std::string secondBlock(const std::string& velocity) {
-  return "<material name=\"second\"><density>1000</density><constitutive_model type=\"rf_elastic_plastic\">"
+  return "<material name=\"second\"><density>1000</density><constitutive_model "
+         "type=\"rf_elastic_plastic\">"
          "<bulk_modulus>1e6</bulk_modulus><shear_modulus>5e5</shear_modulus></constitutive_model>"
          "<geom_object><box><min>[0.5,0.25,0.25]</min><max>[0.75,0.75,0.75]</max></box>"
-         "<res>[2,2,2]</res><velocity>" + velocity + "</velocity><temperature>298</temperature>"
+         "<res>[2,2,2]</res><velocity>" +
+         velocity +
+         "</velocity><temperature>298</temperature>"
          "</geom_object></material>";
 }
 
@@ -148,7 +153,8 @@ TEST(BoundaryConditions, VelocityDirichletHoldsTheBaseAndSymmetryStopsNormalMoti
   in.boxMax = "[1, 0.8, 0.5]";
   in.velocity = "[0, 0, -2]";
   in.faces =
-      "<Face side=\"z-\"><BCType id=\"all\" label=\"Velocity\" var=\"Dirichlet\"><value>[0,0,0]</value></BCType></Face>"
+      "<Face side=\"z-\"><BCType id=\"all\" label=\"Velocity\" "
+      "var=\"Dirichlet\"><value>[0,0,0]</value></BCType></Face>"
       "<Face side=\"x-\"><BCType id=\"all\" label=\"Symmetric\" var=\"symmetry\"/></Face>"
       "<Face side=\"x+\"><BCType id=\"all\" label=\"Symmetric\" var=\"symmetry\"/></Face>";
   Simulation sim(in.text(), "bcs.ups", quiet());
@@ -156,14 +162,16 @@ TEST(BoundaryConditions, VelocityDirichletHoldsTheBaseAndSymmetryStopsNormalMoti
   const Grid& grid = sim.mpm().grid();
   const auto& g = sim.mpm().gridFields()[0];
   for (int j = 0; j <= grid.cells.y(); ++j)
-    for (int i = 0; i <= grid.cells.x(); ++i) EXPECT_EQ(g.velocityStar[grid.nodeIndex(i, j, 0)].norm(), 0.0);
+    for (int i = 0; i <= grid.cells.x(); ++i)
+      EXPECT_EQ(g.velocityStar[grid.nodeIndex(i, j, 0)].norm(), 0.0);
   for (int k = 0; k <= grid.cells.z(); ++k)
     for (int j = 0; j <= grid.cells.y(); ++j) {
       EXPECT_EQ(g.velocityStar[grid.nodeIndex(0, j, k)].x(), 0.0);
       EXPECT_EQ(g.velocityStar[grid.nodeIndex(grid.cells.x(), j, k)].x(), 0.0);
     }
   double minStressZZ = 0;
-  for (const Mat3& s : sim.mpm().materials()[0].particles.stress) minStressZZ = std::min(minStressZZ, s(2, 2));
+  for (const Mat3& s : sim.mpm().materials()[0].particles.stress)
+    minStressZZ = std::min(minStressZZ, s(2, 2));
   EXPECT_LT(minStressZZ, -1e3) << "the impact must compress the block";
 }
 

@@ -34,7 +34,8 @@ struct OutputRun {
     fs::remove_all(dir);
     const fs::path input = dir.string() + ".ups";
     std::ofstream(input) << in.text();
-    const std::string cmd = std::string(ANODE_SUS) + " -o " + dir.string() + " " + input.string() + " 2>/dev/null";
+    const std::string cmd =
+        std::string(ANODE_SUS) + " -o " + dir.string() + " " + input.string() + " 2>/dev/null";
     EXPECT_EQ(std::system(cmd.c_str()), 0) << cmd;
   }
   ~OutputRun() {
@@ -49,11 +50,14 @@ testing::BlockInput allLabels() {
   in.velocity = "[1, 2, 3]";
   in.maxSteps = 5;
   in.outputEvery = 2;
-  in.flowModel = "<flow_model type=\"johnson_cook\"><A>1e4</A><B>0</B><C>0</C><n>0</n><m>1</m></flow_model>"
-                 "<yield_condition type=\"vonMises\"/>";
-  in.saves = "<save label=\"p.x\"/><save label=\"p.stress\"/><save label=\"p.deformationMeasure\"/>"
-             "<save label=\"p.particleID\"/><save label=\"p.mass\"/><save label=\"p.volume\"/>"
-             "<save label=\"p.velocity\"/><save label=\"p.displacement\"/><save label=\"p.plasticStrain\"/>";
+  in.flowModel =
+      "<flow_model type=\"johnson_cook\"><A>1e4</A><B>0</B><C>0</C><n>0</n><m>1</m></flow_model>"
+      "<yield_condition type=\"vonMises\"/>";
+  in.saves =
+      "<save label=\"p.x\"/><save label=\"p.stress\"/><save label=\"p.deformationMeasure\"/>"
+      "<save label=\"p.particleID\"/><save label=\"p.mass\"/><save label=\"p.volume\"/>"
+      "<save label=\"p.velocity\"/><save label=\"p.displacement\"/><save "
+      "label=\"p.plasticStrain\"/>";
   return in;
 }
 
@@ -64,7 +68,8 @@ TEST(Output, VtuFilesCarryTheSavedLabels) {
   // Steps 0, 2, 4 by the interval and 5 as the last step.
   std::vector<std::string> files;
   std::regex entry("file=\"([^\"]+)\"");
-  for (auto it = std::sregex_iterator(pvd.begin(), pvd.end(), entry); it != std::sregex_iterator(); ++it)
+  for (auto it = std::sregex_iterator(pvd.begin(), pvd.end(), entry); it != std::sregex_iterator();
+       ++it)
     files.push_back((*it)[1]);
   ASSERT_EQ(files.size(), 4u) << pvd;
   EXPECT_EQ(files.front(), "particles/step_000000.vtu");
@@ -107,7 +112,8 @@ TEST(Output, VtuFilesCarryTheSavedLabels) {
   last->Update();
   double xe[3];
   last->GetOutput()->GetPoint(0, xe);
-  const double disp2 = last->GetOutput()->GetPointData()->GetArray("p.displacement")->GetComponent(0, 2);
+  const double disp2 =
+      last->GetOutput()->GetPointData()->GetArray("p.displacement")->GetComponent(0, 2);
   EXPECT_NEAR(xe[2] - x[2], disp2, 1e-14);
   EXPECT_GT(disp2, 0.0);
 
@@ -118,7 +124,8 @@ TEST(Output, VtuFilesCarryTheSavedLabels) {
   EXPECT_EQ(readFile(run.dir / "input.ups"), in.text());
   EXPECT_FALSE(fs::exists(run.dir / "grid.pvd")) << "no g.* label saved: no grid output";
   for (const auto& e : fs::recursive_directory_iterator(run.dir))
-    EXPECT_EQ(e.path().string().find(".tmp"), std::string::npos) << "leftover temporary " << e.path();
+    EXPECT_EQ(e.path().string().find(".tmp"), std::string::npos)
+        << "leftover temporary " << e.path();
 }
 
 TEST(Output, GridFilesOnlyForSavedGridLabels) {
@@ -147,13 +154,14 @@ TEST(Output, DiffusionGridLabelsNameTheirFields) {
   // nodes the flux particles reach, while the nodal rate leaves G out (docs/diffusion.md).
   RunOptions quiet;
   quiet.progress = false;
-  Simulation sim(readFile(std::string(ANODE_SOURCE_DIR) + "/tests/checkpoint/DiffCurveSlab.ups"), "slab.ups", quiet);
+  Simulation sim(readFile(std::string(ANODE_SOURCE_DIR) + "/tests/checkpoint/DiffCurveSlab.ups"),
+                 "slab.ups", quiet);
   sim.advance();
-  const GridData g = gatherGrid(
-      sim.mpm(), {"g.concentration", "g.concentrationnobc", "g.concentrationStar", "g.concentrationRate"});
+  const GridData g = gatherGrid(sim.mpm(), {"g.concentration", "g.concentrationnobc",
+                                            "g.concentrationStar", "g.concentrationRate"});
   ASSERT_EQ(g.arrays.size(), 4u);
-  const std::vector<double>&c = g.arrays[0].real, &noBC = g.arrays[1].real, &star = g.arrays[2].real,
-                       &rate = g.arrays[3].real;
+  const std::vector<double>&c = g.arrays[0].real, &noBC = g.arrays[1].real,
+        &star = g.arrays[2].real, &rate = g.arrays[3].real;
   int sourceNodes = 0;
   for (size_t k = 0; k < c.size(); ++k) {
     EXPECT_EQ(noBC[k], c[k]);

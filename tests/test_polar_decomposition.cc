@@ -22,7 +22,9 @@ TEST(PolarDecomposition, RecoversRotationAndSymmetricStretch) {
     EXPECT_LT((R * R.transpose() - Mat3::Identity()).norm(), 1e-13);
     EXPECT_NEAR(R.determinant(), 1.0, 1e-13);
     EXPECT_LT((U - U.transpose()).norm(), 1e-13 * U.norm());
-    EXPECT_GT(Eigen::SelfAdjointEigenSolver<Mat3>(0.5 * (U + U.transpose())).eigenvalues().minCoeff(), 0.0);
+    EXPECT_GT(
+        Eigen::SelfAdjointEigenSolver<Mat3>(0.5 * (U + U.transpose())).eigenvalues().minCoeff(),
+        0.0);
   }
 }
 
@@ -37,7 +39,8 @@ TEST(PolarDecomposition, KnownRotationTimesStretch) {
 
 TEST(PolarDecomposition, PureStretchAndPureRotation) {
   // A symmetric positive definite F has R = I; a rotation has R = F.
-  EXPECT_LT((rotationOf(Vec3(3, 0.5, 1.2).asDiagonal().toDenseMatrix()) - Mat3::Identity()).norm(), 1e-15);
+  EXPECT_LT((rotationOf(Vec3(3, 0.5, 1.2).asDiagonal().toDenseMatrix()) - Mat3::Identity()).norm(),
+            1e-15);
   const Mat3 Q = Eigen::AngleAxisd(2.5, Vec3(1, 1, 0).normalized()).toRotationMatrix();
   EXPECT_LT((rotationOf(Q) - Q).norm(), 1e-14);
 }

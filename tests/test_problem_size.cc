@@ -37,7 +37,8 @@ std::vector<Vec3> fillWholeGrid(const Grid& grid, const GeometryPiece& piece, co
         for (int c = 0; c < res.z(); ++c)
           for (int b = 0; b < res.y(); ++b)
             for (int a = 0; a < res.x(); ++a) {
-              const Vec3 x = grid.nodePosition(i, j, k) + Vec3((a + 0.5) * dxp.x(), (b + 0.5) * dxp.y(), (c + 0.5) * dxp.z());
+              const Vec3 x = grid.nodePosition(i, j, k) +
+                             Vec3((a + 0.5) * dxp.x(), (b + 0.5) * dxp.y(), (c + 0.5) * dxp.z());
               if (piece.inside(x)) out.push_back(x);
             }
   return out;
@@ -56,7 +57,9 @@ InputError setupError(const std::string& text, const std::string& name) {
 
 int lineOf(const std::string& text, const std::string& needle) {
   const size_t at = text.find(needle);
-  return at == std::string::npos ? -1 : 1 + static_cast<int>(std::count(text.begin(), text.begin() + at, '\n'));
+  return at == std::string::npos
+             ? -1
+             : 1 + static_cast<int>(std::count(text.begin(), text.begin() + at, '\n'));
 }
 
 // A 30 x 15 x 15-cell grid off the origin, for the fill tests.
@@ -88,18 +91,21 @@ TEST(ParticleFill, BoundingBoxFillPlacesTheSameParticlesAsAWholeGridScan) {
   both->pieces = {sphere, box};
   auto disjoint = std::make_shared<IntersectionPiece>();
   disjoint->pieces = {sphere, box};
-  const std::vector<std::shared_ptr<const GeometryPiece>> pieces = {sphere, cylinder, box, difference, both, disjoint};
+  const std::vector<std::shared_ptr<const GeometryPiece>> pieces = {sphere,     cylinder, box,
+                                                                    difference, both,     disjoint};
   for (const auto& piece : pieces)
     for (const Vec3i& res : {Vec3i(1, 1, 1), Vec3i(2, 3, 2)}) {
       const std::vector<Vec3> expected = fillWholeGrid(grid, *piece, res);
       EXPECT_EQ(fillParticles(grid, *piece, res), expected) << piece->type();
-      EXPECT_LE(static_cast<double>(expected.size()), fillCandidates(grid, *piece, res)) << piece->type();
+      EXPECT_LE(static_cast<double>(expected.size()), fillCandidates(grid, *piece, res))
+          << piece->type();
       if (piece->type() != "intersection") {
         EXPECT_GT(expected.size(), 0u) << piece->type();
       }
       // Pieces in a fraction of the grid: fewer candidates than a whole-grid scan.
       if (piece->type() == "sphere" || piece->type() == "box" || piece->type() == "union") {
-        EXPECT_LT(fillCandidates(grid, *piece, res), grid.cells.prod() * res.prod()) << piece->type();
+        EXPECT_LT(fillCandidates(grid, *piece, res), grid.cells.prod() * res.prod())
+            << piece->type();
       }
     }
   EXPECT_EQ(fillCandidates(grid, *disjoint, Vec3i(2, 2, 2)), 0.0);
@@ -113,7 +119,8 @@ TEST(ProblemSize, MoreNodesThan32BitIndicesIsAnInputErrorAtTheResolution) {
   const std::string text = in.text();
   const InputError e = setupError(text, "nodes.ups");
   EXPECT_EQ(e.line(), lineOf(text, "<resolution>")) << e.what();
-  EXPECT_NE(std::string(e.what()).find("at most 2147483647 are supported"), std::string::npos) << e.what();
+  EXPECT_NE(std::string(e.what()).find("at most 2147483647 are supported"), std::string::npos)
+      << e.what();
 }
 
 TEST(ProblemSize, GridBeyondTheMemoryBudgetIsAnInputErrorAtTheResolution) {
@@ -124,7 +131,8 @@ TEST(ProblemSize, GridBeyondTheMemoryBudgetIsAnInputErrorAtTheResolution) {
   const InputError e = setupError(text, "grid.ups");
   setMemoryBudget(0);
   EXPECT_EQ(e.line(), lineOf(text, "<resolution>")) << e.what();
-  EXPECT_NE(std::string(e.what()).find("beyond the memory budget of 1.07 GB"), std::string::npos) << e.what();
+  EXPECT_NE(std::string(e.what()).find("beyond the memory budget of 1.07 GB"), std::string::npos)
+      << e.what();
 }
 
 TEST(ProblemSize, ParticlesBeyondTheMemoryBudgetAreAnInputErrorAtTheRes) {
@@ -135,7 +143,9 @@ TEST(ProblemSize, ParticlesBeyondTheMemoryBudgetAreAnInputErrorAtTheRes) {
   const InputError e = setupError(text, "particles.ups");
   setMemoryBudget(0);
   EXPECT_EQ(e.line(), lineOf(text, "<res>")) << e.what();
-  EXPECT_NE(std::string(e.what()).find("particles, beyond the memory budget of 67.1 MB"), std::string::npos) << e.what();
+  EXPECT_NE(std::string(e.what()).find("particles, beyond the memory budget of 67.1 MB"),
+            std::string::npos)
+      << e.what();
 }
 
 TEST(ProblemSize, GridAndParticlesTogetherBeyondTheBudgetAreAnInputError) {
@@ -157,7 +167,8 @@ TEST(ProblemSize, SmoothCylinderCountMatchesTheParticlesItLaysOut) {
   Grid grid;
   grid.cells = Vec3i(20, 20, 20);
   grid.dx = Vec3::Constant(0.05);
-  for (auto scheme : {SmoothCylinderPiece::Scheme::PieSlices, SmoothCylinderPiece::Scheme::ConstantParticleVolumes}) {
+  for (auto scheme : {SmoothCylinderPiece::Scheme::PieSlices,
+                      SmoothCylinderPiece::Scheme::ConstantParticleVolumes}) {
     SmoothCylinderPiece c;
     c.scheme = scheme;
     c.bottom = Vec3(0.5, 0.5, 0.1);

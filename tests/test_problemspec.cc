@@ -1,4 +1,5 @@
-// Pins the .ups reader: typed values, FILE:LINE: errors, defaults, comments, unread tags, unsupported.
+// Pins the .ups reader: typed values, FILE:LINE: errors, defaults, comments, unread tags,
+// unsupported.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -39,8 +40,12 @@ InputError expectInputError(F body) {
   return InputError("", 0, "");
 }
 
-bool startsWith(const std::string& s, const std::string& prefix) { return s.rfind(prefix, 0) == 0; }
-bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+bool startsWith(const std::string& s, const std::string& prefix) {
+  return s.rfind(prefix, 0) == 0;
+}
+bool contains(const std::string& s, const std::string& part) {
+  return s.find(part) != std::string::npos;
+}
 
 TEST(ProblemSpec, ReadsTypedValues) {
   auto spec = ProblemSpec::fromText(kValues, "values.ups");
@@ -75,7 +80,8 @@ TEST(ProblemSpec, ParseValueRejectsNonFiniteNumbers) {
   // strtod reads these; no input quantity may be NaN or infinite (1e400 overflows to infinity).
   for (const char* text : {"nan", "NaN", "-nan", "inf", "-inf", "Infinity", "1e400", "-1e400"}) {
     EXPECT_THROW(parseValue<double>(text), std::invalid_argument) << text;
-    EXPECT_THROW(parseValue<Vec3>(std::string("[0, ") + text + ", 0]"), std::invalid_argument) << text;
+    EXPECT_THROW(parseValue<Vec3>(std::string("[0, ") + text + ", 0]"), std::invalid_argument)
+        << text;
   }
   EXPECT_EQ(parseValue<double>("-0"), 0.0);
   EXPECT_EQ(parseValue<double>("1e308"), 1e308);
@@ -175,7 +181,8 @@ TEST(ProblemSpec, ChildrenWhereMarksOnlyTheSelectedTags) {
   EXPECT_EQ(boxes[1].line(), 5);
   EXPECT_FALSE(boxes[0].hasChildren());
   const InputError e = expectInputError([&] { spec->checkAllUsed(); });
-  EXPECT_TRUE(startsWith(e.what(), "where.ups:4: unknown tag <colour> in <geom_object>")) << e.what();
+  EXPECT_TRUE(startsWith(e.what(), "where.ups:4: unknown tag <colour> in <geom_object>"))
+      << e.what();
 }
 
 const char* kUnsupported = R"(<Uintah_specification>
@@ -201,13 +208,15 @@ TEST(ProblemSpec, UnsupportedIsAWarningWithIgnoreUnsupported) {
   const PSNode flag = spec->root().requireChild("MPM").requireChild("do_scalar_diffusion");
   EXPECT_NO_THROW(flag.unsupported("scalar diffusion"));
   ASSERT_EQ(spec->warnings().size(), 1u);
-  EXPECT_TRUE(startsWith(spec->warnings()[0], "feature.ups:3: scalar diffusion")) << spec->warnings()[0];
+  EXPECT_TRUE(startsWith(spec->warnings()[0], "feature.ups:3: scalar diffusion"))
+      << spec->warnings()[0];
 }
 
 TEST(ProblemSpec, BrokenXmlIsAnInputErrorWithALine) {
   const InputError e = expectInputError([] {
-    ProblemSpec::fromText("<Uintah_specification>\n  <Time>\n    <maxTime>1\n  </Time>\n</Uintah_specification>\n",
-                          "broken.ups");
+    ProblemSpec::fromText(
+        "<Uintah_specification>\n  <Time>\n    <maxTime>1\n  </Time>\n</Uintah_specification>\n",
+        "broken.ups");
   });
   // The unclosed element's own line, not the line where the mismatch was noticed.
   EXPECT_EQ(e.line(), 3);
@@ -222,8 +231,8 @@ TEST(ProblemSpec, RootMustBeUintahSpecification) {
 }
 
 TEST(ProblemSpec, AttributesAreTrimmedAndRequired) {
-  auto spec = ProblemSpec::fromText("<Uintah_specification>\n  <box label=\" a \"/>\n</Uintah_specification>",
-                                    "attr.ups");
+  auto spec = ProblemSpec::fromText(
+      "<Uintah_specification>\n  <box label=\" a \"/>\n</Uintah_specification>", "attr.ups");
   const PSNode box = spec->root().requireChild("box");
   EXPECT_EQ(box.attribute("label").value_or(""), "a");
   EXPECT_FALSE(box.attribute("name").has_value());

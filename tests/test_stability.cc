@@ -54,24 +54,26 @@ std::vector<std::map<std::string, double>> readHistory(const fs::path& file) {
     std::stringstream fields(line);
     std::map<std::string, double> row;
     size_t k = 0;
-    for (std::string f; std::getline(fields, f, ',') && k < names.size(); ++k) row[names[k]] = std::stod(f);
+    for (std::string f; std::getline(fields, f, ',') && k < names.size(); ++k)
+      row[names[k]] = std::stod(f);
     rows.push_back(row);
   }
   return rows;
 }
 
-double column(const std::vector<std::map<std::string, double>>& h, const std::string& name, bool largest) {
+double column(const std::vector<std::map<std::string, double>>& h, const std::string& name,
+              bool largest) {
   double v = largest ? -HUGE_VAL : HUGE_VAL;
   for (const auto& row : h) v = largest ? std::max(v, row.at(name)) : std::min(v, row.at(name));
   return v;
 }
 
 struct Expectation {
-  long endStep;            // the step a completed run ends at (its max_Timesteps; 0: maxTime ends it)
-  int exitCode;            // 0, 2 or 3
-  std::string message;     // exit 3 or 2: a regular expression the diagnostic matches (exit 2:
-                           // it starts with the tag whose line the error names)
-  long stopStep;           // exit 3: the step it stops at (within +-2)
+  long endStep;         // the step a completed run ends at (its max_Timesteps; 0: maxTime ends it)
+  int exitCode;         // 0, 2 or 3
+  std::string message;  // exit 3 or 2: a regular expression the diagnostic matches (exit 2:
+                        // it starts with the tag whose line the error names)
+  long stopStep;        // exit 3: the step it stops at (within +-2)
   std::function<void(const std::vector<std::map<std::string, double>>&)> check;  // on history.csv
 };
 
@@ -92,85 +94,114 @@ void energyBelowInitial(const std::vector<std::map<std::string, double>>& h) {
 
 const std::map<std::string, Expectation>& expectations() {
   static const std::map<std::string, Expectation> e = {
-      {"Density_2.33e3", {300, 0, "", 0, [](const auto& h) {
-         // Mechanics-limited: dt = 0.4 dx / c (Eq. 43), c = sqrt((K + 4G/3) / rho).
-         EXPECT_NEAR(h[1].at("dt"), 0.4 * kDx / std::sqrt(kModulus / 2.33), 1e-9 * h[1].at("dt"));
-         cInRange(h);
-       }}},
-      {"Density_2.33e24", {300, 0, "", 0, [](const auto& h) {
-         // Diffusion-limited: dt = 0.4 dx^2 / (2 D0) (Eq. 44), D0 = 1e-4 um^2/us, far below Eq. 43.
-         EXPECT_NEAR(h[1].at("dt"), 0.4 * kDx * kDx / (2 * 1e-4), 1e-12);
-         EXPECT_LT(h[1].at("dt"), 1e-3 * kDx / std::sqrt(kModulus / 2.33e21));
-         cInRange(h);
-       }}},
+      {"Density_2.33e3",
+       {300, 0, "", 0,
+        [](const auto& h) {
+          // Mechanics-limited: dt = 0.4 dx / c (Eq. 43), c = sqrt((K + 4G/3) / rho).
+          EXPECT_NEAR(h[1].at("dt"), 0.4 * kDx / std::sqrt(kModulus / 2.33), 1e-9 * h[1].at("dt"));
+          cInRange(h);
+        }}},
+      {"Density_2.33e24",
+       {300, 0, "", 0,
+        [](const auto& h) {
+          // Diffusion-limited: dt = 0.4 dx^2 / (2 D0) (Eq. 44), D0 = 1e-4 um^2/us, far below
+          // Eq. 43.
+          EXPECT_NEAR(h[1].at("dt"), 0.4 * kDx * kDx / (2 * 1e-4), 1e-12);
+          EXPECT_LT(h[1].at("dt"), 1e-3 * kDx / std::sqrt(kModulus / 2.33e21));
+          cInRange(h);
+        }}},
       {"Alpha_0", {600, 0, "", 0, cInRange}},
-      {"Alpha_10", {600, 0, "", 0, [](const auto& h) {
-         cInRange(h);
-         // D_max = D0 e^(10 c_max) (less the pressure term): dt falls several-fold as c_max reaches 0.4.
-         EXPECT_GT(column(h, "max_c", true), 0.3);
-         EXPECT_LT(h.back().at("dt"), h[1].at("dt") / 3);
-       }}},
+      {"Alpha_10",
+       {600, 0, "", 0,
+        [](const auto& h) {
+          cInRange(h);
+          // D_max = D0 e^(10 c_max) (less the pressure term): dt falls several-fold as c_max
+          // reaches 0.4.
+          EXPECT_GT(column(h, "max_c", true), 0.3);
+          EXPECT_LT(h.back().at("dt"), h[1].at("dt") / 3);
+        }}},
       {"Beta_0.5_confined", {600, 0, "", 0, cInRange}},
-      {"Beta_2_confined", {0, 3, "has concentration -[0-9.e-]+ at t = .*outside \\[0, 1\\]", 55, cInRange}},
-      {"Flux_1e-10", {300, 0, "", 0, [](const auto& h) {
-         cInRange(h);
-         EXPECT_LT(column(h, "max_c", true), 0.01);
-       }}},
-      {"Flux_1e-6", {0, 3, "has concentration 1\\.000[0-9]* at t = .*outside \\[0, 1\\]", 1761, [](const auto& h) {
-         // The flux fills the surface up to the restriction's root 1 - e^-4 = 0.98168 and no
-         // further: each particle receives the source restricted by its own c. The stop comes
-         // later, from the diffusion update in a body swollen 8-fold (max J in the history).
-         cInRange(h);
-         EXPECT_GT(column(h, "max_c", true), 0.979);
-         EXPECT_LT(column(h, "max_c", true), 1 - std::exp(-4.0));
-         EXPECT_GT(column(h, "max_J", true), 8);
-       }}},
-      {"Flux_out_1e-6", {2000, 0, "", 0, [](const auto& h) {
-         // The outflow restriction R(1 - c) empties the surface down to its root e^-4 and no
-         // further: an emptied particle receives none of its neighbours' sinks.
-         cInRange(h);
-         EXPECT_GT(column(h, "min_c", false), std::exp(-4.0));
-         EXPECT_LT(column(h, "min_c", false), 0.019);
-       }}},
-      {"Concentration_0.999", {300, 0, "", 0, [](const auto& h) {
-         EXPECT_EQ(column(h, "min_c", false), 0.999);
-         EXPECT_EQ(column(h, "max_c", true), 0.999);
-       }}},
+      {"Beta_2_confined",
+       {0, 3, "has concentration -[0-9.e-]+ at t = .*outside \\[0, 1\\]", 55, cInRange}},
+      {"Flux_1e-10",
+       {300, 0, "", 0,
+        [](const auto& h) {
+          cInRange(h);
+          EXPECT_LT(column(h, "max_c", true), 0.01);
+        }}},
+      {"Flux_1e-6",
+       {0, 3, "has concentration 1\\.000[0-9]* at t = .*outside \\[0, 1\\]", 1761,
+        [](const auto& h) {
+          // The flux fills the surface up to the restriction's root 1 - e^-4 = 0.98168 and no
+          // further: each particle receives the source restricted by its own c. The stop comes
+          // later, from the diffusion update in a body swollen 8-fold (max J in the history).
+          cInRange(h);
+          EXPECT_GT(column(h, "max_c", true), 0.979);
+          EXPECT_LT(column(h, "max_c", true), 1 - std::exp(-4.0));
+          EXPECT_GT(column(h, "max_J", true), 8);
+        }}},
+      {"Flux_out_1e-6",
+       {2000, 0, "", 0,
+        [](const auto& h) {
+          // The outflow restriction R(1 - c) empties the surface down to its root e^-4 and no
+          // further: an emptied particle receives none of its neighbours' sinks.
+          cInRange(h);
+          EXPECT_GT(column(h, "min_c", false), std::exp(-4.0));
+          EXPECT_LT(column(h, "min_c", false), 0.019);
+        }}},
+      {"Concentration_0.999",
+       {300, 0, "", 0,
+        [](const auto& h) {
+          EXPECT_EQ(column(h, "min_c", false), 0.999);
+          EXPECT_EQ(column(h, "max_c", true), 0.999);
+        }}},
       {"Multiplier_0.1", {1500, 0, "", 0, energyBelowInitial}},
       {"Multiplier_0.75", {0, 0, "", 0, energyBelowInitial}},
-      {"Multiplier_0.8", {0, 3, "the particle velocities oscillate with growing amplitude", 33, [](const auto& h) {
-         // Stopped before the oscillation shows in the energy: the last good state is still close.
-         EXPECT_LT(column(h, "kinetic_energy", true), 2 * h.front().at("kinetic_energy"));
-       }}},
+      {"Multiplier_0.8",
+       {0, 3, "the particle velocities oscillate with growing amplitude", 33,
+        [](const auto& h) {
+          // Stopped before the oscillation shows in the energy: the last good state is still close.
+          EXPECT_LT(column(h, "kinetic_energy", true), 2 * h.front().at("kinetic_energy"));
+        }}},
       {"Multiplier_1.5",
-       {0, 2, "<timestep_multiplier> must be in \\(0, 1\\]: found 1\\.5; .*beyond the stable one", 0, nullptr}},
-      {"Multiplier_diffusion_0.5", {1000, 0, "", 0, [](const auto& h) {
-         EXPECT_GE(column(h, "min_c", false), 0.5 - 1e-9);
-         EXPECT_LE(column(h, "max_c", true), 0.6);
-       }}},
-      {"Multiplier_diffusion_0.6", {0, 3, "the particle concentrations oscillate with growing amplitude", 136,
-                                    [](const auto& h) {
-                                      EXPECT_GE(column(h, "min_c", false), 0.5 - 1e-9);
-                                      EXPECT_LE(column(h, "max_c", true), 0.6);
-                                    }}},
-      {"Multiplier_diffusion_1.0", {0, 3, "the particle concentrations oscillate with growing amplitude", 11,
-                                    [](const auto& h) {
-                                      EXPECT_GE(column(h, "min_c", false), 0.49);
-                                      EXPECT_LE(column(h, "max_c", true), 0.51);
-                                    }}},
-      {"Swelling_eta_1", {0, 0, "", 0, [](const auto& h) {
-         EXPECT_GE(h.back().at("time"), 300.0);
-         EXPECT_GT(column(h, "max_c", true), 0.98);
-         EXPECT_LE(column(h, "max_c", true), 1.0);
-         EXPECT_GT(column(h, "max_J", true), 10.0);
-         EXPECT_LT(column(h, "max_J", true), 25.0);
-       }}},
-      {"Elastic_compression_5km_s", {0, 0, "", 0, [](const auto& h) {
-         EXPECT_LE(column(h, "kinetic_energy", true), h.front().at("kinetic_energy") * (1 + 1e-9));
-         EXPECT_LT(column(h, "min_J", false), 0.3);
-         EXPECT_GT(column(h, "min_J", false), 0.1);
-       }}},
-      {"Elastic_compression_12km_s", {0, 3, "has J = V rho0 / m = [0-9.e-]+, below 1e-05", 66, nullptr}},
+       {0, 2, "<timestep_multiplier> must be in \\(0, 1\\]: found 1\\.5; .*beyond the stable one",
+        0, nullptr}},
+      {"Multiplier_diffusion_0.5",
+       {1000, 0, "", 0,
+        [](const auto& h) {
+          EXPECT_GE(column(h, "min_c", false), 0.5 - 1e-9);
+          EXPECT_LE(column(h, "max_c", true), 0.6);
+        }}},
+      {"Multiplier_diffusion_0.6",
+       {0, 3, "the particle concentrations oscillate with growing amplitude", 136,
+        [](const auto& h) {
+          EXPECT_GE(column(h, "min_c", false), 0.5 - 1e-9);
+          EXPECT_LE(column(h, "max_c", true), 0.6);
+        }}},
+      {"Multiplier_diffusion_1.0",
+       {0, 3, "the particle concentrations oscillate with growing amplitude", 11,
+        [](const auto& h) {
+          EXPECT_GE(column(h, "min_c", false), 0.49);
+          EXPECT_LE(column(h, "max_c", true), 0.51);
+        }}},
+      {"Swelling_eta_1",
+       {0, 0, "", 0,
+        [](const auto& h) {
+          EXPECT_GE(h.back().at("time"), 300.0);
+          EXPECT_GT(column(h, "max_c", true), 0.98);
+          EXPECT_LE(column(h, "max_c", true), 1.0);
+          EXPECT_GT(column(h, "max_J", true), 10.0);
+          EXPECT_LT(column(h, "max_J", true), 25.0);
+        }}},
+      {"Elastic_compression_5km_s",
+       {0, 0, "", 0,
+        [](const auto& h) {
+          EXPECT_LE(column(h, "kinetic_energy", true), h.front().at("kinetic_energy") * (1 + 1e-9));
+          EXPECT_LT(column(h, "min_J", false), 0.3);
+          EXPECT_GT(column(h, "min_J", false), 0.1);
+        }}},
+      {"Elastic_compression_12km_s",
+       {0, 3, "has J = V rho0 / m = [0-9.e-]+, below 1e-05", 66, nullptr}},
   };
   return e;
 }
@@ -194,14 +225,16 @@ double readMaxTime(const std::string& name) {
   std::ifstream in(kDir + "/" + name + ".ups");
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   std::smatch m;
-  return std::regex_search(text, m, std::regex("<maxTime>([^<]+)</maxTime>")) ? std::stod(m[1]) : HUGE_VAL;
+  return std::regex_search(text, m, std::regex("<maxTime>([^<]+)</maxTime>")) ? std::stod(m[1])
+                                                                              : HUGE_VAL;
 }
 
 class StabilityCase : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(StabilityCase, QuickVersionEndsAsExpected) {
   const auto it = expectations().find(GetParam());
-  ASSERT_NE(it, expectations().end()) << GetParam() << ".ups has no expectation in test_stability.cc";
+  ASSERT_NE(it, expectations().end())
+      << GetParam() << ".ups has no expectation in test_stability.cc";
   const Expectation& e = it->second;
   const std::string input = kDir + "/" + GetParam() + ".ups";
   const SusRun r = runOnOneThread(input);
@@ -221,7 +254,8 @@ TEST_P(StabilityCase, QuickVersionEndsAsExpected) {
     const size_t at = r.output.find(where);
     ASSERT_NE(at, std::string::npos) << "expected '" << where << "' in\n" << r.output;
     EXPECT_TRUE(std::regex_search(r.output.substr(at + where.size()), std::regex("^" + e.message)))
-        << "expected /" << e.message << "/ after '" << where << "' in\n" << r.output;
+        << "expected /" << e.message << "/ after '" << where << "' in\n"
+        << r.output;
     EXPECT_FALSE(fs::exists(r.dir)) << r.output;
     return;
   }
@@ -230,26 +264,35 @@ TEST_P(StabilityCase, QuickVersionEndsAsExpected) {
   for (const auto& row : history) ASSERT_TRUE(std::isfinite(row.at("kinetic_energy"))) << r.output;
   if (e.exitCode == 3) {
     std::smatch m;
-    ASSERT_TRUE(std::regex_search(r.output, m, std::regex("simulation stopped: step ([0-9]+), t = [-0-9.e+]+: (.*)")))
+    ASSERT_TRUE(std::regex_search(
+        r.output, m, std::regex("simulation stopped: step ([0-9]+), t = [-0-9.e+]+: (.*)")))
         << r.output;
     const long step = std::stol(m[1]);
     EXPECT_NEAR(step, e.stopStep, 2) << r.output;
-    EXPECT_TRUE(std::regex_search(std::string(m[2]), std::regex(e.message))) << "expected /" << e.message << "/ in\n" << r.output;
+    EXPECT_TRUE(std::regex_search(std::string(m[2]), std::regex(e.message)))
+        << "expected /" << e.message << "/ in\n"
+        << r.output;
     // The diagnostic names a particle and its material, and the last good state is written.
-    EXPECT_TRUE(std::regex_search(r.output, std::regex("particle [0-9]+ of material 0 \\(silicon\\) at \\["))) << r.output;
+    EXPECT_TRUE(std::regex_search(r.output,
+                                  std::regex("particle [0-9]+ of material 0 \\(silicon\\) at \\[")))
+        << r.output;
     EXPECT_EQ(history.back().at("step"), step - 1);
     char last[64], failed[64];
     std::snprintf(last, sizeof last, "particles/step_%06ld.vtu", step - 1);
     std::snprintf(failed, sizeof failed, "particles/failed_step_%06ld.vtu", step);
     std::ifstream pvd(r.dir / "particles.pvd");
-    const std::string series((std::istreambuf_iterator<char>(pvd)), std::istreambuf_iterator<char>());
+    const std::string series((std::istreambuf_iterator<char>(pvd)),
+                             std::istreambuf_iterator<char>());
     EXPECT_NE(series.find(last), std::string::npos) << series;
-    EXPECT_EQ(series.find("file=", series.find(last) + 1), std::string::npos) << "not the last entry:\n" << series;
+    EXPECT_EQ(series.find("file=", series.find(last) + 1), std::string::npos)
+        << "not the last entry:\n"
+        << series;
     EXPECT_EQ(series.find("failed_step"), std::string::npos);
     EXPECT_TRUE(fs::exists(r.dir / last));
     EXPECT_TRUE(fs::exists(r.dir / failed));
   } else {
-    EXPECT_NE(r.output.find("sus: " + std::to_string(static_cast<long>(history.back().at("step"))) + " steps"),
+    EXPECT_NE(r.output.find("sus: " + std::to_string(static_cast<long>(history.back().at("step"))) +
+                            " steps"),
               std::string::npos)
         << r.output;
     if (e.endStep > 0) {
@@ -289,7 +332,8 @@ TEST(BetaBeyondPmax, TheClampHoldsTheDiffusivityWherePressureExceedsPmax) {
   double maxPressure = 0, smallestRatio = HUGE_VAL;
   for (size_t i = 0; i < p.count(); ++i) {
     maxPressure = std::max(maxPressure, -p.stress[i].trace() / 3 * 1e-6);  // GPa
-    smallestRatio = std::min(smallestRatio, p.diffusivity[i] / (1e-4 * std::exp(6 * p.concentration[i])));
+    smallestRatio =
+        std::min(smallestRatio, p.diffusivity[i] / (1e-4 * std::exp(6 * p.concentration[i])));
   }
   EXPECT_GT(maxPressure, 10 * 3.0);
   EXPECT_NEAR(smallestRatio, std::exp(-0.5 * 3.0), 1e-9);
@@ -315,7 +359,8 @@ class StateChecksTest : public ::testing::Test {
   }
   // For k = 0, 1, ..., n - 1: gives particle i the velocity velocity(k, i) and checks. Returns
   // the step (from 1) the checks stopped, or 0; their message in *message.
-  int stepsUntilStopped(int n, const std::function<Vec3(int k, size_t i)>& velocity, std::string* message = nullptr) {
+  int stepsUntilStopped(int n, const std::function<Vec3(int k, size_t i)>& velocity,
+                        std::string* message = nullptr) {
     for (int k = 0; k < n; ++k) {
       for (size_t i = 0; i < particles().count(); ++i) particles().velocity[i] = velocity(k, i);
       const std::string f = failure();
@@ -336,7 +381,9 @@ class StateChecksTest : public ::testing::Test {
   StateChecks checks;
 };
 
-TEST_F(StateChecksTest, AcceptsAGoodState) { EXPECT_EQ(failure(), ""); }
+TEST_F(StateChecksTest, AcceptsAGoodState) {
+  EXPECT_EQ(failure(), "");
+}
 
 TEST_F(StateChecksTest, NamesANonFiniteVelocityWithTheParticle) {
   particles().velocity[3].y() = std::nan("");
@@ -349,7 +396,9 @@ TEST_F(StateChecksTest, NamesANonFinitePositionAndStress) {
   particles().stress[5](1, 2) = HUGE_VAL;
   std::string f = failure();
   EXPECT_NE(f.find("particle 5 of material 0 (block) at ["), std::string::npos) << f;
-  EXPECT_NE(f.find("] has a non-finite stress p.stress = [0, 0, 0, 0, 0, inf, 0, 0, 0]"), std::string::npos) << f;
+  EXPECT_NE(f.find("] has a non-finite stress p.stress = [0, 0, 0, 0, 0, inf, 0, 0, 0]"),
+            std::string::npos)
+      << f;
   particles().x[2].z() = -HUGE_VAL;
   f = failure();
   EXPECT_NE(f.find("particle 2 of material 0 (block) at ["), std::string::npos) << f;
@@ -358,12 +407,16 @@ TEST_F(StateChecksTest, NamesANonFinitePositionAndStress) {
 
 TEST_F(StateChecksTest, NamesJOutsideItsBounds) {
   particles().volume[7] *= 2e5;
-  EXPECT_NE(failure().find("particle 7 of material 0 (block) at ["), std::string::npos) << failure();
-  EXPECT_NE(failure().find("has J = V rho0 / m = 200000, above 100000"), std::string::npos) << failure();
+  EXPECT_NE(failure().find("particle 7 of material 0 (block) at ["), std::string::npos)
+      << failure();
+  EXPECT_NE(failure().find("has J = V rho0 / m = 200000, above 100000"), std::string::npos)
+      << failure();
   particles().volume[7] = particles().mass[7] / 1000 * 2e-6;
-  EXPECT_NE(failure().find("has J = V rho0 / m = 2e-06, below 1e-05"), std::string::npos) << failure();
+  EXPECT_NE(failure().find("has J = V rho0 / m = 2e-06, below 1e-05"), std::string::npos)
+      << failure();
   particles().volume[7] = -1;
-  EXPECT_NE(failure().find("(inverted, degenerate or not a number)"), std::string::npos) << failure();
+  EXPECT_NE(failure().find("(inverted, degenerate or not a number)"), std::string::npos)
+      << failure();
 }
 
 TEST_F(StateChecksTest, StopsAnOscillationThatGrowsButNotOneThatDoesNot) {
@@ -410,25 +463,36 @@ TEST_F(StateChecksTest, StopsOneParticleWhoseVelocityOscillatesWithGrowingAmplit
   checks = StateChecks();
   // Streaks count from the third step (the first increment that can reverse one before it).
   EXPECT_EQ(steps(1.3, 1e-2, 60, &f), 7) << f;
-  EXPECT_NE(f.find("the velocity of particle 4 of material 0 (block) at ["), std::string::npos) << f;
-  EXPECT_NE(f.find("for 5 steps in a row its increment reversed the previous one and grew by 1.2 or more"),
-            std::string::npos) << f;
+  EXPECT_NE(f.find("the velocity of particle 4 of material 0 (block) at ["), std::string::npos)
+      << f;
+  EXPECT_NE(
+      f.find(
+          "for 5 steps in a row its increment reversed the previous one and grew by 1.2 or more"),
+      std::string::npos)
+      << f;
 }
 
 TEST_F(StateChecksTest, StopsAKineticEnergyThatDoublesTwentyStepsInARow) {
   const std::vector<Vec3> base = particles().velocity;
   std::string f;
   // Same direction every step (no oscillation): the energy grows by 2.25 per step.
-  const int stopped = stepsUntilStopped(40, [&](int k, size_t i) -> Vec3 { return base[i] * std::pow(1.5, k + 1); }, &f);
+  const int stopped = stepsUntilStopped(
+      40, [&](int k, size_t i) -> Vec3 { return base[i] * std::pow(1.5, k + 1); }, &f);
   EXPECT_EQ(stopped, 21) << f;
-  EXPECT_NE(f.find("the kinetic energy grew by a factor of at least 2 at each of the last 20 steps"), std::string::npos) << f;
+  EXPECT_NE(
+      f.find("the kinetic energy grew by a factor of at least 2 at each of the last 20 steps"),
+      std::string::npos)
+      << f;
   EXPECT_NE(f.find("; the fastest is particle "), std::string::npos) << f;
 }
 
 TEST_F(StateChecksTest, PowerLawGrowthFromRestIsNotABlowUp) {
   // A body starting from rest under a load that grows linearly: v ~ t^3, KE ~ t^6.
   std::string f;
-  EXPECT_EQ(stepsUntilStopped(500, [](int k, size_t) -> Vec3 { return Vec3(std::pow(k + 1, 3.0), 0, 0); }, &f), 0) << f;
+  EXPECT_EQ(stepsUntilStopped(
+                500, [](int k, size_t) -> Vec3 { return Vec3(std::pow(k + 1, 3.0), 0, 0); }, &f),
+            0)
+      << f;
 }
 
 }  // namespace

@@ -16,34 +16,48 @@ std::string pillarOnSubstrate() {
     std::ostringstream s;
     s << "<material name=\"" << name << "\"><density>2.33e21</density>"
       << "<constitutive_model type=\"rf_elastic_plastic\"><bulk_modulus>" << K << "</bulk_modulus>"
-      << "<shear_modulus>31e6</shear_modulus><volume_expansion_coeff>0.56</volume_expansion_coeff></constitutive_model>"
-      << "<diffusion_model type=\"jg\"><diffusivity>" << D0 << "</diffusivity><max_concentration>1</max_concentration>"
-      << "</diffusion_model><geom_object>" << geom << "<res>[2,2,2]</res><velocity>[0,0,0]</velocity>"
+      << "<shear_modulus>31e6</shear_modulus><volume_expansion_coeff>0.56</"
+         "volume_expansion_coeff></constitutive_model>"
+      << "<diffusion_model type=\"jg\"><diffusivity>" << D0
+      << "</diffusivity><max_concentration>1</max_concentration>"
+      << "</diffusion_model><geom_object>" << geom
+      << "<res>[2,2,2]</res><velocity>[0,0,0]</velocity>"
       << "<concentration>0</concentration></geom_object></material>";
     return s.str();
   };
   std::ostringstream s;
   s << "<Uintah_specification><SimulationComponent type=\"mpm\"/>"
-    << "<Time><maxTime>1e12</maxTime><initTime>0</initTime><delt_min>0</delt_min><delt_max>1e12</delt_max>"
+    << "<Time><maxTime>1e12</maxTime><initTime>0</initTime><delt_min>0</delt_min><delt_max>1e12</"
+       "delt_max>"
     << "<timestep_multiplier>0.2</timestep_multiplier><max_Timesteps>40</max_Timesteps></Time>"
-    << "<DataArchiver><filebase>s.uda</filebase><outputTimestepInterval>1000</outputTimestepInterval></DataArchiver>"
+    << "<DataArchiver><filebase>s.uda</filebase><outputTimestepInterval>1000</"
+       "outputTimestepInterval></DataArchiver>"
     << "<MPM><interpolator>cpdi</interpolator><do_scalar_diffusion>true</do_scalar_diffusion>"
     << "<use_load_curves>true</use_load_curves></MPM>"
     << "<MaterialProperties><MPM>"
     << material("pillar", 67e6, 1e-7,
-                "<cylinder><bottom>[0,0,0.04]</bottom><top>[0,0,0.1]</top><radius>0.03</radius></cylinder>")
-    << material("substrate", 180e6, 0.0, "<box><min>[-0.08,-0.08,0]</min><max>[0.08,0.08,0.04]</max></box>")
-    << "<contact><type>single_velocity</type><materials>[0,1]</materials></contact></MPM></MaterialProperties>"
+                "<cylinder><bottom>[0,0,0.04]</bottom><top>[0,0,0.1]</top><radius>0.03</radius></"
+                "cylinder>")
+    << material("substrate", 180e6, 0.0,
+                "<box><min>[-0.08,-0.08,0]</min><max>[0.08,0.08,0.04]</max></box>")
+    << "<contact><type>single_velocity</type><materials>[0,1]</materials></contact></MPM></"
+       "MaterialProperties>"
     // A flux on every face at z near 0.04..0.1 and on the whole side: it covers the substrate's
     // top surface around the pillar too.
-    << "<PhysicalBC><MPM><scalar_flux><geom_object><box><min>[-0.1,-0.1,0.035]</min><max>[0.1,0.1,0.045]</max></box>"
-    << "</geom_object><load_curve><id>1</id><time_point><time>0</time><load>1e-6</load></time_point></load_curve></scalar_flux>"
-    << "<scalar_flux><geom_object><cylinder><bottom>[0,0,0.04]</bottom><top>[0,0,0.1]</top><radius>0.03</radius></cylinder>"
-    << "</geom_object><load_curve><id>2</id><time_point><time>0</time><load>1e-6</load></time_point></load_curve></scalar_flux>"
+    << "<PhysicalBC><MPM><scalar_flux><geom_object><box><min>[-0.1,-0.1,0.035]</"
+       "min><max>[0.1,0.1,0.045]</max></box>"
+    << "</geom_object><load_curve><id>1</id><time_point><time>0</time><load>1e-6</load></"
+       "time_point></load_curve></scalar_flux>"
+    << "<scalar_flux><geom_object><cylinder><bottom>[0,0,0.04]</bottom><top>[0,0,0.1]</"
+       "top><radius>0.03</radius></cylinder>"
+    << "</geom_object><load_curve><id>2</id><time_point><time>0</time><load>1e-6</load></"
+       "time_point></load_curve></scalar_flux>"
     << "</MPM></PhysicalBC>"
-    << "<Grid><Level><Box><lower>[-0.1,-0.1,0]</lower><upper>[0.1,0.1,0.15]</upper><resolution>[20,20,15]</resolution>"
+    << "<Grid><Level><Box><lower>[-0.1,-0.1,0]</lower><upper>[0.1,0.1,0.15]</"
+       "upper><resolution>[20,20,15]</resolution>"
     << "<extraCells>[1,1,1]</extraCells></Box></Level><BoundaryConditions>"
-    << "<Face side=\"z-\"><BCType id=\"all\" label=\"Velocity\" var=\"Dirichlet\"><value>[0,0,0]</value></BCType></Face>"
+    << "<Face side=\"z-\"><BCType id=\"all\" label=\"Velocity\" "
+       "var=\"Dirichlet\"><value>[0,0,0]</value></BCType></Face>"
     << "</BoundaryConditions></Grid></Uintah_specification>";
   return s.str();
 }
@@ -54,12 +68,14 @@ TEST(Substrate, BondedSubstrateReceivesNoLithium) {
   o.progress = false;
   Simulation sim(pillarOnSubstrate(), "substrate.ups", o);
   const auto& mats = sim.mpm().materials();
-  EXPECT_TRUE(mats[1].particles.loadCurveID.empty()) << "no flux BC is assigned to a material without diffusivity";
+  EXPECT_TRUE(mats[1].particles.loadCurveID.empty())
+      << "no flux BC is assigned to a material without diffusivity";
   while (sim.step() < 40) sim.advance();
   double pillarLithium = 0, substrateMax = 0;
   for (size_t i = 0; i < mats[0].particles.count(); ++i)
     pillarLithium += mats[0].particles.mass[i] * mats[0].particles.concentration[i];
-  for (double c : mats[1].particles.concentration) substrateMax = std::max(substrateMax, std::abs(c));
+  for (double c : mats[1].particles.concentration)
+    substrateMax = std::max(substrateMax, std::abs(c));
   EXPECT_GT(pillarLithium, 0.0);
   EXPECT_EQ(substrateMax, 0.0);
   // Swelling pushes the bonded interface: both materials share nodal velocities there.

@@ -25,7 +25,7 @@ struct ParticleData {
 struct GridData {
   double origin[3] = {0, 0, 0};
   double spacing[3] = {1, 1, 1};
-  int dims[3] = {1, 1, 1};  // nodes in each direction
+  int dims[3] = {1, 1, 1};         // nodes in each direction
   std::vector<NamedArray> arrays;  // one value per node, x fastest
 };
 

@@ -246,7 +246,8 @@ void checkScene(const Scene& s, const SceneContext& context) {
   if (s.interval > 0 && std::isfinite(context.maxTime) &&
       !((context.maxTime - context.initTime) / s.interval < kMaxPictures)) {
     char count[32];
-    std::snprintf(count, sizeof count, "%.3g", (context.maxTime - context.initTime) / s.interval + 1);
+    std::snprintf(count, sizeof count, "%.3g",
+                  (context.maxTime - context.initTime) / s.interval + 1);
     throw std::invalid_argument("<interval> asks for " + std::string(count) +
                                 " pictures between initTime and maxTime; at most 100000");
   }

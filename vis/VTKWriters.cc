@@ -30,7 +30,9 @@ vtkSmartPointer<vtkDataArray> toVTK(const NamedArray& a, size_t tuples) {
     auto arr = vtkSmartPointer<vtkTypeInt64Array>::New();
     arr->SetName(a.name.c_str());
     arr->SetNumberOfComponents(a.components);
-    arr->SetArray(const_cast<vtkTypeInt64*>(reinterpret_cast<const vtkTypeInt64*>(a.integer.data())), values, 1);
+    arr->SetArray(
+        const_cast<vtkTypeInt64*>(reinterpret_cast<const vtkTypeInt64*>(a.integer.data())), values,
+        1);
     return arr;
   }
   auto arr = vtkSmartPointer<vtkDoubleArray>::New();
@@ -92,10 +94,12 @@ void writeGridVTI(const std::string& path, const GridData& data) {
 void PVDSeries::write(const std::string& path) const {
   std::ostringstream s;
   s << "<?xml version=\"1.0\"?>\n"
-    << "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n  <Collection>\n";
+    << "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n  "
+       "<Collection>\n";
   s << std::setprecision(17);
   for (const auto& [time, file] : entries_)
-    s << "    <DataSet timestep=\"" << time << "\" group=\"\" part=\"0\" file=\"" << file << "\"/>\n";
+    s << "    <DataSet timestep=\"" << time << "\" group=\"\" part=\"0\" file=\"" << file
+      << "\"/>\n";
   s << "  </Collection>\n</VTKFile>\n";
   writeFileAtomically(path, s.str());
 }

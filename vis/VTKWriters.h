@@ -17,7 +17,9 @@ void writeGridVTI(const std::string& path, const GridData& data);
 // A ParaView collection (.pvd) listing one file per output time.
 class PVDSeries {
  public:
-  void add(double time, const std::string& relativeFile) { entries_.emplace_back(time, relativeFile); }
+  void add(double time, const std::string& relativeFile) {
+    entries_.emplace_back(time, relativeFile);
+  }
   void write(const std::string& path) const;
   const std::vector<std::pair<double, std::string>>& entries() const { return entries_; }
 

@@ -2,7 +2,8 @@
 
 namespace anode {
 
-void applySymmetry(const Grid& g, const std::vector<FaceBC>& bcs, int matl, std::vector<Vec3>& field) {
+void applySymmetry(const Grid& g, const std::vector<FaceBC>& bcs, int matl,
+                   std::vector<Vec3>& field) {
   for (const FaceBC& bc : bcs)
     if (bc.kind == FaceBC::Kind::Symmetric && bc.appliesTo(matl))
       forFaceNodes(g, bc, [&](int n) { field[n][bc.axis] = 0.0; });

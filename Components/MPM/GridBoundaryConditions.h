@@ -10,7 +10,8 @@
 
 namespace anode {
 
-void applySymmetry(const Grid& g, const std::vector<FaceBC>& bcs, int matl, std::vector<Vec3>& field);
+void applySymmetry(const Grid& g, const std::vector<FaceBC>& bcs, int matl,
+                   std::vector<Vec3>& field);
 void applyVelocityDirichlet(const Grid& g, const std::vector<FaceBC>& bcs, int matl,
                             std::vector<Vec3>& field);
 

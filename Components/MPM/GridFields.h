@@ -31,7 +31,8 @@ struct GridFields {
   // Zeroes the scattered fields on nodes [begin, end).
   void clearScatter(long begin, long end) {
     std::fill(mass.begin() + begin, mass.begin() + end, 0.0);
-    for (auto* f : {&momentum, &internalForce}) std::fill(f->begin() + begin, f->begin() + end, Vec3::Zero());
+    for (auto* f : {&momentum, &internalForce})
+      std::fill(f->begin() + begin, f->begin() + end, Vec3::Zero());
   }
   // Zeroes every field on nodes [begin, end).
   void clearAll(long begin, long end) {

@@ -6,18 +6,24 @@ namespace anode {
 
 int maxNodesPerParticle(InterpolatorKind kind) {
   switch (kind) {
-    case InterpolatorKind::Linear: return 8;
-    case InterpolatorKind::GIMP: return 27;
-    case InterpolatorKind::CPDI: return 64;
+    case InterpolatorKind::Linear:
+      return 8;
+    case InterpolatorKind::GIMP:
+      return 27;
+    case InterpolatorKind::CPDI:
+      return 64;
   }
   return 0;
 }
 
 std::string interpolatorName(InterpolatorKind kind) {
   switch (kind) {
-    case InterpolatorKind::Linear: return "linear";
-    case InterpolatorKind::GIMP: return "gimp";
-    case InterpolatorKind::CPDI: return "cpdi";
+    case InterpolatorKind::Linear:
+      return "linear";
+    case InterpolatorKind::GIMP:
+      return "gimp";
+    case InterpolatorKind::CPDI:
+      return "cpdi";
   }
   return "";
 }
@@ -26,7 +32,9 @@ namespace {
 
 // floor for index coordinates (> -1024): a conversion instead of a libm call, since the
 // portable x86-64 baseline has no SSE4.1 rounding instruction.
-inline int floorIndex(double x) { return static_cast<int>(x + 1024.0) - 1024; }
+inline int floorIndex(double x) {
+  return static_cast<int>(x + 1024.0) - 1024;
+}
 
 // Tensor product of per-axis 1-D weights `n[d][a]` and slopes `dn[d][a]` (index space) over
 // `len[d]` nodes starting at `first[d]`.
@@ -42,8 +50,9 @@ int tensorProduct(const Grid& g, const int first[3], const int len[3], const dou
         if (!g.hasNode(i, j, k)) return -1;
         nodes[count] = g.nodeIndex(i, j, k);
         w[count] = wt;
-        grad[count] = Vec3(dn[0][a] * n[1][b] * n[2][c] / g.dx.x(), n[0][a] * dn[1][b] * n[2][c] / g.dx.y(),
-                           n[0][a] * n[1][b] * dn[2][c] / g.dx.z());
+        grad[count] =
+            Vec3(dn[0][a] * n[1][b] * n[2][c] / g.dx.x(), n[0][a] * dn[1][b] * n[2][c] / g.dx.y(),
+                 n[0][a] * n[1][b] * dn[2][c] / g.dx.z());
         ++count;
       }
   return count;
@@ -66,7 +75,8 @@ int linearWeights(const Grid& g, const Vec3& x, int32_t* nodes, double* w, Vec3*
   return tensorProduct(g, first, len, n, dn, nodes, w, grad);
 }
 
-int gimpWeights(const Grid& g, const Vec3& x, const Mat3& size, int32_t* nodes, double* w, Vec3* grad) {
+int gimpWeights(const Grid& g, const Vec3& x, const Mat3& size, int32_t* nodes, double* w,
+                Vec3* grad) {
   const Vec3 xi = g.indexCoordinate(x);
   int first[3], len[3] = {3, 3, 3};
   double n[3][3], dn[3][3];

@@ -22,7 +22,8 @@ std::string interpolatorName(InterpolatorKind kind);
 // the particle's support reaches beyond the grid's nodes. `size` is the reference domain in cell
 // units (columns are edge vectors) and F the deformation gradient at the start of the step.
 int linearWeights(const Grid& g, const Vec3& x, int32_t* nodes, double* w, Vec3* grad);
-int gimpWeights(const Grid& g, const Vec3& x, const Mat3& size, int32_t* nodes, double* w, Vec3* grad);
+int gimpWeights(const Grid& g, const Vec3& x, const Mat3& size, int32_t* nodes, double* w,
+                Vec3* grad);
 int cpdiWeights(const Grid& g, const Vec3& x, const Mat3& size, const Mat3& F, int32_t* nodes,
                 double* w, Vec3* grad);
 // The most entries cpdiWeights can write for this particle (the nodes of the cells its corners

@@ -42,26 +42,29 @@ void MPM::problemSetup(const PSNode& root, double initTime, double maxTime) {
   const PSNode gridNode = root.requireChild("Grid");
   grid_ = Grid::fromInput(gridNode);
   if (flags_.interpolator != InterpolatorKind::Linear && (grid_.extra.array() < 1).any())
-    gridNode.requireChild("Level")
-        .requireChild("Box")
-        .fail("interpolator \"" + interpolatorName(flags_.interpolator) +
-              "\" reaches beyond the cell: it needs <extraCells>[1,1,1]");
+    gridNode.requireChild("Level").requireChild("Box").fail(
+        "interpolator \"" + interpolatorName(flags_.interpolator) +
+        "\" reaches beyond the cell: it needs <extraCells>[1,1,1]");
 
   const PSNode matProps = root.requireChild("MaterialProperties");
   const PSNode mpmMats = matProps.requireChild("MPM");
   GeometryPieceFactory pieces;
   int64_t nextId = 0;
   const auto materialNodes = mpmMats.children("material");
-  if (materialNodes.empty()) mpmMats.fail("<MaterialProperties><MPM> needs at least one <material>");
+  if (materialNodes.empty())
+    mpmMats.fail("<MaterialProperties><MPM> needs at least one <material>");
   std::vector<MaterialSeeds> seeds(materialNodes.size());
   for (size_t m = 0; m < materialNodes.size(); ++m)
-    materials_.push_back(MPMMaterial::fromInput(materialNodes[m], grid_, flags_, maxTime, pieces, nextId, seeds[m]));
+    materials_.push_back(
+        MPMMaterial::fromInput(materialNodes[m], grid_, flags_, maxTime, pieces, nextId, seeds[m]));
   nextParticleId_ = nextId;
   if (flags_.refineMaterial >= static_cast<int>(materials_.size()))
-    root.requireChild("AMR").fail("the stretchRatio names material " + std::to_string(flags_.refineMaterial) +
-                                  ", but there are " + std::to_string(materials_.size()));
+    root.requireChild("AMR").fail("the stretchRatio names material " +
+                                  std::to_string(flags_.refineMaterial) + ", but there are " +
+                                  std::to_string(materials_.size()));
   for (size_t m = 0; m < materials_.size(); ++m)
-    if (flags_.refineParticles && (flags_.refineMaterial < 0 || flags_.refineMaterial == static_cast<int>(m)))
+    if (flags_.refineParticles &&
+        (flags_.refineMaterial < 0 || flags_.refineMaterial == static_cast<int>(m)))
       materials_[m].particles.enable(Physics::Splitting);
   contact_ = Contact::fromInput(mpmMats, static_cast<int>(materials_.size()));
   if (flags_.doScalarDiffusion)
@@ -72,12 +75,14 @@ void MPM::problemSetup(const PSNode& root, double initTime, double maxTime) {
   for (size_t m = 0; m < materials_.size(); ++m) {
     std::array<bool, 6> mirror{};
     for (const FaceBC& b : faceBCs_)
-      if (b.kind == FaceBC::Kind::Symmetric && b.appliesTo(static_cast<int>(m))) mirror[2 * b.axis + b.side] = true;
+      if (b.kind == FaceBC::Kind::Symmetric && b.appliesTo(static_cast<int>(m)))
+        mirror[2 * b.axis + b.side] = true;
     seeds[m].checkPiecesInsideGrid(grid_, mirror);
   }
   readOtherPhysicalBCs(root);
 
-  checkProblemSize(gridNode, grid_, flags_, materials_.size(), numParticles(), omp_get_max_threads());
+  checkProblemSize(gridNode, grid_, flags_, materials_.size(), numParticles(),
+                   omp_get_max_threads());
   const int nodes = grid_.numNodes();
   fields_.resize(materials_.size());
   for (GridFields& f : fields_) f.resize(nodes);
@@ -86,11 +91,14 @@ void MPM::problemSetup(const PSNode& root, double initTime, double maxTime) {
   threadScatter_.resize(omp_get_max_threads() > 1 ? omp_get_max_threads() : 0);
   for (GridFields& t : threadScatter_) t.resizeScatter(nodes);
   if (diffusion_)
-    diffusion_->initialize(root, grid_, faceBCs_, materials_, seeds, static_cast<int>(threadScatter_.size()),
-                           initTime);
-  tasks_ = {timers_.task("computeInterpolationWeights"), timers_.task("interpolateParticlesToGrid"),
-            timers_.task("integrateGrid"),               timers_.task("interpolateToParticlesAndUpdate"),
-            timers_.task("splitParticles"),              timers_.task("updateDiffusionState")};
+    diffusion_->initialize(root, grid_, faceBCs_, materials_, seeds,
+                           static_cast<int>(threadScatter_.size()), initTime);
+  tasks_ = {timers_.task("computeInterpolationWeights"),
+            timers_.task("interpolateParticlesToGrid"),
+            timers_.task("integrateGrid"),
+            timers_.task("interpolateToParticlesAndUpdate"),
+            timers_.task("splitParticles"),
+            timers_.task("updateDiffusionState")};
 }
 
 void MPM::timeAdvance(double t, double dt) {
@@ -107,7 +115,8 @@ void MPM::timeAdvance(double t, double dt) {
     ScopedTimer s(timers_, tasks_.gridIntegration);
     exchangeMomentumInterpolated();  // 3: contact on the interpolated velocity
     integrateGridMomentum(dt);       // 4: a = f/m + g, v* = v + a dt
-    if (diffusion_) diffusion_->integrateConcentration(fields_, dt, active_.begin, active_.end);  // 5: Eq. 18
+    if (diffusion_)
+      diffusion_->integrateConcentration(fields_, dt, active_.begin, active_.end);  // 5: Eq. 18
     setGridBoundaryConditions(dt);  // 6: contact, velocity BCs, acceleration
   }
   {
@@ -120,7 +129,8 @@ void MPM::timeAdvance(double t, double dt) {
   }
   if (diffusion_) {
     ScopedTimer s(timers_, tasks_.diffusionState);
-    diffusion_->updateDiffusionState(materials_, t + dt);  // 10: c range, D (Eqs. 23-24), flux (Eqs. 16-17)
+    diffusion_->updateDiffusionState(materials_,
+                                     t + dt);  // 10: c range, D (Eqs. 23-24), flux (Eqs. 16-17)
   }
 }
 
@@ -135,13 +145,17 @@ void MPM::computeInterpolationWeights() {
     capacity.resize(n);
     if (flags_.interpolator == InterpolatorKind::CPDI) {
 #pragma omp parallel for schedule(static)
-      for (long i = 0; i < n; ++i) capacity[i] = static_cast<uint8_t>(cpdiCapacity(grid_, p.x[i], p.size[i], p.F[i]));
+      for (long i = 0; i < n; ++i)
+        capacity[i] = static_cast<uint8_t>(cpdiCapacity(grid_, p.x[i], p.size[i], p.F[i]));
     } else {
-      std::fill(capacity.begin(), capacity.end(), static_cast<uint8_t>(maxNodesPerParticle(flags_.interpolator)));
+      std::fill(capacity.begin(), capacity.end(),
+                static_cast<uint8_t>(maxNodesPerParticle(flags_.interpolator)));
     }
     W.layOut(capacity);
     long firstOutside = n;
-#pragma omp parallel for schedule(static) reduction(min : firstOutside, lowest) reduction(max : highest)
+#pragma omp parallel for schedule(static) reduction(min                                   \
+                                                    : firstOutside, lowest) reduction(max \
+                                                                                      : highest)
     for (long i = 0; i < n; ++i) {
       const size_t b = W.offset[i];
       int count = 0;
@@ -153,7 +167,8 @@ void MPM::computeInterpolationWeights() {
           count = gimpWeights(grid_, p.x[i], p.size[i], &W.node[b], &W.weight[b], &W.gradient[b]);
           break;
         case InterpolatorKind::CPDI:
-          count = cpdiWeights(grid_, p.x[i], p.size[i], p.F[i], &W.node[b], &W.weight[b], &W.gradient[b]);
+          count = cpdiWeights(grid_, p.x[i], p.size[i], p.F[i], &W.node[b], &W.weight[b],
+                              &W.gradient[b]);
           break;
       }
       if (count < 0) firstOutside = std::min(firstOutside, i);
@@ -164,8 +179,9 @@ void MPM::computeInterpolationWeights() {
       }
     }
     if (firstOutside < n)
-      throw SimulationError(describeParticle(materials_[m], m, firstOutside) +
-                            " has left the grid (its interpolation support reaches beyond the last node)");
+      throw SimulationError(
+          describeParticle(materials_[m], m, firstOutside) +
+          " has left the grid (its interpolation support reaches beyond the last node)");
   }
   active_ = highest < 0 ? NodeRange{0, 0} : NodeRange{lowest, highest + 1};
 }
@@ -204,8 +220,8 @@ void MPM::scatterMaterial(size_t m, const Concentration& concentration) {
     const int t = omp_get_thread_num();
     GridFields& s = threadScatter_[t];
     s.clearScatter(begin, end);
-    scatterToGrid(p, weights_[m], n * t / threads, n * (t + 1) / threads, MomentumScatterTarget::of(s),
-                  concentration.forThread(t, begin, end));
+    scatterToGrid(p, weights_[m], n * t / threads, n * (t + 1) / threads,
+                  MomentumScatterTarget::of(s), concentration.forThread(t, begin, end));
 #pragma omp barrier
 #pragma omp for schedule(static)
     for (long k = begin; k < end; ++k) {
@@ -226,9 +242,11 @@ void MPM::interpolateParticlesToGrid() {
   for (size_t m = 0; m < materials_.size(); ++m) {
     GridFields& g = fields_[m];
     g.clearAll(clearBegin, clearEnd);
-    withConcentrationScatter(m, clearBegin, clearEnd, [&](const auto& concentration) { scatterMaterial(m, concentration); });
+    withConcentrationScatter(m, clearBegin, clearEnd,
+                             [&](const auto& concentration) { scatterMaterial(m, concentration); });
 #pragma omp parallel for schedule(static)
-    for (long k = begin; k < end; ++k) g.velocity[k] = g.mass[k] > 0 ? Vec3(g.momentum[k] / g.mass[k]) : Vec3::Zero();
+    for (long k = begin; k < end; ++k)
+      g.velocity[k] = g.mass[k] > 0 ? Vec3(g.momentum[k] / g.mass[k]) : Vec3::Zero();
     applySymmetry(grid_, faceBCs_, static_cast<int>(m), g.velocity);
     applySymmetry(grid_, faceBCs_, static_cast<int>(m), g.internalForce);
     if (diffusion_) diffusion_->computeNodalConcentration(m, g, begin, end);  // Eq. 5
@@ -237,7 +255,8 @@ void MPM::interpolateParticlesToGrid() {
 }
 
 void MPM::exchangeMomentumInterpolated() {
-  if (contact_.exchangeInterpolated) contact_.exchange(fields_, &GridFields::velocity, active_.begin, active_.end);
+  if (contact_.exchangeInterpolated)
+    contact_.exchange(fields_, &GridFields::velocity, active_.begin, active_.end);
 }
 
 void MPM::integrateGridMomentum(double dt) {
@@ -246,7 +265,8 @@ void MPM::integrateGridMomentum(double dt) {
     for (long k = active_.begin; k < active_.end; ++k) {
       Vec3 a = Vec3::Zero();
       if (g.mass[k] > flags_.minimumMassForAcc && g.mass[k] > 0)
-        a = g.internalForce[k] / g.mass[k] + flags_.gravity - flags_.artificialDampingCoeff * g.velocity[k];
+        a = g.internalForce[k] / g.mass[k] + flags_.gravity -
+            flags_.artificialDampingCoeff * g.velocity[k];
       g.velocityStar[k] = g.velocity[k] + a * dt;
     }
   }
@@ -259,7 +279,8 @@ void MPM::setGridBoundaryConditions(double dt) {
     applyVelocityDirichlet(grid_, faceBCs_, static_cast<int>(m), g.velocityStar);
     applySymmetry(grid_, faceBCs_, static_cast<int>(m), g.velocityStar);
 #pragma omp parallel for schedule(static)
-    for (long k = active_.begin; k < active_.end; ++k) g.acceleration[k] = (g.velocityStar[k] - g.velocity[k]) / dt;
+    for (long k = active_.begin; k < active_.end; ++k)
+      g.acceleration[k] = (g.velocityStar[k] - g.velocity[k]) / dt;
   }
 }
 
@@ -267,8 +288,12 @@ void MPM::interpolateToParticlesAndUpdate(double dt) {
   for (size_t m = 0; m < materials_.size(); ++m) {
     MPMMaterial& mat = materials_[m];
     const ConstitutiveModel& model = *mat.model;
-    const ParticleUpdate update{fields_[m], weights_[m], mat.density, flags_.minimumSubcyclesForF,
-                                diffusion_ && model.swells(), dt};
+    const ParticleUpdate update{fields_[m],
+                                weights_[m],
+                                mat.density,
+                                flags_.minimumSubcyclesForF,
+                                diffusion_ && model.swells(),
+                                dt};
     long firstInverted = 0;
     std::visit(
         [&](const auto* concrete) {
@@ -279,7 +304,8 @@ void MPM::interpolateToParticlesAndUpdate(double dt) {
         model.concrete());
     if (firstInverted < static_cast<long>(mat.particles.count())) {
       std::ostringstream s;
-      s << describeParticle(mat, m, firstInverted) << " has det F = " << mat.particles.F[firstInverted].determinant()
+      s << describeParticle(mat, m, firstInverted)
+        << " has det F = " << mat.particles.F[firstInverted].determinant()
         << " (inverted or degenerate deformation)";
       throw SimulationError(s.str());
     }
@@ -291,8 +317,8 @@ void MPM::splitParticles() {
   static const std::vector<ScalarFluxBC> noFluxBCs;
   for (MPMMaterial& mat : materials_)
     if (!mat.particles.refined.empty())
-      splitStretchedParticles(mat.particles, grid_, flags_.stretchRatio, diffusion_ ? diffusion_->fluxBCs() : noFluxBCs,
-                              nextParticleId_);
+      splitStretchedParticles(mat.particles, grid_, flags_.stretchRatio,
+                              diffusion_ ? diffusion_->fluxBCs() : noFluxBCs, nextParticleId_);
 }
 
 size_t MPM::numParticles() const {

@@ -92,7 +92,8 @@ class MPM {
   std::vector<GridFields> threadScatter_;       // per thread, for P2G without locks
   TaskTimers timers_;
   struct StepTasks {  // timer indices of the step's tasks
-    int interpolationWeights, particlesToGrid, gridIntegration, particleUpdate, splitting, diffusionState;
+    int interpolationWeights, particlesToGrid, gridIntegration, particleUpdate, splitting,
+        diffusionState;
   } tasks_{};
 };
 

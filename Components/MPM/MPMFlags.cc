@@ -33,8 +33,11 @@ void readRefinementCriteria(const PSNode& root, MPMFlags& f) {
   }
   const PSNode criteria = amrMPM ? amrMPM.child("Refinement_Criteria_Thresholds") : PSNode();
   if (!criteria)
-    root.child("MPM").requireChild("refine_particles")
-        .fail("<refine_particles>true needs <AMR><MPM><Refinement_Criteria_Thresholds> with a stretchRatio");
+    root.child("MPM")
+        .requireChild("refine_particles")
+        .fail(
+            "<refine_particles>true needs <AMR><MPM><Refinement_Criteria_Thresholds> with a "
+            "stretchRatio");
   for (const PSNode& v : criteria.children()) {
     if (v.name() != "Variable") v.fail("<Refinement_Criteria_Thresholds> holds <Variable> tags");
     const std::string name = v.requireAttribute("name");
@@ -59,7 +62,8 @@ void readRefinementCriteria(const PSNode& root, MPMFlags& f) {
       }
     }
   }
-  if (!(f.stretchRatio > 0)) criteria.fail("<refine_particles>true needs a stretchRatio <Variable>");
+  if (!(f.stretchRatio > 0))
+    criteria.fail("<refine_particles>true needs a stretchRatio <Variable>");
 }
 
 }  // namespace
@@ -68,7 +72,8 @@ MPMFlags MPMFlags::fromInput(const PSNode& root) {
   const PSNode component = root.requireChild("SimulationComponent");
   const std::string type = component.requireAttribute("type");
   if (type != "amrmpm" && type != "mpm")
-    component.fail("SimulationComponent type=\"" + type + "\" is not supported; accepted: amrmpm, mpm");
+    component.fail("SimulationComponent type=\"" + type +
+                   "\" is not supported; accepted: amrmpm, mpm");
   if (type == "amrmpm" && !root.child("AMR"))
     component.fail("type=\"amrmpm\" requires an <AMR> block with <useLockStep>true</useLockStep>");
   readAMR(root);
@@ -98,9 +103,11 @@ MPMFlags MPMFlags::fromInput(const PSNode& root) {
   } else if (interp == "cpdi" || interp == "fast_cpdi") {
     f.interpolator = InterpolatorKind::CPDI;
   } else if (interp == "cpti" || interp == "3rdorderBS" || interp == "4thorderBS") {
-    mpm.requireChild("interpolator").fail("interpolator \"" + interp + "\" is not supported; accepted: linear, gimp, cpdi");
+    mpm.requireChild("interpolator")
+        .fail("interpolator \"" + interp + "\" is not supported; accepted: linear, gimp, cpdi");
   } else {
-    mpm.requireChild("interpolator").fail("unknown interpolator \"" + interp + "\"; accepted: linear, gimp, cpdi");
+    mpm.requireChild("interpolator")
+        .fail("unknown interpolator \"" + interp + "\"; accepted: linear, gimp, cpdi");
   }
   if (const PSNode lcrit = mpm.child("cpdi_lcrit"))
     if (lcrit.value<double>() < 1e10) lcrit.unsupported("CPDI corner limiting <cpdi_lcrit>");
@@ -110,7 +117,8 @@ MPMFlags MPMFlags::fromInput(const PSNode& root) {
   // This code's extension (docs/diffusion.md): how SD-Type Dirichlet conditions reach particles.
   if (const PSNode t = mpm.child("concentration_dirichlet")) {
     const std::string v = t.value<std::string>();
-    if (v != "particle" && v != "nodal") t.fail("<concentration_dirichlet> must be particle or nodal, found \"" + v + "\"");
+    if (v != "particle" && v != "nodal")
+      t.fail("<concentration_dirichlet> must be particle or nodal, found \"" + v + "\"");
     f.particleDirichlet = v == "particle";
   }
   f.refineParticles = mpm.get<bool>("refine_particles", false);
@@ -125,12 +133,14 @@ MPMFlags MPMFlags::fromInput(const PSNode& root) {
   rejectIfTrue(mpm, "with_gauss_solver", "the Gauss (electric potential) solver");
   rejectIfTrue(mpm, "artificial_viscosity", "artificial viscosity");
   rejectIfTrue(mpm, "axisymmetric", "axisymmetric MPM");
-  rejectIfTrue(mpm, "UseGradientEnhancedVelocityProjection", "gradient-enhanced velocity projection");
+  rejectIfTrue(mpm, "UseGradientEnhancedVelocityProjection",
+               "gradient-enhanced velocity projection");
   mpm.acceptInert("withColor");
 
   f.minimumSubcyclesForF = mpm.get<int>("minimum_subcycles_for_F", 1);
   if (f.minimumSubcyclesForF < 1)
-    mpm.requireChild("minimum_subcycles_for_F").unsupported("matrix-exponential F update (value < 1)");
+    mpm.requireChild("minimum_subcycles_for_F")
+        .unsupported("matrix-exponential F update (value < 1)");
   f.minimumMassForAcc = mpm.get<double>("minimum_mass_for_acc", 0.0);
   f.minimumParticleMass = mpm.get<double>("minimum_particle_mass", 3e-15);
   f.artificialDampingCoeff = mpm.get<double>("artificial_damping_coeff", 0.0);

@@ -21,8 +21,8 @@ struct MPMFlags {
   bool autoCycle = false, autoCycleUseMinMax = false;
   double autoCycleMax = 0.9, autoCycleMin = 0.1;
   bool refineParticles = false;
-  double stretchRatio = 0;   // split a particle whose domain is stretched beyond this ratio
-  int refineMaterial = -1;   // -1: all materials
+  double stretchRatio = 0;  // split a particle whose domain is stretched beyond this ratio
+  int refineMaterial = -1;  // -1: all materials
 
   // Reads <MPM>, <PhysicalConstants> and checks <SimulationComponent> and <AMR>.
   static MPMFlags fromInput(const PSNode& root);

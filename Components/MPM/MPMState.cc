@@ -8,7 +8,8 @@ namespace anode {
 
 void MPM::saveState(BinaryWriter& out) const {
   out.value<uint64_t>(materials_.size());
-  for (const MPMMaterial& mat : materials_) mat.particles.forEachArray([&](const auto& array) { out.array(array); });
+  for (const MPMMaterial& mat : materials_)
+    mat.particles.forEachArray([&](const auto& array) { out.array(array); });
   out.value(nextParticleId_);
   if (diffusion_) diffusion_->saveState(materials_, out);
 }
@@ -24,12 +25,14 @@ void MPM::loadState(BinaryReader& in) {
       const bool used = !array.empty();
       in.array(array);
       if (used != !array.empty())
-        throw std::runtime_error("material " + std::to_string(m) + ": the checkpoint's particle arrays do not match the input");
+        throw std::runtime_error("material " + std::to_string(m) +
+                                 ": the checkpoint's particle arrays do not match the input");
     });
     size_t n = p.count();
     p.forEachArray([&](const auto& array) {
       if (!array.empty() && array.size() != n)
-        throw std::runtime_error("material " + std::to_string(m) + ": particle arrays of different lengths in the checkpoint");
+        throw std::runtime_error("material " + std::to_string(m) +
+                                 ": particle arrays of different lengths in the checkpoint");
     });
   }
   nextParticleId_ = in.value<int64_t>();

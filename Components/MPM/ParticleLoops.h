@@ -18,7 +18,9 @@ struct MomentumScatterTarget {
   Vec3* momentum;
   Vec3* force;
 
-  static MomentumScatterTarget of(GridFields& g) { return {g.mass.data(), g.momentum.data(), g.internalForce.data()}; }
+  static MomentumScatterTarget of(GridFields& g) {
+    return {g.mass.data(), g.momentum.data(), g.internalForce.data()};
+  }
 };
 
 // P2G of particles [begin, end): mass (Eq. 4), momentum, internal force f = -sum V sigma grad S,
@@ -48,9 +50,9 @@ void scatterToGrid(const ParticleSet& p, const InterpolationWeights& W, long beg
 struct ParticleUpdate {
   const GridFields& grid;
   const InterpolationWeights& W;
-  double density;           // rho0: V = m / rho0 J
+  double density;  // rho0: V = m / rho0 J
   int minimumSubcyclesForF;
-  bool swells;              // the stress sees the concentration change
+  bool swells;  // the stress sees the concentration change
   double dt;
 };
 
@@ -58,7 +60,8 @@ struct ParticleUpdate {
 // the grid, volume, the concentration kernel's update, then the model's stress. Returns the
 // first particle whose det F is not positive (n if none); its stress is not updated.
 template <class Model, class Concentration>
-long updateParticles(ParticleSet& p, const ParticleUpdate& u, const Model& model, const Concentration& concentration) {
+long updateParticles(ParticleSet& p, const ParticleUpdate& u, const Model& model,
+                     const Concentration& concentration) {
   const InterpolationWeights& W = u.W;
   const GridFields& g = u.grid;
   const bool yields = model.canYield();
@@ -80,7 +83,8 @@ long updateParticles(ParticleSet& p, const ParticleUpdate& u, const Model& model
       concentration.gather(c, k, w, W.gradient[b + e]);
     }
     // F^{n+1} = (I + L dt/N)^N F^n, subcycled when L dt is large (Uintah's rule).
-    const int cycles = std::min(std::max(u.minimumSubcyclesForF, 2 * static_cast<int>(gradV.norm() * dt)), 10000);
+    const int cycles =
+        std::min(std::max(u.minimumSubcyclesForF, 2 * static_cast<int>(gradV.norm() * dt)), 10000);
     const Mat3 increment = Mat3::Identity() + gradV * (dt / cycles);
     Mat3 F = p.F[i];
     for (int s = 0; s < cycles; ++s) F = increment * F;
@@ -100,7 +104,8 @@ long updateParticles(ParticleSet& p, const ParticleUpdate& u, const Model& model
       ep = p.plasticStrain[i];
       epdot = p.plasticStrainRate[i];
     }
-    p.stress[i] = model.updateStress(p.stress[i], p.rotation[i], F, gradV, u.swells ? dc : 0.0, dt, ep, epdot);
+    p.stress[i] = model.updateStress(p.stress[i], p.rotation[i], F, gradV, u.swells ? dc : 0.0, dt,
+                                     ep, epdot);
     if (yields) {
       p.plasticStrain[i] = ep;
       p.plasticStrainRate[i] = epdot;

@@ -15,16 +15,17 @@
 namespace anode {
 
 struct ParticleSet : DiffusionParticles {
-  std::vector<int64_t> id;                // p.particleID, stable for the run
-  std::vector<Vec3> x;                    // p.x
-  std::vector<Vec3> velocity;             // p.velocity
-  std::vector<Vec3> displacement;         // p.displacement
-  std::vector<double> mass;               // p.mass (constant)
-  std::vector<double> volume;             // p.volume = mass/rho0 * det F
-  std::vector<Mat3> F;                    // p.deformationMeasure
-  std::vector<Mat3> stress;               // p.stress (Cauchy, lab frame)
-  std::vector<Mat3> size;                 // p.size: reference domain edge vectors in grid-cell units
-  std::vector<Mat3> rotation;             // R of F = R U: the stress update's frame, kept so a step computes one
+  std::vector<int64_t> id;         // p.particleID, stable for the run
+  std::vector<Vec3> x;             // p.x
+  std::vector<Vec3> velocity;      // p.velocity
+  std::vector<Vec3> displacement;  // p.displacement
+  std::vector<double> mass;        // p.mass (constant)
+  std::vector<double> volume;      // p.volume = mass/rho0 * det F
+  std::vector<Mat3> F;             // p.deformationMeasure
+  std::vector<Mat3> stress;        // p.stress (Cauchy, lab frame)
+  std::vector<Mat3> size;          // p.size: reference domain edge vectors in grid-cell units
+  std::vector<Mat3>
+      rotation;  // R of F = R U: the stress update's frame, kept so a step computes one
   std::vector<double> plasticStrain;      // p.plasticStrain (yielding materials only)
   std::vector<double> plasticStrainRate;  // p.plasticStrainRate (yielding materials only)
   // Particle splitting (only with <refine_particles>true): 1 once a particle or its parent split.
@@ -76,7 +77,9 @@ struct ParticleSet : DiffusionParticles {
   }
 
  private:
-  static uint8_t bit(Physics physics) { return static_cast<uint8_t>(1u << static_cast<int>(physics)); }
+  static uint8_t bit(Physics physics) {
+    return static_cast<uint8_t>(1u << static_cast<int>(physics));
+  }
 
   template <class Self, class F>
   static void eachArray(Self& s, F& f) {
@@ -94,7 +97,8 @@ struct ParticleSet : DiffusionParticles {
     f(s.size, ParticleField<Mat3>{"p.size", P::Mechanics, I, S::Own});
     f(s.rotation, ParticleField<Mat3>{nullptr, P::Mechanics, I, S::Copy});
     f(s.plasticStrain, ParticleField<double>{"p.plasticStrain", P::Plasticity, 0.0, S::Copy});
-    f(s.plasticStrainRate, ParticleField<double>{"p.plasticStrainRate", P::Plasticity, 0.0, S::Copy});
+    f(s.plasticStrainRate,
+      ParticleField<double>{"p.plasticStrainRate", P::Plasticity, 0.0, S::Copy});
     eachDiffusionArray(s, f);
     f(s.refined, ParticleField<uint8_t>{"p.refinedMPM", P::Splitting, 0, S::Own});
   }

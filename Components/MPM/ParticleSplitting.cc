@@ -55,7 +55,8 @@ size_t splitStretchedParticles(ParticleSet& p, const Grid& grid, double ratio,
   const size_t n = p.count();
   const bool flux = !p.loadCurveID.empty();
   const auto axisOf = [&](size_t i) {
-    return p.refined[i] ? -1 : splitAxis(p.F[i] * p.size[i] * grid.dx.asDiagonal(), ratio, grid.ndim());
+    return p.refined[i] ? -1
+                        : splitAxis(p.F[i] * p.size[i] * grid.dx.asDiagonal(), ratio, grid.ndim());
   };
   // Most steps split nothing: a parallel count finds out without storing anything.
   long splitting = 0;

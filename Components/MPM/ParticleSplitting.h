@@ -5,8 +5,8 @@
 
 #include <vector>
 
-#include "Components/MPM/ReactiveFlow/ScalarFluxBC.h"
 #include "Components/MPM/ParticleSet.h"
+#include "Components/MPM/ReactiveFlow/ScalarFluxBC.h"
 #include "Core/Grid/Grid.h"
 
 namespace anode {

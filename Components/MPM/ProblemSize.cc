@@ -24,10 +24,12 @@ double bytesPerGridNode(const MPMFlags& flags, size_t materials, int threads) {
   return perMaterial * static_cast<double>(materials) + perThread * threads;
 }
 
-double maxParticles(const MPMFlags& flags) { return static_cast<double>(memoryBudget()) / bytesPerParticle(flags); }
+double maxParticles(const MPMFlags& flags) {
+  return static_cast<double>(memoryBudget()) / bytesPerParticle(flags);
+}
 
-void checkProblemSize(const PSNode& gridNode, const Grid& grid, const MPMFlags& flags, size_t materials,
-                      size_t particles, int threads) {
+void checkProblemSize(const PSNode& gridNode, const Grid& grid, const MPMFlags& flags,
+                      size_t materials, size_t particles, int threads) {
   const double nodes = static_cast<double>(grid.numNodes());
   const double particleBytes = static_cast<double>(particles) * bytesPerParticle(flags);
   const double gridBytes = nodes * bytesPerGridNode(flags, materials, threads);

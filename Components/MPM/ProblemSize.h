@@ -21,7 +21,7 @@ double maxParticles(const MPMFlags& flags);
 
 // Throws an InputError at the grid's <resolution> (or <spacing>) when the particles and the
 // nodal arrays together exceed the budget.
-void checkProblemSize(const PSNode& gridNode, const Grid& grid, const MPMFlags& flags, size_t materials,
-                      size_t particles, int threads);
+void checkProblemSize(const PSNode& gridNode, const Grid& grid, const MPMFlags& flags,
+                      size_t materials, size_t particles, int threads);
 
 }  // namespace anode

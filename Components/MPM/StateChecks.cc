@@ -41,8 +41,10 @@ std::string problemOf(const MPMMaterial& mat, size_t i) {
 
 }  // namespace
 
-bool StateChecks::oscillates(Oscillation& o, double energy, double product, double* growth, double* correlation) {
-  const double c = o.lastEnergy > 0 && energy > 0 ? product / std::sqrt(energy * o.lastEnergy) : 0.0;
+bool StateChecks::oscillates(Oscillation& o, double energy, double product, double* growth,
+                             double* correlation) {
+  const double c =
+      o.lastEnergy > 0 && energy > 0 ? product / std::sqrt(energy * o.lastEnergy) : 0.0;
   const double pair = energy + o.lastEnergy;
   o.lastEnergy = energy;
   *correlation = c;
@@ -53,7 +55,8 @@ bool StateChecks::oscillates(Oscillation& o, double energy, double product, doub
   o.smallest = o.steps == 0 ? pair : std::min(o.smallest, pair);
   ++o.steps;
   *growth = pair / o.smallest;
-  return *growth >= kOscillationGrowth || (o.steps >= kSustainedSteps && *growth >= kSustainedGrowth);
+  return *growth >= kOscillationGrowth ||
+         (o.steps >= kSustainedSteps && *growth >= kSustainedGrowth);
 }
 
 void StateChecks::afterStep(const MPM& mpm, double dt) {
@@ -67,13 +70,14 @@ void StateChecks::afterStep(const MPM& mpm, double dt) {
     concentrationIncrement_.assign(count, {});
   }
   // One pass per material: finite values and J, kinetic energy, the increments of the step.
-  double energy = 0, totalMass = 0, velocityEnergy = 0, velocityProduct = 0, concentrationEnergy = 0,
-         concentrationProduct = 0;
+  double energy = 0, totalMass = 0, velocityEnergy = 0, velocityProduct = 0,
+         concentrationEnergy = 0, concentrationProduct = 0;
   bool restart = false;
   // Below this squared increment a particle's oscillation is not reported (round-off).
   const double motion = kLocalMotion * mpm.grid().dx.minCoeff() / dt;
   const double localFloor2 = std::max(
-      motion * motion, lastMass_ > 0 ? kLocalFloor * kLocalFloor * 2 * lastKineticEnergy_ / lastMass_ : 0.0);
+      motion * motion,
+      lastMass_ > 0 ? kLocalFloor * kLocalFloor * 2 * lastKineticEnergy_ / lastMass_ : 0.0);
   for (size_t m = 0; m < count; ++m) {
     const MPMMaterial& mat = materials[m];
     const ParticleSet& p = mat.particles;
@@ -99,14 +103,16 @@ void StateChecks::afterStep(const MPM& mpm, double dt) {
     reduction(+ : kinetic, mass, ve, vp, ce, cp)
     for (long i = 0; i < n; ++i) {
       const double J = p.volume[i] * mat.density / p.mass[i];
-      if (!p.x[i].allFinite() || !p.velocity[i].allFinite() || !p.stress[i].allFinite() || !(J >= kMinJ && J <= kMaxJ))
+      if (!p.x[i].allFinite() || !p.velocity[i].allFinite() || !p.stress[i].allFinite() ||
+          !(J >= kMinJ && J <= kMaxJ))
         firstBad = std::min(firstBad, i);
       const double half = 0.5 * p.mass[i];
       kinetic += half * p.velocity[i].squaredNorm();
       mass += p.mass[i];
       const Vec3 d = p.velocity[i] - v[i];
       const double dd = d.squaredNorm(), pp = dv[i].squaredNorm();
-      const bool reversedAndGrew = d.dot(dv[i]) < kAlternation * std::sqrt(dd * pp) && dd > kLocalGrowth * kLocalGrowth * pp;
+      const bool reversedAndGrew =
+          d.dot(dv[i]) < kAlternation * std::sqrt(dd * pp) && dd > kLocalGrowth * kLocalGrowth * pp;
       streak[i] = reversedAndGrew ? static_cast<uint8_t>(std::min(streak[i] + 1, 255)) : 0;
       if (streak[i] >= kLocalSteps && dd > localFloor2) firstLocal = std::min(firstLocal, i);
       ve += half * dd;
@@ -121,16 +127,19 @@ void StateChecks::afterStep(const MPM& mpm, double dt) {
         dc[i] = e;
       }
     }
-    if (firstBad < n) throw SimulationError(describeParticle(mat, m, firstBad) + " " + problemOf(mat, firstBad));
+    if (firstBad < n)
+      throw SimulationError(describeParticle(mat, m, firstBad) + " " + problemOf(mat, firstBad));
     if (firstLocal < n && !restart) throwLocalOscillation(mat, m, firstLocal);
     energy += kinetic;
     totalMass += mass;
-    velocityEnergy += ve, velocityProduct += vp, concentrationEnergy += ce, concentrationProduct += cp;
+    velocityEnergy += ve, velocityProduct += vp, concentrationEnergy += ce,
+        concentrationProduct += cp;
   }
   if (restart) {
     velocityOscillation_ = concentrationOscillation_ = Oscillation();
   } else {
-    checkOscillation(mpm, velocityEnergy, velocityProduct, concentrationEnergy, concentrationProduct);
+    checkOscillation(mpm, velocityEnergy, velocityProduct, concentrationEnergy,
+                     concentrationProduct);
   }
   lastMass_ = totalMass;
   checkKineticEnergy(mpm, energy);
@@ -139,19 +148,23 @@ void StateChecks::afterStep(const MPM& mpm, double dt) {
 void StateChecks::throwLocalOscillation(const MPMMaterial& mat, size_t m, size_t i) const {
   const ParticleSet& p = mat.particles;
   std::ostringstream s;
-  s << "the velocity of " << describeParticle(mat, m, i) << " oscillates with growing amplitude: for "
-    << static_cast<int>(localStreak_[m][i]) << " steps in a row its increment reversed the previous one and grew by "
-    << kLocalGrowth << " or more, to " << formatVector(velocityIncrement_[m][i])
-    << " (p.velocity = " << formatVector(p.velocity[i]) << "): a local instability of the explicit update at this time step (lower <timestep_multiplier>)";
+  s << "the velocity of " << describeParticle(mat, m, i)
+    << " oscillates with growing amplitude: for " << static_cast<int>(localStreak_[m][i])
+    << " steps in a row its increment reversed the previous one and grew by " << kLocalGrowth
+    << " or more, to " << formatVector(velocityIncrement_[m][i])
+    << " (p.velocity = " << formatVector(p.velocity[i])
+    << "): a local instability of the explicit update at this time step (lower "
+       "<timestep_multiplier>)";
   throw SimulationError(s.str());
 }
 
 void StateChecks::checkOscillation(const MPM& mpm, double velocityEnergy, double velocityProduct,
                                    double concentrationEnergy, double concentrationProduct) {
   double growth = 0, correlation = 0;
-  const bool velocity = oscillates(velocityOscillation_, velocityEnergy, velocityProduct, &growth, &correlation);
-  const bool concentration =
-      !velocity && oscillates(concentrationOscillation_, concentrationEnergy, concentrationProduct, &growth, &correlation);
+  const bool velocity =
+      oscillates(velocityOscillation_, velocityEnergy, velocityProduct, &growth, &correlation);
+  const bool concentration = !velocity && oscillates(concentrationOscillation_, concentrationEnergy,
+                                                     concentrationProduct, &growth, &correlation);
   if (!velocity && !concentration) return;
 
   // The particle whose increment is largest, as the place to look.
@@ -161,7 +174,8 @@ void StateChecks::checkOscillation(const MPM& mpm, double velocityEnergy, double
   for (size_t m = 0; m < materials.size(); ++m) {
     const size_t n = velocity ? velocityIncrement_[m].size() : concentrationIncrement_[m].size();
     for (size_t i = 0; i < n; ++i) {
-      const double size = velocity ? velocityIncrement_[m][i].squaredNorm() : std::abs(concentrationIncrement_[m][i]);
+      const double size = velocity ? velocityIncrement_[m][i].squaredNorm()
+                                   : std::abs(concentrationIncrement_[m][i]);
       if (size > worst) worst = size, worstM = m, worstI = i;
     }
   }
@@ -169,16 +183,19 @@ void StateChecks::checkOscillation(const MPM& mpm, double velocityEnergy, double
   const Oscillation& o = velocity ? velocityOscillation_ : concentrationOscillation_;
   std::ostringstream s;
   s << "the particle " << (velocity ? "velocities" : "concentrations")
-    << " oscillate with growing amplitude: for " << o.steps << " steps each step's increment reversed the previous one "
-    << "(mass-weighted correlation " << correlation << ") and their energy grew by a factor of " << growth
-    << ": the explicit " << (velocity ? "momentum" : "diffusion")
-    << " update is unstable at this time step (lower <timestep_multiplier>); the largest increment is at "
+    << " oscillate with growing amplitude: for " << o.steps
+    << " steps each step's increment reversed the previous one "
+    << "(mass-weighted correlation " << correlation << ") and their energy grew by a factor of "
+    << growth << ": the explicit " << (velocity ? "momentum" : "diffusion")
+    << " update is unstable at this time step (lower <timestep_multiplier>); the largest increment "
+       "is at "
     << describeParticle(materials[worstM], worstM, worstI);
   if (velocity)
     s << ": p.velocity = " << formatVector(p.velocity[worstI]) << " after a change of "
       << formatVector(velocityIncrement_[worstM][worstI]);
   else
-    s << ": p.concentration = " << p.concentration[worstI] << " after a change of " << concentrationIncrement_[worstM][worstI];
+    s << ": p.concentration = " << p.concentration[worstI] << " after a change of "
+      << concentrationIncrement_[worstM][worstI];
   throw SimulationError(s.str());
 }
 
@@ -207,9 +224,11 @@ void StateChecks::checkKineticEnergy(const MPM& mpm, double energy) {
   if (!std::isfinite(energy)) {
     s << "the kinetic energy overflows (" << energy << ")";
   } else {
-    s << "the kinetic energy grew by a factor of at least " << kGrowthPerStep << " at each of the last "
-      << growingSteps_ << " steps, from " << energyBeforeGrowth_ << " to " << energy
-      << ": a numerical instability (a time step beyond the stable one: lower <timestep_multiplier>)";
+    s << "the kinetic energy grew by a factor of at least " << kGrowthPerStep
+      << " at each of the last " << growingSteps_ << " steps, from " << energyBeforeGrowth_
+      << " to " << energy
+      << ": a numerical instability (a time step beyond the stable one: lower "
+         "<timestep_multiplier>)";
   }
   s << "; the fastest is " << describeParticle(materials[fastM], fastM, fastI)
     << " with p.velocity = " << formatVector(materials[fastM].particles.velocity[fastI]);

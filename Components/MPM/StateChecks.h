@@ -61,9 +61,10 @@ class StateChecks {
     double smallest = 0;    // the smallest pair energy of those steps
   };
   // Updates `o` with this step's increment energy and correlation; true when it trips.
-  static bool oscillates(Oscillation& o, double energy, double product, double* growth, double* correlation);
-  void checkOscillation(const MPM& mpm, double velocityEnergy, double velocityProduct, double concentrationEnergy,
-                        double concentrationProduct);
+  static bool oscillates(Oscillation& o, double energy, double product, double* growth,
+                         double* correlation);
+  void checkOscillation(const MPM& mpm, double velocityEnergy, double velocityProduct,
+                        double concentrationEnergy, double concentrationProduct);
   void checkKineticEnergy(const MPM& mpm, double energy);
   [[noreturn]] void throwLocalOscillation(const MPMMaterial& mat, size_t m, size_t i) const;
 

@@ -48,10 +48,9 @@ bool IntersectionPiece::inside(const Vec3& x) const {
 }
 
 bool GeometryPieceFactory::isPieceTag(const std::string& tag) {
-  static const char* known[] = {"box",        "cylinder",     "sphere",    "union",
-                                "intersection", "difference", "smoothcyl", "tri",
-                                "cone",       "ellipsoid",    "torus",     "file",
-                                "null",       "parallelepiped", "convex_hull"};
+  static const char* known[] = {
+      "box",  "cylinder",  "sphere", "union", "intersection", "difference",     "smoothcyl",  "tri",
+      "cone", "ellipsoid", "torus",  "file",  "null",         "parallelepiped", "convex_hull"};
   return std::any_of(std::begin(known), std::end(known), [&](const char* k) { return tag == k; });
 }
 
@@ -71,7 +70,8 @@ GeometryPieceP GeometryPieceFactory::create(const PSNode& node) {
   if (label && !hasContent) {
     auto it = labelled_.find(*label);
     if (it == labelled_.end())
-      node.fail("<" + tag + " label=\"" + *label + "\"> refers to a piece that is not defined before it");
+      node.fail("<" + tag + " label=\"" + *label +
+                "\"> refers to a piece that is not defined before it");
     if (it->second->type() != tag)
       node.fail("<" + tag + " label=\"" + *label + "\"> refers to a " + it->second->type() +
                 ", not a " + tag);
@@ -94,7 +94,8 @@ GeometryPieceP GeometryPieceFactory::create(const PSNode& node) {
     auto b = std::make_shared<BoxPiece>();
     b->lo = node.require<Vec3>("min");
     b->hi = node.require<Vec3>("max");
-    if ((b->hi.array() < b->lo.array()).any()) node.requireChild("max").fail("<max> must be >= <min>");
+    if ((b->hi.array() < b->lo.array()).any())
+      node.requireChild("max").fail("<max> must be >= <min>");
     piece = b;
   } else if (tag == "cylinder") {
     auto c = std::make_shared<CylinderPiece>();
@@ -135,7 +136,8 @@ GeometryPieceP GeometryPieceFactory::create(const PSNode& node) {
   } else if (tag == "smoothcyl") {
     piece = SmoothCylinderPiece::fromInput(node);
   } else if (isPieceTag(tag)) {
-    node.fail("geometry piece <" + tag + "> is not supported; accepted: box, cylinder, sphere, "
+    node.fail("geometry piece <" + tag +
+              "> is not supported; accepted: box, cylinder, sphere, "
               "smoothcyl, union, intersection, difference");
   } else {
     node.fail("<" + tag + "> is not a geometry piece");

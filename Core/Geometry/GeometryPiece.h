@@ -47,7 +47,9 @@ struct CylinderPiece : GeometryPiece {
 struct SpherePiece : GeometryPiece {
   Vec3 origin;
   double radius = 0;
-  bool inside(const Vec3& x) const override { return (x - origin).squaredNorm() <= radius * radius; }
+  bool inside(const Vec3& x) const override {
+    return (x - origin).squaredNorm() <= radius * radius;
+  }
   std::string type() const override { return "sphere"; }
   Bounds bounds() const override { return {origin.array() - radius, origin.array() + radius}; }
 };

@@ -66,7 +66,9 @@ bool placesParticlesOutside(const Grid& grid, const GeometryPiece& piece, const 
     for (int c = 0; c < res.z(); ++c)
       for (int b = 0; b < res.y(); ++b)
         for (int a = 0; a < res.x(); ++a)
-          if (piece.inside(cell + Vec3((a + 0.5) * dxp.x(), (b + 0.5) * dxp.y(), (c + 0.5) * dxp.z()))) return true;
+          if (piece.inside(cell +
+                           Vec3((a + 0.5) * dxp.x(), (b + 0.5) * dxp.y(), (c + 0.5) * dxp.z())))
+            return true;
     return false;
   };
   // Only the rows of cells (j, k) with a cell outside are visited, and in them only those cells,
@@ -85,7 +87,8 @@ bool placesParticlesOutside(const Grid& grid, const GeometryPiece& piece, const 
       continue;
     }
     for (long j = 0; j < static_cast<long>(count.y()); ++j) {
-      const bool rowAllowed = kAllowed && j >= static_cast<long>(lo.y()) && j < static_cast<long>(hi.y());
+      const bool rowAllowed =
+          kAllowed && j >= static_cast<long>(lo.y()) && j < static_cast<long>(hi.y());
       if (rowAllowed && !xOutside) {
         j = static_cast<long>(hi.y()) - 1;
         continue;
@@ -96,7 +99,8 @@ bool placesParticlesOutside(const Grid& grid, const GeometryPiece& piece, const 
   return false;
 }
 
-std::vector<Vec3> fillParticles(const Grid& grid, const GeometryPiece& piece, const Vec3i& res, size_t maxParticles) {
+std::vector<Vec3> fillParticles(const Grid& grid, const GeometryPiece& piece, const Vec3i& res,
+                                size_t maxParticles) {
   std::vector<Vec3> out;
   Vec3i first, last;
   cellRange(grid, piece, first, last);
@@ -108,7 +112,8 @@ std::vector<Vec3> fillParticles(const Grid& grid, const GeometryPiece& piece, co
         for (int c = 0; c < res.z(); ++c)
           for (int b = 0; b < res.y(); ++b)
             for (int a = 0; a < res.x(); ++a) {
-              const Vec3 x = cell + Vec3((a + 0.5) * dxp.x(), (b + 0.5) * dxp.y(), (c + 0.5) * dxp.z());
+              const Vec3 x =
+                  cell + Vec3((a + 0.5) * dxp.x(), (b + 0.5) * dxp.y(), (c + 0.5) * dxp.z());
               if (!piece.inside(x)) continue;
               out.push_back(x);
               if (out.size() > maxParticles) return out;

@@ -13,12 +13,14 @@ std::shared_ptr<SmoothCylinderPiece> SmoothCylinderPiece::fromInput(const PSNode
     c->scheme = Scheme::ConstantParticleVolumes;
   else
     node.requireChild("discretization_scheme")
-        .fail("<discretization_scheme> must be pie_slices or constant_particle_volumes, found \"" + scheme + "\"");
+        .fail("<discretization_scheme> must be pie_slices or constant_particle_volumes, found \"" +
+              scheme + "\"");
   c->bottom = node.require<Vec3>("bottom");
   c->top = node.require<Vec3>("top");
   if ((c->top - c->bottom).norm() == 0) node.requireChild("top").fail("<top> equals <bottom>");
   c->outerRadius = node.require<double>("outer_radius");
-  if (!(c->outerRadius > 0)) node.requireChild("outer_radius").fail("<outer_radius> must be positive");
+  if (!(c->outerRadius > 0))
+    node.requireChild("outer_radius").fail("<outer_radius> must be positive");
   c->innerRadius = node.get<double>("inner_radius", 0.0);
   if (c->innerRadius < 0 || c->innerRadius >= c->outerRadius)
     node.requireChild("inner_radius").fail("<inner_radius> must lie in [0, outer_radius)");
@@ -34,12 +36,16 @@ std::shared_ptr<SmoothCylinderPiece> SmoothCylinderPiece::fromInput(const PSNode
   }
   const double start = node.get<double>("arc_start_angle", 0.0);
   const double angle = node.get<double>("arc_angle", 360.0);
-  if (start < 0 || start > 360) node.requireChild("arc_start_angle").fail("<arc_start_angle> must lie in [0, 360]");
-  if (!(angle > 0) || angle > 360) node.requireChild("arc_angle").fail("<arc_angle> must lie in (0, 360]");
+  if (start < 0 || start > 360)
+    node.requireChild("arc_start_angle").fail("<arc_start_angle> must lie in [0, 360]");
+  if (!(angle > 0) || angle > 360)
+    node.requireChild("arc_angle").fail("<arc_angle> must lie in (0, 360]");
   c->arcStart = start * M_PI / 180;
   c->arcAngle = angle * M_PI / 180;
   if (c->arcAngle <= c->arcStart)
-    node.requireChild("arc_angle").fail("<arc_angle> must exceed <arc_start_angle> (Uintah spans arc_angle - arc_start_angle)");
+    node.requireChild("arc_angle")
+        .fail(
+            "<arc_angle> must exceed <arc_start_angle> (Uintah spans arc_angle - arc_start_angle)");
   if (const PSNode cap = node.child("endcap_thickness"))
     if (cap.value<double>() > 0) cap.unsupported("smoothcyl end caps <endcap_thickness>");
   node.acceptInert("output_file");
@@ -72,9 +78,11 @@ double SmoothCylinderPiece::slicesInRing(int ii, double cellVolume) const {
 
 double SmoothCylinderPiece::particleCount(const Grid& grid, double limit) const {
   // Every ring holds at least one particle.
-  if (static_cast<double>(numRadial) * numAxial > limit) return static_cast<double>(numRadial) * numAxial;
+  if (static_cast<double>(numRadial) * numAxial > limit)
+    return static_cast<double>(numRadial) * numAxial;
   double perLayer = 0;
-  for (int ii = 0; ii < numRadial && perLayer * numAxial <= limit; ++ii) perLayer += slicesInRing(ii, grid.dx.prod());
+  for (int ii = 0; ii < numRadial && perLayer * numAxial <= limit; ++ii)
+    perLayer += slicesInRing(ii, grid.dx.prod());
   return perLayer * numAxial;
 }
 

@@ -13,7 +13,7 @@ namespace anode {
 struct SmoothParticle {
   Vec3 x;
   double volume;
-  Mat3 size;      // edge vectors in grid-cell units: tangential chord, radial thickness, axial length
+  Mat3 size;  // edge vectors in grid-cell units: tangential chord, radial thickness, axial length
   Vec3 faceArea;  // (outer face normal to r, the same, face normal to the axis)
 };
 

@@ -39,7 +39,8 @@ std::vector<FaceBC> readFaceBCs(const PSNode& gridNode, int numMaterials, bool d
       face.fail("<Face> requires side=\"x-|x+|y-|y+|z-|z+\"");
     }
     const std::string s = *side;
-    if (s.size() != 2 || (s[0] != 'x' && s[0] != 'y' && s[0] != 'z') || (s[1] != '-' && s[1] != '+'))
+    if (s.size() != 2 || (s[0] != 'x' && s[0] != 'y' && s[0] != 'z') ||
+        (s[1] != '-' && s[1] != '+'))
       face.fail("unknown face side \"" + s + "\"; accepted: x-, x+, y-, y+, z-, z+");
     for (const PSNode& bc : face.children()) {
       if (bc.name() != "BCType") bc.fail("<Face> holds only <BCType> tags");
@@ -50,10 +51,12 @@ std::vector<FaceBC> readFaceBCs(const PSNode& gridNode, int numMaterials, bool d
       const std::string label = bc.requireAttribute("label");
       const std::string var = bc.requireAttribute("var");
       if (label == "SD-Type") {
-        if (!diffusion) bc.fail("label=\"SD-Type\" (concentration) needs <MPM><do_scalar_diffusion>true");
+        if (!diffusion)
+          bc.fail("label=\"SD-Type\" (concentration) needs <MPM><do_scalar_diffusion>true");
         if (var != "Dirichlet" && var != "Neumann")
           bc.fail("SD-Type var=\"" + var + "\": accepted Dirichlet, Neumann");
-        f.kind = var == "Dirichlet" ? FaceBC::Kind::ConcentrationDirichlet : FaceBC::Kind::ConcentrationNeumann;
+        f.kind = var == "Dirichlet" ? FaceBC::Kind::ConcentrationDirichlet
+                                    : FaceBC::Kind::ConcentrationNeumann;
         if (auto attr = bc.attribute("value")) {
           try {
             f.value = parseValue<double>(*attr);

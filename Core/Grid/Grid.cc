@@ -11,12 +11,12 @@ Grid Grid::fromInput(const PSNode& gridNode) {
   const PSNode level = gridNode.requireChild("Level");
   const auto boxes = level.children("Box");
   if (boxes.empty()) level.fail("<Level> requires a <Box> with <lower>, <upper> and <resolution>");
-  if (boxes.size() > 1) boxes[1].fail("several <Box> in one <Level> are not supported; use one box");
+  if (boxes.size() > 1)
+    boxes[1].fail("several <Box> in one <Level> are not supported; use one box");
   if (gridNode.children("Level").size() > 1)
     gridNode.children("Level")[1].fail("several grid levels (AMR) are not supported");
   if (const PSNode periodic = level.child("periodic")) {
-    if (periodic.value<Vec3i>() != Vec3i::Zero())
-      periodic.unsupported("periodic grid boundaries");
+    if (periodic.value<Vec3i>() != Vec3i::Zero()) periodic.unsupported("periodic grid boundaries");
   }
   const PSNode box = boxes[0];
   Grid g;
@@ -29,7 +29,8 @@ Grid Grid::fromInput(const PSNode& gridNode) {
       box.requireChild("upper").fail("<upper> - <lower> overflows a double");
   const PSNode resolution = box.child("resolution");
   const PSNode spacing = level.child("spacing");
-  if (resolution && spacing) spacing.fail("give either <Box><resolution> or <Level><spacing>, not both");
+  if (resolution && spacing)
+    spacing.fail("give either <Box><resolution> or <Level><spacing>, not both");
   if (resolution) {
     g.cells = resolution.value<Vec3i>();
     if ((g.cells.array() < 1).any())
@@ -42,7 +43,8 @@ Grid Grid::fromInput(const PSNode& gridNode) {
       if (!(h[d] > 0)) spacing.fail("<spacing> must be positive in each direction");
       const double n = (g.upper[d] - g.lower[d]) / h[d];
       if (!(n < kMaxCellsPerAxis))
-        spacing.fail("<spacing> gives more than " + std::to_string(kMaxCellsPerAxis) + " cells along an axis");
+        spacing.fail("<spacing> gives more than " + std::to_string(kMaxCellsPerAxis) +
+                     " cells along an axis");
       if (std::abs(n - std::round(n)) > 1e-6 * n)
         spacing.fail("<spacing> must divide the box into a whole number of cells");
       g.cells[d] = static_cast<int>(std::round(n));
@@ -68,10 +70,11 @@ Grid Grid::fromInput(const PSNode& gridNode) {
     nodes *= g.cells[d] + 1.0 + 2.0 * g.extra[d];
   }
   if (nodes > 2147483647.0)
-    size.fail("the grid has " + formatCount(nodes) + " nodes; at most 2147483647 are supported (32-bit node indices)");
+    size.fail("the grid has " + formatCount(nodes) +
+              " nodes; at most 2147483647 are supported (32-bit node indices)");
   if (nodes * kMinBytesPerNode > static_cast<double>(memoryBudget()))
-    size.fail("the grid's " + formatCount(nodes) + " nodes need at least " + formatBytes(nodes * kMinBytesPerNode) +
-              ", beyond " + describeMemoryBudget());
+    size.fail("the grid's " + formatCount(nodes) + " nodes need at least " +
+              formatBytes(nodes * kMinBytesPerNode) + ", beyond " + describeMemoryBudget());
   g.dx = (g.upper - g.lower).cwiseQuotient(g.cells.cast<double>());
   return g;
 }

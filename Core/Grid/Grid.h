@@ -44,7 +44,8 @@ struct Grid {
   // Grid index (i,j,k) of flat node index n.
   Vec3i nodeOf(int n) const {
     const Vec3i s = nodes();
-    return Vec3i(n % s.x() - extra.x(), (n / s.x()) % s.y() - extra.y(), n / (s.x() * s.y()) - extra.z());
+    return Vec3i(n % s.x() - extra.x(), (n / s.x()) % s.y() - extra.y(),
+                 n / (s.x() * s.y()) - extra.z());
   }
 };
 

@@ -25,7 +25,8 @@ double parseDouble(const std::string& raw) {
   if (s.empty()) throw std::invalid_argument("expected a number, found nothing");
   char* end = nullptr;
   const double v = std::strtod(s.c_str(), &end);
-  if (end != s.c_str() + s.size()) throw std::invalid_argument("expected a number, found '" + s + "'");
+  if (end != s.c_str() + s.size())
+    throw std::invalid_argument("expected a number, found '" + s + "'");
   // strtod reads "nan", "inf" and overflows to infinity: no input quantity may be either.
   if (!std::isfinite(v)) throw std::invalid_argument("expected a finite number, found '" + s + "'");
   return v;
@@ -36,8 +37,10 @@ int parseInt(const std::string& raw) {
   if (s.empty()) throw std::invalid_argument("expected an integer, found nothing");
   char* end = nullptr;
   const long v = std::strtol(s.c_str(), &end, 10);
-  if (end != s.c_str() + s.size()) throw std::invalid_argument("expected an integer, found '" + s + "'");
-  if (v < -2147483647L || v > 2147483647L) throw std::invalid_argument("integer out of range: " + s);
+  if (end != s.c_str() + s.size())
+    throw std::invalid_argument("expected an integer, found '" + s + "'");
+  if (v < -2147483647L || v > 2147483647L)
+    throw std::invalid_argument("integer out of range: " + s);
   return static_cast<int>(v);
 }
 
@@ -104,9 +107,15 @@ std::vector<int> parseValue<std::vector<int>>(const std::string& text) {
 
 // ---- PSNode ----
 
-std::string PSNode::name() const { return e_ ? e_->Name() : ""; }
-int PSNode::line() const { return e_ ? e_->GetLineNum() : 0; }
-const std::string& PSNode::file() const { return spec_->file(); }
+std::string PSNode::name() const {
+  return e_ ? e_->Name() : "";
+}
+int PSNode::line() const {
+  return e_ ? e_->GetLineNum() : 0;
+}
+const std::string& PSNode::file() const {
+  return spec_->file();
+}
 
 PSNode PSNode::child(const char* tag) const {
   const tinyxml2::XMLElement* c = e_->FirstChildElement(tag);
@@ -139,7 +148,9 @@ std::vector<PSNode> PSNode::childrenWhere(bool (*select)(const std::string& tag)
   return out;
 }
 
-bool PSNode::hasChildren() const { return e_->FirstChildElement() != nullptr; }
+bool PSNode::hasChildren() const {
+  return e_->FirstChildElement() != nullptr;
+}
 
 std::string PSNode::text() const {
   // Concatenate all text children: comments may sit between pieces of a value.
@@ -183,7 +194,8 @@ std::optional<std::string> PSNode::attribute(const char* attr) const {
 
 std::vector<std::string> PSNode::attributeNames() const {
   std::vector<std::string> names;
-  for (const tinyxml2::XMLAttribute* a = e_->FirstAttribute(); a; a = a->Next()) names.push_back(a->Name());
+  for (const tinyxml2::XMLAttribute* a = e_->FirstAttribute(); a; a = a->Next())
+    names.push_back(a->Name());
   return names;
 }
 
@@ -205,7 +217,9 @@ void PSNode::markSubtreeUsed() const {
   mark(e_);
 }
 
-void PSNode::fail(const std::string& message) const { throw InputError(file(), line(), message); }
+void PSNode::fail(const std::string& message) const {
+  throw InputError(file(), line(), message);
+}
 
 void PSNode::unsupported(const std::string& message) const {
   if (!spec_->ignoreUnsupported())
@@ -221,9 +235,9 @@ template std::string PSNode::value<std::string>() const;
 template Vec3 PSNode::value<Vec3>() const;
 template Vec3i PSNode::value<Vec3i>() const;
 template std::vector<int> PSNode::value<std::vector<int>>() const;
-#define ANODE_INSTANTIATE(T)                                                \
-  template T PSNode::require<T>(const char*) const;                         \
-  template T PSNode::get<T>(const char*, const T&) const;                   \
+#define ANODE_INSTANTIATE(T)                              \
+  template T PSNode::require<T>(const char*) const;       \
+  template T PSNode::get<T>(const char*, const T&) const; \
   template std::optional<T> PSNode::find<T>(const char*) const;
 ANODE_INSTANTIATE(double)
 ANODE_INSTANTIATE(int)
@@ -254,7 +268,8 @@ std::unique_ptr<ProblemSpec> ProblemSpec::fromText(const std::string& text, cons
 }
 
 void ProblemSpec::parse(tinyxml2::XMLError status) {
-  if (status == tinyxml2::XML_ERROR_EMPTY_DOCUMENT) throw InputError(file_, 1, "the input is empty: no XML element");
+  if (status == tinyxml2::XML_ERROR_EMPTY_DOCUMENT)
+    throw InputError(file_, 1, "the input is empty: no XML element");
   if (status != tinyxml2::XML_SUCCESS) {
     const char* what = doc_.ErrorStr();
     // tinyxml2 reports line 0 for errors it cannot place; every message names a line of the file.
@@ -264,9 +279,9 @@ void ProblemSpec::parse(tinyxml2::XMLError status) {
   const auto* r = doc_.RootElement();
   if (!r) throw InputError(file_, 1, "the input holds no XML element");
   if (std::string(r->Name()) != "Uintah_specification")
-    throw InputError(file_, r->GetLineNum(),
-                     "the root element must be <Uintah_specification>, found <" +
-                         std::string(r->Name()) + ">");
+    throw InputError(
+        file_, r->GetLineNum(),
+        "the root element must be <Uintah_specification>, found <" + std::string(r->Name()) + ">");
 }
 
 PSNode ProblemSpec::root() {

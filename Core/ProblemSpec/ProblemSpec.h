@@ -1,5 +1,6 @@
 // Reader for Uintah-style .ups inputs. Every tag that setup reads is marked as used; after setup,
-// checkAllUsed() names each tag nobody read, so a misspelt or unknown tag is never silently ignored.
+// checkAllUsed() names each tag nobody read, so a misspelt or unknown tag is never silently
+// ignored.
 #pragma once
 
 #include <tinyxml2.h>

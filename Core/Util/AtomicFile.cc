@@ -1,14 +1,15 @@
 #include "Core/Util/AtomicFile.h"
 
+#include <unistd.h>
+
 #include <cstdio>
 #include <fstream>
 #include <stdexcept>
 
-#include <unistd.h>
-
 namespace anode {
 
-void writeAtomically(const std::string& path, const std::function<void(const std::string&)>& write) {
+void writeAtomically(const std::string& path,
+                     const std::function<void(const std::string&)>& write) {
   const std::string tmp = path + ".tmp" + std::to_string(::getpid());
   write(tmp);
   if (std::rename(tmp.c_str(), path.c_str()) != 0) {

@@ -12,7 +12,9 @@ constexpr uint64_t kPrime = 1099511628211ull;
 
 }  // namespace
 
-void StreamHash::addWord(uint64_t word) { hash_ = (hash_ ^ word) * kPrime; }
+void StreamHash::addWord(uint64_t word) {
+  hash_ = (hash_ ^ word) * kPrime;
+}
 
 void StreamHash::add(const void* data, size_t bytes) {
   const auto* p = static_cast<const unsigned char*>(data);
@@ -53,7 +55,8 @@ bool hasIntactHash(const std::string& path) {
   bool ok = size >= 8;
   StreamHash h;
   for (long left = size - 8; ok && left > 0;) {
-    const size_t n = std::fread(buffer.data(), 1, std::min<long>(left, static_cast<long>(buffer.size())), f);
+    const size_t n =
+        std::fread(buffer.data(), 1, std::min<long>(left, static_cast<long>(buffer.size())), f);
     if (n == 0) ok = false;
     h.add(buffer.data(), n);
     left -= static_cast<long>(n);
@@ -64,7 +67,8 @@ bool hasIntactHash(const std::string& path) {
   return ok;
 }
 
-BinaryWriter::BinaryWriter(const std::string& path) : path_(path), file_(std::fopen(path.c_str(), "wb")) {
+BinaryWriter::BinaryWriter(const std::string& path)
+    : path_(path), file_(std::fopen(path.c_str(), "wb")) {
   if (!file_) throw std::runtime_error("cannot create " + path);
 }
 
@@ -91,7 +95,8 @@ void BinaryWriter::finish() {
   if (!written || !closed) throw std::runtime_error("cannot write " + path_);
 }
 
-BinaryReader::BinaryReader(const std::string& path) : path_(path), file_(std::fopen(path.c_str(), "rb")) {
+BinaryReader::BinaryReader(const std::string& path)
+    : path_(path), file_(std::fopen(path.c_str(), "rb")) {
   if (!file_) throw std::runtime_error("cannot open " + path);
   if (std::fseek(file_, 0, SEEK_END) != 0) fail("cannot seek");
   const long size = std::ftell(file_);

@@ -12,18 +12,24 @@ size_t budget = 0;
 
 size_t physicalMemory() {
   const long pages = sysconf(_SC_PHYS_PAGES), size = sysconf(_SC_PAGE_SIZE);
-  return pages > 0 && size > 0 ? static_cast<size_t>(pages) * static_cast<size_t>(size) : size_t(24) << 30;
+  return pages > 0 && size > 0 ? static_cast<size_t>(pages) * static_cast<size_t>(size)
+                               : size_t(24) << 30;
 }
 
 }  // namespace
 
-size_t memoryBudget() { return budget > 0 ? budget : physicalMemory(); }
+size_t memoryBudget() {
+  return budget > 0 ? budget : physicalMemory();
+}
 
-void setMemoryBudget(size_t bytes) { budget = bytes; }
+void setMemoryBudget(size_t bytes) {
+  budget = bytes;
+}
 
 std::string describeMemoryBudget() {
   return "the memory budget of " + formatBytes(static_cast<double>(memoryBudget())) +
-         (budget > 0 ? std::string(" (set by the caller)") : std::string(" (the machine's physical memory)"));
+         (budget > 0 ? std::string(" (set by the caller)")
+                     : std::string(" (the machine's physical memory)"));
 }
 
 std::string formatBytes(double bytes) {

@@ -26,7 +26,8 @@ class ScopedTimer {
   ScopedTimer(TaskTimers& timers, int task)
       : timers_(timers), task_(task), start_(std::chrono::steady_clock::now()) {}
   ~ScopedTimer() {
-    timers_.add(task_, std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count());
+    timers_.add(task_,
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count());
   }
 
  private:

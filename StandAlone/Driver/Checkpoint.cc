@@ -35,7 +35,8 @@ CheckpointSchedule CheckpointSchedule::fromInput(const PSNode& archiver) {
   for (const std::string& a : node.attributeNames()) {
     if (a == "cycle" || a == "interval" || a == "timestepInterval") continue;
     if (a != "walltimeStart" && a != "walltimeInterval")
-      node.fail("<checkpoint>: unknown attribute " + a + "; accepted: cycle, interval, timestepInterval");
+      node.fail("<checkpoint>: unknown attribute " + a +
+                "; accepted: cycle, interval, timestepInterval");
     node.unsupported("<checkpoint " + a + ">: checkpoints by wall time");
     byWallTime = true;
   }
@@ -44,12 +45,17 @@ CheckpointSchedule CheckpointSchedule::fromInput(const PSNode& archiver) {
   s.interval = numberAttribute<double>(node, "interval");
   const std::optional<int> steps = numberAttribute<int>(node, "timestepInterval");
   if (!cycle) node.fail("<checkpoint> needs cycle=\"N\": how many checkpoints to keep");
-  if (*cycle < 1) node.fail("<checkpoint cycle=\"" + std::to_string(*cycle) + "\">: must be at least 1");
+  if (*cycle < 1)
+    node.fail("<checkpoint cycle=\"" + std::to_string(*cycle) + "\">: must be at least 1");
   if (s.interval && steps) node.fail("<checkpoint>: give interval or timestepInterval, not both");
-  if (!s.interval && !steps) node.fail("<checkpoint> needs interval=\"T\" (simulation time) or timestepInterval=\"N\"");
+  if (!s.interval && !steps)
+    node.fail("<checkpoint> needs interval=\"T\" (simulation time) or timestepInterval=\"N\"");
   if (s.interval && !(*s.interval > 0 && std::isfinite(*s.interval)))
-    node.fail("<checkpoint interval=\"" + *node.attribute("interval") + "\">: must be a positive time");
-  if (steps && *steps < 1) node.fail("<checkpoint timestepInterval=\"" + std::to_string(*steps) + "\">: must be at least 1");
+    node.fail("<checkpoint interval=\"" + *node.attribute("interval") +
+              "\">: must be a positive time");
+  if (steps && *steps < 1)
+    node.fail("<checkpoint timestepInterval=\"" + std::to_string(*steps) +
+              "\">: must be at least 1");
   s.cycle = *cycle;
   s.stepInterval = steps.value_or(0);
   return s;
@@ -79,9 +85,11 @@ std::vector<std::string> checkpoints(const std::string& dir, bool scheduled, boo
     std::smatch m;
     const std::string file = e.path().filename().string();
     if (!std::regex_match(file, m, checkpointName())) continue;
-    if (m[1].matched ? automatic : scheduled) found.emplace_back(std::stol(m[2].str()), e.path().string());
+    if (m[1].matched ? automatic : scheduled)
+      found.emplace_back(std::stol(m[2].str()), e.path().string());
   }
-  std::sort(found.begin(), found.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  std::sort(found.begin(), found.end(),
+            [](const auto& a, const auto& b) { return a.first > b.first; });
   std::vector<std::string> paths;
   for (const auto& f : found) paths.push_back(f.second);
   return paths;
@@ -91,12 +99,14 @@ std::vector<std::string> checkpoints(const std::string& dir, bool scheduled, boo
 
 std::string checkpointPath(const std::string& dir, long step, CheckpointKind kind) {
   std::ostringstream name;
-  name << (kind == CheckpointKind::Automatic ? "auto_" : "") << "step_" << std::setw(6) << std::setfill('0') << step
-       << ".ckpt";
+  name << (kind == CheckpointKind::Automatic ? "auto_" : "") << "step_" << std::setw(6)
+       << std::setfill('0') << step << ".ckpt";
   return (fs::path(dir) / "checkpoints" / name.str()).string();
 }
 
-std::vector<std::string> listCheckpoints(const std::string& dir) { return checkpoints(dir, true, true); }
+std::vector<std::string> listCheckpoints(const std::string& dir) {
+  return checkpoints(dir, true, true);
+}
 
 void removeOldCheckpoints(const std::string& dir, CheckpointKind kind, int keep) {
   const std::vector<std::string> all =
@@ -114,7 +124,8 @@ int removeTemporaryFiles(const std::string& dir) {
   static const std::regex temporary(R"(.*\.tmp\d+)");
   std::vector<fs::path> leftovers;
   for (const fs::directory_entry& e : fs::recursive_directory_iterator(dir))
-    if (e.is_regular_file() && std::regex_match(e.path().filename().string(), temporary)) leftovers.push_back(e.path());
+    if (e.is_regular_file() && std::regex_match(e.path().filename().string(), temporary))
+      leftovers.push_back(e.path());
   for (const fs::path& p : leftovers) fs::remove(p);
   return static_cast<int>(leftovers.size());
 }

@@ -21,7 +21,8 @@ DataArchiver DataArchiver::fromInput(const PSNode& a, bool diffusion) {
   const PSNode interval = a.child("outputInterval");
   const PSNode steps = a.child("outputTimestepInterval");
   if (interval && steps) steps.fail("give <outputInterval> or <outputTimestepInterval>, not both");
-  if (!interval && !steps) a.fail("<DataArchiver> needs <outputInterval> or <outputTimestepInterval>");
+  if (!interval && !steps)
+    a.fail("<DataArchiver> needs <outputInterval> or <outputTimestepInterval>");
   if (interval) {
     d.interval_ = interval.value<double>();
     if (!(*d.interval_ > 0)) interval.fail("<outputInterval> must be positive");
@@ -29,8 +30,10 @@ DataArchiver DataArchiver::fromInput(const PSNode& a, bool diffusion) {
     d.stepInterval_ = steps.value<int>();
     if (d.stepInterval_ < 1) steps.fail("<outputTimestepInterval> must be >= 1");
   }
-  for (const char* inert : {"outputInitTimestep", "outputLastTimestep", "compression", "outputDoubleAsFloat"})
-    a.acceptInert(inert);  // the first and last steps are always written; files are always compressed
+  for (const char* inert :
+       {"outputInitTimestep", "outputLastTimestep", "compression", "outputDoubleAsFloat"})
+    a.acceptInert(
+        inert);  // the first and last steps are always written; files are always compressed
   for (const PSNode& save : a.children("save")) {
     const std::string label = save.requireAttribute("label");
     switch (classifyLabel(label, diffusion)) {
@@ -41,7 +44,8 @@ DataArchiver DataArchiver::fromInput(const PSNode& a, bool diffusion) {
         d.gridLabels_.push_back(label);
         break;
       case LabelStatus::NeedsDiffusion:
-        save.fail("<save label=\"" + label + "\">: a diffusion quantity, but <do_scalar_diffusion> is off");
+        save.fail("<save label=\"" + label +
+                  "\">: a diffusion quantity, but <do_scalar_diffusion> is off");
       case LabelStatus::Unsupported:
         save.unsupported("<save label=\"" + label + "\">: a quantity of a feature this code lacks");
         break;
@@ -83,7 +87,8 @@ void DataArchiver::writeOutput(long step, double time, const MPM& mpm) {
   std::ostringstream name;
   name << "step_" << std::setw(6) << std::setfill('0') << step;
   const std::string particleFile = "particles/" + name.str() + ".vtu";
-  writeParticlesVTU((fs::path(dir_) / particleFile).string(), gatherParticles(mpm, particleLabels_));
+  writeParticlesVTU((fs::path(dir_) / particleFile).string(),
+                    gatherParticles(mpm, particleLabels_));
   particleSeries_.add(time, particleFile);
   particleSeries_.write((fs::path(dir_) / "particles.pvd").string());
   if (wantsGrid()) {
@@ -112,8 +117,10 @@ void DataArchiver::writeHistory() const {
     << (diffusion ? "total_lithium,min_c,max_c," : "") << "wall_seconds\n"
     << std::setprecision(10);
   for (const HistoryRow& r : history_) {
-    s << r.step << ',' << r.time << ',' << r.dt << ',' << r.particles << ',' << r.kineticEnergy << ',' << r.minJ << ',' << r.maxJ << ',';
-    if (diffusion) s << r.totalLithium << ',' << r.minConcentration << ',' << r.maxConcentration << ',';
+    s << r.step << ',' << r.time << ',' << r.dt << ',' << r.particles << ',' << r.kineticEnergy
+      << ',' << r.minJ << ',' << r.maxJ << ',';
+    if (diffusion)
+      s << r.totalLithium << ',' << r.minConcentration << ',' << r.maxConcentration << ',';
     s << r.wallSeconds << '\n';
   }
   writeFileAtomically((fs::path(dir_) / "history.csv").string(), s.str());
@@ -165,7 +172,8 @@ void DataArchiver::removeOutputsAfter(long step) const {
     for (const fs::directory_entry& e : fs::directory_iterator(path)) {
       std::smatch m;
       const std::string name = e.path().filename().string();
-      if (std::regex_match(name, m, output) && std::stol(m[1].str()) > step) later.push_back(e.path());
+      if (std::regex_match(name, m, output) && std::stol(m[1].str()) > step)
+        later.push_back(e.path());
     }
     for (const fs::path& p : later) fs::remove(p);
   }

@@ -16,11 +16,21 @@ void putVec(const Vec3& v, double* out) {
 }
 
 // One particle array entry as real numbers (tensors row by row).
-void put(double v, double* out) { out[0] = v; }
-void put(uint8_t v, double* out) { out[0] = v; }
-void put(int64_t v, double* out) { out[0] = static_cast<double>(v); }
-void put(const Vec3& v, double* out) { putVec(v, out); }
-void put(const Vec3i& v, double* out) { putVec(v.cast<double>(), out); }
+void put(double v, double* out) {
+  out[0] = v;
+}
+void put(uint8_t v, double* out) {
+  out[0] = v;
+}
+void put(int64_t v, double* out) {
+  out[0] = static_cast<double>(v);
+}
+void put(const Vec3& v, double* out) {
+  putVec(v, out);
+}
+void put(const Vec3i& v, double* out) {
+  putVec(v.cast<double>(), out);
+}
 void put(const Mat3& m, double* out) {
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 3; ++c) out[3 * r + c] = m(r, c);
@@ -36,14 +46,16 @@ constexpr int componentsOf() {
 int fieldComponents(const std::string& label) {
   int components = 0;
   ParticleSet().forEachField([&](const auto& v, const auto& field) {
-    if (field.label && label == field.label) components = componentsOf<typename std::decay_t<decltype(v)>::value_type>();
+    if (field.label && label == field.label)
+      components = componentsOf<typename std::decay_t<decltype(v)>::value_type>();
   });
   return components;
 }
 
 // Writes particle `indices` of the array saved as `label` to out (zeros where the material's
 // physics does not have that array).
-void copyField(const ParticleSet& p, const std::string& label, const std::vector<size_t>& indices, double* out) {
+void copyField(const ParticleSet& p, const std::string& label, const std::vector<size_t>& indices,
+               double* out) {
   p.forEachField([&](const auto& v, const auto& field) {
     if (!field.label || label != field.label) return;
     constexpr int n = componentsOf<typename std::decay_t<decltype(v)>::value_type>();
@@ -65,20 +77,33 @@ struct DerivedLabel {
 const std::map<std::string, DerivedLabel>& derivedLabels() {
   static const std::map<std::string, DerivedLabel> labels = {
       // Current physical particle domain F*size*diag(dx), computed only when written.
-      {"p.scalefactor", {9, [](const MPMMaterial& m, const Grid& g, size_t i, double* o) {
-         put(Mat3(m.particles.F[i] * m.particles.size[i] * g.dx.asDiagonal().toDenseMatrix()), o); }}},
+      {"p.scalefactor",
+       {9,
+        [](const MPMMaterial& m, const Grid& g, size_t i, double* o) {
+          put(Mat3(m.particles.F[i] * m.particles.size[i] * g.dx.asDiagonal().toDenseMatrix()), o);
+        }}},
       // No external mechanical loads exist in this code: the external force is zero.
-      {"p.externalforce", {3, [](const MPMMaterial&, const Grid&, size_t, double* o) { o[0] = o[1] = o[2] = 0; }}},
+      {"p.externalforce",
+       {3, [](const MPMMaterial&, const Grid&, size_t, double* o) { o[0] = o[1] = o[2] = 0; }}},
       // Removed Uintah labels kept as aliases: the concentration and the scaled pressure that the
       // diffusivity uses (Eq. 23), and the von Mises equivalent stress.
-      {"p.concentrationInterp", {1, [](const MPMMaterial& m, const Grid&, size_t i, double* o) {
-         o[0] = m.particles.concentration.empty() ? 0.0 : m.particles.concentration[i]; }}},
-      {"p.pressure_t1", {1, [](const MPMMaterial& m, const Grid&, size_t i, double* o) {
-         o[0] = m.diffusion ? m.diffusion->scaledPressure(m.particles.stress[i]) : 0.0; }}},
-      {"p.equivalentStress_t1", {1, [](const MPMMaterial& m, const Grid&, size_t i, double* o) {
-         const Mat3& s = m.particles.stress[i];
-         const Mat3 dev = s - s.trace() / 3.0 * Mat3::Identity();
-         o[0] = std::sqrt(1.5) * dev.norm(); }}},
+      {"p.concentrationInterp",
+       {1,
+        [](const MPMMaterial& m, const Grid&, size_t i, double* o) {
+          o[0] = m.particles.concentration.empty() ? 0.0 : m.particles.concentration[i];
+        }}},
+      {"p.pressure_t1",
+       {1,
+        [](const MPMMaterial& m, const Grid&, size_t i, double* o) {
+          o[0] = m.diffusion ? m.diffusion->scaledPressure(m.particles.stress[i]) : 0.0;
+        }}},
+      {"p.equivalentStress_t1",
+       {1,
+        [](const MPMMaterial& m, const Grid&, size_t i, double* o) {
+          const Mat3& s = m.particles.stress[i];
+          const Mat3 dev = s - s.trace() / 3.0 * Mat3::Identity();
+          o[0] = std::sqrt(1.5) * dev.norm();
+        }}},
   };
   return labels;
 }
@@ -93,8 +118,8 @@ int realComponents(const std::string& label) {
 }
 
 // Writes the values of `label` for particle `indices` of material `mat` to out.
-void gatherLabel(const MPMMaterial& mat, const Grid& grid, const std::string& label, const std::vector<size_t>& indices,
-                 double* out) {
+void gatherLabel(const MPMMaterial& mat, const Grid& grid, const std::string& label,
+                 const std::vector<size_t>& indices, double* out) {
   if (fieldComponents(label) > 0) {
     copyField(mat.particles, label, indices, out);
     return;
@@ -110,18 +135,33 @@ std::vector<size_t> allParticles(const ParticleSet& p) {
 }
 
 const std::vector<std::string>& gridLabelNames() {
-  static const std::vector<std::string> names = {"g.mass", "g.velocity", "g.velocity_star", "g.acceleration",
-                                                 "g.internalforce", "g.concentration", "g.concentrationRate",
-                                                 "g.concentrationStar", "g.concentrationnobc"};
+  static const std::vector<std::string> names = {"g.mass",
+                                                 "g.velocity",
+                                                 "g.velocity_star",
+                                                 "g.acceleration",
+                                                 "g.internalforce",
+                                                 "g.concentration",
+                                                 "g.concentrationRate",
+                                                 "g.concentrationStar",
+                                                 "g.concentrationnobc"};
   return names;
 }
 
 // Labels of the diffusion subcomponent: written only when it is on.
 const std::vector<std::string>& diffusionLabels() {
-  static const std::vector<std::string> names = {
-      "p.concentration", "p.diffusivity", "p.concentrationGradient", "p.externalScalarFlux",
-      "p.externalscalarflux", "p.loadCurveID", "p.area", "p.concentrationInterp", "p.pressure_t1",
-      "g.concentration", "g.concentrationRate", "g.concentrationStar", "g.concentrationnobc"};
+  static const std::vector<std::string> names = {"p.concentration",
+                                                 "p.diffusivity",
+                                                 "p.concentrationGradient",
+                                                 "p.externalScalarFlux",
+                                                 "p.externalscalarflux",
+                                                 "p.loadCurveID",
+                                                 "p.area",
+                                                 "p.concentrationInterp",
+                                                 "p.pressure_t1",
+                                                 "g.concentration",
+                                                 "g.concentrationRate",
+                                                 "g.concentrationStar",
+                                                 "g.concentrationnobc"};
   return names;
 }
 
@@ -130,8 +170,8 @@ const std::vector<std::string>& diffusionLabels() {
 // (g.externalscalarflux: here the flux source is handed to receivers, docs/diffusion.md step 5)
 // or does not have (the hydrostatic stress of the Gauss solver).
 const std::vector<std::string>& unsupportedLabels() {
-  static const std::vector<std::string> names = {"p.concPrevious", "p.flux", "p.energy", "g.externalscalarflux",
-                                                 "g.hydrostaticStressRD"};
+  static const std::vector<std::string> names = {"p.concPrevious", "p.flux", "p.energy",
+                                                 "g.externalscalarflux", "g.hydrostaticStressRD"};
   return names;
 }
 
@@ -144,7 +184,8 @@ bool contains(const std::vector<std::string>& v, const std::string& s) {
 LabelStatus classifyLabel(const std::string& label, bool diffusion) {
   if (!diffusion && contains(diffusionLabels(), label)) return LabelStatus::NeedsDiffusion;
   if (label == "p.externalscalarflux") return LabelStatus::Particle;
-  if (label == "p.x" || label == "p.particleID" || realComponents(label) > 0) return LabelStatus::Particle;
+  if (label == "p.x" || label == "p.particleID" || realComponents(label) > 0)
+    return LabelStatus::Particle;
   if (contains(gridLabelNames(), label)) return LabelStatus::Grid;
   if (contains(unsupportedLabels(), label)) return LabelStatus::Unsupported;
   return LabelStatus::Unknown;
@@ -175,7 +216,8 @@ ParticleData gatherParticles(const MPM& mpm, const std::vector<std::string>& lab
     NamedArray a{saved, components, std::vector<double>(n * components), {}};
     size_t offset = 0;
     for (const MPMMaterial& mat : mpm.materials()) {
-      gatherLabel(mat, mpm.grid(), label, allParticles(mat.particles), &a.real[offset * components]);
+      gatherLabel(mat, mpm.grid(), label, allParticles(mat.particles),
+                  &a.real[offset * components]);
       offset += mat.particles.count();
     }
     out.arrays.push_back(std::move(a));
@@ -183,10 +225,13 @@ ParticleData gatherParticles(const MPM& mpm, const std::vector<std::string>& lab
   return out;
 }
 
-int particleLabelComponents(const std::string& label) { return realComponents(label); }
+int particleLabelComponents(const std::string& label) {
+  return realComponents(label);
+}
 
-ParticleData gatherParticlesWhere(const MPM& mpm, const std::vector<std::string>& labels,
-                                  const std::function<bool(size_t material, const double* x)>& keep) {
+ParticleData gatherParticlesWhere(
+    const MPM& mpm, const std::vector<std::string>& labels,
+    const std::function<bool(size_t material, const double* x)>& keep) {
   ParticleData out;
   std::vector<std::vector<size_t>> kept(mpm.materials().size());
   for (size_t m = 0; m < kept.size(); ++m) {

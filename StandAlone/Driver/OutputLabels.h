@@ -21,8 +21,9 @@ ParticleData gatherParticles(const MPM& mpm, const std::vector<std::string>& lab
 int particleLabelComponents(const std::string& label);
 // Gathers what a picture needs (DESIGN.md §7): only the particles `keep` accepts (material index,
 // position) and only the given labels; no material array.
-ParticleData gatherParticlesWhere(const MPM& mpm, const std::vector<std::string>& labels,
-                                  const std::function<bool(size_t material, const double* x)>& keep);
+ParticleData gatherParticlesWhere(
+    const MPM& mpm, const std::vector<std::string>& labels,
+    const std::function<bool(size_t material, const double* x)>& keep);
 // Gathers the saved grid labels, one array per material (suffix _m<index> when several).
 GridData gatherGrid(const MPM& mpm, const std::vector<std::string>& labels);
 

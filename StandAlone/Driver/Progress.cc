@@ -43,9 +43,9 @@ void ProgressReporter::update(long step, double time, double dt, double particle
   done = std::min(done, 1.0);
   const double eta = done > 0 ? elapsed * (1 - done) / done : -1;
   char line[256];
-  std::snprintf(line, sizeof line, "step %ld  t = %.4e / %.4e  dt = %.3e  %.3e particle-steps/s  ETA %s",
-                step, time, maxTime_, dt, elapsed > 0 ? particleSteps / elapsed : 0.0,
-                duration(eta).c_str());
+  std::snprintf(line, sizeof line,
+                "step %ld  t = %.4e / %.4e  dt = %.3e  %.3e particle-steps/s  ETA %s", step, time,
+                maxTime_, dt, elapsed > 0 ? particleSteps / elapsed : 0.0, duration(eta).c_str());
   if (terminal_) {
     std::fprintf(stderr, "\r%-100s", line);
     pending_ = true;

@@ -44,7 +44,9 @@ SceneOutput SceneOutput::fromInput(const PSNode& root, const TimeControl& time, 
 namespace {
 
 // The first state at or after a scene time renders it (as <outputInterval> output steps).
-bool crossed(double time, double t) { return time <= t + 1e-12 * std::max(std::abs(time), std::abs(t)); }
+bool crossed(double time, double t) {
+  return time <= t + 1e-12 * std::max(std::abs(time), std::abs(t));
+}
 
 }  // namespace
 

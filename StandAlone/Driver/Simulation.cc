@@ -31,7 +31,8 @@ uint64_t fileHash(const std::string& path) {
 }  // namespace
 
 Simulation::Simulation(const RunOptions& options)
-    : options_(options), spec_(std::make_unique<ProblemSpec>(options.input, options.ignoreUnsupported)) {
+    : options_(options),
+      spec_(std::make_unique<ProblemSpec>(options.input, options.ignoreUnsupported)) {
   setup();
 }
 
@@ -44,7 +45,8 @@ void Simulation::setup() {
   PSNode root = spec_->root();
   time_ = TimeControl::fromInput(root.requireChild("Time"));
   mpm_.problemSetup(root, time_.initTime, time_.maxTime);
-  archiver_ = DataArchiver::fromInput(root.requireChild("DataArchiver"), mpm_.flags().doScalarDiffusion);
+  archiver_ =
+      DataArchiver::fromInput(root.requireChild("DataArchiver"), mpm_.flags().doScalarDiffusion);
   checkpoints_ = CheckpointSchedule::fromInput(root.requireChild("DataArchiver"));
   scenes_ = SceneOutput::fromInput(root, time_, mpm_);
   spec_->checkAllUsed();
@@ -78,7 +80,9 @@ void Simulation::finishStep() {
 
 void Simulation::run() {
   const auto start = std::chrono::steady_clock::now();
-  auto wall = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
+  auto wall = [&] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
   const bool restart = !options_.restartDir.empty();
   inputHash_ = fileHash(options_.input);
   std::string restartedFrom;
@@ -102,8 +106,8 @@ void Simulation::run() {
   auto summaryRow = [&](double stepDt) {
     const StepSummary s = mpm_.summarize();
     archiver_.recordHistory({step_, s.particles, t_, stepDt, s.kineticEnergy, s.minJ, s.maxJ,
-                             earlierWallSeconds_ + wall(), s.diffusion,
-                             s.totalLithium, s.minConcentration, s.maxConcentration});
+                             earlierWallSeconds_ + wall(), s.diffusion, s.totalLithium,
+                             s.minConcentration, s.maxConcentration});
   };
   // Grid labels hold the last step's nodal values; before any step of this process (the start,
   // or a restart with no step left) they are interpolated from the particles.
@@ -119,7 +123,8 @@ void Simulation::run() {
                mpm_.numParticles(), mpm_.materials().size(), mpm_.grid().cells.x(),
                mpm_.grid().cells.y(), mpm_.grid().cells.z(), archiver_.directory().c_str());
   if (restart) {
-    std::fprintf(stderr, "sus: restarting from %s (step %ld, t = %.6e)\n", restartedFrom.c_str(), step_, t_);
+    std::fprintf(stderr, "sus: restarting from %s (step %ld, t = %.6e)\n", restartedFrom.c_str(),
+                 step_, t_);
   } else {
     summaryRow(0.0);
     output(false);
@@ -170,16 +175,19 @@ void Simulation::writeStateOnStop() {
     if (archiver_.wantsGrid()) mpm_.interpolateToGridForOutput();
     archiver_.writeOutput(step_, t_, mpm_);
   }
-  std::fprintf(stderr, "sus: the last good state (step %ld, t = %.6e) is the last entry of %s/particles.pvd; "
-               "the failing step's particles are in %s\n", step_, t_, archiver_.directory().c_str(), failed.c_str());
+  std::fprintf(
+      stderr,
+      "sus: the last good state (step %ld, t = %.6e) is the last entry of %s/particles.pvd; "
+      "the failing step's particles are in %s\n",
+      step_, t_, archiver_.directory().c_str(), failed.c_str());
 }
 
 void Simulation::replayToLastGoodState() {
   const long lastGood = step_;
   loadCheckpoint(newestCheckpoint_, false);
   if (step_ < lastGood)
-    std::fprintf(stderr, "sus: replaying steps %ld to %ld from %s for the last good state\n", step_ + 1, lastGood,
-                 newestCheckpoint_.c_str());
+    std::fprintf(stderr, "sus: replaying steps %ld to %ld from %s for the last good state\n",
+                 step_ + 1, lastGood, newestCheckpoint_.c_str());
   while (step_ < lastGood) {
     mpm_.timeAdvance(t_, dt_);
     finishStep();
@@ -187,9 +195,12 @@ void Simulation::replayToLastGoodState() {
   // The replayed state must be the one the run had: its history row says what it was.
   const StepSummary s = mpm_.summarize();
   const HistoryRow& row = archiver_.history().back();
-  if (row.step != step_ || row.kineticEnergy != s.kineticEnergy || row.totalLithium != s.totalLithium)
-    std::fprintf(stderr, "warning: the replayed step %ld differs from the run's (kinetic energy %.17g, not %.17g)\n",
-                 step_, s.kineticEnergy, row.kineticEnergy);
+  if (row.step != step_ || row.kineticEnergy != s.kineticEnergy ||
+      row.totalLithium != s.totalLithium)
+    std::fprintf(
+        stderr,
+        "warning: the replayed step %ld differs from the run's (kinetic energy %.17g, not %.17g)\n",
+        step_, s.kineticEnergy, row.kineticEnergy);
 }
 
 void Simulation::writeCheckpoint(double wallSeconds, CheckpointKind kind) {
@@ -223,11 +234,12 @@ void Simulation::writeCheckpoint(double wallSeconds, CheckpointKind kind) {
 
 void Simulation::loadCheckpoint(const std::string& path, bool outputs) {
   BinaryReader in(path);
-  if (in.string() != kCheckpointMagic) throw std::runtime_error(path + ": not a checkpoint of this code");
+  if (in.string() != kCheckpointMagic)
+    throw std::runtime_error(path + ": not a checkpoint of this code");
   const auto version = in.value<uint32_t>();
   if (version != kCheckpointVersion)
-    throw std::runtime_error(path + ": checkpoint format " + std::to_string(version) + ", this code reads " +
-                             std::to_string(kCheckpointVersion));
+    throw std::runtime_error(path + ": checkpoint format " + std::to_string(version) +
+                             ", this code reads " + std::to_string(kCheckpointVersion));
   const auto threads = in.value<int32_t>();
   const auto inputHash = in.value<uint64_t>();
   t_ = in.value<double>();
@@ -245,22 +257,28 @@ void Simulation::loadCheckpoint(const std::string& path, bool outputs) {
   mpm_.loadState(in);
   in.finish();
   if (inputHash != inputHash_)
-    std::fprintf(stderr, "warning: %s changed since %s was written; the run continues with the changed input\n",
-                 options_.input.c_str(), path.c_str());
+    std::fprintf(
+        stderr,
+        "warning: %s changed since %s was written; the run continues with the changed input\n",
+        options_.input.c_str(), path.c_str());
   if (threads != omp_get_max_threads())
-    std::fprintf(stderr, "warning: %s was written with %d thread(s), this run has %d: the continued run "
-                 "matches an uninterrupted one to round-off, not bit for bit\n", path.c_str(), threads,
-                 omp_get_max_threads());
+    std::fprintf(stderr,
+                 "warning: %s was written with %d thread(s), this run has %d: the continued run "
+                 "matches an uninterrupted one to round-off, not bit for bit\n",
+                 path.c_str(), threads, omp_get_max_threads());
 }
 
 std::string Simulation::loadNewestCheckpoint() {
   const std::vector<std::string> found = listCheckpoints(options_.restartDir);
   if (found.empty())
-    throw std::runtime_error("no checkpoint in " + options_.restartDir + "/checkpoints (the input needs "
+    throw std::runtime_error("no checkpoint in " + options_.restartDir +
+                             "/checkpoints (the input needs "
                              "<checkpoint cycle=\"N\" interval=\"T\"/> in <DataArchiver>)");
   for (const std::string& path : found) {
     if (!hasIntactHash(path)) {
-      std::fprintf(stderr, "warning: skipping %s: incomplete or damaged (its hash does not match)\n", path.c_str());
+      std::fprintf(stderr,
+                   "warning: skipping %s: incomplete or damaged (its hash does not match)\n",
+                   path.c_str());
       continue;
     }
     try {
@@ -285,7 +303,8 @@ void Simulation::printTimings() const {
   for (size_t i = 0; i < timers.names().size(); ++i)
     std::fprintf(stderr, "  %-34s %10.3f %6.1f%%\n", timers.names()[i].c_str(), timers.seconds()[i],
                  total > 0 ? 100 * timers.seconds()[i] / total : 0.0);
-  std::fprintf(stderr, "  particle-steps per second: %.4e\n", wallSeconds_ > 0 ? particleSteps_ / wallSeconds_ : 0.0);
+  std::fprintf(stderr, "  particle-steps per second: %.4e\n",
+               wallSeconds_ > 0 ? particleSteps_ / wallSeconds_ : 0.0);
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
   const double peakBytes = usage.ru_maxrss * 1024.0;  // Linux reports kilobytes

@@ -15,9 +15,9 @@ namespace anode {
 
 struct RunOptions {
   std::string input;
-  std::string outputDir;        // empty: from <filebase>
-  std::string restartDir;       // continue the run in this directory from its newest checkpoint
-  long maxTimesteps = 0;        // 0: as the input says
+  std::string outputDir;   // empty: from <filebase>
+  std::string restartDir;  // continue the run in this directory from its newest checkpoint
+  long maxTimesteps = 0;   // 0: as the input says
   bool ignoreUnsupported = false;
   bool progress = true;
 };
@@ -75,7 +75,7 @@ class Simulation {
   double particleSteps_ = 0, wallSeconds_ = 0;
   double lastCheckpointTime_ = 0;
   double earlierWallSeconds_ = 0;  // of the runs before a restart, for history.csv
-  uint64_t inputHash_ = 0;          // of the input file, stored in checkpoints
+  uint64_t inputHash_ = 0;         // of the input file, stored in checkpoints
 };
 
 }  // namespace anode

@@ -10,7 +10,8 @@ TimeControl TimeControl::fromInput(const PSNode& time) {
   TimeControl tc;
   tc.initTime = time.require<double>("initTime");
   tc.maxTime = time.require<double>("maxTime");
-  if (!(tc.maxTime > tc.initTime)) time.requireChild("maxTime").fail("<maxTime> must exceed <initTime>");
+  if (!(tc.maxTime > tc.initTime))
+    time.requireChild("maxTime").fail("<maxTime> must exceed <initTime>");
   tc.deltMin = time.require<double>("delt_min");
   tc.deltMax = time.require<double>("delt_max");
   if (tc.deltMin < 0) time.requireChild("delt_min").fail("<delt_min> must be >= 0");
@@ -30,7 +31,8 @@ TimeControl TimeControl::fromInput(const PSNode& time) {
   tc.maxTimesteps = time.get<int>("max_Timesteps", 0);
   if (tc.maxTimesteps < 0) time.requireChild("max_Timesteps").fail("<max_Timesteps> must be >= 0");
   tc.maxDeltIncrease = time.get<double>("max_delt_increase", 0.0);
-  if (tc.maxDeltIncrease < 0) time.requireChild("max_delt_increase").fail("<max_delt_increase> must be >= 0");
+  if (tc.maxDeltIncrease < 0)
+    time.requireChild("max_delt_increase").fail("<max_delt_increase> must be >= 0");
   if (const PSNode init = time.child("delt_init")) {
     tc.deltInit = init.value<double>();
     if (!(*tc.deltInit > 0)) init.fail("<delt_init> must be positive");

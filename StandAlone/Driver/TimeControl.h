@@ -11,12 +11,12 @@ struct TimeControl {
   double initTime = 0, maxTime = 0;
   double deltMin = 0, deltMax = 0;
   double multiplier = 1;
-  long maxTimesteps = 0;         // 0: no limit
-  double maxDeltIncrease = 0;    // 0: no limit
+  long maxTimesteps = 0;       // 0: no limit
+  double maxDeltIncrease = 0;  // 0: no limit
   std::optional<double> deltInit;
   double initialDeltRange = 0;
   bool endAtMaxTimeExactly = false;
-  double maxWallTime = 0;        // seconds, 0: no limit
+  double maxWallTime = 0;  // seconds, 0: no limit
 
   static TimeControl fromInput(const PSNode& timeNode);
 

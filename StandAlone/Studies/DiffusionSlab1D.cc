@@ -24,10 +24,12 @@ std::string DiffusionSlabCase::variant() const {
 }
 
 void setDiffusionSlabVariant(DiffusionSlabCase& c, const std::string& variant) {
-  const std::vector<std::string> known = {"particle", "nodal", "particle-wide", "nodal-wide", "nodal-clamp"};
+  const std::vector<std::string> known = {"particle", "nodal", "particle-wide", "nodal-wide",
+                                          "nodal-clamp"};
   if (std::find(known.begin(), known.end(), variant) == known.end())
-    throw std::invalid_argument("diffusion slab: unknown variant \"" + variant +
-                                "\"; accepted: particle, nodal, particle-wide, nodal-wide, nodal-clamp");
+    throw std::invalid_argument(
+        "diffusion slab: unknown variant \"" + variant +
+        "\"; accepted: particle, nodal, particle-wide, nodal-wide, nodal-clamp");
   c.dirichlet = variant.rfind("particle", 0) == 0 ? "particle" : "nodal";
   const bool wide = variant != "particle" && variant != "nodal";
   c.minConcentration = wide ? -1 : 0;

@@ -14,11 +14,11 @@
 namespace anode {
 
 struct DiffusionSlabCase {
-  int cells = 20;                        // N = 1/h cells along x
-  std::string interpolator = "linear";   // linear, gimp or cpdi
-  std::string dirichlet = "particle";    // <MPM><concentration_dirichlet>: particle or nodal
+  int cells = 20;                       // N = 1/h cells along x
+  std::string interpolator = "linear";  // linear, gimp or cpdi
+  std::string dirichlet = "particle";   // <MPM><concentration_dirichlet>: particle or nodal
   double diffusivity = 0.1;
-  double timestepMultiplier = 0.4;       // dt = 0.4 h^2/(2D), the reference's choice
+  double timestepMultiplier = 0.4;  // dt = 0.4 h^2/(2D), the reference's choice
   double endTime = 0.25;
   int fourierTerms = 1000;
   // Admissible range written into the input (<min_concentration>, <max_concentration>). The code
@@ -41,16 +41,17 @@ struct DiffusionSlabCase {
 struct DiffusionSlabResult : RunSummary {
   std::string variant;
   double h = 0;
-  double firstDt = 0;       // the dt of the first step, = multiplier h^2/(2D) when mechanics is irrelevant
+  double firstDt =
+      0;  // the dt of the first step, = multiplier h^2/(2D) when mechanics is irrelevant
   // false: a SimulationError stopped the run; stopMessage is "stopped: c = <the value out of
   // range> at step <k> (t = ...)" for the range check, else "stopped: " + the error.
   bool completed = false;
   std::string stopMessage;
   // Errors at t = endTime, particle by particle against Eq. 13 at the particle position
   // (e_p of Eq. 14 is (c_exact - c_p)/c_exact, 0 where c_exact = 0). Undefined if !completed.
-  double paperNorm = 0;          // Eq. 15: sqrt(sum e_p^2) / N
-  double rmsRelative = 0;        // sqrt(sum e_p^2 / N)
-  double rmsAbsolute = 0;        // sqrt(sum (c_p - c_exact)^2 / N)
+  double paperNorm = 0;            // Eq. 15: sqrt(sum e_p^2) / N
+  double rmsRelative = 0;          // sqrt(sum e_p^2 / N)
+  double rmsAbsolute = 0;          // sqrt(sum (c_p - c_exact)^2 / N)
   double interiorRmsAbsolute = 0;  // the same over the particles with 0.1 <= x <= 0.9
   double interiorRmsRelative = 0;  // RMS of e_p over the same particles
   double maxAbsolute = 0;          // max |c_p - c_exact|
@@ -60,16 +61,16 @@ struct DiffusionSlabResult : RunSummary {
   double minConcentration = 0, maxConcentration = 0;
   double minConcentrationTime = 0, maxConcentrationTime = 0;  // when they were reached
   double finalMinConcentration = 0, finalMaxConcentration = 0;
-  double maxDisplacement = 0;      // max |u_p| at the end (0: the mechanics stayed still)
+  double maxDisplacement = 0;  // max |u_p| at the end (0: the mechanics stayed still)
 };
 
 // Sets dirichlet, the admissible range and the clamp of `c` from a variant label:
 //   particle       <concentration_dirichlet>particle (the default), range [0, 1]: the run stops
 //                  (SimulationError) if a particle leaves [0, 1] by more than 1e-6
 //   nodal          <concentration_dirichlet>nodal (Uintah's rate), range [0, 1]: the same
-//   particle-wide  particle with the range widened to [-1, 2] in the input, so that the run finishes
-//   nodal-wide     nodal, range [-1, 2]
-//   nodal-clamp    nodal-wide plus Uintah HEAD's clamp of c to [0, 1] after every step
+//   particle-wide  particle with the range widened to [-1, 2] in the input, so that the run
+//   finishes nodal-wide     nodal, range [-1, 2] nodal-clamp    nodal-wide plus Uintah HEAD's clamp
+//   of c to [0, 1] after every step
 // Throws std::invalid_argument for another label.
 void setDiffusionSlabVariant(DiffusionSlabCase& c, const std::string& variant);
 

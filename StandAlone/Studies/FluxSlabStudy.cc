@@ -1,11 +1,11 @@
 // flux_slab_study [--quick] [--csv FILE] [--profile FILE] [--threads N] [--timestep-multiplier M]
 // [--flux J] [--fourier F]:
-// convergence study of the flux-BC slab (StandAlone/Studies/FluxSlab.h, Carslaw & Jaeger) for the linear,
-// GIMP and CPDI interpolators. Prints a table and writes a CSV (default verification/flux_slab.csv,
-// relative to the working directory). Orders are log(error ratio)/log(resolution ratio) between
-// successive resolutions. The lithium balance column is |sum m c(t) - sum m c(0) - sum_steps dt
-// sum_p m_p rate_p| / sum_steps(...), rate_p the flux rate of the step's start. --profile writes
-// the final particle profiles (x, c_p, analytic c) of every run.
+// convergence study of the flux-BC slab (StandAlone/Studies/FluxSlab.h, Carslaw & Jaeger) for the
+// linear, GIMP and CPDI interpolators. Prints a table and writes a CSV (default
+// verification/flux_slab.csv, relative to the working directory). Orders are log(error
+// ratio)/log(resolution ratio) between successive resolutions. The lithium balance column is |sum m
+// c(t) - sum m c(0) - sum_steps dt sum_p m_p rate_p| / sum_steps(...), rate_p the flux rate of the
+// step's start. --profile writes the final particle profiles (x, c_p, analytic c) of every run.
 #include <cstdio>
 #include <cstdlib>
 #include <exception>

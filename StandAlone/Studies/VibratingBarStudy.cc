@@ -1,7 +1,7 @@
 // vibrating_bar_study [--quick] [--csv FILE] [--amplitude R] [--timestep-multiplier M] [--periods
-// P]: convergence study of the axial vibrating bar (StandAlone/Studies/VibratingBar.h) for the linear, GIMP
-// and CPDI interpolators, by default over one period. Prints a table and writes a CSV (default
-// verification/vibrating_bar.csv, relative to the working directory). Orders are log(error
+// P]: convergence study of the axial vibrating bar (StandAlone/Studies/VibratingBar.h) for the
+// linear, GIMP and CPDI interpolators, by default over one period. Prints a table and writes a CSV
+// (default verification/vibrating_bar.csv, relative to the working directory). Orders are log(error
 // ratio)/log(resolution ratio) between successive resolutions. "stag" and "leapfrog" are the
 // staggered metrics of VibratingBarResult.
 #include <cstdio>

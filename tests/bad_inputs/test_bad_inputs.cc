@@ -27,9 +27,9 @@ using anode::testing::SusResult;
 // A path in the temporary directory that does not exist yet.
 fs::path freshOutputDir(const std::string& tag) {
   static int counter = 0;
-  const fs::path p = fs::temp_directory_path() / ("anode_bad_inputs_" + tag + "_" +
-                                                  std::to_string(getpid()) + "_" +
-                                                  std::to_string(counter++));
+  const fs::path p =
+      fs::temp_directory_path() / ("anode_bad_inputs_" + tag + "_" + std::to_string(getpid()) +
+                                   "_" + std::to_string(counter++));
   fs::remove_all(p);
   return p;
 }
@@ -88,9 +88,11 @@ TEST_P(BadInput, ExitsWithCode2NamingFileAndLineAndWritesNothing) {
   const SusResult r = runSus({"-o", out.string(), file});
   EXPECT_EQ(r.exitCode, 2) << r.output;
   const std::string where = file + ":" + std::to_string(expect.line) + ":";
-  EXPECT_NE(r.output.find(where), std::string::npos) << "expected '" << where << "' in:\n" << r.output;
+  EXPECT_NE(r.output.find(where), std::string::npos) << "expected '" << where << "' in:\n"
+                                                     << r.output;
   EXPECT_NE(r.output.find(expect.message), std::string::npos)
-      << "expected '" << expect.message << "' in:\n" << r.output;
+      << "expected '" << expect.message << "' in:\n"
+      << r.output;
   EXPECT_FALSE(fs::exists(out)) << "sus created " << out << " for a bad input";
   fs::remove_all(out);
 }

@@ -37,7 +37,8 @@ constexpr bool kAddressSanitizer = false;
 
 std::string demangle(const char* name) {
   int status = 0;
-  std::unique_ptr<char, void (*)(void*)> s(abi::__cxa_demangle(name, nullptr, nullptr, &status), std::free);
+  std::unique_ptr<char, void (*)(void*)> s(abi::__cxa_demangle(name, nullptr, nullptr, &status),
+                                           std::free);
   return status == 0 && s ? s.get() : name;
 }
 
@@ -95,8 +96,10 @@ class Watchdog {
         std::this_thread::sleep_for(std::chrono::milliseconds(100));
         const double start = start_;
         if (start > 0 && now() - start > limit_) {
-          std::fprintf(stderr, "fuzz: case %ld ran longer than %g s (a hang); its input is %s, its origin %s.txt\n",
-                       index_.load(), limit_, casePath_.c_str(), casePath_.c_str());
+          std::fprintf(
+              stderr,
+              "fuzz: case %ld ran longer than %g s (a hang); its input is %s, its origin %s.txt\n",
+              index_.load(), limit_, casePath_.c_str(), casePath_.c_str());
           std::_Exit(4);
         }
       }
@@ -124,15 +127,17 @@ class Watchdog {
 std::string describeSignal(int status) {
   if (WIFSIGNALED(status)) {
     const int sig = WTERMSIG(status);
-    return sig == SIGALRM ? std::string("hang (killed by the case time limit)")
-                          : "crash: killed by signal " + std::to_string(sig) + " (" + strsignal(sig) + ")";
+    return sig == SIGALRM
+               ? std::string("hang (killed by the case time limit)")
+               : "crash: killed by signal " + std::to_string(sig) + " (" + strsignal(sig) + ")";
   }
   return "child exited with code " + std::to_string(WEXITSTATUS(status));
 }
 
 // One case in a child process. Exit codes: 0 accepted, 10 rejected correctly, 11 a failure
 // (described on the pipe).
-std::string checkSetupInChild(const std::string& text, const std::string& name, double limit, bool* accepted) {
+std::string checkSetupInChild(const std::string& text, const std::string& name, double limit,
+                              bool* accepted) {
   int fd[2];
   if (pipe(fd) != 0) return "pipe() failed";
   std::fflush(nullptr);
@@ -150,7 +155,8 @@ std::string checkSetupInChild(const std::string& text, const std::string& name, 
   std::string message;
   char buffer[4096];
   ssize_t n;
-  while ((n = read(fd[0], buffer, sizeof buffer)) > 0) message.append(buffer, static_cast<size_t>(n));
+  while ((n = read(fd[0], buffer, sizeof buffer)) > 0)
+    message.append(buffer, static_cast<size_t>(n));
   close(fd[0]);
   int status = 0;
   waitpid(pid, &status, 0);
@@ -191,23 +197,26 @@ std::string checkSetup(const std::string& text, const std::string& name, bool* a
     const long lines = 1 + std::count(text.begin(), text.end(), '\n');
     const std::string prefix = name + ":" + std::to_string(e.line()) + ": ";
     const std::string what = e.what();
-    if (e.file() != name) return "InputError names the file '" + e.file() + "', not '" + name + "': " + what;
+    if (e.file() != name)
+      return "InputError names the file '" + e.file() + "', not '" + name + "': " + what;
     if (e.line() < 1 || e.line() > lines)
-      return "InputError names line " + std::to_string(e.line()) + " of a text of " + std::to_string(lines) +
-             " lines: " + what;
+      return "InputError names line " + std::to_string(e.line()) + " of a text of " +
+             std::to_string(lines) + " lines: " + what;
     if (what.compare(0, prefix.size(), prefix) != 0 || what.size() == prefix.size())
       return "InputError message does not read '" + prefix + "message': " + what;
     return "";
   } catch (const std::bad_alloc&) {
     return "std::bad_alloc: an allocation the input's size checks did not foresee";
   } catch (const std::exception& e) {
-    return "exception of type " + demangle(typeid(e).name()) + " instead of an InputError: " + e.what();
+    return "exception of type " + demangle(typeid(e).name()) +
+           " instead of an InputError: " + e.what();
   } catch (...) {
     return "an exception that is not a std::exception";
   }
 }
 
-FuzzCase makeCase(const FuzzOptions& options, const std::vector<std::string>& seedTexts, long index) {
+FuzzCase makeCase(const FuzzOptions& options, const std::vector<std::string>& seedTexts,
+                  long index) {
   InputMutator mutator(options.seed * 0x9E3779B97F4A7C15ull + static_cast<uint64_t>(index));
   const size_t s = std::uniform_int_distribution<size_t>(0, seedTexts.size() - 1)(mutator.rng());
   FuzzCase c;
@@ -223,9 +232,11 @@ FuzzReport runFuzz(const FuzzOptions& options) {
   std::vector<std::string> seedTexts;
   for (const std::string& f : options.corpus) seedTexts.push_back(readFile(f));
 
-  const std::string casePath = options.casePath.empty()
-                                   ? (fs::temp_directory_path() / ("anode_fuzz_case_" + std::to_string(getpid()) + ".ups")).string()
-                                   : options.casePath;
+  const std::string casePath =
+      options.casePath.empty()
+          ? (fs::temp_directory_path() / ("anode_fuzz_case_" + std::to_string(getpid()) + ".ups"))
+                .string()
+          : options.casePath;
   // Setup must write nothing: cases run in an empty directory that must stay empty.
   const fs::path work = fs::temp_directory_path() / ("anode_fuzz_work_" + std::to_string(getpid()));
   fs::remove_all(work);
@@ -245,8 +256,9 @@ FuzzReport runFuzz(const FuzzOptions& options) {
     const FuzzCase c = makeCase(options, seedTexts, i);
     const std::string name = "fuzz/" + fs::path(c.seed).filename().string();
     writeFile(casePath, c.text);
-    writeFile(casePath + ".txt", "case " + std::to_string(i) + " (seed " + std::to_string(options.seed) +
-                                     ") of " + c.seed + ": " + c.mutations + "\n");
+    writeFile(casePath + ".txt", "case " + std::to_string(i) + " (seed " +
+                                     std::to_string(options.seed) + ") of " + c.seed + ": " +
+                                     c.mutations + "\n");
     bool accepted = false;
     std::string problem;
     if (options.fork) {
@@ -273,8 +285,9 @@ FuzzReport runFuzz(const FuzzOptions& options) {
     }
     if (options.progress && now() - lastProgress > 10) {
       lastProgress = now();
-      std::fprintf(stderr, "fuzz: %ld cases, %ld accepted, %ld rejected, %zu failures, %.0f s\n", report.tried,
-                   report.accepted, report.rejected, report.failures.size(), lastProgress - start);
+      std::fprintf(stderr, "fuzz: %ld cases, %ld accepted, %ld rejected, %zu failures, %.0f s\n",
+                   report.tried, report.accepted, report.rejected, report.failures.size(),
+                   lastProgress - start);
     }
   }
   report.seconds = now() - start;

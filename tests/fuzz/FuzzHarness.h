@@ -15,14 +15,14 @@ namespace anode::fuzz {
 struct FuzzOptions {
   uint64_t seed = 1;
   long cases = 3000;
-  double seconds = 0;                     // also stop after this wall time (0: no limit)
+  double seconds = 0;                       // also stop after this wall time (0: no limit)
   size_t memoryBudget = size_t(256) << 20;  // setup's memory budget during the run (MemoryBudget.h)
-  double caseTimeLimit = 30;              // seconds; a case running longer is a hang
-  bool fork = false;                      // each case in a child process: crashes and hangs are
-                                          // counted and the run goes on (else the first one ends it)
-  std::string casePath;                   // the case being run is kept here (and PATH.txt: its origin)
-  std::vector<std::string> corpus;        // seed inputs
-  bool progress = false;                  // a line every 10 s on stderr
+  double caseTimeLimit = 30;                // seconds; a case running longer is a hang
+  bool fork = false;                        // each case in a child process: crashes and hangs are
+                      // counted and the run goes on (else the first one ends it)
+  std::string casePath;             // the case being run is kept here (and PATH.txt: its origin)
+  std::vector<std::string> corpus;  // seed inputs
+  bool progress = false;            // a line every 10 s on stderr
 };
 
 struct FuzzFailure {
@@ -52,7 +52,8 @@ struct FuzzCase {
   std::string seed, text, mutations;
   std::vector<int> operators;
 };
-FuzzCase makeCase(const FuzzOptions& options, const std::vector<std::string>& seedTexts, long index);
+FuzzCase makeCase(const FuzzOptions& options, const std::vector<std::string>& seedTexts,
+                  long index);
 
 FuzzReport runFuzz(const FuzzOptions& options);
 

@@ -10,18 +10,22 @@ namespace anode::fuzz {
 
 namespace {
 
-bool isNameStart(char c) { return std::isalpha(static_cast<unsigned char>(c)) || c == '_' || c == ':'; }
+bool isNameStart(char c) {
+  return std::isalpha(static_cast<unsigned char>(c)) || c == '_' || c == ':';
+}
 bool isNameChar(char c) {
-  return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == ':' || c == '-' || c == '.';
+  return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == ':' || c == '-' ||
+         c == '.';
 }
 
 struct AttributeSpan {
-  size_t begin, end;             // from the space before the name to the closing quote, inclusive
-  size_t valueBegin, valueEnd;   // inside the quotes
+  size_t begin, end;            // from the space before the name to the closing quote, inclusive
+  size_t valueBegin, valueEnd;  // inside the quotes
 };
 
 // The attributes of every start tag in `elements`.
-std::vector<AttributeSpan> scanAttributes(const std::string& t, const std::vector<ElementSpan>& elements) {
+std::vector<AttributeSpan> scanAttributes(const std::string& t,
+                                          const std::vector<ElementSpan>& elements) {
   std::vector<AttributeSpan> out;
   for (const ElementSpan& e : elements) {
     size_t k = e.nameBegin + e.nameLength;
@@ -57,8 +61,9 @@ std::vector<Span> scanNumbers(const std::string& t) {
     const char c = t[i];
     const bool sign = (c == '-' || c == '+') && i + 1 < t.size() &&
                       (std::isdigit(static_cast<unsigned char>(t[i + 1])) || t[i + 1] == '.');
-    const bool start = std::isdigit(static_cast<unsigned char>(c)) || sign ||
-                       (c == '.' && i + 1 < t.size() && std::isdigit(static_cast<unsigned char>(t[i + 1])));
+    const bool start =
+        std::isdigit(static_cast<unsigned char>(c)) || sign ||
+        (c == '.' && i + 1 < t.size() && std::isdigit(static_cast<unsigned char>(t[i + 1])));
     if (!start || (i > 0 && (isNameChar(t[i - 1]) && t[i - 1] != '-'))) {
       ++i;
       continue;
@@ -92,7 +97,9 @@ std::vector<Span> scanVectors(const std::string& t) {
   return out;
 }
 
-std::string name(const std::string& t, const ElementSpan& e) { return t.substr(e.nameBegin, e.nameLength); }
+std::string name(const std::string& t, const ElementSpan& e) {
+  return t.substr(e.nameBegin, e.nameLength);
+}
 
 std::string shorten(std::string s) {
   for (char& c : s)
@@ -101,31 +108,146 @@ std::string shorten(std::string s) {
   return s;
 }
 
-const std::vector<std::string> kNumbers = {
-    "1e400", "-1e400", "nan", "NaN", "-nan", "inf", "-inf", "Infinity", "-0", "0", "-1", "1e308", "-1e308",
-    "1e-320", "4.9e-324", "2147483647", "2147483648", "-2147483648", "-2147483649", "9223372036854775808",
-    "99999999999999999999", "1e9", "1e6", "1e-9", "0x10", "1.", ".", "-", "e5", "1e", " ", "", "1 2", "1,2",
-    "3.0000000000000000001", "1e+", "+-1", "0.5", "7"};
-const std::vector<std::string> kTokens = {
-    "<", ">", "</", "/>", "<box>", "</box>", "]]>", "<![CDATA[", "<!--", "-->", "&amp;", "&#0;", "&#xFFFF;",
-    "&nosuch;", "[", "]", ",", "\"", "'", "=", "<?xml version='1.0'?>", "<Uintah_specification>",
-    "</Uintah_specification>", std::string(1, '\0'), "\xff\xfe", "\xc3\x28", "\t", "\r\n"};
-const std::vector<std::string> kAttributeValues = {
-    "", "x", " ", "linear", "gimp", "cpdi", "box", "null", "common", "single_velocity", "rf_elastic_plastic",
-    "elastic", "jg", "non_linear1", "cubic", "constant_rate", "Velocity", "Dirichlet", "Neumann", "Symmetric",
-    "SD-Type", "Concentration", "x-", "x+", "y-", "z+", "all", "0", "1", "-1", "99", "2147483648", "nan",
-    "p.x", "p.stress", "g.mass", "p.concentration", "mpm", "amrmpm", "isotropic_hardening", "vonMises",
-    "default_hypo", "perfect_plasticity", "pie_slices"};
-const std::vector<std::string> kHugeVectors = {
-    "[100000,100000,100000]", "[2147483647,1,1]", "[2147483647,2147483647,2147483647]", "[1290,1290,1290]",
-    "[46341,46341,1]", "[1000,1000,1000]", "[65536,65536,65536]", "[400,400,400]", "[-2147483648,1,1]",
-    "[3000,3000,3000]", "[100000,1,1]", "[64,64,64]", "[0,0,0]"};
-const std::vector<std::string> kHugeScalars = {"1000000", "2147483647", "100000", "46341", "1e9", "10000", "-1"};
-const std::vector<std::string> kResolutionTags = {"resolution", "res", "extraCells", "patches", "num_radial",
-                                                  "num_axial", "num_angular", "periodic", "spacing",
-                                                  "max_Timesteps", "outputTimestepInterval"};
-const std::vector<std::string> kVectorReplacements = {"[]", "[1]", "[1,2]", "[1,2,3,4]", "[,,]", "[1,,3]",
-                                                      "[1 2 3]", "[", "]", "[[1,2,3]]", "[1,2,3", "1,2,3]"};
+const std::vector<std::string> kNumbers = {"1e400",
+                                           "-1e400",
+                                           "nan",
+                                           "NaN",
+                                           "-nan",
+                                           "inf",
+                                           "-inf",
+                                           "Infinity",
+                                           "-0",
+                                           "0",
+                                           "-1",
+                                           "1e308",
+                                           "-1e308",
+                                           "1e-320",
+                                           "4.9e-324",
+                                           "2147483647",
+                                           "2147483648",
+                                           "-2147483648",
+                                           "-2147483649",
+                                           "9223372036854775808",
+                                           "99999999999999999999",
+                                           "1e9",
+                                           "1e6",
+                                           "1e-9",
+                                           "0x10",
+                                           "1.",
+                                           ".",
+                                           "-",
+                                           "e5",
+                                           "1e",
+                                           " ",
+                                           "",
+                                           "1 2",
+                                           "1,2",
+                                           "3.0000000000000000001",
+                                           "1e+",
+                                           "+-1",
+                                           "0.5",
+                                           "7"};
+const std::vector<std::string> kTokens = {"<",
+                                          ">",
+                                          "</",
+                                          "/>",
+                                          "<box>",
+                                          "</box>",
+                                          "]]>",
+                                          "<![CDATA[",
+                                          "<!--",
+                                          "-->",
+                                          "&amp;",
+                                          "&#0;",
+                                          "&#xFFFF;",
+                                          "&nosuch;",
+                                          "[",
+                                          "]",
+                                          ",",
+                                          "\"",
+                                          "'",
+                                          "=",
+                                          "<?xml version='1.0'?>",
+                                          "<Uintah_specification>",
+                                          "</Uintah_specification>",
+                                          std::string(1, '\0'),
+                                          "\xff\xfe",
+                                          "\xc3\x28",
+                                          "\t",
+                                          "\r\n"};
+const std::vector<std::string> kAttributeValues = {"",
+                                                   "x",
+                                                   " ",
+                                                   "linear",
+                                                   "gimp",
+                                                   "cpdi",
+                                                   "box",
+                                                   "null",
+                                                   "common",
+                                                   "single_velocity",
+                                                   "rf_elastic_plastic",
+                                                   "elastic",
+                                                   "jg",
+                                                   "non_linear1",
+                                                   "cubic",
+                                                   "constant_rate",
+                                                   "Velocity",
+                                                   "Dirichlet",
+                                                   "Neumann",
+                                                   "Symmetric",
+                                                   "SD-Type",
+                                                   "Concentration",
+                                                   "x-",
+                                                   "x+",
+                                                   "y-",
+                                                   "z+",
+                                                   "all",
+                                                   "0",
+                                                   "1",
+                                                   "-1",
+                                                   "99",
+                                                   "2147483648",
+                                                   "nan",
+                                                   "p.x",
+                                                   "p.stress",
+                                                   "g.mass",
+                                                   "p.concentration",
+                                                   "mpm",
+                                                   "amrmpm",
+                                                   "isotropic_hardening",
+                                                   "vonMises",
+                                                   "default_hypo",
+                                                   "perfect_plasticity",
+                                                   "pie_slices"};
+const std::vector<std::string> kHugeVectors = {"[100000,100000,100000]",
+                                               "[2147483647,1,1]",
+                                               "[2147483647,2147483647,2147483647]",
+                                               "[1290,1290,1290]",
+                                               "[46341,46341,1]",
+                                               "[1000,1000,1000]",
+                                               "[65536,65536,65536]",
+                                               "[400,400,400]",
+                                               "[-2147483648,1,1]",
+                                               "[3000,3000,3000]",
+                                               "[100000,1,1]",
+                                               "[64,64,64]",
+                                               "[0,0,0]"};
+const std::vector<std::string> kHugeScalars = {"1000000", "2147483647", "100000", "46341",
+                                               "1e9",     "10000",      "-1"};
+const std::vector<std::string> kResolutionTags = {"resolution",
+                                                  "res",
+                                                  "extraCells",
+                                                  "patches",
+                                                  "num_radial",
+                                                  "num_axial",
+                                                  "num_angular",
+                                                  "periodic",
+                                                  "spacing",
+                                                  "max_Timesteps",
+                                                  "outputTimestepInterval"};
+const std::vector<std::string> kVectorReplacements = {"[]",   "[1]",       "[1,2]",   "[1,2,3,4]",
+                                                      "[,,]", "[1,,3]",    "[1 2 3]", "[",
+                                                      "]",    "[[1,2,3]]", "[1,2,3",  "1,2,3]"};
 
 }  // namespace
 
@@ -152,7 +274,9 @@ std::vector<ElementSpan> scanElements(const std::string& t) {
       const size_t gt = t.find('>', ne);
       if (gt == std::string::npos || open.empty()) break;
       ElementSpan& e = out[open.back()];
-      if (ne - (i + 2) != e.nameLength || t.compare(i + 2, e.nameLength, t, e.nameBegin, e.nameLength) != 0) break;
+      if (ne - (i + 2) != e.nameLength ||
+          t.compare(i + 2, e.nameLength, t, e.nameBegin, e.nameLength) != 0)
+        break;
       e.contentEnd = i;
       e.closeNameBegin = i + 2;
       e.end = gt + 1;
@@ -194,16 +318,18 @@ std::vector<ElementSpan> scanElements(const std::string& t) {
     out.push_back(e);
     i = k + 1;
   }
-  out.erase(std::remove_if(out.begin(), out.end(), [](const ElementSpan& e) { return e.end == 0; }), out.end());
+  out.erase(std::remove_if(out.begin(), out.end(), [](const ElementSpan& e) { return e.end == 0; }),
+            out.end());
   return out;
 }
 
 const char* InputMutator::operatorName(int op) {
-  static const char* names[] = {"flip-bit",          "replace-byte",     "insert-token",      "delete-bytes",
-                                "truncate",          "delete-element",   "duplicate-element", "move-element",
-                                "rename-element",    "delete-attribute", "duplicate-attribute",
-                                "corrupt-attribute", "corrupt-number",   "huge-resolution",   "vector-length",
-                                "swap-values",       "empty-value"};
+  static const char* names[] = {
+      "flip-bit",       "replace-byte",     "insert-token",        "delete-bytes",
+      "truncate",       "delete-element",   "duplicate-element",   "move-element",
+      "rename-element", "delete-attribute", "duplicate-attribute", "corrupt-attribute",
+      "corrupt-number", "huge-resolution",  "vector-length",       "swap-values",
+      "empty-value"};
   static_assert(sizeof(names) / sizeof(names[0]) == kOperatorCount, "a name per operator");
   return op >= 0 && op < kOperatorCount ? names[op] : "?";
 }
@@ -224,11 +350,13 @@ bool InputMutator::apply(int op, std::string& t, std::string* what) {
       return true;
     }
     case ReplaceByte: {
-      static const std::string bytes = std::string("<>/\"'[],-+.0123456789eE =&;!?x\n") + std::string(1, '\0') + "\x7f\x80\xff";
+      static const std::string bytes =
+          std::string("<>/\"'[],-+.0123456789eE =&;!?x\n") + std::string(1, '\0') + "\x7f\x80\xff";
       const size_t pos = pick(t.size());
       const char c = bytes[pick(bytes.size())];
       t[pos] = c;
-      std::snprintf(buffer, sizeof buffer, "byte %zu set to 0x%02x", pos, static_cast<unsigned char>(c));
+      std::snprintf(buffer, sizeof buffer, "byte %zu set to 0x%02x", pos,
+                    static_cast<unsigned char>(c));
       say(buffer);
       return true;
     }
@@ -261,7 +389,8 @@ bool InputMutator::apply(int op, std::string& t, std::string* what) {
 
   const std::vector<ElementSpan> elements = scanElements(t);
   // The first element (the root) is left alone by the structural operators.
-  const std::vector<ElementSpan> inner(elements.size() > 1 ? elements.begin() + 1 : elements.end(), elements.end());
+  const std::vector<ElementSpan> inner(elements.size() > 1 ? elements.begin() + 1 : elements.end(),
+                                       elements.end());
   std::vector<ElementSpan> leaves;
   for (const ElementSpan& e : inner)
     if (e.leaf && !e.selfClosing) leaves.push_back(e);
@@ -286,7 +415,8 @@ bool InputMutator::apply(int op, std::string& t, std::string* what) {
       const ElementSpan& e = pickFrom(inner);
       std::vector<ElementSpan> targets;
       for (const ElementSpan& d : elements)
-        if (!d.selfClosing && (d.contentBegin <= e.begin || d.contentBegin >= e.end)) targets.push_back(d);
+        if (!d.selfClosing && (d.contentBegin <= e.begin || d.contentBegin >= e.end))
+          targets.push_back(d);
       if (targets.empty()) return false;
       const ElementSpan& d = pickFrom(targets);
       const std::string moved = t.substr(e.begin, e.end - e.begin);
@@ -336,7 +466,8 @@ bool InputMutator::apply(int op, std::string& t, std::string* what) {
         // Scaled by a power of ten, possibly negated: plausible but out-of-range values.
         const double x = std::strtod(old.c_str(), nullptr);
         const int exponent = static_cast<int>(pick(25)) - 12;
-        std::snprintf(buffer, sizeof buffer, "%.17g", (pick(2) ? -1 : 1) * x * std::pow(10.0, exponent));
+        std::snprintf(buffer, sizeof buffer, "%.17g",
+                      (pick(2) ? -1 : 1) * x * std::pow(10.0, exponent));
         v = buffer;
       } else {
         v = pickFrom(kNumbers);
@@ -348,11 +479,13 @@ bool InputMutator::apply(int op, std::string& t, std::string* what) {
     case HugeResolution: {
       std::vector<ElementSpan> sized;
       for (const ElementSpan& e : leaves)
-        if (std::find(kResolutionTags.begin(), kResolutionTags.end(), name(t, e)) != kResolutionTags.end())
+        if (std::find(kResolutionTags.begin(), kResolutionTags.end(), name(t, e)) !=
+            kResolutionTags.end())
           sized.push_back(e);
       if (sized.empty()) return false;
       const ElementSpan& e = pickFrom(sized);
-      const bool vector = t.substr(e.contentBegin, e.contentEnd - e.contentBegin).find('[') != std::string::npos;
+      const bool vector =
+          t.substr(e.contentBegin, e.contentEnd - e.contentBegin).find('[') != std::string::npos;
       const std::string& v = vector ? pickFrom(kHugeVectors) : pickFrom(kHugeScalars);
       say("<" + name(t, e) + "> to " + v);
       t.replace(e.contentBegin, e.contentEnd - e.contentBegin, v);
@@ -386,7 +519,8 @@ bool InputMutator::apply(int op, std::string& t, std::string* what) {
       const ElementSpan& second = a.begin < b.begin ? b : a;
       const std::string va = t.substr(first.contentBegin, first.contentEnd - first.contentBegin);
       const std::string vb = t.substr(second.contentBegin, second.contentEnd - second.contentBegin);
-      say("<" + name(t, first) + "> '" + shorten(va) + "' and <" + name(t, second) + "> '" + shorten(vb) + "'");
+      say("<" + name(t, first) + "> '" + shorten(va) + "' and <" + name(t, second) + "> '" +
+          shorten(vb) + "'");
       t.replace(second.contentBegin, vb.size(), va);
       t.replace(first.contentBegin, va.size(), vb);
       return true;

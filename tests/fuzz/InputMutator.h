@@ -12,12 +12,12 @@ namespace anode::fuzz {
 
 // One element of the text as the mutator sees it (a tolerant scan, not an XML parser).
 struct ElementSpan {
-  size_t begin = 0, end = 0;                 // the whole element, [begin, end)
-  size_t nameBegin = 0, nameLength = 0;      // the tag name in the start tag
-  size_t contentBegin = 0, contentEnd = 0;   // between start and end tag (empty if self-closing)
-  size_t closeNameBegin = 0;                 // the name in the end tag (0 if self-closing)
+  size_t begin = 0, end = 0;                // the whole element, [begin, end)
+  size_t nameBegin = 0, nameLength = 0;     // the tag name in the start tag
+  size_t contentBegin = 0, contentEnd = 0;  // between start and end tag (empty if self-closing)
+  size_t closeNameBegin = 0;                // the name in the end tag (0 if self-closing)
   bool selfClosing = false;
-  bool leaf = true;                          // no child element
+  bool leaf = true;  // no child element
 };
 
 // The elements of `text`, in document order; comments and declarations are skipped. Unbalanced
@@ -61,7 +61,9 @@ class InputMutator {
  private:
   size_t pick(size_t n) { return std::uniform_int_distribution<size_t>(0, n - 1)(rng_); }
   template <class T>
-  const T& pickFrom(const std::vector<T>& v) { return v[pick(v.size())]; }
+  const T& pickFrom(const std::vector<T>& v) {
+    return v[pick(v.size())];
+  }
 
   std::mt19937_64 rng_;
 };

@@ -12,15 +12,18 @@ namespace {
 
 const char* kUsage =
     "usage: fuzz_inputs [--cases N] [--seconds T] [--seed S] [--memory-budget-mb M]\n"
-    "                   [--case-time-limit T] [--in-process] [--keep PATH] [--show-case I] [seed.ups ...]\n"
+    "                   [--case-time-limit T] [--in-process] [--keep PATH] [--show-case I] "
+    "[seed.ups ...]\n"
     "  --cases N            mutated inputs to try (default 100000)\n"
     "  --seconds T          stop after T seconds as well (default: no limit)\n"
     "  --seed S             random seed (default 1); case I of seed S is always the same input\n"
     "  --memory-budget-mb M setup's memory budget (default 1024): larger problems must be refused\n"
     "  --case-time-limit T  a case running longer is a hang (default 60 s)\n"
-    "  --in-process         run cases in this process (faster; the first crash or hang ends the run)\n"
+    "  --in-process         run cases in this process (faster; the first crash or hang ends the "
+    "run)\n"
     "                       instead of one child process per case\n"
-    "  --keep PATH          keep the case being run in PATH (default: a file in the temp directory);\n"
+    "  --keep PATH          keep the case being run in PATH (default: a file in the temp "
+    "directory);\n"
     "                       failing cases are kept as PATH.failureN.ups\n"
     "  --show-case I        print the mutations and text of case I and exit\n"
     "  seed.ups ...         seed inputs (default: the repository's inputs, valid_minimal.ups and\n"
@@ -29,8 +32,10 @@ const char* kUsage =
 double number(const char* flag, const char* value, bool integer) {
   char* end = nullptr;
   const double v = value ? std::strtod(value, &end) : 0;
-  if (!value || *end != '\0' || !(v >= 0) || (integer && v != static_cast<double>(static_cast<long long>(v)))) {
-    std::fprintf(stderr, "fuzz_inputs: %s needs a non-negative %s\n%s", flag, integer ? "integer" : "number", kUsage);
+  if (!value || *end != '\0' || !(v >= 0) ||
+      (integer && v != static_cast<double>(static_cast<long long>(v)))) {
+    std::fprintf(stderr, "fuzz_inputs: %s needs a non-negative %s\n%s", flag,
+                 integer ? "integer" : "number", kUsage);
     std::exit(2);
   }
   return v;
@@ -59,7 +64,8 @@ int main(int argc, char** argv) {
     } else if (a == "--seed") {
       options.seed = static_cast<uint64_t>(number("--seed", next, true)), ++i;
     } else if (a == "--memory-budget-mb") {
-      options.memoryBudget = static_cast<size_t>(number("--memory-budget-mb", next, true)) << 20, ++i;
+      options.memoryBudget = static_cast<size_t>(number("--memory-budget-mb", next, true)) << 20,
+      ++i;
     } else if (a == "--case-time-limit") {
       options.caseTimeLimit = number("--case-time-limit", next, false), ++i;
     } else if (a == "--in-process") {
@@ -96,20 +102,24 @@ int main(int argc, char** argv) {
       texts.push_back(t);
     }
     const anode::fuzz::FuzzCase c = anode::fuzz::makeCase(options, texts, showCase);
-    std::printf("<!-- case %ld of %s: %s -->\n%s", showCase, c.seed.c_str(), c.mutations.c_str(), c.text.c_str());
+    std::printf("<!-- case %ld of %s: %s -->\n%s", showCase, c.seed.c_str(), c.mutations.c_str(),
+                c.text.c_str());
     return 0;
   }
-  std::fprintf(stderr, "fuzz_inputs: %zu seed inputs, seed %llu, memory budget %zu MB, %s\n", options.corpus.size(),
-               static_cast<unsigned long long>(options.seed), options.memoryBudget >> 20,
+  std::fprintf(stderr, "fuzz_inputs: %zu seed inputs, seed %llu, memory budget %zu MB, %s\n",
+               options.corpus.size(), static_cast<unsigned long long>(options.seed),
+               options.memoryBudget >> 20,
                options.fork ? "a child process per case" : "in process");
   const anode::fuzz::FuzzReport r = anode::fuzz::runFuzz(options);
-  std::printf("fuzz_inputs: %ld cases in %.1f s: %ld accepted, %ld refused with file:line, %zu failures\n", r.tried,
-              r.seconds, r.accepted, r.rejected, r.failures.size());
+  std::printf(
+      "fuzz_inputs: %ld cases in %.1f s: %ld accepted, %ld refused with file:line, %zu failures\n",
+      r.tried, r.seconds, r.accepted, r.rejected, r.failures.size());
   std::printf("operators applied:");
   for (int op = 0; op < anode::fuzz::InputMutator::kOperatorCount; ++op)
     std::printf(" %s %ld%s", anode::fuzz::InputMutator::operatorName(op), r.perOperator[op],
                 op + 1 < anode::fuzz::InputMutator::kOperatorCount ? "," : "\n");
   for (const auto& f : r.failures)
-    std::printf("FAILURE case %ld of %s (%s): %s\n", f.index, f.seed.c_str(), f.mutations.c_str(), f.problem.c_str());
+    std::printf("FAILURE case %ld of %s (%s): %s\n", f.index, f.seed.c_str(), f.mutations.c_str(),
+                f.problem.c_str());
   return r.failures.empty() ? 0 : 1;
 }

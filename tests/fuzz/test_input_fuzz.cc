@@ -23,7 +23,8 @@ std::string readFile(const std::string& path) {
 }
 
 TEST(ElementScan, FindsNestedElementsWithTheirContent) {
-  const std::string t = "<?xml version='1.0'?>\n<!-- <no> -->\n<a x=\"1>2\"><b>3</b><c/><d><e>[1,2]</e></d></a>";
+  const std::string t =
+      "<?xml version='1.0'?>\n<!-- <no> -->\n<a x=\"1>2\"><b>3</b><c/><d><e>[1,2]</e></d></a>";
   const auto e = scanElements(t);
   ASSERT_EQ(e.size(), 5u);
   EXPECT_EQ(t.substr(e[0].nameBegin, e[0].nameLength), "a");
@@ -59,7 +60,8 @@ TEST(CheckSetup, AcceptsTheMinimalInputAndAcceptsFileLineRefusals) {
   bool accepted = false;
   EXPECT_EQ(checkSetup(readFile(kMinimal), "minimal.ups", &accepted), "");
   EXPECT_TRUE(accepted);
-  EXPECT_EQ(checkSetup("<Uintah_specification>\n</Uintah_specification>\n", "empty.ups", &accepted), "");
+  EXPECT_EQ(checkSetup("<Uintah_specification>\n</Uintah_specification>\n", "empty.ups", &accepted),
+            "");
   EXPECT_FALSE(accepted);
   EXPECT_EQ(checkSetup("", "nothing.ups", &accepted), "");
   EXPECT_FALSE(accepted);
@@ -87,8 +89,10 @@ TEST(InputFuzz, QuickRunEndsEveryCaseInSuccessOrAFileLineInputError) {
   options.memoryBudget = size_t(256) << 20;
   options.caseTimeLimit = 60;
   const FuzzReport r = runFuzz(options);
-  std::printf("fuzz: %ld cases in %.1f s over %zu seed inputs: %ld accepted, %ld refused with file:line, %zu failures\n",
-              r.tried, r.seconds, options.corpus.size(), r.accepted, r.rejected, r.failures.size());
+  std::printf(
+      "fuzz: %ld cases in %.1f s over %zu seed inputs: %ld accepted, %ld refused with file:line, "
+      "%zu failures\n",
+      r.tried, r.seconds, options.corpus.size(), r.accepted, r.rejected, r.failures.size());
   EXPECT_EQ(r.tried, options.cases);
   for (size_t k = 0; k < r.failures.size() && k < 20; ++k)
     ADD_FAILURE() << "case " << r.failures[k].index << " of " << r.failures[k].seed << " ("

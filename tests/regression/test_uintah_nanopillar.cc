@@ -12,7 +12,8 @@ namespace anode {
 namespace {
 
 TEST(UintahNanoPillar2D, MatchesUintahAtTheLastReportedTime) {
-  const std::string input = std::string(ANODE_SOURCE_DIR) + "/../shared/inputs/uintah/NanoPillar2D_FBC_Sym.ups";
+  const std::string input =
+      std::string(ANODE_SOURCE_DIR) + "/../shared/inputs/uintah/NanoPillar2D_FBC_Sym.ups";
   if (!std::filesystem::exists(input)) GTEST_SKIP() << "shared inputs not present: " << input;
   RunOptions options;
   options.input = input;
@@ -25,8 +26,8 @@ TEST(UintahNanoPillar2D, MatchesUintahAtTheLastReportedTime) {
     sum += p.concentration[i];
     cmax = std::max(cmax, p.concentration[i]);
   }
-  std::printf("t = %.4e us, step %ld: %zu particles, mean c %.4f, max c %.4f\n", sim.time(), sim.step(),
-              p.count(), sum / p.count(), cmax);
+  std::printf("t = %.4e us, step %ld: %zu particles, mean c %.4f, max c %.4f\n", sim.time(),
+              sim.step(), p.count(), sum / p.count(), cmax);
   EXPECT_NEAR(static_cast<double>(p.count()), 1036.0, 3 * 3.0);  // within 3 splits
   EXPECT_NEAR(sum / p.count(), 0.132, 0.03 * 0.132);
   EXPECT_NEAR(cmax, 0.741, 0.02 * 0.741);

@@ -4,10 +4,16 @@
 // OSMesaMakeCurrent and kept after OSMesaDestroyContext); our own allocations are all checked.
 extern "C" {
 
-const char* __asan_default_options() { return "halt_on_error=1:detect_leaks=1:strict_string_checks=1"; }
+const char* __asan_default_options() {
+  return "halt_on_error=1:detect_leaks=1:strict_string_checks=1";
+}
 
-const char* __ubsan_default_options() { return "halt_on_error=1:print_stacktrace=1"; }
+const char* __ubsan_default_options() {
+  return "halt_on_error=1:print_stacktrace=1";
+}
 
-const char* __lsan_default_suppressions() { return "leak:libOSMesa.so\n"; }
+const char* __lsan_default_suppressions() {
+  return "leak:libOSMesa.so\n";
+}
 
 }  // extern "C"

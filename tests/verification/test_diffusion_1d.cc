@@ -46,7 +46,8 @@ TEST(DiffusionSlab1D, ExactSolution) {
   EXPECT_NEAR(anode::diffusionSlabExact(0.3, 1e3, 0.1), 0.7, 1e-12);
   const double x = 0.2, s = 2 * std::sqrt(0.1 * 0.25);
   double images = 0;
-  for (int k = 0; k < 20; ++k) images += std::erfc((2 * k + x) / s) - std::erfc((2 * k + 2 - x) / s);
+  for (int k = 0; k < 20; ++k)
+    images += std::erfc((2 * k + x) / s) - std::erfc((2 * k + 2 - x) / s);
   EXPECT_NEAR(anode::diffusionSlabExact(x, 0.25, 0.1), images, 1e-12);
 }
 
@@ -74,7 +75,8 @@ TEST_P(DiffusionSlab, NodalTreatmentConvergesButLeavesTheUnitInterval) {
     EXPECT_GT(x.minConcentration, -1e-5);
   }
   for (size_t i = 1; i < r.size(); ++i) {
-    SCOPED_TRACE(GetParam() + ", h = " + std::to_string(r[i - 1].h) + " -> " + std::to_string(r[i].h));
+    SCOPED_TRACE(GetParam() + ", h = " + std::to_string(r[i - 1].h) + " -> " +
+                 std::to_string(r[i].h));
     // Measured 1.46, 1.14 (the paper's slope is 1).
     EXPECT_GT(order(r[i - 1], r[i], &DiffusionSlabResult::paperNorm), 1.0);
     // Measured 1.58, 1.52: O(h) errors on the O(1) particles next to the walls.
@@ -101,17 +103,19 @@ TEST_P(DiffusionSlab, ParticleTreatmentConverges) {
     EXPECT_NEAR(x.finalTime, 0.25, 1e-12);
     // Particles touching a wall node take the grid solution (a convex combination of nodal
     // values), so c stays in [0, 1]: min c = 0 (the initial state), max c = 0.955066, 0.977689,
-    // 0.988848 (the particle at h/4, at t = 0.25). See also ParticleTreatmentKeepsCInTheUnitInterval.
+    // 0.988848 (the particle at h/4, at t = 0.25). See also
+    // ParticleTreatmentKeepsCInTheUnitInterval.
     EXPECT_GE(x.minConcentration, 0.0);
     EXPECT_LE(x.maxConcentration, 1.0);
   }
   for (size_t i = 1; i < r.size(); ++i) {
-    SCOPED_TRACE(GetParam() + ", h = " + std::to_string(r[i - 1].h) + " -> " + std::to_string(r[i].h));
+    SCOPED_TRACE(GetParam() + ", h = " + std::to_string(r[i - 1].h) + " -> " +
+                 std::to_string(r[i].h));
     // Second order everywhere, walls included (the nodal treatment: 1.5 in RMS, 1 in max).
-    EXPECT_GT(order(r[i - 1], r[i], &DiffusionSlabResult::paperNorm), 2.25);          // 2.52, 2.52
-    EXPECT_GT(order(r[i - 1], r[i], &DiffusionSlabResult::rmsAbsolute), 1.8);         // 2.20, 2.04
+    EXPECT_GT(order(r[i - 1], r[i], &DiffusionSlabResult::paperNorm), 2.25);           // 2.52, 2.52
+    EXPECT_GT(order(r[i - 1], r[i], &DiffusionSlabResult::rmsAbsolute), 1.8);          // 2.20, 2.04
     EXPECT_GT(order(r[i - 1], r[i], &DiffusionSlabResult::interiorRmsAbsolute), 1.8);  // 2.09, 2.03
-    EXPECT_GT(order(r[i - 1], r[i], &DiffusionSlabResult::maxAbsolute), 1.8);         // 2.38, 2.04
+    EXPECT_GT(order(r[i - 1], r[i], &DiffusionSlabResult::maxAbsolute), 1.8);          // 2.38, 2.04
   }
   // h = 1/80, measured: Eq. 15 2.224e-3, RMS abs 1.454e-4, interior 1.516e-4, max 3.298e-4.
   const DiffusionSlabResult& finest = r.back();

@@ -22,12 +22,15 @@ constexpr double kEta = 0.3, kFlux = 1.0, kSide = 1.0;
 
 // Mean concentration of the ODE above at time t for area exponent k.
 double meanConcentration(double t, double k) {
-  const auto rate = [k](double c) { return 3 * kFlux * fluxRestriction(c) * std::exp((k - 3) * kEta * c) / kSide; };
+  const auto rate = [k](double c) {
+    return 3 * kFlux * fluxRestriction(c) * std::exp((k - 3) * kEta * c) / kSide;
+  };
   const int n = 20000;
   const double h = t / n;
   double c = 0;
   for (int i = 0; i < n; ++i) {
-    const double a = rate(c), b = rate(c + 0.5 * h * a), d = rate(c + 0.5 * h * b), e = rate(c + h * d);
+    const double a = rate(c), b = rate(c + 0.5 * h * a), d = rate(c + 0.5 * h * b),
+                 e = rate(c + h * d);
     c += h / 6 * (a + 2 * b + 2 * d + e);
   }
   return c;
@@ -36,9 +39,12 @@ double meanConcentration(double t, double k) {
 // Runs the cube with the given <area_update> to t = 0.15 and returns the largest relative
 // deviation of its mean concentration from the ODE with exponent k, checked every 500 steps.
 double largestDeviation(const std::string& rule, double k, double* finalMean) {
-  std::string text = testing::readFile(std::string(ANODE_SOURCE_DIR) + "/inputs/Verification/SwellingCubeFlux.ups");
-  const std::string deformed = "<area_update>deformed</area_update>", wanted = "<area_update>" + rule + "</area_update>";
-  for (size_t at = text.find(deformed); at != std::string::npos; at = text.find(deformed, at + wanted.size()))
+  std::string text = testing::readFile(std::string(ANODE_SOURCE_DIR) +
+                                       "/inputs/Verification/SwellingCubeFlux.ups");
+  const std::string deformed = "<area_update>deformed</area_update>",
+                    wanted = "<area_update>" + rule + "</area_update>";
+  for (size_t at = text.find(deformed); at != std::string::npos;
+       at = text.find(deformed, at + wanted.size()))
     text.replace(at, deformed.size(), wanted);
   text.replace(text.find("<maxTime>0.25</maxTime>"), 23, "<maxTime>0.15</maxTime>");
   RunOptions quiet;

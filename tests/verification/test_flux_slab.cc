@@ -1,5 +1,5 @@
-// Flux boundary condition against Carslaw & Jaeger's slab solution (StandAlone/Studies/FluxSlab.h), at
-// the quick resolutions of `flux_slab_study --quick`, and the lithium balance of the flux BC.
+// Flux boundary condition against Carslaw & Jaeger's slab solution (StandAlone/Studies/FluxSlab.h),
+// at the quick resolutions of `flux_slab_study --quick`, and the lithium balance of the flux BC.
 // Bounds are the values measured with timestep_multiplier 0.2 (docs/verification.md, "Flux
 // boundary condition (Carslaw & Jaeger slab)") plus a margin of ~10 %; orders are asserted below
 // the measured ones. Measured with the flux source G/m in the nodal c*

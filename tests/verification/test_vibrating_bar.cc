@@ -1,7 +1,7 @@
-// Axial vibrating bar against its small-amplitude analytic solution (StandAlone/Studies/VibratingBar.h),
-// at the quick resolutions of `vibrating_bar_study --quick`. Bounds are the values measured with
-// timestep_multiplier 0.2 (docs/verification.md, "Axial vibrating bar") plus a modest margin;
-// orders are asserted below the measured ones.
+// Axial vibrating bar against its small-amplitude analytic solution
+// (StandAlone/Studies/VibratingBar.h), at the quick resolutions of `vibrating_bar_study --quick`.
+// Bounds are the values measured with timestep_multiplier 0.2 (docs/verification.md, "Axial
+// vibrating bar") plus a modest margin; orders are asserted below the measured ones.
 #include <gtest/gtest.h>
 
 #include <cmath>

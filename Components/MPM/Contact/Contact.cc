@@ -37,12 +37,14 @@ Contact Contact::fromInput(const PSNode& mpmMaterials, int numMaterials) {
   if (exclude != -999 && (exclude < 0 || exclude >= numMaterials))
     contact.requireChild("ExcludeMaterial")
         .fail("<ExcludeMaterial> names material " + std::to_string(exclude) + existing);
-  if (exclude != -999) c.materials.erase(std::remove(c.materials.begin(), c.materials.end(), exclude), c.materials.end());
+  if (exclude != -999)
+    c.materials.erase(std::remove(c.materials.begin(), c.materials.end(), exclude),
+                      c.materials.end());
   return c;
 }
 
-void Contact::exchange(std::vector<GridFields>& fields, std::vector<Vec3> GridFields::*velocity, long begin,
-                       long end) const {
+void Contact::exchange(std::vector<GridFields>& fields, std::vector<Vec3> GridFields::*velocity,
+                       long begin, long end) const {
   if (type == Type::Null || materials.size() < 2) return;
 #pragma omp parallel for schedule(static)
   for (long n = begin; n < end; ++n) {

@@ -10,15 +10,15 @@ namespace anode {
 
 struct Contact {
   enum class Type { Null, SingleVelocity } type = Type::Null;
-  std::vector<int> materials;  // materials that share one velocity field
+  std::vector<int> materials;        // materials that share one velocity field
   bool exchangeInterpolated = true;  // OneOrTwoStep = 2: also after P2G, not only after integration
 
   static Contact fromInput(const PSNode& mpmMaterials, int numMaterials);
 
   // Replaces each member's nodal velocity by the centre-of-mass velocity sum(m v)/sum(m), on
   // nodes [begin, end).
-  void exchange(std::vector<GridFields>& fields, std::vector<Vec3> GridFields::*velocity, long begin,
-                long end) const;
+  void exchange(std::vector<GridFields>& fields, std::vector<Vec3> GridFields::*velocity,
+                long begin, long end) const;
 };
 
 }  // namespace anode

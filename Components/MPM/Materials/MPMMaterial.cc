@@ -1,12 +1,11 @@
 #include "Components/MPM/Materials/MPMMaterial.h"
 
-#include <sstream>
-
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
-#include "Components/MPM/ReactiveFlow/ScalarFluxBC.h"
 #include "Components/MPM/ProblemSize.h"
+#include "Components/MPM/ReactiveFlow/ScalarFluxBC.h"
 #include "Core/Geometry/ParticleFill.h"
 #include "Core/Geometry/SmoothCylinder.h"
 #include "Core/Util/MemoryBudget.h"
@@ -26,11 +25,13 @@ void addGeomObject(const PSNode& geom, const Grid& grid, const MPMFlags& flags, 
   auto piece = std::make_shared<UnionPiece>();
   const std::vector<PSNode> pieceNodes = geom.childrenWhere(GeometryPieceFactory::isPieceTag);
   for (const PSNode& c : pieceNodes) piece->pieces.push_back(pieces.create(c));
-  if (piece->pieces.empty()) geom.fail("<geom_object> needs a geometry piece (box, cylinder, sphere, ...)");
+  if (piece->pieces.empty())
+    geom.fail("<geom_object> needs a geometry piece (box, cylinder, sphere, ...)");
 
   const PSNode resNode = geom.requireChild("res");
   const Vec3i res = resNode.value<Vec3i>();
-  if ((res.array() < 1).any()) resNode.fail("<res> needs at least one particle per cell in each direction");
+  if ((res.array() < 1).any())
+    resNode.fail("<res> needs at least one particle per cell in each direction");
   const Vec3 velocity = geom.require<Vec3>("velocity");
   // Temperature, colour and volume fraction change nothing in isothermal single-field MPM;
   // concentration matters only with diffusion.
@@ -39,9 +40,10 @@ void addGeomObject(const PSNode& geom, const Grid& grid, const MPMFlags& flags, 
   if (flags.doScalarDiffusion) {
     c0 = geom.require<double>("concentration");
     if (c0 < m.diffusion->minConcentration || c0 > m.diffusion->maxConcentration)
-      geom.requireChild("concentration").fail("<concentration> must lie in [min_concentration, max_concentration] = [" +
-                                              std::to_string(m.diffusion->minConcentration) + ", " +
-                                              std::to_string(m.diffusion->maxConcentration) + "]");
+      geom.requireChild("concentration")
+          .fail("<concentration> must lie in [min_concentration, max_concentration] = [" +
+                std::to_string(m.diffusion->minConcentration) + ", " +
+                std::to_string(m.diffusion->maxConcentration) + "]");
   } else {
     geom.acceptInert("concentration");
   }
@@ -49,16 +51,20 @@ void addGeomObject(const PSNode& geom, const Grid& grid, const MPMFlags& flags, 
     if (levels.value<int>() != 1) levels.unsupported("multi-level particle filling");
   for (const char* affine : {"affineTransformation_A0", "affineTransformation_A1",
                              "affineTransformation_A2", "affineTransformation_b"})
-    if (const PSNode a = geom.child(affine)) a.unsupported("affine transformation of the particle lattice");
+    if (const PSNode a = geom.child(affine))
+      a.unsupported("affine transformation of the particle lattice");
 
   // Particles from the grid (Uintah's placement) or laid out by a smooth piece.
   std::vector<SmoothParticle> seeds;
   const Vec3 dxp = grid.dx.cwiseQuotient(res.cast<double>());
-  const auto* smooth = piece->pieces.size() == 1 ? dynamic_cast<const SmoothCylinderPiece*>(piece->pieces[0].get()) : nullptr;
+  const auto* smooth = piece->pieces.size() == 1
+                           ? dynamic_cast<const SmoothCylinderPiece*>(piece->pieces[0].get())
+                           : nullptr;
   // The particles of the materials before and of this object must fit the memory budget.
   const double limit = std::max(0.0, std::floor(maxParticles(flags)) - static_cast<double>(nextId));
   const std::string beyond = " particles, beyond " + describeMemoryBudget() + " at about " +
-                             std::to_string(static_cast<long>(bytesPerParticle(flags))) + " bytes per particle";
+                             std::to_string(static_cast<long>(bytesPerParticle(flags))) +
+                             " bytes per particle";
   if (smooth) {
     const double n = smooth->particleCount(grid, limit);
     if (n > limit)
@@ -94,7 +100,9 @@ void addGeomObject(const PSNode& geom, const Grid& grid, const MPMFlags& flags, 
     for (size_t k = 0; k < pieceNodes.size(); ++k)
       out.filledPieces.push_back({pieceNodes[k], piece->pieces[k], res});
   }
-  if (seeds.empty()) geom.fail("<geom_object> places no particle: its pieces contain no particle position of the grid");
+  if (seeds.empty())
+    geom.fail(
+        "<geom_object> places no particle: its pieces contain no particle position of the grid");
 
   const bool findSurface = flags.doScalarDiffusion && flags.useLoadCurves;
   const size_t first = p.count();
@@ -138,14 +146,15 @@ std::string describeParticle(const MPMMaterial& mat, size_t matl, size_t i) {
   return s.str();
 }
 
-MPMMaterial MPMMaterial::fromInput(const PSNode& node, const Grid& grid, const MPMFlags& flags, double maxTime,
-                                   GeometryPieceFactory& pieces, int64_t& nextId, MaterialSeeds& seeds) {
+MPMMaterial MPMMaterial::fromInput(const PSNode& node, const Grid& grid, const MPMFlags& flags,
+                                   double maxTime, GeometryPieceFactory& pieces, int64_t& nextId,
+                                   MaterialSeeds& seeds) {
   MPMMaterial m;
   m.name = node.attribute("name").value_or("");
   m.density = node.require<double>("density");
   if (!(m.density > 0)) node.requireChild("density").fail("<density> must be positive");
-  for (const char* inert : {"thermal_conductivity", "specific_heat", "melt_temp", "room_temp", "C_p",
-                            "do_conc_reduction"})
+  for (const char* inert : {"thermal_conductivity", "specific_heat", "melt_temp", "room_temp",
+                            "C_p", "do_conc_reduction"})
     node.acceptInert(inert);
   if (flags.doScalarDiffusion)
     m.diffusion = createDiffusionModel(node.requireChild("diffusion_model"), maxTime);
@@ -153,7 +162,8 @@ MPMMaterial MPMMaterial::fromInput(const PSNode& node, const Grid& grid, const M
     node.acceptInert("diffusion_model");  // Uintah reads it only with do_scalar_diffusion
   if (const PSNode rigid = node.child("is_rigid"))
     if (rigid.value<bool>()) rigid.unsupported("rigid materials <is_rigid>");
-  m.model = createConstitutiveModel(node.requireChild("constitutive_model"), flags.doScalarDiffusion);
+  m.model =
+      createConstitutiveModel(node.requireChild("constitutive_model"), flags.doScalarDiffusion);
   if (flags.doScalarDiffusion) m.particles.enable(Physics::Diffusion);
 
   const auto geoms = node.children("geom_object");
@@ -161,14 +171,15 @@ MPMMaterial MPMMaterial::fromInput(const PSNode& node, const Grid& grid, const M
   for (const PSNode& g : geoms) addGeomObject(g, grid, flags, m, pieces, nextId, seeds);
   if (m.particles.mass.front() <= flags.minimumParticleMass)
     node.requireChild("density").fail("particle mass " + std::to_string(m.particles.mass.front()) +
-                                       " is at or below <minimum_particle_mass> " +
-                                       std::to_string(flags.minimumParticleMass) +
-                                       " (Uintah deletes such particles)");
+                                      " is at or below <minimum_particle_mass> " +
+                                      std::to_string(flags.minimumParticleMass) +
+                                      " (Uintah deletes such particles)");
   m.model->initializeState(m.particles);
   return m;
 }
 
-void MaterialSeeds::checkPiecesInsideGrid(const Grid& grid, const std::array<bool, 6>& mirror) const {
+void MaterialSeeds::checkPiecesInsideGrid(const Grid& grid,
+                                          const std::array<bool, 6>& mirror) const {
   // Uintah fills only the interior cells and drops the rest of a piece without a word.
   for (const FilledPiece& f : filledPieces)
     if (placesParticlesOutside(grid, *f.piece, f.res, mirror))

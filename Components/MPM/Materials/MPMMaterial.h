@@ -7,9 +7,9 @@
 #include <vector>
 
 #include "Components/MPM/MPMFlags.h"
-#include "Components/MPM/ReactiveFlow/ScalarDiffusionModel.h"
 #include "Components/MPM/Materials/ConstitutiveModels/ConstitutiveModel.h"
 #include "Components/MPM/ParticleSet.h"
+#include "Components/MPM/ReactiveFlow/ScalarDiffusionModel.h"
 #include "Core/Geometry/GeometryPiece.h"
 #include "Core/Grid/Grid.h"
 
@@ -46,8 +46,9 @@ struct MPMMaterial {
 
   // Reads the material and fills its particles; `nextId` numbers particles across materials.
   // `maxTime` bounds the diffusion model's diff_curve. `seeds` receives what setup needs later.
-  static MPMMaterial fromInput(const PSNode& node, const Grid& grid, const MPMFlags& flags, double maxTime,
-                               GeometryPieceFactory& pieces, int64_t& nextId, MaterialSeeds& seeds);
+  static MPMMaterial fromInput(const PSNode& node, const Grid& grid, const MPMFlags& flags,
+                               double maxTime, GeometryPieceFactory& pieces, int64_t& nextId,
+                               MaterialSeeds& seeds);
 };
 
 // "[x, y, z]", for diagnostics.

@@ -23,13 +23,15 @@ void applyConcentrationBCs(const Grid& g, const std::vector<FaceBC>& bcs, int ma
           for (int j = from.y(); j <= to.y(); ++j)
             for (int i = from.x(); i <= to.x(); ++i)
               field[g.nodeIndex(i, j, k)] =
-                  field[g.nodeIndex(i + offset.x(), j + offset.y(), k + offset.z())] - bc.value * g.dx[bc.axis];
+                  field[g.nodeIndex(i + offset.x(), j + offset.y(), k + offset.z())] -
+                  bc.value * g.dx[bc.axis];
       }
     }
   }
 }
 
-std::vector<std::vector<double>> dirichletNodeMasks(const Grid& g, const std::vector<FaceBC>& bcs, size_t materials) {
+std::vector<std::vector<double>> dirichletNodeMasks(const Grid& g, const std::vector<FaceBC>& bcs,
+                                                    size_t materials) {
   std::vector<FaceBC> dirichlet;
   for (FaceBC b : bcs)
     if (b.kind == FaceBC::Kind::ConcentrationDirichlet) {
@@ -38,7 +40,8 @@ std::vector<std::vector<double>> dirichletNodeMasks(const Grid& g, const std::ve
     }
   if (dirichlet.empty()) return {};
   std::vector<std::vector<double>> masks(materials, std::vector<double>(g.numNodes(), 0.0));
-  for (size_t m = 0; m < materials; ++m) applyConcentrationBCs(g, dirichlet, static_cast<int>(m), masks[m]);
+  for (size_t m = 0; m < materials; ++m)
+    applyConcentrationBCs(g, dirichlet, static_cast<int>(m), masks[m]);
   return masks;
 }
 

@@ -10,10 +10,12 @@
 
 namespace anode {
 
-void applyConcentrationBCs(const Grid& g, const std::vector<FaceBC>& bcs, int matl, std::vector<double>& field);
+void applyConcentrationBCs(const Grid& g, const std::vector<FaceBC>& bcs, int matl,
+                           std::vector<double>& field);
 
 // Per material, per node: 1 on the nodes an SD-Type Dirichlet condition sets, 0 elsewhere (for
 // the particle treatment of Dirichlet walls); empty when there is no such condition.
-std::vector<std::vector<double>> dirichletNodeMasks(const Grid& g, const std::vector<FaceBC>& bcs, size_t materials);
+std::vector<std::vector<double>> dirichletNodeMasks(const Grid& g, const std::vector<FaceBC>& bcs,
+                                                    size_t materials);
 
 }  // namespace anode

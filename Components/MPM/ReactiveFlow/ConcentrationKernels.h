@@ -35,8 +35,8 @@ struct ConcentrationScatterTarget {
   double* receiverWeightOut;
 
   static ConcentrationScatterTarget of(ConcentrationScatterFields& f) {
-    return {f.massConcentration.data(), f.diffusionRate.data(), f.fluxSource.data(), f.receiverWeightIn.data(),
-            f.receiverWeightOut.data()};
+    return {f.massConcentration.data(), f.diffusionRate.data(), f.fluxSource.data(),
+            f.receiverWeightIn.data(), f.receiverWeightOut.data()};
   }
 };
 
@@ -53,8 +53,8 @@ class ConcentrationScatter {
 
   // `reached` marks the nodes a source reaches (bit 1 inflow, bit 2 outflow; flux only), cmax is
   // the material's max_concentration; `threadBuffers` are the per-thread scatter targets.
-  ConcentrationScatter(const ParticleSet& p, const InterpolationWeights& W, const unsigned char* reached,
-                       double cmax, ConcentrationScatterFields& grid,
+  ConcentrationScatter(const ParticleSet& p, const InterpolationWeights& W,
+                       const unsigned char* reached, double cmax, ConcentrationScatterFields& grid,
                        std::vector<ConcentrationScatterFields>& threadBuffers)
       : p_(p),
         W_(W),
@@ -66,7 +66,8 @@ class ConcentrationScatter {
 
   Particle particle(long i) const {
     const double mp = p_.mass[i];
-    Particle d{mp * p_.concentration[i], 0, 0, 0, mp * p_.diffusivity[i] * p_.concentrationGradient[i]};
+    Particle d{mp * p_.concentration[i], 0, 0, 0,
+               mp * p_.diffusivity[i] * p_.concentrationGradient[i]};
     if constexpr (Flux) {
       d.mrate = mp * p_.externalScalarFlux[i];
       // A particle's weights matter only on the nodes a source reaches (elsewhere G = 0).
@@ -137,7 +138,8 @@ class ConcentrationGather {
   };
 
   // `wallMask` is 1 on the Dirichlet nodes (Wall only); cmax the material's max_concentration.
-  ConcentrationGather(ParticleSet& p, const ConcentrationGridFields& g, const double* wallMask, double cmax)
+  ConcentrationGather(ParticleSet& p, const ConcentrationGridFields& g, const double* wallMask,
+                      double cmax)
       : p_(p), g_(g), wallMask_(wallMask), cmax_(cmax) {}
 
   void gather(Particle& a, int k, double w, const Vec3& grad) const {

@@ -23,7 +23,8 @@ struct ConcentrationScatterFields {
   }
   // Zeroes every field on nodes [begin, end).
   void clear(long begin, long end) {
-    for (auto* f : {&massConcentration, &diffusionRate, &fluxSource, &receiverWeightIn, &receiverWeightOut})
+    for (auto* f :
+         {&massConcentration, &diffusionRate, &fluxSource, &receiverWeightIn, &receiverWeightOut})
       if (!f->empty()) std::fill(f->begin() + begin, f->begin() + end, 0.0);
   }
 };
@@ -36,7 +37,8 @@ struct ConcentrationGridFields : ConcentrationScatterFields {
   // Flux materials only.
   std::vector<double> concentrationNoSource;  // c° = c + R/m dt under the SD-Type BCs
   std::vector<double> sourcePerWeight;        // G / W: what a receiving particle gets per m S R
-  std::vector<unsigned char> sourceReached;   // bit 1 (2): an inflow (outflow) source reaches the node
+  std::vector<unsigned char>
+      sourceReached;  // bit 1 (2): an inflow (outflow) source reaches the node
 
   void resize(int nodes, bool flux) {
     ConcentrationScatterFields::resize(nodes, flux);

@@ -2,7 +2,8 @@
 
 namespace anode {
 
-DiffusionInterface DiffusionInterface::fromInput(const PSNode& mpmMaterials, bool diffusion, size_t materials) {
+DiffusionInterface DiffusionInterface::fromInput(const PSNode& mpmMaterials, bool diffusion,
+                                                 size_t materials) {
   DiffusionInterface interface;
   const PSNode iface = mpmMaterials.child("diffusion_interface");
   if (!iface) return interface;
@@ -11,14 +12,16 @@ DiffusionInterface DiffusionInterface::fromInput(const PSNode& mpmMaterials, boo
     if (!diffusion) iface.fail("diffusion_interface \"common\" needs <do_scalar_diffusion>true");
     interface.common = materials > 1;
   } else if (type != "null") {
-    iface.requireChild("type").fail("diffusion_interface type \"" + type + "\" is not supported; accepted: null, common");
+    iface.requireChild("type").fail("diffusion_interface type \"" + type +
+                                    "\" is not supported; accepted: null, common");
   }
   iface.acceptInert("materials");
   return interface;
 }
 
-void DiffusionInterface::apply(const std::vector<GridFields>& mechanics, std::vector<ConcentrationGridFields>& fields,
-                               long begin, long end) const {
+void DiffusionInterface::apply(const std::vector<GridFields>& mechanics,
+                               std::vector<ConcentrationGridFields>& fields, long begin,
+                               long end) const {
   if (!common) return;
 #pragma omp parallel for schedule(static)
   for (long k = begin; k < end; ++k) {

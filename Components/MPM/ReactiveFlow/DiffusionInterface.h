@@ -17,8 +17,8 @@ struct DiffusionInterface {
   static DiffusionInterface fromInput(const PSNode& mpmMaterials, bool diffusion, size_t materials);
 
   // common: c_i = sum_m m_i c_i / sum_m m_i for every material, on nodes [begin, end).
-  void apply(const std::vector<GridFields>& mechanics, std::vector<ConcentrationGridFields>& fields, long begin,
-             long end) const;
+  void apply(const std::vector<GridFields>& mechanics, std::vector<ConcentrationGridFields>& fields,
+             long begin, long end) const;
 };
 
 }  // namespace anode

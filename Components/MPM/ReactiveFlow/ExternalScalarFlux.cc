@@ -6,8 +6,8 @@
 
 namespace anode {
 
-std::vector<size_t> ExternalScalarFlux::assignToParticles(std::vector<MPMMaterial>& materials,
-                                                          const std::vector<MaterialSeeds>& seeds) const {
+std::vector<size_t> ExternalScalarFlux::assignToParticles(
+    std::vector<MPMMaterial>& materials, const std::vector<MaterialSeeds>& seeds) const {
   // Surface particles get, per BC that flags them, the area of the face that BC names
   // (UINTAH_UPS.md §3.1; unlike Uintah, not the area left by the last BC tested).
   std::vector<size_t> flagged(bcs_.size(), 0);
@@ -15,7 +15,8 @@ std::vector<size_t> ExternalScalarFlux::assignToParticles(std::vector<MPMMateria
     MPMMaterial& mat = materials[m];
     const MaterialSeeds& surface = seeds[m];
     ParticleSet& p = mat.particles;
-    if (bcs_.empty() || !mat.diffusion->diffuses()) continue;  // a material without diffusivity gets no lithium
+    if (bcs_.empty() || !mat.diffusion->diffuses())
+      continue;  // a material without diffusivity gets no lithium
     p.enable(Physics::FluxBC);
     for (size_t i = 0; i < p.count(); ++i) {
       if (!surface.onSurface[i]) continue;
@@ -50,8 +51,10 @@ void ExternalScalarFlux::computeFluxRates(std::vector<MPMMaterial>& materials, d
       double rate = 0, k = 0;
       for (int s = 0; s < 3 && p.loadCurveID[i][s] > 0; ++s) {
         const int b = p.loadCurveID[i][s] - 1;
-        const double area = bcs_[b].deformedArea ? p.area[i][s] * bcs_[b].areaStretch(p.F[i], p.x[i] - p.displacement[i])
-                                                 : p.area[i][s];
+        const double area =
+            bcs_[b].deformedArea
+                ? p.area[i][s] * bcs_[b].areaStretch(p.F[i], p.x[i] - p.displacement[i])
+                : p.area[i][s];
         rate += J[b] * area;
         k += std::abs(J[b]) * area;
       }
@@ -64,7 +67,8 @@ void ExternalScalarFlux::computeFluxRates(std::vector<MPMMaterial>& materials, d
   }
 }
 
-void ExternalScalarFlux::updateAutoCycle(const std::vector<MPMMaterial>& materials, const MPMFlags& flags) {
+void ExternalScalarFlux::updateAutoCycle(const std::vector<MPMMaterial>& materials,
+                                         const MPMFlags& flags) {
   // Mean (or min and max) normalised concentration of the particles that receive flux.
   double sum = 0, lo = std::numeric_limits<double>::infinity(), hi = -lo;
   size_t n = 0;
@@ -94,8 +98,8 @@ void ExternalScalarFlux::loadState(BinaryReader& in) {
   maxRateCoefficient_ = in.value<double>();
 }
 
-void markSourceNodes(const ParticleSet& p, const InterpolationWeights& W, std::vector<unsigned char>& reached,
-                     long begin, long end) {
+void markSourceNodes(const ParticleSet& p, const InterpolationWeights& W,
+                     std::vector<unsigned char>& reached, long begin, long end) {
   std::fill(reached.begin() + begin, reached.begin() + end, 0);
   unsigned char* mark = reached.data();
   const long n = static_cast<long>(p.count());

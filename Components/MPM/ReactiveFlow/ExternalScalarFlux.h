@@ -39,13 +39,13 @@ class ExternalScalarFlux {
 
  private:
   std::vector<ScalarFluxBC> bcs_;
-  double sign_ = 1;                  // do_auto_cycle_bc: +1 lithiates, -1 delithiates
-  double maxRateCoefficient_ = 0;    // max unrestricted sum |J| A / V over particles
+  double sign_ = 1;                // do_auto_cycle_bc: +1 lithiates, -1 delithiates
+  double maxRateCoefficient_ = 0;  // max unrestricted sum |J| A / V over particles
 };
 
 // Marks, on nodes [begin, end), the nodes the flux sources of this step reach: those of the
 // particles with a nonzero flux rate, bit 1 for an inflow, bit 2 for an outflow.
-void markSourceNodes(const ParticleSet& p, const InterpolationWeights& W, std::vector<unsigned char>& reached,
-                     long begin, long end);
+void markSourceNodes(const ParticleSet& p, const InterpolationWeights& W,
+                     std::vector<unsigned char>& reached, long begin, long end);
 
 }  // namespace anode

@@ -15,7 +15,9 @@ inline double fluxRestriction(double c) {
 
 // The restriction of a flux into (inflow) or out of a particle at normalised c: R(c), or its
 // mirror R(1 - c), which vanishes as the particle empties.
-inline double fluxRestriction(double c, bool inflow) { return fluxRestriction(inflow ? c : 1 - c); }
+inline double fluxRestriction(double c, bool inflow) {
+  return fluxRestriction(inflow ? c : 1 - c);
+}
 
 // The restriction's steepest slope before it reaches zero, |R'| at c = 1 - e^-4: a particle
 // whose unrestricted rate is k cannot step past the zero of R when dt k kRestrictionSlope <= 1.

@@ -17,13 +17,15 @@ std::vector<ScalarFluxBC> readFluxBCs(const PSNode& root, const MPMFlags& flags)
   const PSNode physical = root.child("PhysicalBC");
   if (!physical) return {};
   std::vector<ScalarFluxBC> bcs = ScalarFluxBC::fromInput(physical);
-  if (!bcs.empty() && !flags.doScalarDiffusion) physical.fail("<scalar_flux> needs <MPM><do_scalar_diffusion>true");
+  if (!bcs.empty() && !flags.doScalarDiffusion)
+    physical.fail("<scalar_flux> needs <MPM><do_scalar_diffusion>true");
   if (flags.autoCycle && bcs.empty())
     root.requireChild("MPM")
         .requireChild("do_auto_cycle_bc")
         .fail("<do_auto_cycle_bc>true needs <scalar_flux> boundary conditions");
   if (!bcs.empty() && !flags.useLoadCurves)
-    physical.fail("<scalar_flux> needs <MPM><use_load_curves>true (without it Uintah applies no flux)");
+    physical.fail(
+        "<scalar_flux> needs <MPM><use_load_curves>true (without it Uintah applies no flux)");
   return bcs;
 }
 
@@ -31,18 +33,21 @@ std::vector<ScalarFluxBC> readFluxBCs(const PSNode& root, const MPMFlags& flags)
 
 ReactiveFlow::ReactiveFlow(const PSNode& root, const MPMFlags& flags, size_t materials)
     : flags_(flags),
-      interface_(DiffusionInterface::fromInput(root.requireChild("MaterialProperties").requireChild("MPM"), true,
-                                               materials)),
+      interface_(DiffusionInterface::fromInput(
+          root.requireChild("MaterialProperties").requireChild("MPM"), true, materials)),
       flux_(readFluxBCs(root, flags)) {}
 
 void ReactiveFlow::rejectWithoutDiffusion(const PSNode& root, const MPMFlags& flags) {
-  DiffusionInterface::fromInput(root.requireChild("MaterialProperties").requireChild("MPM"), false, 0);
+  DiffusionInterface::fromInput(root.requireChild("MaterialProperties").requireChild("MPM"), false,
+                                0);
   readFluxBCs(root, flags);
 }
 
-void ReactiveFlow::initialize(const PSNode& root, const Grid& grid, const std::vector<FaceBC>& faceBCs,
-                              std::vector<MPMMaterial>& materials, const std::vector<MaterialSeeds>& seeds, int threads,
-                  double initTime) {
+void ReactiveFlow::initialize(const PSNode& root, const Grid& grid,
+                              const std::vector<FaceBC>& faceBCs,
+                              std::vector<MPMMaterial>& materials,
+                              const std::vector<MaterialSeeds>& seeds, int threads,
+                              double initTime) {
   grid_ = grid;
   faceBCs_ = faceBCs;
   dirichletMask_ = dirichletNodeMasks(grid, faceBCs, materials.size());
@@ -53,8 +58,10 @@ void ReactiveFlow::initialize(const PSNode& root, const Grid& grid, const std::v
           .child("MPM")
           .children("scalar_flux")[b]
           .requireChild("geom_object")
-          .fail("this <scalar_flux> flags no particle: its geometry selects no surface particle of a "
-                "material that diffuses (selection rules in docs/diffusion.md), so its flux would go nowhere");
+          .fail(
+              "this <scalar_flux> flags no particle: its geometry selects no surface particle of a "
+              "material that diffuses (selection rules in docs/diffusion.md), so its flux would go "
+              "nowhere");
   const int nodes = grid.numNodes();
   bool anyFlux = false;
   for (const MPMMaterial& mat : materials) {
@@ -71,23 +78,26 @@ void ReactiveFlow::initialize(const PSNode& root, const Grid& grid, const std::v
   flux_.computeFluxRates(materials, initTime);
 }
 
-void ReactiveFlow::computeNodalConcentration(size_t m, const GridFields& mechanics, long begin, long end) {
+void ReactiveFlow::computeNodalConcentration(size_t m, const GridFields& mechanics, long begin,
+                                             long end) {
   ConcentrationGridFields& g = fields_[m];
 #pragma omp parallel for schedule(static)
   for (long k = begin; k < end; ++k) {
-    const double c = mechanics.mass[k] > 0 ? g.massConcentration[k] / mechanics.mass[k] : 0.0;  // Eq. 5
+    const double c =
+        mechanics.mass[k] > 0 ? g.massConcentration[k] / mechanics.mass[k] : 0.0;  // Eq. 5
     g.concentrationNoBC[k] = c;
     g.concentration[k] = c;
   }
   applyConcentrationBCs(grid_, faceBCs_, static_cast<int>(m), g.concentration);
 }
 
-void ReactiveFlow::applyDiffusionInterface(const std::vector<GridFields>& mechanics, long begin, long end) {
+void ReactiveFlow::applyDiffusionInterface(const std::vector<GridFields>& mechanics, long begin,
+                                           long end) {
   interface_.apply(mechanics, fields_, begin, end);
 }
 
-void ReactiveFlow::integrateConcentration(const std::vector<GridFields>& mechanics, double dt, long begin,
-                                          long end) {
+void ReactiveFlow::integrateConcentration(const std::vector<GridFields>& mechanics, double dt,
+                                          long begin, long end) {
   // Eq. 18: c* = c + (R/m + G/m) dt, then the SD-Type BCs on c*. Unlike Uintah (UINTAH_UPS.md
   // §6 step 7) the flux source is part of c*, so the next step's gradient sees the lithium that
   // entered. The nodal rate that drives the particles, (c° - c_noBC)/dt with c° = c + (R/m) dt
@@ -113,7 +123,8 @@ void ReactiveFlow::integrateConcentration(const std::vector<GridFields>& mechani
       g.sourcePerWeight[k] = receivers > 0 ? G / receivers : 0.0;
     }
     applyConcentrationBCs(grid_, faceBCs_, static_cast<int>(m), g.concentrationStar);
-    if (source) applyConcentrationBCs(grid_, faceBCs_, static_cast<int>(m), g.concentrationNoSource);
+    if (source)
+      applyConcentrationBCs(grid_, faceBCs_, static_cast<int>(m), g.concentrationNoSource);
 #pragma omp parallel for schedule(static)
     for (long k = begin; k < end; ++k)
       g.concentrationRate[k] = mass[k] > 0 ? (noSource[k] - g.concentrationNoBC[k]) / dt : 0.0;
@@ -130,10 +141,12 @@ void ReactiveFlow::updateDiffusionState(std::vector<MPMMaterial>& materials, dou
 void ReactiveFlow::computeDiffusivity(std::vector<MPMMaterial>& materials, double t) {
   maxDiffusivity_ = 0;
   for (MPMMaterial& mat : materials)
-    maxDiffusivity_ = std::max(maxDiffusivity_, mat.diffusion->computeDiffusivity(mat.particles, t));
+    maxDiffusivity_ =
+        std::max(maxDiffusivity_, mat.diffusion->computeDiffusivity(mat.particles, t));
 }
 
-void ReactiveFlow::checkConcentrationRange(const std::vector<MPMMaterial>& materials, double t) const {
+void ReactiveFlow::checkConcentrationRange(const std::vector<MPMMaterial>& materials,
+                                           double t) const {
   for (size_t m = 0; m < materials.size(); ++m) {
     const ParticleSet& p = materials[m].particles;
     const ScalarDiffusionModel& d = *materials[m].diffusion;
@@ -142,8 +155,9 @@ void ReactiveFlow::checkConcentrationRange(const std::vector<MPMMaterial>& mater
       const double c = p.concentration[i];
       if (c >= d.minConcentration - tol && c <= d.maxConcentration + tol) continue;
       std::ostringstream s;
-      s << describeParticle(materials[m], m, i) << " has concentration " << c << " at t = " << t << ", outside ["
-        << d.minConcentration << ", " << d.maxConcentration << "] by more than " << tol << " (no clamp is applied)";
+      s << describeParticle(materials[m], m, i) << " has concentration " << c << " at t = " << t
+        << ", outside [" << d.minConcentration << ", " << d.maxConcentration << "] by more than "
+        << tol << " (no clamp is applied)";
       throw SimulationError(s.str());
     }
   }
@@ -154,7 +168,8 @@ double ReactiveFlow::stableTimestep(const Grid& grid) const {
   const double dx = grid.dx.minCoeff();
   if (maxDiffusivity_ > 0) dt = std::min(dt, dx * dx / (2 * maxDiffusivity_));  // Eq. 44
   // The flux limit: no particle steps past the restriction's root in one step.
-  if (flux_.maxRateCoefficient() > 0) dt = std::min(dt, 1.0 / (kRestrictionSlope * flux_.maxRateCoefficient()));
+  if (flux_.maxRateCoefficient() > 0)
+    dt = std::min(dt, 1.0 / (kRestrictionSlope * flux_.maxRateCoefficient()));
   return dt;
 }
 

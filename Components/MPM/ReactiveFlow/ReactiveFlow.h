@@ -39,20 +39,22 @@ class ReactiveFlow {
   // diffusivity and flux rates. `faceBCs` holds the SD-Type conditions, `seeds` the surface
   // particles.
   void initialize(const PSNode& root, const Grid& grid, const std::vector<FaceBC>& faceBCs,
-                  std::vector<MPMMaterial>& materials, const std::vector<MaterialSeeds>& seeds, int threads,
-                  double initTime);
+                  std::vector<MPMMaterial>& materials, const std::vector<MaterialSeeds>& seeds,
+                  int threads, double initTime);
 
   // --- the step's diffusion tasks, in the order MPM::timeAdvance calls them ---
 
   // Before P2G of material m: zeroes its fields on nodes [begin, end) and marks the nodes its
   // flux sources reach; then calls f with the material's P2G kernel.
   template <class F>
-  void withScatter(size_t m, const ParticleSet& p, const InterpolationWeights& W, long begin, long end, F&& f);
+  void withScatter(size_t m, const ParticleSet& p, const InterpolationWeights& W, long begin,
+                   long end, F&& f);
   // Eq. 5: c = (mc)/m, then the SD-Type conditions; after all materials, the interface.
   void computeNodalConcentration(size_t m, const GridFields& mechanics, long begin, long end);
   void applyDiffusionInterface(const std::vector<GridFields>& mechanics, long begin, long end);
   // Eq. 18: c* = c + (R + G)/m dt and the nodal rate that drives Eq. 8.
-  void integrateConcentration(const std::vector<GridFields>& mechanics, double dt, long begin, long end);
+  void integrateConcentration(const std::vector<GridFields>& mechanics, double dt, long begin,
+                              long end);
   // Calls f with material m's G2P kernel (Eq. 8).
   template <class F>
   void withGather(size_t m, ParticleSet& p, F&& f);
@@ -82,16 +84,16 @@ class ReactiveFlow {
   ExternalScalarFlux flux_;
   std::vector<std::vector<double>> dirichletMask_;  // per material, per node: 1 on Dirichlet nodes
   std::vector<double> cmax_;                        // per material: max_concentration
-  std::vector<double> constantRate_;                // per material: constant_rate (0 for the others)
-  std::vector<bool> receivesFlux_;                  // per material
-  double maxDiffusivity_ = 0;                       // over all particles, for Eq. 44
-  std::vector<ConcentrationGridFields> fields_;     // per material
+  std::vector<double> constantRate_;             // per material: constant_rate (0 for the others)
+  std::vector<bool> receivesFlux_;               // per material
+  double maxDiffusivity_ = 0;                    // over all particles, for Eq. 44
+  std::vector<ConcentrationGridFields> fields_;  // per material
   std::vector<ConcentrationScatterFields> threadScatter_;  // per thread, for P2G without locks
 };
 
 template <class F>
-void ReactiveFlow::withScatter(size_t m, const ParticleSet& p, const InterpolationWeights& W, long begin, long end,
-                               F&& f) {
+void ReactiveFlow::withScatter(size_t m, const ParticleSet& p, const InterpolationWeights& W,
+                               long begin, long end, F&& f) {
   ConcentrationGridFields& g = fields_[m];
   g.clearAll(begin, end);
   if (receivesFlux_[m]) {
@@ -106,7 +108,8 @@ template <class F>
 void ReactiveFlow::withGather(size_t m, ParticleSet& p, F&& f) {
   // Particle treatment of SD-Type Dirichlet (docs/diffusion.md): a particle touching a boundary
   // node takes the grid solution instead of Uintah's nodal rate.
-  const double* wall = flags_.particleDirichlet && !dirichletMask_.empty() ? dirichletMask_[m].data() : nullptr;
+  const double* wall =
+      flags_.particleDirichlet && !dirichletMask_.empty() ? dirichletMask_[m].data() : nullptr;
   const ConcentrationGridFields& g = fields_[m];
   if (receivesFlux_[m]) {
     if (wall)

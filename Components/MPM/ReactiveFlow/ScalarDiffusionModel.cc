@@ -6,7 +6,8 @@
 
 namespace anode {
 
-double nonLinear1Diffusivity(double D0, double alpha, double beta, double c, double scaledPressure) {
+double nonLinear1Diffusivity(double D0, double alpha, double beta, double c,
+                             double scaledPressure) {
   return D0 * std::exp(alpha * c - beta * scaledPressure);
 }
 
@@ -66,7 +67,8 @@ class NonLinear1 : public ScalarDiffusionModel {
   std::unique_ptr<DiffusivityCurve> curve;
 
   double scaledPressure(const Mat3& stress) const override {
-    return usePressure ? std::clamp(-pScale * stress.trace() / 3.0, pFloor, pMax) : 0.0;  // compression positive
+    return usePressure ? std::clamp(-pScale * stress.trace() / 3.0, pFloor, pMax)
+                       : 0.0;  // compression positive
   }
 
   double computeDiffusivity(ParticleSet& p, double t) override {
@@ -76,8 +78,8 @@ class NonLinear1 : public ScalarDiffusionModel {
     double dmax = 0;
 #pragma omp parallel for schedule(static) reduction(max : dmax)
     for (long i = 0; i < n; ++i) {
-      p.diffusivity[i] =
-          nonLinear1Diffusivity(D0, alpha, beta, p.concentration[i] / maxConcentration, scaledPressure(p.stress[i]));
+      p.diffusivity[i] = nonLinear1Diffusivity(
+          D0, alpha, beta, p.concentration[i] / maxConcentration, scaledPressure(p.stress[i]));
       dmax = std::max(dmax, p.diffusivity[i]);
     }
     return dmax;
@@ -91,7 +93,8 @@ class NonLinear1 : public ScalarDiffusionModel {
   void loadState(BinaryReader& in) override {
     if (!curve) return;
     const uint64_t interval = in.value<uint64_t>();
-    if (interval >= curve->times.size()) throw std::runtime_error("the checkpoint's <diff_curve> interval is beyond the curve");
+    if (interval >= curve->times.size())
+      throw std::runtime_error("the checkpoint's <diff_curve> interval is beyond the curve");
     curve->interval = interval;
   }
 };
@@ -110,7 +113,9 @@ class Cubic : public ScalarDiffusionModel {
     }
     return dmax;
   }
-  bool diffuses() const override { return D0 > 0 || Dmax > 0; }
+  bool diffuses() const override {
+    return D0 > 0 || Dmax > 0;
+  }
 };
 
 std::unique_ptr<DiffusivityCurve> readCurve(const PSNode& node, double maxTime) {
@@ -121,13 +126,16 @@ std::unique_ptr<DiffusivityCurve> readCurve(const PSNode& node, double maxTime) 
       point.requireChild("time").fail("<diff_curve> times must be strictly increasing");
     const std::string dir = point.require<std::string>("flux_direction");
     if (dir != "in" && dir != "out" && dir != "transition")
-      point.requireChild("flux_direction").fail("<flux_direction> must be in, out or transition, found \"" + dir + "\"");
+      point.requireChild("flux_direction")
+          .fail("<flux_direction> must be in, out or transition, found \"" + dir + "\"");
     curve->times.push_back(t);
     curve->frozen.push_back(dir == "out");
   }
   if (curve->times.size() < 2) node.fail("<diff_curve> needs at least two <time_point>");
   if (!(curve->times.back() > maxTime))
-    node.fail("the last <diff_curve> time must lie beyond <maxTime> (Uintah reads past the list otherwise)");
+    node.fail(
+        "the last <diff_curve> time must lie beyond <maxTime> (Uintah reads past the list "
+        "otherwise)");
   return curve;
 }
 
@@ -157,7 +165,8 @@ std::unique_ptr<ScalarDiffusionModel> createDiffusionModel(const PSNode& node, d
       m->pFloor = node.require<double>("tuning3");
       m->pMax = node.require<double>("tuning4");
       m->pScale = node.require<double>("tuning5");
-      if (m->pMax < m->pFloor) node.requireChild("tuning4").fail("<tuning4> (p_max) must be >= <tuning3>");
+      if (m->pMax < m->pFloor)
+        node.requireChild("tuning4").fail("<tuning4> (p_max) must be >= <tuning3>");
     } else {
       for (const char* inert : {"tuning3", "tuning4", "tuning5"}) node.acceptInert(inert);
     }
@@ -168,21 +177,26 @@ std::unique_ptr<ScalarDiffusionModel> createDiffusionModel(const PSNode& node, d
     m->Dmax = positiveOrZero(node, "max_diffusivity");
     model = std::move(m);
   } else if (type == "rf1" || type == "non_linear2") {
-    node.fail("diffusion_model type=\"" + type + "\" is not supported; accepted: jg, constant_rate, non_linear1, cubic");
+    node.fail("diffusion_model type=\"" + type +
+              "\" is not supported; accepted: jg, constant_rate, non_linear1, cubic");
   } else {
-    node.fail("unknown diffusion_model type=\"" + type + "\"; accepted: jg, constant_rate, non_linear1, cubic");
+    node.fail("unknown diffusion_model type=\"" + type +
+              "\"; accepted: jg, constant_rate, non_linear1, cubic");
   }
   model->type = type;
   model->D0 = positiveOrZero(node, "diffusivity");
   model->maxConcentration = node.require<double>("max_concentration");
-  if (!(model->maxConcentration > 0)) node.requireChild("max_concentration").fail("<max_concentration> must be positive");
+  if (!(model->maxConcentration > 0))
+    node.requireChild("max_concentration").fail("<max_concentration> must be positive");
   model->minConcentration = node.get<double>("min_concentration", 0.0);
   if (model->minConcentration >= model->maxConcentration)
-    node.requireChild("min_concentration").fail("<min_concentration> must be below <max_concentration>");
+    node.requireChild("min_concentration")
+        .fail("<min_concentration> must be below <max_concentration>");
   // conc_tolerance only shapes Uintah's clamp, which this code does not apply; the initial
   // concentration comes from <geom_object><concentration> (Uintah never applies this one).
   for (const char* inert : {"conc_tolerance", "initial_concentration"}) node.acceptInert(inert);
-  if (const PSNode cond = node.child("conductivity_equation")) cond.unsupported("<conductivity_equation> (Gauss solver)");
+  if (const PSNode cond = node.child("conductivity_equation"))
+    cond.unsupported("<conductivity_equation> (Gauss solver)");
   return model;
 }
 

@@ -30,9 +30,9 @@ class ScalarDiffusionModel {
   virtual void saveState(BinaryWriter&) const {}
   virtual void loadState(BinaryReader&) {}
 
-  double D0 = 0;                 // <diffusivity>
-  double maxConcentration = 1;   // <max_concentration>
-  double minConcentration = 0;   // <min_concentration>
+  double D0 = 0;                // <diffusivity>
+  double maxConcentration = 1;  // <max_concentration>
+  double minConcentration = 0;  // <min_concentration>
   std::string type;
 };
 

@@ -24,14 +24,16 @@ std::vector<ScalarFluxBC> ScalarFluxBC::fromInput(const PSNode& physicalBC) {
     bc.line = block.line();
     const PSNode geom = block.requireChild("geom_object");
     const auto pieces = geom.children();
-    if (pieces.size() != 1) geom.fail("a <scalar_flux> <geom_object> holds exactly one box, cylinder or sphere");
+    if (pieces.size() != 1)
+      geom.fail("a <scalar_flux> <geom_object> holds exactly one box, cylinder or sphere");
     const PSNode piece = pieces[0];
     const std::string type = piece.name();
     if (type == "box") {
       bc.face = Face::Box;
       bc.boxMin = piece.require<Vec3>("min");
       bc.boxMax = piece.require<Vec3>("max");
-      if ((bc.boxMax.array() < bc.boxMin.array()).any()) piece.requireChild("max").fail("<max> must be >= <min>");
+      if ((bc.boxMax.array() < bc.boxMin.array()).any())
+        piece.requireChild("max").fail("<max> must be >= <min>");
     } else if (type == "cylinder") {
       bc.bottom = piece.require<Vec3>("bottom");
       bc.top = piece.require<Vec3>("top");
@@ -50,15 +52,18 @@ std::vector<ScalarFluxBC> ScalarFluxBC::fromInput(const PSNode& physicalBC) {
       bc.radius = piece.require<double>("radius");
       if (!(bc.radius > 0)) piece.requireChild("radius").fail("<radius> must be positive");
     } else {
-      piece.fail("a <scalar_flux> geometry must be a box, cylinder or sphere, found <" + type + ">");
+      piece.fail("a <scalar_flux> geometry must be a box, cylinder or sphere, found <" + type +
+                 ">");
     }
     if (const PSNode update = block.child("area_update")) {
       const std::string rule = update.value<std::string>();
       if (rule == "deformed")
         bc.deformedArea = true;
       else if (rule != "constant")
-        update.fail("<area_update> must be constant (Uintah's fixed face area) or deformed (Nanson), found \"" +
-                    rule + "\"");
+        update.fail(
+            "<area_update> must be constant (Uintah's fixed face area) or deformed (Nanson), found "
+            "\"" +
+            rule + "\"");
     }
     block.acceptInert("outward_normal");
     block.acceptInert("auto_cycle");
@@ -122,7 +127,8 @@ double ScalarFluxBC::distanceToFace(const Vec3& x) const {
 double ScalarFluxBC::flaggedArea(const Vec3& x, const Vec3& dxp, const Vec3& faceAreas) const {
   switch (face) {
     case Face::Box: {
-      if ((x.array() < (boxMin - dxp).array()).any() || (x.array() > (boxMax + dxp).array()).any()) return 0;
+      if ((x.array() < (boxMin - dxp).array()).any() || (x.array() > (boxMax + dxp).array()).any())
+        return 0;
       // The BC's normal is the axis of the box's smallest extent.
       int axis = 0;
       (boxMax - boxMin).minCoeff(&axis);
@@ -145,7 +151,8 @@ double ScalarFluxBC::flaggedArea(const Vec3& x, const Vec3& dxp, const Vec3& fac
                          std::pow(faceAreas.z() * n.z(), 2));
       }
       if (along < -tol || along > length + tol || radial.norm() > radius) return 0;
-      return std::sqrt(std::pow(faceAreas.x() * axis.x(), 2) + std::pow(faceAreas.y() * axis.y(), 2) +
+      return std::sqrt(std::pow(faceAreas.x() * axis.x(), 2) +
+                       std::pow(faceAreas.y() * axis.y(), 2) +
                        std::pow(faceAreas.z() * axis.z(), 2));
     }
     case Face::Sphere: {

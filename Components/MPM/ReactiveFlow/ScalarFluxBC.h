@@ -17,10 +17,10 @@ namespace anode {
 
 struct ScalarFluxBC {
   enum class Face { Box, CylinderSide, CylinderEnd, Sphere } face = Face::Box;
-  Vec3 boxMin, boxMax;          // box
-  Vec3 bottom, top;             // cylinder
-  double radius = 0;            // cylinder, sphere
-  Vec3 center;                  // sphere
+  Vec3 boxMin, boxMax;  // box
+  Vec3 bottom, top;     // cylinder
+  double radius = 0;    // cylinder, sphere
+  Vec3 center;          // sphere
   LoadCurve load{{0.0}, {0.0}};
   // <area_update>deformed: a flagged particle's face area follows its deformation (Nanson);
   // constant (default, as Uintah): the area it was given at the start.

@@ -29,7 +29,8 @@ FlowModel FlowModel::fromInput(const PSNode& flow) {
     // The temperature factor 1 - T*^m is 1 at room temperature, which this model keeps, provided
     // m > 0 (Uintah evaluates 0^0 = 1 and gets a zero yield stress).
     const double m = flow.require<double>("m");
-    if (!(m > 0)) flow.requireChild("m").fail("<m> must be positive (m = 0 gives zero yield stress in Uintah)");
+    if (!(m > 0))
+      flow.requireChild("m").fail("<m> must be positive (m = 0 gives zero yield stress in Uintah)");
     flow.acceptInert("epdot_0");
     flow.acceptInert("T_r");
     flow.acceptInert("T_m");
@@ -39,7 +40,8 @@ FlowModel FlowModel::fromInput(const PSNode& flow) {
     if (!(f.sigmaY > 0)) flow.requireChild("sigma_Y").fail("<sigma_Y> must be positive");
     f.K = nonNegative(flow, "K");
   } else {
-    flow.fail("unknown flow_model type=\"" + type + "\"; accepted: johnson_cook, isotropic_hardening");
+    flow.fail("unknown flow_model type=\"" + type +
+              "\"; accepted: johnson_cook, isotropic_hardening");
   }
   return f;
 }

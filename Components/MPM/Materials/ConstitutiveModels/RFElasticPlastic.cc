@@ -69,8 +69,9 @@ void RFElasticPlastic::initializeState(ParticleSet& p) const {
   if (canYield()) p.enable(Physics::Plasticity);
 }
 
-Mat3 RFElasticPlastic::updateStress(const Mat3& stress, Mat3& rotation, const Mat3& Fnew, const Mat3& L,
-                                    double dc, double dt, double& ep, double& epdot) const {
+Mat3 RFElasticPlastic::updateStress(const Mat3& stress, Mat3& rotation, const Mat3& Fnew,
+                                    const Mat3& L, double dc, double dt, double& ep,
+                                    double& epdot) const {
   const Mat3 I = Mat3::Identity();
   // Unrotate the rate of deformation and the stress with R of the old F (Eqs. 26-29).
   const Mat3 Rold = rotation;

@@ -26,8 +26,8 @@ class RFElasticPlastic : public ConstitutiveModel {
   // One particle: returns the new lab-frame stress; `rotation` is R of the old F on entry and R
   // of Fnew on return; ep/epdot are the plastic strain and its rate (untouched for an elastic
   // material); dc is the concentration change of the step.
-  Mat3 updateStress(const Mat3& stress, Mat3& rotation, const Mat3& Fnew, const Mat3& L, double dc, double dt,
-                    double& ep, double& epdot) const;
+  Mat3 updateStress(const Mat3& stress, Mat3& rotation, const Mat3& Fnew, const Mat3& L, double dc,
+                    double dt, double& ep, double& epdot) const;
 
  private:
   double K_, G_, eta_;
