@@ -18,9 +18,11 @@ double bytesPerParticle(const MPMFlags& flags) {
 }
 
 double bytesPerGridNode(const MPMFlags& flags, size_t materials, int threads) {
-  const double perMaterial = Grid::kMinBytesPerNode + (flags.doScalarDiffusion ? 6 * 8 : 0);
-  // Each thread's scatter buffer: mass, momentum, force (and the diffusion fields).
-  const double perThread = threads > 1 ? 8 + 2 * 24 + (flags.doScalarDiffusion ? 6 * 8 : 0) : 0;
+  // Diffusion (ReactiveFlow/DiffusionGridFields.h): 6 fields, 5 more and the source marks for a
+  // material with flux BCs (counted for every material: an upper bound).
+  const double perMaterial = Grid::kMinBytesPerNode + (flags.doScalarDiffusion ? 11 * 8 + 1 : 0);
+  // Each thread's scatter buffer: mass, momentum, force (and the 5 diffusion sums).
+  const double perThread = threads > 1 ? 8 + 2 * 24 + (flags.doScalarDiffusion ? 5 * 8 : 0) : 0;
   return perMaterial * static_cast<double>(materials) + perThread * threads;
 }
 
