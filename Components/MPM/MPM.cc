@@ -102,7 +102,9 @@ void MPM::problemSetup(const PSNode& root, double initTime, double maxTime) {
 }
 
 void MPM::timeAdvance(double t, double dt) {
-  // The tasks of DESIGN.md §4 in order (docs/diffusion.md lists the diffusion part of each).
+  // The tasks in order (docs/diffusion.md lists the diffusion part of each). DESIGN.md §4 has the
+  // same ones but computes D and the flux rate at the start of a step: here task 10 computes
+  // them for the new state, which its output and its time step (Eq. 44) need as well.
   {
     ScopedTimer s(timers_, tasks_.interpolationWeights);
     computeInterpolationWeights();  // 1: S_ip, grad S_ip (CPDI: domains F size)
@@ -115,8 +117,8 @@ void MPM::timeAdvance(double t, double dt) {
     ScopedTimer s(timers_, tasks_.gridIntegration);
     exchangeMomentumInterpolated();  // 3: contact on the interpolated velocity
     integrateGridMomentum(dt);       // 4: a = f/m + g, v* = v + a dt
-    if (diffusion_)
-      diffusion_->integrateConcentration(fields_, dt, active_.begin, active_.end);  // 5: Eq. 18
+    if (diffusion_)                  // 5: c* and the nodal concentration rate (Eq. 18)
+      diffusion_->integrateConcentration(fields_, dt, active_.begin, active_.end);
     setGridBoundaryConditions(dt);  // 6: contact, velocity BCs, acceleration
   }
   {
@@ -128,9 +130,9 @@ void MPM::timeAdvance(double t, double dt) {
     splitParticles();  // 9: particles stretched beyond the ratio split in four
   }
   if (diffusion_) {
+    // 10: the range check of c, then D (Eqs. 23-24) and the flux rates (Eqs. 16-17) at t + dt
     ScopedTimer s(timers_, tasks_.diffusionState);
-    diffusion_->updateDiffusionState(materials_,
-                                     t + dt);  // 10: c range, D (Eqs. 23-24), flux (Eqs. 16-17)
+    diffusion_->updateDiffusionState(materials_, t + dt);
   }
 }
 
