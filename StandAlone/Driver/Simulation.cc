@@ -122,6 +122,9 @@ void Simulation::run() {
   std::fprintf(stderr, "sus: %zu particles in %zu material(s), grid %dx%dx%d cells, output in %s\n",
                mpm_.numParticles(), mpm_.materials().size(), mpm_.grid().cells.x(),
                mpm_.grid().cells.y(), mpm_.grid().cells.z(), archiver_.directory().c_str());
+  if (mpm_.diffusion())
+    for (const std::string& line : mpm_.diffusion()->setupReport())
+      std::fprintf(stderr, "sus: %s\n", line.c_str());
   if (restart) {
     std::fprintf(stderr, "sus: restarting from %s (step %ld, t = %.6e)\n", restartedFrom.c_str(),
                  step_, t_);

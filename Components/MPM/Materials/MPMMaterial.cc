@@ -92,6 +92,7 @@ void addGeomObject(const PSNode& geom, const Grid& grid, const MPMFlags& flags, 
   // A smooth piece lays out every particle, inside the grid or not (grid-filled pieces are
   // checked once the face BCs are read: checkPiecesInsideGrid).
   if (smooth) {
+    out.smooth = true;
     for (const SmoothParticle& s : seeds)
       if ((s.x.array() < grid.lower.array()).any() || (s.x.array() > grid.upper.array()).any())
         pieceNodes[0].fail("<smoothcyl> places particles outside " + domain(grid) + ", e.g. at " +

@@ -30,6 +30,7 @@ struct MaterialSeeds {
     Vec3i res;
   };
   std::vector<FilledPiece> filledPieces;
+  bool smooth = false;  // a <smoothcyl> laid out particles (on its surface, with their own areas)
 
   // An error at the first piece whose particle lattice reaches beyond the grid, where they are
   // dropped, other than beyond a face `mirror` marks (a symmetry BC for this material, index

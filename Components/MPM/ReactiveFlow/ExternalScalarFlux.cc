@@ -4,13 +4,16 @@
 #include <cmath>
 #include <limits>
 
+#include "Components/MPM/ReactiveFlow/FluxSurfaceArea.h"
+
 namespace anode {
 
-std::vector<size_t> ExternalScalarFlux::assignToParticles(
-    std::vector<MPMMaterial>& materials, const std::vector<MaterialSeeds>& seeds) const {
+std::vector<ExternalScalarFlux::Flagged> ExternalScalarFlux::assignToParticles(
+    std::vector<MPMMaterial>& materials, const std::vector<MaterialSeeds>& seeds,
+    const Grid& grid) const {
   // Surface particles get, per BC that flags them, the area of the face that BC names
   // (UINTAH_UPS.md §3.1; unlike Uintah, not the area left by the last BC tested).
-  std::vector<size_t> flagged(bcs_.size(), 0);
+  std::vector<Flagged> report;
   for (size_t m = 0; m < materials.size(); ++m) {
     MPMMaterial& mat = materials[m];
     const MaterialSeeds& surface = seeds[m];
@@ -18,6 +21,12 @@ std::vector<size_t> ExternalScalarFlux::assignToParticles(
     if (bcs_.empty() || !mat.diffusion->diffuses())
       continue;  // a material without diffusivity gets no lithium
     p.enable(Physics::FluxBC);
+    // Per BC, how many particles it flags, those that hold it (at most 3 BCs a particle) and
+    // the slot it has in each.
+    std::vector<size_t> flagged(bcs_.size(), 0);
+    std::vector<std::vector<size_t>> holding(bcs_.size());
+    std::vector<std::vector<int>> slots(bcs_.size());
+    Vec3 spacing = Vec3::Zero();
     for (size_t i = 0; i < p.count(); ++i) {
       if (!surface.onSurface[i]) continue;
       int slot = 0;
@@ -28,11 +37,30 @@ std::vector<size_t> ExternalScalarFlux::assignToParticles(
         if (slot == 3) continue;  // a particle holds at most 3 load curves
         p.loadCurveID[i][slot] = static_cast<int>(b) + 1;
         p.area[i][slot] = a;
+        holding[b].push_back(i);
+        slots[b].push_back(slot);
+        spacing = spacing.cwiseMax(surface.spacing[i]);
         ++slot;
       }
     }
+    for (size_t b = 0; b < bcs_.size(); ++b) {
+      if (flagged[b] == 0) continue;
+      Flagged f{b, m, flagged[b]};
+      if (bcs_[b].face != ScalarFluxBC::Face::Box && !surface.smooth && !bcs_[b].particleFaceArea) {
+        // A curved face on a body filled on the grid: its own surface shared out.
+        std::vector<GeometryPieceP> body;
+        for (const MaterialSeeds::FilledPiece& piece : surface.filledPieces)
+          body.push_back(piece.piece);
+        const SurfaceShare share =
+            shareSurfaceArea(bcs_[b], body, grid, spacing, holding[b], slots[b], p);
+        f.surfaceArea = share.surfaceArea;
+        f.bodyArea = share.bodyArea;
+      }
+      for (size_t k = 0; k < holding[b].size(); ++k) f.area += p.area[holding[b][k]][slots[b][k]];
+      report.push_back(f);
+    }
   }
-  return flagged;
+  return report;
 }
 
 void ExternalScalarFlux::computeFluxRates(std::vector<MPMMaterial>& materials, double t) {

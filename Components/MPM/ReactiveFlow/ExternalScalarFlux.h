@@ -9,6 +9,7 @@
 #include "Components/MPM/MPMFlags.h"
 #include "Components/MPM/Materials/MPMMaterial.h"
 #include "Components/MPM/ReactiveFlow/ScalarFluxBC.h"
+#include "Core/Grid/Grid.h"
 #include "Core/Util/BinaryStream.h"
 
 namespace anode {
@@ -21,11 +22,19 @@ class ExternalScalarFlux {
   bool empty() const { return bcs_.empty(); }
   const std::vector<ScalarFluxBC>& bcs() const { return bcs_; }
 
+  // What one BC flagged in one material (the setup report).
+  struct Flagged {
+    size_t bc, material, particles = 0;
+    double area = 0;         // the flagged particles' areas, summed
+    double surfaceArea = 0;  // curved faces of grid-filled bodies: the BC surface's whole area,
+    double bodyArea = 0;     // and the part of it on the body (FluxSurfaceArea.h); 0 otherwise
+  };
   // Gives the surface particles of each material that diffuses (per material in `seeds`), per BC
-  // that flags them, the area of the face that BC names. Returns, per BC, the number of
-  // particles it flags.
-  std::vector<size_t> assignToParticles(std::vector<MPMMaterial>& materials,
-                                        const std::vector<MaterialSeeds>& seeds) const;
+  // that flags them, their area of the face that BC names (docs/diffusion.md, "Flux area at the
+  // start"). Returns what each BC flagged in each material (no entry: nothing).
+  std::vector<Flagged> assignToParticles(std::vector<MPMMaterial>& materials,
+                                         const std::vector<MaterialSeeds>& seeds,
+                                         const Grid& grid) const;
   // Eqs. 16-17: rate_p = R(c_p) sum_k J_k(t) A_k / V_p, the restriction applied once; also the
   // largest unrestricted rate coefficient sum |J| A / V for the time-step limit.
   void computeFluxRates(std::vector<MPMMaterial>& materials, double t);

@@ -51,9 +51,10 @@ void ReactiveFlow::initialize(const PSNode& root, const Grid& grid,
   grid_ = grid;
   faceBCs_ = faceBCs;
   dirichletMask_ = dirichletNodeMasks(grid, faceBCs, materials.size());
-  const std::vector<size_t> flagged = flux_.assignToParticles(materials, seeds);
-  for (size_t b = 0; b < flagged.size(); ++b)
-    if (flagged[b] == 0)
+  const std::vector<ExternalScalarFlux::Flagged> flagged =
+      flux_.assignToParticles(materials, seeds, grid);
+  for (size_t b = 0; b < flux_.bcs().size(); ++b)
+    if (std::none_of(flagged.begin(), flagged.end(), [b](const auto& f) { return f.bc == b; }))
       root.child("PhysicalBC")
           .child("MPM")
           .children("scalar_flux")[b]
@@ -62,6 +63,18 @@ void ReactiveFlow::initialize(const PSNode& root, const Grid& grid,
               "this <scalar_flux> flags no particle: its geometry selects no surface particle of a "
               "material that diffuses (selection rules in docs/diffusion.md), so its flux would go "
               "nowhere");
+  for (const ExternalScalarFlux::Flagged& f : flagged) {
+    std::ostringstream s;
+    s << "<scalar_flux> " << f.bc + 1 << " (line " << flux_.bcs()[f.bc].line << ") flags "
+      << f.particles << " particles of material " << f.material;
+    if (!materials[f.material].name.empty()) s << " (" << materials[f.material].name << ")";
+    s << ", flux area " << f.area;
+    if (f.surfaceArea > 0)
+      s << " (its surface " << f.surfaceArea << ", of which on the body " << f.bodyArea << ")";
+    else
+      s << " (their particle faces)";
+    setupReport_.push_back(s.str());
+  }
   const int nodes = grid.numNodes();
   bool anyFlux = false;
   for (const MPMMaterial& mat : materials) {

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "Components/MPM/GridFields.h"
@@ -71,6 +72,8 @@ class ReactiveFlow {
   void loadState(std::vector<MPMMaterial>& materials, BinaryReader& in);
 
   const std::vector<ConcentrationGridFields>& gridFields() const { return fields_; }
+  // Lines for the user at setup: per flux BC and material, the particles flagged and their area.
+  const std::vector<std::string>& setupReport() const { return setupReport_; }
   const std::vector<ScalarFluxBC>& fluxBCs() const { return flux_.bcs(); }
 
  private:
@@ -89,6 +92,7 @@ class ReactiveFlow {
   double maxDiffusivity_ = 0;                    // over all particles, for Eq. 44
   std::vector<ConcentrationGridFields> fields_;  // per material
   std::vector<ConcentrationScatterFields> threadScatter_;  // per thread, for P2G without locks
+  std::vector<std::string> setupReport_;
 };
 
 template <class F>

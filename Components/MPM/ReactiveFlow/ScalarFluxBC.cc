@@ -65,6 +65,17 @@ std::vector<ScalarFluxBC> ScalarFluxBC::fromInput(const PSNode& physicalBC) {
             "\"" +
             rule + "\"");
     }
+    if (const PSNode rule = block.child("area_rule")) {
+      const std::string value = rule.value<std::string>();
+      if (value == "particle_face")
+        bc.particleFaceArea = true;
+      else if (value != "surface")
+        rule.fail(
+            "<area_rule> must be surface (the area of the BC surface, shared among the flagged "
+            "particles) or "
+            "particle_face (Uintah's face of each particle), found \"" +
+            value + "\"");
+    }
     block.acceptInert("outward_normal");
     block.acceptInert("auto_cycle");
     block.acceptInert("numberOfParticlesOnLoadSurface");

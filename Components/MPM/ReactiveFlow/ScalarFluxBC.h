@@ -25,6 +25,10 @@ struct ScalarFluxBC {
   // <area_update>deformed: a flagged particle's face area follows its deformation (Nanson);
   // constant (default, as Uintah): the area it was given at the start.
   bool deformedArea = false;
+  // <area_rule>particle_face: a curved face on a body filled on the grid also gives each flagged
+  // particle the particle face it names (Uintah's rule); surface (default): its share of the
+  // BC's surface (FluxSurfaceArea.h).
+  bool particleFaceArea = false;
   int line = 0;
 
   static std::vector<ScalarFluxBC> fromInput(const PSNode& physicalBC);

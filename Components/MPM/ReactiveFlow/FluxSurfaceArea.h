@@ -1,0 +1,45 @@
+// The flux area of grid-filled particles under a curved <scalar_flux> face (sphere, cylinder
+// side and end; docs/diffusion.md, "Flux area at the start"). A particle face's area is right
+// only where the surface faces a grid axis: on a curved surface the surface particles the BC
+// flags form a layer whose thickness, and so their number per unit of surface, depends on how
+// the surface faces the grid (a sphere filled on the lattice got 0.81 of 4 pi R^2). Instead the
+// BC's own surface is sampled (points about dx/4 apart, each carrying its share of the area),
+// a sample is kept where the material's body has its surface there, and its area goes to the
+// nearest flagged particle: the flagged areas add up to the area of the flagged part of the
+// body, whatever way it faces the grid.
+#pragma once
+
+#include <vector>
+
+#include "Components/MPM/ParticleSet.h"
+#include "Components/MPM/ReactiveFlow/ScalarFluxBC.h"
+#include "Core/Geometry/GeometryPiece.h"
+#include "Core/Grid/Grid.h"
+
+namespace anode {
+
+// A point of a flux BC's surface with the area it stands for and the surface's unit normal.
+struct SurfaceSample {
+  Vec3 x, normal;
+  double area;
+};
+
+// Samples the surface of a sphere or cylinder BC (both end disks for cylinder_end) with points
+// at most `spacing` apart; the areas add up to the surface's area.
+std::vector<SurfaceSample> sampleSurface(const ScalarFluxBC& bc, double spacing);
+
+// What distributing one BC's surface over one material's flagged particles gave.
+struct SurfaceShare {
+  double surfaceArea = 0;   // of the whole BC surface
+  double bodyArea = 0;      // of the part where the body has its surface inside the grid
+  double assignedArea = 0;  // of that part, handed to flagged particles
+};
+
+// Sets area[i][slot[k]] of each flagged particle flagged[k] to its share of the BC's surface on
+// the body (`body`: the material's pieces). A sample goes to the nearest flagged particle within
+// 1.5 |dxp| of it; a sample with none is not handed out (assignedArea < bodyArea).
+SurfaceShare shareSurfaceArea(const ScalarFluxBC& bc, const std::vector<GeometryPieceP>& body,
+                              const Grid& grid, const Vec3& dxp, const std::vector<size_t>& flagged,
+                              const std::vector<int>& slot, ParticleSet& p);
+
+}  // namespace anode
