@@ -50,6 +50,7 @@ class MPM {
   const std::vector<MPMMaterial>& materials() const { return materials_; }
   std::vector<MPMMaterial>& materials() { return materials_; }
   const std::vector<GridFields>& gridFields() const { return fields_; }
+  const std::vector<FaceBC>& faceBCs() const { return faceBCs_; }
   // The diffusion subcomponent; null without <do_scalar_diffusion>true.
   const ReactiveFlow* diffusion() const { return diffusion_.get(); }
   size_t numParticles() const;

@@ -125,6 +125,8 @@ void Simulation::run() {
   if (mpm_.diffusion())
     for (const std::string& line : mpm_.diffusion()->setupReport())
       std::fprintf(stderr, "sus: %s\n", line.c_str());
+  for (const std::string& note : symmetryFaces_.start(mpm_))
+    std::fprintf(stderr, "%s\n", note.c_str());
   if (restart) {
     std::fprintf(stderr, "sus: restarting from %s (step %ld, t = %.6e)\n", restartedFrom.c_str(),
                  step_, t_);
@@ -153,6 +155,10 @@ void Simulation::run() {
       throw;
     }
     summaryRow(stepDt);
+    for (const std::string& warning : symmetryFaces_.afterStep(mpm_, step_, t_)) {
+      if (options_.progress) progress.finish();
+      std::fprintf(stderr, "%s\n", warning.c_str());
+    }
     const bool done = finished();
     if (done || archiver_.isOutputStep(step_, t_)) output(true);
     scenes_.renderDue(t_, mpm_, archiver_.directory());

@@ -6,6 +6,7 @@
 
 #include "Components/MPM/MPM.h"
 #include "Components/MPM/StateChecks.h"
+#include "Components/MPM/SymmetryFaceWatch.h"
 #include "StandAlone/Driver/Checkpoint.h"
 #include "StandAlone/Driver/DataArchiver.h"
 #include "StandAlone/Driver/SceneOutput.h"
@@ -68,6 +69,7 @@ class Simulation {
   DataArchiver archiver_;
   SceneOutput scenes_;
   StateChecks checks_;
+  SymmetryFaceWatch symmetryFaces_;
   CheckpointSchedule checkpoints_;
   std::string newestCheckpoint_;  // of either kind: where a replay to the last good state starts
   double t_ = 0, dt_ = 0;

@@ -25,6 +25,9 @@ class ConstitutiveModel {
   virtual void initializeState(ParticleSet& p) const = 0;
   // True if the stress depends on the concentration (swelling).
   virtual bool swells() const = 0;
+  // eta: the swelling rate of deformation is eta dc/dt I (0 without swelling), so free swelling
+  // from c = 0 to 1 stretches each axis by exp(eta).
+  virtual double swellingCoefficient() const = 0;
   // K + 4G/3: the modulus of the dilatational wave speed (paper Eq. 41).
   virtual double dilatationalModulus() const = 0;
   virtual bool canYield() const = 0;

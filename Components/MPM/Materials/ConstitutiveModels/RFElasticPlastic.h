@@ -19,6 +19,7 @@ class RFElasticPlastic : public ConstitutiveModel {
 
   void initializeState(ParticleSet& p) const override;
   bool swells() const override { return eta_ != 0; }
+  double swellingCoefficient() const override { return eta_; }
   double dilatationalModulus() const override { return K_ + 4.0 * G_ / 3.0; }
   bool canYield() const override { return flow_.has_value(); }
   ConcreteConstitutiveModel concrete() const override { return this; }

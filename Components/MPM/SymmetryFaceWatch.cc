@@ -1,0 +1,106 @@
+#include "Components/MPM/SymmetryFaceWatch.h"
+
+#include <cmath>
+#include <sstream>
+
+namespace anode {
+
+namespace {
+
+const char* faceName(int axis, int side) {
+  static const char* names[3][2] = {{"x-", "x+"}, {"y-", "y+"}, {"z-", "z+"}};
+  return names[axis][side];
+}
+
+// Distance of x from the grid face (axis, side), positive inside the grid.
+double distanceToFace(const Grid& g, const Vec3& x, int axis, int side) {
+  return side == 0 ? x[axis] - g.lower[axis] : g.upper[axis] - x[axis];
+}
+
+std::string materialName(const MPMMaterial& mat, size_t m) {
+  std::ostringstream s;
+  s << "material " << m;
+  if (!mat.name.empty()) s << " (" << mat.name << ")";
+  return s.str();
+}
+
+}  // namespace
+
+std::vector<std::string> SymmetryFaceWatch::start(const MPM& mpm) {
+  const Grid& g = mpm.grid();
+  std::vector<std::string> notes;
+  watched_.clear();
+  for (size_t m = 0; m < mpm.materials().size(); ++m) {
+    const MPMMaterial& mat = mpm.materials()[m];
+    const ParticleSet& p = mat.particles;
+    Vec3 lo = Vec3::Constant(INFINITY), hi = -lo;
+    for (const Vec3& x : p.x) lo = lo.cwiseMin(x), hi = hi.cwiseMax(x);
+    bool startsOn[3][2] = {};
+    for (const FaceBC& bc : mpm.faceBCs())
+      if (bc.kind == FaceBC::Kind::Symmetric && bc.appliesTo(static_cast<int>(m)))
+        startsOn[bc.axis][bc.side] =
+            distanceToFace(g, bc.side == 0 ? lo : hi, bc.axis, bc.side) < g.dx[bc.axis];
+    const double eta = mat.model->swellingCoefficient(),
+                 growth = std::exp(eta);  // per axis, c 0 -> 1
+    std::string reached;
+    for (const FaceBC& bc : mpm.faceBCs()) {
+      if (bc.kind != FaceBC::Kind::Symmetric || !bc.appliesTo(static_cast<int>(m)) ||
+          startsOn[bc.axis][bc.side])
+        continue;
+      watched_.push_back({m, bc.axis, bc.side});
+      // Only a material that can take up lithium swells.
+      if (!mpm.diffusion() || growth <= 1 ||
+          !(mat.diffusion->diffuses() || mat.diffusion->constantRate() != 0))
+        continue;
+      // Free growth away from a face the body starts on (a symmetry plane), or about its middle.
+      const int a = bc.axis;
+      const double length = growth * (hi[a] - lo[a]);
+      const double from = startsOn[a][0]   ? lo[a]
+                          : startsOn[a][1] ? hi[a] - length
+                                           : 0.5 * (lo[a] + hi[a] - length);
+      const double to = from + length;
+      Vec3 edge = Vec3::Zero();
+      edge[a] = bc.side == 0 ? from : to;
+      if (distanceToFace(g, edge, a, bc.side) < 0.5 * g.dx[a])
+        reached += std::string(reached.empty() ? "" : ", ") + faceName(a, bc.side);
+    }
+    if (reached.empty()) continue;
+    std::ostringstream s;
+    s << "note: " << materialName(mat, m) << " swelling freely to c = 1 grows " << growth
+      << "-fold along each axis (exp(eta), eta = " << eta
+      << ") and would reach the Symmetric face(s) " << reached
+      << ", which would squash it: the grid leaves less room than that (enlarge it where a face "
+      << "is not a symmetry plane of the body)";
+    notes.push_back(s.str());
+  }
+  return notes;
+}
+
+std::vector<std::string> SymmetryFaceWatch::afterStep(const MPM& mpm, long step, double t) {
+  std::vector<std::string> warnings;
+  const Grid& g = mpm.grid();
+  for (size_t w = 0; w < watched_.size();) {
+    const Face f = watched_[w];
+    const MPMMaterial& mat = mpm.materials()[f.material];
+    const ParticleSet& p = mat.particles;
+    size_t reached = p.count();
+    for (size_t i = 0; i < p.count() && reached == p.count(); ++i)
+      if (distanceToFace(g, p.x[i], f.axis, f.side) < g.dx[f.axis]) reached = i;
+    if (reached == p.count()) {
+      ++w;
+      continue;
+    }
+    std::ostringstream s;
+    s << "warning: step " << step << ", t = " << t << ": "
+      << describeParticle(mat, f.material, reached)
+      << " has come within a cell of the Symmetric face " << faceName(f.axis, f.side)
+      << ", which the body did not start on: the face holds its normal velocity at zero, so a body "
+         "growing into it is squashed (enlarge the grid if the face is not a symmetry plane of the "
+         "body)";
+    warnings.push_back(s.str());
+    watched_.erase(watched_.begin() + static_cast<long>(w));  // once per face and material
+  }
+  return warnings;
+}
+
+}  // namespace anode
