@@ -23,13 +23,23 @@ std::string duration(double s) {
 
 }  // namespace
 
-ProgressReporter::ProgressReporter(double initTime, double maxTime, long maxSteps)
-    : initTime_(initTime),
+ProgressReporter::ProgressReporter(double startTime, double maxTime, long startStep, long maxSteps)
+    : startTime_(startTime),
       maxTime_(maxTime),
+      startStep_(startStep),
       maxSteps_(maxSteps),
       terminal_(::isatty(STDERR_FILENO)),
       start_(std::chrono::steady_clock::now()),
       last_(start_) {}
+
+double ProgressReporter::fractionDone(long step, double time) const {
+  // Since this run's start (which a restart moves): by simulated time, or by steps when the
+  // step limit comes first.
+  double done = maxTime_ > startTime_ ? (time - startTime_) / (maxTime_ - startTime_) : 1.0;
+  if (maxSteps_ > startStep_)
+    done = std::max(done, double(step - startStep_) / double(maxSteps_ - startStep_));
+  return std::min(done, 1.0);
+}
 
 void ProgressReporter::update(long step, double time, double dt, double particleSteps, bool force) {
   const auto now = std::chrono::steady_clock::now();
@@ -37,10 +47,7 @@ void ProgressReporter::update(long step, double time, double dt, double particle
   if (!force && sinceLast < (terminal_ ? 0.25 : 10.0)) return;
   last_ = now;
   const double elapsed = std::chrono::duration<double>(now - start_).count();
-  // Fraction done: by simulated time, or by steps when a step limit comes first.
-  double done = (time - initTime_) / (maxTime_ - initTime_);
-  if (maxSteps_ > 0) done = std::max(done, double(step) / maxSteps_);
-  done = std::min(done, 1.0);
+  const double done = fractionDone(step, time);
   const double eta = done > 0 ? elapsed * (1 - done) / done : -1;
   char line[256];
   std::snprintf(line, sizeof line,

@@ -8,14 +8,18 @@ namespace anode {
 
 class ProgressReporter {
  public:
-  ProgressReporter(double initTime, double maxTime, long maxSteps);
+  // The run starts here at (startTime, startStep) (a restart: the checkpoint's) and ends at
+  // maxTime or maxSteps (0: no step limit), whichever comes first.
+  ProgressReporter(double startTime, double maxTime, long startStep, long maxSteps);
   // Called after every step; prints at most a few times per second (terminal) or every 10 s.
   void update(long step, double time, double dt, double particleSteps, bool force = false);
   void finish();
+  // The fraction of the run done at (step, time), which the ETA extrapolates.
+  double fractionDone(long step, double time) const;
 
  private:
-  double initTime_, maxTime_;
-  long maxSteps_;
+  double startTime_, maxTime_;
+  long startStep_, maxSteps_;
   bool terminal_;
   bool pending_ = false;
   std::chrono::steady_clock::time_point start_, last_;

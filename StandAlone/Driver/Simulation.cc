@@ -136,7 +136,7 @@ void Simulation::run() {
     scenes_.renderDue(t_, mpm_, archiver_.directory());
     checkpoint(CheckpointKind::Automatic);
   }
-  ProgressReporter progress(time_.initTime, time_.maxTime, time_.maxTimesteps);
+  ProgressReporter progress(t_, time_.maxTime, step_, time_.maxTimesteps);
   const auto finished = [&] {
     return t_ >= time_.maxTime || (time_.maxTimesteps > 0 && step_ >= time_.maxTimesteps) ||
            (time_.maxWallTime > 0 && wall() >= time_.maxWallTime);
