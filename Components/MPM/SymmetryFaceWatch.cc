@@ -1,5 +1,6 @@
 #include "Components/MPM/SymmetryFaceWatch.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -78,18 +79,38 @@ std::vector<std::string> SymmetryFaceWatch::start(const MPM& mpm) {
 
 std::vector<std::string> SymmetryFaceWatch::afterStep(const MPM& mpm, long step, double t) {
   std::vector<std::string> warnings;
+  if (watched_.empty()) return warnings;
   const Grid& g = mpm.grid();
+  // Each watched material's extent, in one parallel pass (the particles are searched only when
+  // it has come within a cell of a watched face).
+  std::vector<Vec3> lo(mpm.materials().size()), hi(mpm.materials().size());
+  std::vector<bool> measured(mpm.materials().size(), false);
+  for (const Face& f : watched_) {
+    if (measured[f.material]) continue;
+    measured[f.material] = true;
+    const ParticleSet& p = mpm.materials()[f.material].particles;
+    const long n = static_cast<long>(p.count());
+    double x0 = INFINITY, y0 = INFINITY, z0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY,
+           z1 = -INFINITY;
+#pragma omp parallel for schedule(static) reduction(min : x0, y0, z0) reduction(max : x1, y1, z1)
+    for (long i = 0; i < n; ++i) {
+      x0 = std::min(x0, p.x[i].x()), y0 = std::min(y0, p.x[i].y()), z0 = std::min(z0, p.x[i].z());
+      x1 = std::max(x1, p.x[i].x()), y1 = std::max(y1, p.x[i].y()), z1 = std::max(z1, p.x[i].z());
+    }
+    lo[f.material] = Vec3(x0, y0, z0);
+    hi[f.material] = Vec3(x1, y1, z1);
+  }
   for (size_t w = 0; w < watched_.size();) {
     const Face f = watched_[w];
-    const MPMMaterial& mat = mpm.materials()[f.material];
-    const ParticleSet& p = mat.particles;
-    size_t reached = p.count();
-    for (size_t i = 0; i < p.count() && reached == p.count(); ++i)
-      if (distanceToFace(g, p.x[i], f.axis, f.side) < g.dx[f.axis]) reached = i;
-    if (reached == p.count()) {
+    const Vec3& extent = f.side == 0 ? lo[f.material] : hi[f.material];
+    if (distanceToFace(g, extent, f.axis, f.side) >= g.dx[f.axis]) {
       ++w;
       continue;
     }
+    const MPMMaterial& mat = mpm.materials()[f.material];
+    const ParticleSet& p = mat.particles;
+    size_t reached = 0;
+    while (distanceToFace(g, p.x[reached], f.axis, f.side) >= g.dx[f.axis]) ++reached;
     std::ostringstream s;
     s << "warning: step " << step << ", t = " << t << ": "
       << describeParticle(mat, f.material, reached)
