@@ -117,21 +117,28 @@ int realComponents(const std::string& label) {
   return it == derivedLabels().end() ? 0 : it->second.components;
 }
 
-// Writes the values of `label` for particle `indices` of material `mat` to out.
-void gatherLabel(const MPMMaterial& mat, const Grid& grid, const std::string& label,
-                 const std::vector<size_t>& indices, double* out) {
-  if (fieldComponents(label) > 0) {
-    copyField(mat.particles, label, indices, out);
-    return;
+// The values of `label` (real components each) of the particles `indices` lists per material,
+// in material order, as the array `name`.
+NamedArray gatherLabel(const MPM& mpm, const std::string& name, const std::string& label,
+                       int components, const std::vector<std::vector<size_t>>& indices) {
+  size_t count = 0;
+  for (const auto& i : indices) count += i.size();
+  NamedArray a{name, components, std::vector<double>(count * components), {}};
+  const bool stored = fieldComponents(label) > 0;
+  size_t offset = 0;
+  for (size_t m = 0; m < indices.size(); ++m) {
+    const MPMMaterial& mat = mpm.materials()[m];
+    double* out = &a.real[offset * components];
+    if (stored) {
+      copyField(mat.particles, label, indices[m], out);
+    } else {
+      const DerivedLabel& d = derivedLabels().at(label);
+      for (size_t k = 0; k < indices[m].size(); ++k)
+        d.get(mat, mpm.grid(), indices[m][k], out + components * k);
+    }
+    offset += indices[m].size();
   }
-  const DerivedLabel& d = derivedLabels().at(label);
-  for (size_t k = 0; k < indices.size(); ++k) d.get(mat, grid, indices[k], out + d.components * k);
-}
-
-std::vector<size_t> allParticles(const ParticleSet& p) {
-  std::vector<size_t> all(p.count());
-  for (size_t i = 0; i < all.size(); ++i) all[i] = i;
-  return all;
+  return a;
 }
 
 const std::vector<std::string>& gridLabelNames() {
@@ -147,22 +154,18 @@ const std::vector<std::string>& gridLabelNames() {
   return names;
 }
 
-// Labels of the diffusion subcomponent: written only when it is on.
-const std::vector<std::string>& diffusionLabels() {
-  static const std::vector<std::string> names = {"p.concentration",
-                                                 "p.diffusivity",
-                                                 "p.concentrationGradient",
-                                                 "p.externalScalarFlux",
-                                                 "p.externalscalarflux",
-                                                 "p.loadCurveID",
-                                                 "p.area",
-                                                 "p.concentrationInterp",
-                                                 "p.pressure_t1",
-                                                 "g.concentration",
-                                                 "g.concentrationRate",
-                                                 "g.concentrationStar",
-                                                 "g.concentrationnobc"};
-  return names;
+// Labels of the diffusion subcomponent, written only when it is on: its particle arrays (from
+// the one list of them), the aliases computed from them and its grid fields.
+bool isDiffusionLabel(const std::string& label) {
+  bool diffusion = false;
+  ParticleSet().forEachField([&](const auto&, const auto& field) {
+    if (field.label && label == field.label)
+      diffusion = field.physics == Physics::Diffusion || field.physics == Physics::FluxBC;
+  });
+  static const std::vector<std::string> others = {
+      "p.externalscalarflux", "p.concentrationInterp", "p.pressure_t1",      "g.concentration",
+      "g.concentrationRate",  "g.concentrationStar",   "g.concentrationnobc"};
+  return diffusion || std::find(others.begin(), others.end(), label) != others.end();
 }
 
 // Labels Uintah saves that this code does not write: quantities it does not compute (the
@@ -182,7 +185,7 @@ bool contains(const std::vector<std::string>& v, const std::string& s) {
 }  // namespace
 
 LabelStatus classifyLabel(const std::string& label, bool diffusion) {
-  if (!diffusion && contains(diffusionLabels(), label)) return LabelStatus::NeedsDiffusion;
+  if (!diffusion && isDiffusionLabel(label)) return LabelStatus::NeedsDiffusion;
   if (label == "p.externalscalarflux") return LabelStatus::Particle;
   if (label == "p.x" || label == "p.particleID" || realComponents(label) > 0)
     return LabelStatus::Particle;
@@ -208,19 +211,16 @@ ParticleData gatherParticles(const MPM& mpm, const std::vector<std::string>& lab
   }
   out.arrays.push_back(std::move(material));
   if (wantIds) out.arrays.push_back(std::move(ids));
+  std::vector<std::vector<size_t>> all(mpm.materials().size());
+  for (size_t m = 0; m < all.size(); ++m) {
+    all[m].resize(mpm.materials()[m].particles.count());
+    for (size_t i = 0; i < all[m].size(); ++i) all[m][i] = i;
+  }
   for (const std::string& saved : labels) {
     // The label as saved in the input names the array; the old spelling reads the same field.
     const std::string label = saved == "p.externalscalarflux" ? "p.externalScalarFlux" : saved;
     const int components = realComponents(label);
-    if (components == 0) continue;
-    NamedArray a{saved, components, std::vector<double>(n * components), {}};
-    size_t offset = 0;
-    for (const MPMMaterial& mat : mpm.materials()) {
-      gatherLabel(mat, mpm.grid(), label, allParticles(mat.particles),
-                  &a.real[offset * components]);
-      offset += mat.particles.count();
-    }
-    out.arrays.push_back(std::move(a));
+    if (components > 0) out.arrays.push_back(gatherLabel(mpm, saved, label, components, all));
   }
   return out;
 }
@@ -245,13 +245,7 @@ ParticleData gatherParticlesWhere(
   for (const std::string& label : labels) {
     const int components = realComponents(label);
     if (components == 0) throw std::logic_error("no particle label " + label);
-    NamedArray a{label, components, std::vector<double>(out.count() * components), {}};
-    size_t offset = 0;
-    for (size_t m = 0; m < kept.size(); ++m) {
-      gatherLabel(mpm.materials()[m], mpm.grid(), label, kept[m], &a.real[offset * components]);
-      offset += kept[m].size();
-    }
-    out.arrays.push_back(std::move(a));
+    out.arrays.push_back(gatherLabel(mpm, label, label, components, kept));
   }
   return out;
 }

@@ -5,6 +5,24 @@
 
 namespace anode {
 
+namespace {
+
+// An optional <tag> of `block` naming one of two rules: true for `other`, false for `usual` (the
+// default); anything else is an error at the tag listing both with what they mean.
+bool readRule(const PSNode& block, const char* tag, const std::string& usual,
+              const std::string& usualMeaning, const std::string& other,
+              const std::string& otherMeaning) {
+  const PSNode node = block.child(tag);
+  if (!node) return false;
+  const std::string value = node.value<std::string>();
+  if (value != usual && value != other)
+    node.fail("<" + std::string(tag) + "> must be " + usual + " (" + usualMeaning + ") or " +
+              other + " (" + otherMeaning + "), found \"" + value + "\"");
+  return value == other;
+}
+
+}  // namespace
+
 bool onSurface(const GeometryPiece& piece, const Vec3& x, const Vec3& dxp, int ndim) {
   const int dims = ndim == 3 ? 3 : 2;
   for (int k = 0; k < dims; ++k) {
@@ -55,27 +73,11 @@ std::vector<ScalarFluxBC> ScalarFluxBC::fromInput(const PSNode& physicalBC) {
       piece.fail("a <scalar_flux> geometry must be a box, cylinder or sphere, found <" + type +
                  ">");
     }
-    if (const PSNode update = block.child("area_update")) {
-      const std::string rule = update.value<std::string>();
-      if (rule == "deformed")
-        bc.deformedArea = true;
-      else if (rule != "constant")
-        update.fail(
-            "<area_update> must be constant (Uintah's fixed face area) or deformed (Nanson), found "
-            "\"" +
-            rule + "\"");
-    }
-    if (const PSNode rule = block.child("area_rule")) {
-      const std::string value = rule.value<std::string>();
-      if (value == "particle_face")
-        bc.particleFaceArea = true;
-      else if (value != "surface")
-        rule.fail(
-            "<area_rule> must be surface (the area of the BC surface, shared among the flagged "
-            "particles) or "
-            "particle_face (Uintah's face of each particle), found \"" +
-            value + "\"");
-    }
+    bc.deformedArea = readRule(block, "area_update", "constant", "Uintah's fixed face area",
+                               "deformed", "Nanson");
+    bc.particleFaceArea = readRule(block, "area_rule", "surface",
+                                   "the area of the BC surface, shared among the flagged particles",
+                                   "particle_face", "Uintah's face of each particle");
     block.acceptInert("outward_normal");
     block.acceptInert("auto_cycle");
     block.acceptInert("numberOfParticlesOnLoadSurface");
