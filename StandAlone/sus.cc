@@ -1,5 +1,7 @@
-// sus: runs a Uintah-style .ups input. Exit codes: 0 done, 1 I/O or internal error, 2 bad input
-// (nothing written), 3 the simulation went bad (diagnostic printed).
+// sus: runs a Uintah-style .ups input, on one process or, under mpirun/srun, on every rank of
+// the job (docs/parallel.md). Exit codes: 0 done, 1 I/O or internal error, 2 bad input (nothing
+// written), 3 the simulation went bad (diagnostic printed); a distributed run ends with the same
+// code on every rank and prints each message once.
 #include <malloc.h>
 #include <omp.h>
 
@@ -8,6 +10,7 @@
 #include <cstring>
 #include <string>
 
+#include "Core/Parallel/StopTogether.h"
 #include "StandAlone/Driver/Simulation.h"
 
 namespace {
@@ -35,6 +38,46 @@ long positiveNumber(const char* flag, const char* value) {
 }
 
 }  // namespace
+
+// Runs the input; returns the exit code.
+int run(anode::RunOptions& options) {
+  const bool root = anode::Communicator::isRoot();
+  try {
+    anode::Simulation sim(options);
+    if (root)
+      for (const std::string& w : sim.warnings()) std::fprintf(stderr, "warning: %s\n", w.c_str());
+    if (root) {
+      if (anode::Communicator::size() > 1)
+        std::fprintf(stderr, "sus: %d ranks x %d thread(s)\n", anode::Communicator::size(),
+                     omp_get_max_threads());
+      else
+        std::fprintf(stderr, "sus: %d thread(s)\n", omp_get_max_threads());
+    }
+    try {
+      sim.run();
+    } catch (const anode::StoppedOnAnotherRank&) {
+      return 3;  // the rank that found the problem reports it
+    } catch (const anode::SimulationError& e) {
+      std::fprintf(stderr, "sus: simulation stopped: %s\n", e.what());
+      return 3;
+    }
+    sim.printTimings();
+  } catch (const anode::InputError& e) {
+    // Every rank reads the same input and finds the same error: one reports it.
+    if (root) std::fprintf(stderr, "%s\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "sus: error%s: %s\n",
+                 anode::Communicator::size() > 1
+                     ? (" on rank " + std::to_string(anode::Communicator::rank())).c_str()
+                     : "",
+                 e.what());
+    // The other ranks may wait in a collective this rank will not enter.
+    if (anode::Communicator::size() > 1) anode::Communicator::abort(1);
+    return 1;
+  }
+  return 0;
+}
 
 int main(int argc, char** argv) {
   // Arrays above 1 MB come from the OS and go back to it when freed (glibc would otherwise raise
@@ -92,23 +135,8 @@ int main(int argc, char** argv) {
     std::fputs(kUsage, stderr);
     return 2;
   }
-  try {
-    anode::Simulation sim(options);
-    for (const std::string& w : sim.warnings()) std::fprintf(stderr, "warning: %s\n", w.c_str());
-    std::fprintf(stderr, "sus: %d thread(s)\n", omp_get_max_threads());
-    try {
-      sim.run();
-    } catch (const anode::SimulationError& e) {
-      std::fprintf(stderr, "sus: simulation stopped: %s\n", e.what());
-      return 3;
-    }
-    sim.printTimings();
-  } catch (const anode::InputError& e) {
-    std::fprintf(stderr, "%s\n", e.what());
-    return 2;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "sus: error: %s\n", e.what());
-    return 1;
-  }
-  return 0;
+  anode::Communicator::start(&argc, &argv);
+  const int code = run(options);
+  anode::Communicator::stop();
+  return code;
 }

@@ -5,14 +5,17 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <sstream>
 
 #include "Components/MPM/GridBoundaryConditions.h"
 #include "Components/MPM/Materials/ConstitutiveModels/RFElasticPlastic.h"
 #include "Components/MPM/ParticleLoops.h"
+#include "Components/MPM/ParticleMigration.h"
 #include "Components/MPM/ParticleSplitting.h"
 #include "Components/MPM/ProblemSize.h"
+#include "Core/Parallel/StopTogether.h"
 #include "Core/Util/Errors.h"
 
 namespace anode {
@@ -83,35 +86,133 @@ void MPM::problemSetup(const PSNode& root, double initTime, double maxTime) {
 
   checkProblemSize(gridNode, grid_, flags_, materials_.size(), numParticles(),
                    omp_get_max_threads());
-  const int nodes = grid_.numNodes();
-  fields_.resize(materials_.size());
-  for (GridFields& f : fields_) f.resize(nodes);
-  weights_.resize(materials_.size());
-  capacity_.resize(materials_.size());
-  threadScatter_.resize(omp_get_max_threads() > 1 ? omp_get_max_threads() : 0);
-  for (GridFields& t : threadScatter_) t.resizeScatter(nodes);
-  if (diffusion_)
-    diffusion_->initialize(root, grid_, faceBCs_, materials_, seeds,
-                           static_cast<int>(threadScatter_.size()), initTime);
+  if (diffusion_) diffusion_->initialize(root, grid_, faceBCs_, materials_, seeds, initTime);
+  whole_ = grid_;
+  distributed_ = Communicator::size() > 1;
+  reordering_.resize(materials_.size());
   tasks_ = {timers_.task("computeInterpolationWeights"),
             timers_.task("interpolateParticlesToGrid"),
             timers_.task("integrateGrid"),
             timers_.task("interpolateToParticlesAndUpdate"),
             timers_.task("splitParticles"),
-            timers_.task("updateDiffusionState")};
+            timers_.task("updateDiffusionState"),
+            distributed_ ? timers_.task("communication") : -1};
+  decompose(true);
+}
+
+int MPM::ownerOf(const ParticleSet& p, size_t i) const {
+  const Vec3 xi = whole_.indexCoordinate(p.x[i]);
+  return decomposition_.ownerOfCell(Vec3i(static_cast<int>(std::floor(xi.x())),
+                                          static_cast<int>(std::floor(xi.y())),
+                                          static_cast<int>(std::floor(xi.z()))));
+}
+
+int MPM::computeGhostWidth(bool allHere) const {
+  if (flags_.interpolator != InterpolatorKind::CPDI)
+    return flags_.interpolator == InterpolatorKind::Linear ? 1 : 2;
+  // CPDI: as far as a domain reaches (its half extent F size / 2 along an axis, in cells), and a
+  // cell more for the domains to stretch until the next decomposition.
+  double reach = 0;
+  for (const MPMMaterial& mat : materials_) {
+    const ParticleSet& p = mat.particles;
+    const long n = static_cast<long>(p.count());
+#pragma omp parallel for schedule(static) reduction(max : reach)
+    for (long i = 0; i < n; ++i)
+      reach = std::max(reach, 0.5 * (p.F[i] * p.size[i]).cwiseAbs().rowwise().sum().maxCoeff());
+  }
+  if (!allHere) reach = Communicator::maximum(reach);
+  return std::max(2, static_cast<int>(std::ceil(reach)) + 1);
+}
+
+void MPM::decompose(bool allHere) {
+  const int ranks = Communicator::size(), me = Communicator::rank();
+  if (ranks == 1) {
+    decomposition_ = Decomposition(whole_.cells);
+    grid_ = whole_;
+    layOutGrid();
+    return;
+  }
+  std::array<std::vector<double>, 3> planes;
+  for (int d = 0; d < 3; ++d) planes[d].assign(whole_.cells[d], 0.0);
+  for (const MPMMaterial& mat : materials_)
+    for (const Vec3& x : mat.particles.x) {
+      const Vec3 xi = whole_.indexCoordinate(x);
+      for (int d = 0; d < 3; ++d)
+        planes[d][std::clamp(static_cast<int>(std::floor(xi[d])), 0, whole_.cells[d] - 1)] += 1;
+    }
+  if (!allHere)
+    for (int d = 0; d < 3; ++d) Communicator::sum(planes[d].data(), whole_.cells[d]);
+  decomposition_ = Decomposition::balanced(whole_.cells, ranks, planes);
+  ghostWidth_ = computeGhostWidth(allHere);
+  std::vector<std::string> send(ranks);
+  for (MPMMaterial& mat : materials_) {
+    ParticleSet& p = mat.particles;
+    std::vector<std::vector<long>> to(ranks);
+    for (size_t i = 0; i < p.count(); ++i) to[ownerOf(p, i)].push_back(static_cast<long>(i));
+    if (!allHere)
+      for (int r = 0; r < ranks; ++r)
+        if (r != me) packParticles(p, to[r], send[r]);
+    keepParticles(p, to[me]);
+  }
+  if (!allHere) {
+    const std::vector<std::string> received = Communicator::exchangeWithAll(send);
+    for (int r = 0; r < ranks; ++r) {
+      if (r == me) continue;
+      const char* in = received[r].data();
+      for (MPMMaterial& mat : materials_) unpackParticles(in, mat.particles);
+    }
+  }
+  grid_ = decomposition_.window(whole_, me, ghostWidth_);
+  ghosts_ = GhostNodes(decomposition_, whole_, grid_, me, ghostWidth_);
+  layOutGrid();
+}
+
+void MPM::redistributeParticles() {
+  decompose(false);
+}
+
+double MPM::imbalance() const {
+  const double mine = static_cast<double>(numParticles());
+  const double most = Communicator::maximum(mine), total = Communicator::sum(mine);
+  return total > 0 ? most / (total / Communicator::size()) : 1.0;
+}
+
+void MPM::layOutGrid() {
+  const int nodes = grid_.numNodes();
+  fields_.assign(materials_.size(), {});
+  for (GridFields& f : fields_) f.resize(nodes);
+  weights_.resize(materials_.size());
+  capacity_.resize(materials_.size());
+  threadScatter_.assign(omp_get_max_threads() > 1 ? omp_get_max_threads() : 0, {});
+  for (GridFields& t : threadScatter_) t.resizeScatter(nodes);
+  if (diffusion_)
+    diffusion_->layOutGrid(grid_, static_cast<int>(threadScatter_.size()),
+                           ghosts_.empty() ? nullptr : &ghosts_);
+  active_ = previous_ = NodeRange{};
 }
 
 void MPM::timeAdvance(double t, double dt) {
   // The tasks in order (docs/diffusion.md lists the diffusion part of each). DESIGN.md §4 has the
   // same ones but computes D and the flux rate at the start of a step: here task 10 computes
-  // them for the new state, which its output and its time step (Eq. 44) need as well.
+  // them for the new state, which its output and its time step (Eq. 44) need as well. In a
+  // distributed run the ranks meet where P2G's sums are completed on the shared nodes (2), where
+  // particles move to the rank owning their cell (11), and where a problem found on one rank
+  // stops them all (stopTogether).
   {
     ScopedTimer s(timers_, tasks_.interpolationWeights);
-    computeInterpolationWeights();  // 1: S_ip, grad S_ip (CPDI: domains F size)
+    stopTogether([&] { computeInterpolationWeights(); });  // 1: S_ip, grad S_ip (CPDI: F size)
   }
   {
     ScopedTimer s(timers_, tasks_.particlesToGrid);
-    interpolateParticlesToGrid();  // 2: P2G, Eqs. 4-5, 7, 18; nodal velocity and concentration
+    interpolateParticlesToGrid();  // 2: P2G, Eqs. 4-5, 7, 18
+  }
+  if (distributed_) {
+    ScopedTimer s(timers_, tasks_.communication);
+    sumGhostNodes();
+  }
+  {
+    ScopedTimer s(timers_, tasks_.particlesToGrid);
+    computeNodalVelocityAndConcentration();  // 2: nodal velocity and concentration (Eq. 5)
   }
   {
     ScopedTimer s(timers_, tasks_.gridIntegration);
@@ -123,7 +224,7 @@ void MPM::timeAdvance(double t, double dt) {
   }
   {
     ScopedTimer s(timers_, tasks_.particleUpdate);
-    interpolateToParticlesAndUpdate(dt);  // 7-8: G2P (Eq. 8), F, stress (Eqs. 25-39)
+    stopTogether([&] { interpolateToParticlesAndUpdate(dt); });  // 7-8: G2P (Eq. 8), F, stress
   }
   if (flags_.refineParticles) {
     ScopedTimer s(timers_, tasks_.splitting);
@@ -133,6 +234,10 @@ void MPM::timeAdvance(double t, double dt) {
     // 10: the range check of c, then D (Eqs. 23-24) and the flux rates (Eqs. 16-17) at t + dt
     ScopedTimer s(timers_, tasks_.diffusionState);
     diffusion_->updateDiffusionState(materials_, t + dt);
+  }
+  if (distributed_) {
+    ScopedTimer s(timers_, tasks_.communication);
+    migrateParticles();  // 11: particles that left the rank's box go to its owner
   }
 }
 
@@ -160,19 +265,7 @@ void MPM::computeInterpolationWeights() {
                                                                                       : highest)
     for (long i = 0; i < n; ++i) {
       const size_t b = W.offset[i];
-      int count = 0;
-      switch (flags_.interpolator) {
-        case InterpolatorKind::Linear:
-          count = linearWeights(grid_, p.x[i], &W.node[b], &W.weight[b], &W.gradient[b]);
-          break;
-        case InterpolatorKind::GIMP:
-          count = gimpWeights(grid_, p.x[i], p.size[i], &W.node[b], &W.weight[b], &W.gradient[b]);
-          break;
-        case InterpolatorKind::CPDI:
-          count = cpdiWeights(grid_, p.x[i], p.size[i], p.F[i], &W.node[b], &W.weight[b],
-                              &W.gradient[b]);
-          break;
-      }
+      const int count = computeWeights(grid_, p, i, &W.node[b], &W.weight[b], &W.gradient[b]);
       if (count < 0) firstOutside = std::min(firstOutside, i);
       W.count[i] = static_cast<uint8_t>(std::max(count, 0));
       for (int e = 0; e < count; ++e) {
@@ -180,12 +273,40 @@ void MPM::computeInterpolationWeights() {
         highest = std::max<long>(highest, W.node[b + e]);
       }
     }
-    if (firstOutside < n)
-      throw SimulationError(
-          describeParticle(materials_[m], m, firstOutside) +
-          " has left the grid (its interpolation support reaches beyond the last node)");
+    if (firstOutside < n) throwOutsideWindow(m, firstOutside);
   }
   active_ = highest < 0 ? NodeRange{0, 0} : NodeRange{lowest, highest + 1};
+  // The ghost nodes get the other ranks' parts: every stored node takes part in the step.
+  if (distributed_) active_ = NodeRange{0, grid_.numNodes()};
+}
+
+void MPM::throwOutsideWindow(size_t m, long i) const {
+  const ParticleSet& p = materials_[m].particles;
+  int32_t node[64];
+  double weight[64];
+  Vec3 gradient[64];
+  if (computeWeights(whole_, p, i, node, weight, gradient) < 0)
+    throw SimulationError(
+        describeParticle(materials_[m], m, i) +
+        " has left the grid (its interpolation support reaches beyond the last node)");
+  throw SimulationError(
+      describeParticle(materials_[m], m, i) + " on rank " + std::to_string(Communicator::rank()) +
+      ": its CPDI domain reaches beyond the rank's ghost layer (" + std::to_string(ghostWidth_) +
+      " cells): it stretched further than when the ranks' boxes were drawn "
+      "(<refine_particles> splits stretched particles)");
+}
+
+int MPM::computeWeights(const Grid& g, const ParticleSet& p, long i, int32_t* node, double* w,
+                        Vec3* grad) const {
+  switch (flags_.interpolator) {
+    case InterpolatorKind::Linear:
+      return linearWeights(g, p.x[i], node, w, grad);
+    case InterpolatorKind::GIMP:
+      return gimpWeights(g, p.x[i], p.size[i], node, w, grad);
+    case InterpolatorKind::CPDI:
+      return cpdiWeights(g, p.x[i], p.size[i], p.F[i], node, w, grad);
+  }
+  return -1;
 }
 
 template <class F>
@@ -239,13 +360,30 @@ void MPM::scatterMaterial(size_t m, const Concentration& concentration) {
 }
 
 void MPM::interpolateParticlesToGrid() {
-  const long begin = active_.begin, end = active_.end;
-  const long clearBegin = std::min(begin, previous_.begin), clearEnd = std::max(end, previous_.end);
+  const long clearBegin = std::min(active_.begin, previous_.begin),
+             clearEnd = std::max(active_.end, previous_.end);
   for (size_t m = 0; m < materials_.size(); ++m) {
-    GridFields& g = fields_[m];
-    g.clearAll(clearBegin, clearEnd);
+    fields_[m].clearAll(clearBegin, clearEnd);
     withConcentrationScatter(m, clearBegin, clearEnd,
                              [&](const auto& concentration) { scatterMaterial(m, concentration); });
+  }
+}
+
+void MPM::sumGhostNodes() {
+  std::vector<NodeArray> sums;
+  for (GridFields& g : fields_) {
+    sums.push_back({g.mass.data(), 1});
+    sums.push_back({g.momentum.data()->data(), 3});
+    sums.push_back({g.internalForce.data()->data(), 3});
+  }
+  if (diffusion_) diffusion_->addScatteredArrays(sums);
+  ghosts_.sumOverRanks(sums);
+}
+
+void MPM::computeNodalVelocityAndConcentration() {
+  const long begin = active_.begin, end = active_.end;
+  for (size_t m = 0; m < materials_.size(); ++m) {
+    GridFields& g = fields_[m];
 #pragma omp parallel for schedule(static)
     for (long k = begin; k < end; ++k)
       g.velocity[k] = g.mass[k] > 0 ? Vec3(g.momentum[k] / g.mass[k]) : Vec3::Zero();
@@ -317,10 +455,89 @@ void MPM::interpolateToParticlesAndUpdate(double dt) {
 void MPM::splitParticles() {
   // The weights of the next step are laid out for the new particle count.
   static const std::vector<ScalarFluxBC> noFluxBCs;
-  for (MPMMaterial& mat : materials_)
-    if (!mat.particles.refined.empty())
-      splitStretchedParticles(mat.particles, grid_, flags_.stretchRatio,
-                              diffusion_ ? diffusion_->fluxBCs() : noFluxBCs, nextParticleId_);
+  const std::vector<ScalarFluxBC>& bcs = diffusion_ ? diffusion_->fluxBCs() : noFluxBCs;
+  for (MPMMaterial& mat : materials_) {
+    ParticleSet& p = mat.particles;
+    if (!p.has(Physics::Splitting)) continue;
+    if (!distributed_) {
+      splitStretchedParticles(p, grid_, flags_.stretchRatio, bcs, nextParticleId_);
+      continue;
+    }
+    // New IDs in the order of the parents' IDs over all ranks, as one rank would give them
+    // (its particles stay in ID order), whatever rank holds a parent.
+    std::vector<int64_t> parents;
+    const std::vector<int64_t> mine = stretchedParticleIds(p, grid_, flags_.stretchRatio);
+    for (const std::string& r : Communicator::allGather(std::string(
+             reinterpret_cast<const char*>(mine.data()), mine.size() * sizeof(int64_t)))) {
+      const size_t at = parents.size();
+      parents.resize(at + r.size() / sizeof(int64_t));
+      std::memcpy(parents.data() + at, r.data(), r.size());
+    }
+    std::sort(parents.begin(), parents.end());
+    const int64_t first = nextParticleId_;
+    splitStretchedParticles(p, grid_, flags_.stretchRatio, bcs, [&](int64_t parent) {
+      const auto at = std::lower_bound(parents.begin(), parents.end(), parent) - parents.begin();
+      return first + 3 * static_cast<int64_t>(at);
+    });
+    nextParticleId_ += 3 * static_cast<int64_t>(parents.size());
+  }
+}
+
+void MPM::migrateParticles() {
+  const int me = Communicator::rank();
+  const std::vector<int>& neighbours = ghosts_.neighbours();
+  std::vector<std::string> send(neighbours.size());
+  std::vector<std::vector<long>> keep(materials_.size());
+  long strayMaterial = -1, stray = -1;
+  int strayOwner = -1;
+  for (size_t m = 0; m < materials_.size(); ++m) {
+    const ParticleSet& p = materials_[m].particles;
+    const long n = static_cast<long>(p.count());
+    std::vector<int> owner(n);
+#pragma omp parallel for schedule(static)
+    for (long i = 0; i < n; ++i) owner[i] = ownerOf(p, i);
+    std::vector<std::vector<long>> leaving(neighbours.size());
+    for (long i = 0; i < n; ++i) {
+      if (owner[i] == me) {
+        keep[m].push_back(i);
+        continue;
+      }
+      const auto q = std::lower_bound(neighbours.begin(), neighbours.end(), owner[i]);
+      if (q == neighbours.end() || *q != owner[i]) {
+        if (stray < 0) strayMaterial = static_cast<long>(m), stray = i, strayOwner = owner[i];
+        keep[m].push_back(i);
+        continue;
+      }
+      leaving[q - neighbours.begin()].push_back(i);
+    }
+    for (size_t q = 0; q < neighbours.size(); ++q) packParticles(p, leaving[q], send[q]);
+  }
+  stopTogether([&] {
+    if (stray >= 0)
+      throw SimulationError(describeParticle(materials_[strayMaterial], strayMaterial, stray) +
+                            " moved in one step from rank " + std::to_string(me) +
+                            "'s box to rank " + std::to_string(strayOwner) +
+                            "'s, beyond the boxes next to it");
+  });
+  std::vector<std::string> received;
+  ghosts_.neighbourhood().exchange(send, received);
+  for (size_t m = 0; m < materials_.size(); ++m) {
+    ParticleSet& p = materials_[m].particles;
+    Reordering& r = reordering_[m];
+    r.before = p.count();
+    r.happened = keep[m].size() != p.count();
+    keepParticles(p, keep[m]);
+    r.kept = std::move(keep[m]);
+  }
+  for (size_t q = 0; q < neighbours.size(); ++q) {
+    const char* in = received[q].data();
+    for (MPMMaterial& mat : materials_) unpackParticles(in, mat.particles);
+  }
+  for (size_t m = 0; m < materials_.size(); ++m) {
+    Reordering& r = reordering_[m];
+    r.arrived = materials_[m].particles.count() - r.kept.size();
+    r.happened = r.happened || r.arrived > 0;
+  }
 }
 
 size_t MPM::numParticles() const {
@@ -346,7 +563,7 @@ double MPM::computeStableTimestep() const {
     dt = std::min({dt, grid_.dx.x() / wx, grid_.dx.y() / wy, grid_.dx.z() / wz});  // Eq. 43
   }
   if (diffusion_) dt = std::min(dt, diffusion_->stableTimestep(grid_));  // Eq. 44, flux limit
-  return dt;
+  return Communicator::minimum(dt);
 }
 
 void MPM::interpolateToGridForOutput() {
@@ -375,6 +592,16 @@ StepSummary MPM::summarize() const {
     s.particles += p.count();
   }
   if (diffusion_) diffusion_->summarize(materials_, s);
+  if (distributed_) {
+    double sums[3] = {s.kineticEnergy, s.totalLithium, static_cast<double>(s.particles)};
+    double lows[2] = {s.minJ, s.minConcentration}, highs[2] = {s.maxJ, s.maxConcentration};
+    Communicator::sum(sums, 3);
+    Communicator::minimum(lows, 2);
+    Communicator::maximum(highs, 2);
+    s.kineticEnergy = sums[0], s.totalLithium = sums[1], s.particles = static_cast<size_t>(sums[2]);
+    s.minJ = lows[0], s.minConcentration = lows[1], s.maxJ = highs[0],
+    s.maxConcentration = highs[1];
+  }
   return s;
 }
 

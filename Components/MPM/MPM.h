@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "Components/MPM/Contact/Contact.h"
+#include "Components/MPM/GhostNodes.h"
 #include "Components/MPM/GridFields.h"
 #include "Components/MPM/Interpolator.h"
 #include "Components/MPM/MPMFlags.h"
@@ -15,6 +16,7 @@
 #include "Components/MPM/StepSummary.h"
 #include "Core/Grid/BoundaryConditions.h"
 #include "Core/Grid/Grid.h"
+#include "Core/Parallel/Decomposition.h"
 #include "Core/Util/BinaryStream.h"
 #include "Core/Util/Timers.h"
 
@@ -23,20 +25,28 @@ namespace anode {
 class MPM {
  public:
   // Reads <MPM>, <PhysicalConstants>, <Grid>, <MaterialProperties> and <PhysicalBC>; the
-  // simulation starts at initTime and ends at maxTime.
+  // simulation starts at initTime and ends at maxTime. In a distributed run every rank sets up
+  // the whole problem, then keeps the particles of its box (docs/parallel.md).
   void problemSetup(const PSNode& root, double initTime, double maxTime);
 
   // Advances the state from time t by dt (DESIGN.md §4). Throws SimulationError when a particle
-  // leaves the grid, J <= 0, or a concentration leaves [min, max] beyond kConcentrationTolerance.
+  // leaves the grid, J <= 0, or a concentration leaves [min, max] beyond kConcentrationTolerance
+  // (in a distributed run on every rank together: Core/Parallel/StopTogether.h). Collective.
   void timeAdvance(double t, double dt);
   // Largest stable dt of the current state before the multiplier: paper Eq. 45, the smaller of
-  // the mechanical Eq. 43 and the diffusion limits (Eq. 44 and the flux limit).
+  // the mechanical Eq. 43 and the diffusion limits (Eq. 44 and the flux limit). Collective.
   double computeStableTimestep() const;
+  // Shares the particles out anew among the ranks from their counts per cell plane (after a
+  // restart, or when the particles per rank have drifted apart). Collective.
+  void redistributeParticles();
+  // Largest over mean particles per rank. Collective.
+  double imbalance() const;
   // Interpolation weights and the grid fields of the current state (for output of g.* labels).
   void interpolateToGridForOutput();
   // Frees the interpolation weights between steps so output can use the memory; the next step
   // lays them out again.
   void releaseInterpolationWeights();
+  // Totals over every rank's particles. Collective.
   StepSummary summarize() const;
 
   // The state a step starts from (every particle array and the scalars carried between steps),
@@ -45,7 +55,20 @@ class MPM {
   void saveState(BinaryWriter& out) const;
   void loadState(BinaryReader& in);
 
+  // The nodes this rank stores (the whole grid on one rank; its window in a distributed run).
   const Grid& grid() const { return grid_; }
+  const Grid& wholeGrid() const { return whole_; }
+  const Decomposition& decomposition() const { return decomposition_; }
+  int ghostWidth() const { return ghostWidth_; }
+  // How the last step's migration reordered material m's particles on this rank: the earlier
+  // indices of those that stayed, in order; `arrived` others follow them (StateChecks follows its
+  // per-particle history with it). `before` is the count before; none when nothing moved.
+  struct Reordering {
+    bool happened = false;
+    size_t before = 0, arrived = 0;
+    std::vector<long> kept;
+  };
+  const std::vector<Reordering>& lastReordering() const { return reordering_; }
   const MPMFlags& flags() const { return flags_; }
   const std::vector<MPMMaterial>& materials() const { return materials_; }
   std::vector<MPMMaterial>& materials() { return materials_; }
@@ -53,19 +76,36 @@ class MPM {
   const std::vector<FaceBC>& faceBCs() const { return faceBCs_; }
   // The diffusion subcomponent; null without <do_scalar_diffusion>true.
   const ReactiveFlow* diffusion() const { return diffusion_.get(); }
-  size_t numParticles() const;
+  size_t numParticles() const;  // on this rank
   TaskTimers& timers() { return timers_; }
   const TaskTimers& timers() const { return timers_; }
 
  private:
   // The step's tasks, in order (DESIGN.md §4).
   void computeInterpolationWeights();
+  // Particle i's weights on grid g (the count, or -1 beyond its stored nodes).
+  int computeWeights(const Grid& g, const ParticleSet& p, long i, int32_t* node, double* w,
+                     Vec3* grad) const;
+  // Material m's particle i reaches beyond the stored nodes: off the grid, or (distributed)
+  // beyond the ghost layer.
+  [[noreturn]] void throwOutsideWindow(size_t m, long i) const;
   void interpolateParticlesToGrid();
   void exchangeMomentumInterpolated();
   void integrateGridMomentum(double dt);
   void setGridBoundaryConditions(double dt);
   void interpolateToParticlesAndUpdate(double dt);
   void splitParticles();
+  void migrateParticles();
+  // Completes the nodal sums of P2G on the nodes shared with other ranks.
+  void sumGhostNodes();
+  void computeNodalVelocityAndConcentration();
+  // Keeps this rank's particles (all of the problem's are here when `allHere`) under a new
+  // decomposition from the particle counts per cell plane, and lays out its window.
+  void decompose(bool allHere);
+  void layOutGrid();
+  int computeGhostWidth(bool allHere) const;
+  // Rank of the box holding material m's particle i.
+  int ownerOf(const ParticleSet& p, size_t i) const;
   template <class Concentration>
   void scatterMaterial(size_t m, const Concentration& concentration);
   template <class F>
@@ -74,7 +114,13 @@ class MPM {
   void withConcentrationGather(size_t m, F&& f);
 
   MPMFlags flags_;
-  Grid grid_;
+  Grid whole_;  // the problem's grid
+  Grid grid_;   // the nodes this rank stores
+  Decomposition decomposition_;
+  GhostNodes ghosts_;
+  int ghostWidth_ = 0;
+  bool distributed_ = false;  // more than one rank
+  std::vector<Reordering> reordering_;
   std::vector<FaceBC> faceBCs_;
   Contact contact_;
   std::vector<MPMMaterial> materials_;
@@ -94,7 +140,7 @@ class MPM {
   TaskTimers timers_;
   struct StepTasks {  // timer indices of the step's tasks
     int interpolationWeights, particlesToGrid, gridIntegration, particleUpdate, splitting,
-        diffusionState;
+        diffusionState, communication;
   } tasks_{};
 };
 

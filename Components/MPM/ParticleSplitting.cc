@@ -20,6 +20,12 @@ int splitAxis(const Mat3& domain, double ratio, int ndim) {
 
 namespace {
 
+// The edge particle i splits along now, or -1.
+int splitAxisOf(const ParticleSet& p, size_t i, const Grid& grid, double ratio) {
+  return p.refined[i] ? -1
+                      : splitAxis(p.F[i] * p.size[i] * grid.dx.asDiagonal(), ratio, grid.ndim());
+}
+
 // Shares the parent's flux faces among its 4 children (indices in `child`, offsets along the
 // split in `offset`).
 void splitFluxAreas(ParticleSet& p, const std::vector<ScalarFluxBC>& bcs, const size_t child[4],
@@ -50,14 +56,28 @@ void splitFluxAreas(ParticleSet& p, const std::vector<ScalarFluxBC>& bcs, const 
 
 }  // namespace
 
+std::vector<int64_t> stretchedParticleIds(const ParticleSet& p, const Grid& grid, double ratio) {
+  std::vector<int64_t> ids;
+  for (size_t i = 0; i < p.count(); ++i)
+    if (splitAxisOf(p, i, grid, ratio) >= 0) ids.push_back(p.id[i]);
+  return ids;
+}
+
 size_t splitStretchedParticles(ParticleSet& p, const Grid& grid, double ratio,
                                const std::vector<ScalarFluxBC>& bcs, int64_t& nextId) {
+  return splitStretchedParticles(p, grid, ratio, bcs, [&nextId](int64_t) {
+    const int64_t first = nextId;
+    nextId += 3;
+    return first;
+  });
+}
+
+size_t splitStretchedParticles(ParticleSet& p, const Grid& grid, double ratio,
+                               const std::vector<ScalarFluxBC>& bcs,
+                               const std::function<int64_t(int64_t)>& firstChildId) {
   const size_t n = p.count();
   const bool flux = !p.loadCurveID.empty();
-  const auto axisOf = [&](size_t i) {
-    return p.refined[i] ? -1
-                        : splitAxis(p.F[i] * p.size[i] * grid.dx.asDiagonal(), ratio, grid.ndim());
-  };
+  const auto axisOf = [&](size_t i) { return splitAxisOf(p, i, grid, ratio); };
   // Most steps split nothing: a parallel count finds out without storing anything.
   long splitting = 0;
 #pragma omp parallel for schedule(static) reduction(+ : splitting)
@@ -88,9 +108,10 @@ size_t splitStretchedParticles(ParticleSet& p, const Grid& grid, double ratio,
     static const double offsets[4] = {-0.375, -0.125, 0.125, 0.375};
     size_t child[4] = {i, 0, 0, 0};
     Vec3 offset[4];
+    const int64_t firstId = firstChildId(p.id[i]);
     for (int c = 1; c < 4; ++c) {
       child[c] = p.duplicate(i);
-      p.id[child[c]] = nextId++;
+      p.id[child[c]] = firstId + c - 1;
     }
     for (int c = 0; c < 4; ++c) {
       offset[c] = offsets[c] * edge;

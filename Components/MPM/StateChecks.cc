@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "Core/Parallel/StopTogether.h"
 #include "Core/Util/Errors.h"
 
 namespace anode {
@@ -78,11 +79,15 @@ void StateChecks::afterStep(const MPM& mpm, double dt) {
   const double localFloor2 = std::max(
       motion * motion,
       lastMass_ > 0 ? kLocalFloor * kLocalFloor * 2 * lastKineticEnergy_ / lastMass_ : 0.0);
+  // A problem one particle shows, reported after the sums over the ranks (which every rank
+  // reaches) by every rank together.
+  std::string problem;
   for (size_t m = 0; m < count; ++m) {
     const MPMMaterial& mat = materials[m];
     const ParticleSet& p = mat.particles;
     const long n = static_cast<long>(p.count());
     const bool diffusion = !p.concentration.empty();
+    followReordering(mpm.lastReordering()[m], m, p);
     if (velocity_[m].size() != p.count()) {
       // The first step, or particles split: the oscillation watch starts over.
       velocity_[m] = p.velocity;
@@ -127,14 +132,24 @@ void StateChecks::afterStep(const MPM& mpm, double dt) {
         dc[i] = e;
       }
     }
-    if (firstBad < n)
-      throw SimulationError(describeParticle(mat, m, firstBad) + " " + problemOf(mat, firstBad));
-    if (firstLocal < n && !restart) throwLocalOscillation(mat, m, firstLocal);
+    if (problem.empty() && firstBad < n)
+      problem = describeParticle(mat, m, firstBad) + " " + problemOf(mat, firstBad);
+    if (problem.empty() && firstLocal < n && !restart)
+      problem = describeLocalOscillation(mat, m, firstLocal);
     energy += kinetic;
     totalMass += mass;
     velocityEnergy += ve, velocityProduct += vp, concentrationEnergy += ce,
         concentrationProduct += cp;
   }
+  stopTogether([&] {
+    if (!problem.empty()) throw SimulationError(problem);
+  });
+  double sums[6] = {energy,          totalMass,           velocityEnergy,
+                    velocityProduct, concentrationEnergy, concentrationProduct};
+  Communicator::sum(sums, 6);
+  energy = sums[0], totalMass = sums[1], velocityEnergy = sums[2], velocityProduct = sums[3],
+  concentrationEnergy = sums[4], concentrationProduct = sums[5];
+  restart = Communicator::any(restart);
   if (restart) {
     velocityOscillation_ = concentrationOscillation_ = Oscillation();
   } else {
@@ -145,7 +160,24 @@ void StateChecks::afterStep(const MPM& mpm, double dt) {
   checkKineticEnergy(mpm, energy);
 }
 
-void StateChecks::throwLocalOscillation(const MPMMaterial& mat, size_t m, size_t i) const {
+void StateChecks::followReordering(const MPM::Reordering& r, size_t m, const ParticleSet& p) {
+  if (!r.happened || velocity_[m].size() != r.before) return;
+  // Those that stayed keep their history; those that arrived start theirs.
+  auto follow = [&](auto& v, const auto& fresh) {
+    if (v.empty()) return;
+    for (size_t j = 0; j < r.kept.size(); ++j) v[j] = v[r.kept[j]];
+    v.resize(r.kept.size());
+    for (size_t j = r.kept.size(); j < p.count(); ++j) v.push_back(fresh(j));
+  };
+  follow(velocity_[m], [&](size_t j) { return p.velocity[j]; });
+  follow(velocityIncrement_[m], [](size_t) { return Vec3::Zero().eval(); });
+  follow(localStreak_[m], [](size_t) { return uint8_t{0}; });
+  follow(concentration_[m], [&](size_t j) { return p.concentration[j]; });
+  follow(concentrationIncrement_[m], [](size_t) { return 0.0; });
+}
+
+std::string StateChecks::describeLocalOscillation(const MPMMaterial& mat, size_t m,
+                                                  size_t i) const {
   const ParticleSet& p = mat.particles;
   std::ostringstream s;
   s << "the velocity of " << describeParticle(mat, m, i)
@@ -155,7 +187,7 @@ void StateChecks::throwLocalOscillation(const MPMMaterial& mat, size_t m, size_t
     << " (p.velocity = " << formatVector(p.velocity[i])
     << "): a local instability of the explicit update at this time step (lower "
        "<timestep_multiplier>)";
-  throw SimulationError(s.str());
+  return s.str();
 }
 
 void StateChecks::checkOscillation(const MPM& mpm, double velocityEnergy, double velocityProduct,
@@ -167,7 +199,7 @@ void StateChecks::checkOscillation(const MPM& mpm, double velocityEnergy, double
                                                      concentrationProduct, &growth, &correlation);
   if (!velocity && !concentration) return;
 
-  // The particle whose increment is largest, as the place to look.
+  // The particle whose increment is largest, as the place to look (the rank holding it reports).
   const auto& materials = mpm.materials();
   size_t worstM = 0, worstI = 0;
   double worst = -1;
@@ -179,6 +211,7 @@ void StateChecks::checkOscillation(const MPM& mpm, double velocityEnergy, double
       if (size > worst) worst = size, worstM = m, worstI = i;
     }
   }
+  if (worst < Communicator::maximum(worst)) stopTogether([] {});
   const ParticleSet& p = materials[worstM].particles;
   const Oscillation& o = velocity ? velocityOscillation_ : concentrationOscillation_;
   std::ostringstream s;
@@ -196,7 +229,7 @@ void StateChecks::checkOscillation(const MPM& mpm, double velocityEnergy, double
   else
     s << ": p.concentration = " << p.concentration[worstI] << " after a change of "
       << concentrationIncrement_[worstM][worstI];
-  throw SimulationError(s.str());
+  stopTogether([&] { throw SimulationError(s.str()); });
 }
 
 void StateChecks::checkKineticEnergy(const MPM& mpm, double energy) {
@@ -209,7 +242,7 @@ void StateChecks::checkKineticEnergy(const MPM& mpm, double energy) {
   lastKineticEnergy_ = energy;
   if (growingSteps_ < kGrowthSteps && std::isfinite(energy)) return;
 
-  // The fastest particle, as the place to look.
+  // The fastest particle, as the place to look (the rank holding it reports).
   const auto& materials = mpm.materials();
   size_t fastM = 0, fastI = 0;
   double fastest = -1;
@@ -220,6 +253,7 @@ void StateChecks::checkKineticEnergy(const MPM& mpm, double energy) {
         fastM = m;
         fastI = i;
       }
+  if (fastest < Communicator::maximum(fastest)) stopTogether([] {});
   std::ostringstream s;
   if (!std::isfinite(energy)) {
     s << "the kinetic energy overflows (" << energy << ")";
@@ -232,7 +266,7 @@ void StateChecks::checkKineticEnergy(const MPM& mpm, double energy) {
   }
   s << "; the fastest is " << describeParticle(materials[fastM], fastM, fastI)
     << " with p.velocity = " << formatVector(materials[fastM].particles.velocity[fastI]);
-  throw SimulationError(s.str());
+  stopTogether([&] { throw SimulationError(s.str()); });
 }
 
 }  // namespace anode

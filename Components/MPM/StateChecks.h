@@ -50,7 +50,8 @@ class StateChecks {
   static constexpr double kLocalFloor = 1e-3;
   static constexpr double kLocalMotion = 1e-9;
 
-  // Checks the state after a step of length dt; throws SimulationError on the first problem found.
+  // Checks the state after a step of length dt; throws SimulationError on the first problem found
+  // (in a distributed run on every rank together). Collective.
   void afterStep(const MPM& mpm, double dt);
 
  private:
@@ -66,7 +67,9 @@ class StateChecks {
   void checkOscillation(const MPM& mpm, double velocityEnergy, double velocityProduct,
                         double concentrationEnergy, double concentrationProduct);
   void checkKineticEnergy(const MPM& mpm, double energy);
-  [[noreturn]] void throwLocalOscillation(const MPMMaterial& mat, size_t m, size_t i) const;
+  std::string describeLocalOscillation(const MPMMaterial& mat, size_t m, size_t i) const;
+  // Carries material m's per-particle history along with the last migration (distributed runs).
+  void followReordering(const MPM::Reordering& r, size_t m, const ParticleSet& p);
 
   // Per material: last step's velocities and concentrations, and their increments then; per
   // particle, the steps in a row its velocity increment reversed and grew.

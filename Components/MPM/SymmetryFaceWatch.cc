@@ -4,6 +4,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "Core/Parallel/Communicator.h"
+
 namespace anode {
 
 namespace {
@@ -36,6 +38,8 @@ std::vector<std::string> SymmetryFaceWatch::start(const MPM& mpm) {
     const ParticleSet& p = mat.particles;
     Vec3 lo = Vec3::Constant(INFINITY), hi = -lo;
     for (const Vec3& x : p.x) lo = lo.cwiseMin(x), hi = hi.cwiseMax(x);
+    Communicator::minimum(lo.data(), 3);
+    Communicator::maximum(hi.data(), 3);
     bool startsOn[3][2] = {};
     for (const FaceBC& bc : mpm.faceBCs())
       if (bc.kind == FaceBC::Kind::Symmetric && bc.appliesTo(static_cast<int>(m)))
@@ -99,6 +103,8 @@ std::vector<std::string> SymmetryFaceWatch::afterStep(const MPM& mpm, long step,
     }
     lo[f.material] = Vec3(x0, y0, z0);
     hi[f.material] = Vec3(x1, y1, z1);
+    Communicator::minimum(lo[f.material].data(), 3);
+    Communicator::maximum(hi[f.material].data(), 3);
   }
   for (size_t w = 0; w < watched_.size();) {
     const Face f = watched_[w];
@@ -110,7 +116,11 @@ std::vector<std::string> SymmetryFaceWatch::afterStep(const MPM& mpm, long step,
     const MPMMaterial& mat = mpm.materials()[f.material];
     const ParticleSet& p = mat.particles;
     size_t reached = 0;
-    while (distanceToFace(g, p.x[reached], f.axis, f.side) >= g.dx[f.axis]) ++reached;
+    while (reached < p.count() && distanceToFace(g, p.x[reached], f.axis, f.side) >= g.dx[f.axis])
+      ++reached;
+    watched_.erase(watched_.begin() + static_cast<long>(w));  // once per face and material
+    // The lowest rank holding such a particle reports it.
+    if (Communicator::firstRankWith(reached < p.count()) != Communicator::rank()) continue;
     std::ostringstream s;
     s << "warning: step " << step << ", t = " << t << ": "
       << describeParticle(mat, f.material, reached)
@@ -119,7 +129,6 @@ std::vector<std::string> SymmetryFaceWatch::afterStep(const MPM& mpm, long step,
          "growing into it is squashed (enlarge the grid if the face is not a symmetry plane of the "
          "body)";
     warnings.push_back(s.str());
-    watched_.erase(watched_.begin() + static_cast<long>(w));  // once per face and material
   }
   return warnings;
 }

@@ -1,6 +1,7 @@
 // Grid-face boundary conditions of <Grid><BoundaryConditions> (UINTAH_UPS.md §2.10).
 #pragma once
 
+#include <algorithm>
 #include <optional>
 #include <vector>
 
@@ -24,14 +25,14 @@ struct FaceBC {
 
 // Reads every <Face>; `numMaterials` bounds the id attribute; SD-Type (concentration) conditions
 // need `diffusion`.
-// Calls f(node) for every node on the face of `bc` or outside it (the extra nodes beyond).
+// Calls f(node) for every stored node on the face of `bc` or outside it (the extra nodes beyond).
 template <class Fn>
 void forFaceNodes(const Grid& g, const FaceBC& bc, Fn f) {
-  Vec3i lo = -g.extra, hi = g.cells + g.extra;
+  Vec3i lo = g.firstNode(), hi = g.lastNode();
   if (bc.side == 0)
-    hi[bc.axis] = 0;
+    hi[bc.axis] = std::min(hi[bc.axis], 0);
   else
-    lo[bc.axis] = g.cells[bc.axis];
+    lo[bc.axis] = std::max(lo[bc.axis], g.cells[bc.axis]);
   for (int k = lo.z(); k <= hi.z(); ++k)
     for (int j = lo.y(); j <= hi.y(); ++j)
       for (int i = lo.x(); i <= hi.x(); ++i) f(g.nodeIndex(i, j, k));

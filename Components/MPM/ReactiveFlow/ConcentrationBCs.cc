@@ -17,7 +17,11 @@ void applyConcentrationBCs(const Grid& g, const std::vector<FaceBC>& bcs, int ma
       const int layers = g.extra[bc.axis] + 1;
       for (int layer = 0; layer < layers; ++layer) {
         const int plane = lo - inward * layer;
-        Vec3i from = -g.extra, to = g.cells + g.extra;
+        Vec3i from = g.firstNode(), to = g.lastNode();
+        // A rank's window holds a face plane and its inward neighbour, or neither.
+        if (plane < from[bc.axis] || plane > to[bc.axis] || plane + inward < from[bc.axis] ||
+            plane + inward > to[bc.axis])
+          continue;
         from[bc.axis] = to[bc.axis] = plane;
         for (int k = from.z(); k <= to.z(); ++k)
           for (int j = from.y(); j <= to.y(); ++j)

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "Components/MPM/ReactiveFlow/FluxSurfaceArea.h"
+#include "Core/Parallel/Communicator.h"
 
 namespace anode {
 
@@ -110,7 +111,14 @@ void ExternalScalarFlux::updateAutoCycle(const std::vector<MPMMaterial>& materia
     }
     n += mat.particles.count();
   }
-  if (n == 0) return;
+  // Over every rank's particles (the identity on one rank).
+  double count = static_cast<double>(n);
+  Communicator::sum(&count, 1);
+  if (count == 0) return;
+  Communicator::sum(&sum, 1);
+  Communicator::minimum(&lo, 1);
+  Communicator::maximum(&hi, 1);
+  n = static_cast<size_t>(count);
   const double mean = sum / n;
   if (sign_ > 0 && (flags.autoCycleUseMinMax ? lo : mean) > flags.autoCycleMax) sign_ = -1;
   if (sign_ < 0 && (flags.autoCycleUseMinMax ? hi : mean) < flags.autoCycleMin) sign_ = 1;

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "Components/MPM/ReactiveFlow/ConcentrationBCs.h"
+#include "Core/Parallel/StopTogether.h"
 #include "Core/Util/Errors.h"
 
 namespace anode {
@@ -46,11 +47,8 @@ void ReactiveFlow::rejectWithoutDiffusion(const PSNode& root, const MPMFlags& fl
 void ReactiveFlow::initialize(const PSNode& root, const Grid& grid,
                               const std::vector<FaceBC>& faceBCs,
                               std::vector<MPMMaterial>& materials,
-                              const std::vector<MaterialSeeds>& seeds, int threads,
-                              double initTime) {
-  grid_ = grid;
+                              const std::vector<MaterialSeeds>& seeds, double initTime) {
   faceBCs_ = faceBCs;
-  dirichletMask_ = dirichletNodeMasks(grid, faceBCs, materials.size());
   const std::vector<ExternalScalarFlux::Flagged> flagged =
       flux_.assignToParticles(materials, seeds, grid);
   for (size_t b = 0; b < flux_.bcs().size(); ++b)
@@ -75,20 +73,33 @@ void ReactiveFlow::initialize(const PSNode& root, const Grid& grid,
       s << " (their particle faces)";
     setupReport_.push_back(s.str());
   }
-  const int nodes = grid.numNodes();
-  bool anyFlux = false;
   for (const MPMMaterial& mat : materials) {
-    const bool flux = !mat.particles.externalScalarFlux.empty();
-    anyFlux |= flux;
-    receivesFlux_.push_back(flux);
+    receivesFlux_.push_back(!mat.particles.externalScalarFlux.empty());
     cmax_.push_back(mat.diffusion->maxConcentration);
     constantRate_.push_back(mat.diffusion->constantRate());
-    fields_.emplace_back().resize(nodes, flux);
   }
-  threadScatter_.resize(threads > 1 ? threads : 0);
-  for (ConcentrationScatterFields& t : threadScatter_) t.resize(nodes, anyFlux);
   computeDiffusivity(materials, initTime);
   flux_.computeFluxRates(materials, initTime);
+}
+
+void ReactiveFlow::layOutGrid(const Grid& grid, int threads, const GhostNodes* ghosts) {
+  grid_ = grid;
+  ghosts_ = ghosts;
+  dirichletMask_ = dirichletNodeMasks(grid, faceBCs_, receivesFlux_.size());
+  const int nodes = grid.numNodes();
+  fields_.assign(receivesFlux_.size(), {});
+  for (size_t m = 0; m < fields_.size(); ++m) fields_[m].resize(nodes, receivesFlux_[m]);
+  const bool anyFlux =
+      std::find(receivesFlux_.begin(), receivesFlux_.end(), true) != receivesFlux_.end();
+  threadScatter_.assign(threads > 1 ? threads : 0, {});
+  for (ConcentrationScatterFields& t : threadScatter_) t.resize(nodes, anyFlux);
+}
+
+void ReactiveFlow::addScatteredArrays(std::vector<NodeArray>& arrays) {
+  for (ConcentrationGridFields& g : fields_)
+    for (std::vector<double>* f : {&g.massConcentration, &g.diffusionRate, &g.fluxSource,
+                                   &g.receiverWeightIn, &g.receiverWeightOut})
+      if (!f->empty()) arrays.push_back({f->data(), 1});
 }
 
 void ReactiveFlow::computeNodalConcentration(size_t m, const GridFields& mechanics, long begin,
@@ -145,7 +156,7 @@ void ReactiveFlow::integrateConcentration(const std::vector<GridFields>& mechani
 }
 
 void ReactiveFlow::updateDiffusionState(std::vector<MPMMaterial>& materials, double t) {
-  checkConcentrationRange(materials, t);
+  stopTogether([&] { checkConcentrationRange(materials, t); });
   if (flags_.autoCycle) flux_.updateAutoCycle(materials, flags_);
   computeDiffusivity(materials, t);
   flux_.computeFluxRates(materials, t);

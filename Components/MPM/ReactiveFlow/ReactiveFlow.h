@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "Components/MPM/GhostNodes.h"
 #include "Components/MPM/GridFields.h"
 #include "Components/MPM/Interpolator.h"
 #include "Components/MPM/MPMFlags.h"
@@ -36,12 +37,16 @@ class ReactiveFlow {
   // A run without diffusion: the tags that would need it are errors, not silently dropped.
   static void rejectWithoutDiffusion(const PSNode& root, const MPMFlags& flags);
 
-  // Flags the flux particles, lays out the grid fields and computes the initial state's
-  // diffusivity and flux rates. `faceBCs` holds the SD-Type conditions, `seeds` the surface
-  // particles.
+  // Flags the flux particles and computes the initial state's diffusivity and flux rates, for
+  // every particle of the input (`grid` whole). `faceBCs` holds the SD-Type conditions, `seeds`
+  // the surface particles.
   void initialize(const PSNode& root, const Grid& grid, const std::vector<FaceBC>& faceBCs,
                   std::vector<MPMMaterial>& materials, const std::vector<MaterialSeeds>& seeds,
-                  int threads, double initTime);
+                  double initTime);
+  // Lays out the grid fields on the nodes this rank stores (`grid`: the whole grid, or this
+  // rank's window), with `threads` scatter buffers; `ghosts` completes the source marks on the
+  // nodes shared with other ranks (none: a run of one rank).
+  void layOutGrid(const Grid& grid, int threads, const GhostNodes* ghosts);
 
   // --- the step's diffusion tasks, in the order MPM::timeAdvance calls them ---
 
@@ -50,6 +55,8 @@ class ReactiveFlow {
   template <class F>
   void withScatter(size_t m, const ParticleSet& p, const InterpolationWeights& W, long begin,
                    long end, F&& f);
+  // Adds the nodal arrays P2G sums (per material) to `arrays`, for the ranks to complete them.
+  void addScatteredArrays(std::vector<NodeArray>& arrays);
   // Eq. 5: c = (mc)/m, then the SD-Type conditions; after all materials, the interface.
   void computeNodalConcentration(size_t m, const GridFields& mechanics, long begin, long end);
   void applyDiffusionInterface(const std::vector<GridFields>& mechanics, long begin, long end);
@@ -93,6 +100,7 @@ class ReactiveFlow {
   std::vector<ConcentrationGridFields> fields_;  // per material
   std::vector<ConcentrationScatterFields> threadScatter_;  // per thread, for P2G without locks
   std::vector<std::string> setupReport_;
+  const GhostNodes* ghosts_ = nullptr;
 };
 
 template <class F>
@@ -102,6 +110,7 @@ void ReactiveFlow::withScatter(size_t m, const ParticleSet& p, const Interpolati
   g.clearAll(begin, end);
   if (receivesFlux_[m]) {
     markSourceNodes(p, W, g.sourceReached, begin, end);
+    if (ghosts_) ghosts_->unionOverRanks(g.sourceReached);
     f(ConcentrationScatter<true>(p, W, g.sourceReached.data(), cmax_[m], g, threadScatter_));
   } else {
     f(ConcentrationScatter<false>(p, W, nullptr, cmax_[m], g, threadScatter_));

@@ -1,0 +1,46 @@
+// The nodes a rank shares with its neighbours (docs/parallel.md): after P2G each rank holds its
+// own particles' part of the nodal sums on its window; the ranks whose windows overlap exchange
+// those parts on the shared nodes and every holder adds them in rank order, so a shared node has
+// the same complete sum, bit for bit, on every rank that stores it and the node-by-node grid
+// tasks (contact, integration, boundary conditions) run on ghost nodes as on owned ones.
+#pragma once
+
+#include <vector>
+
+#include "Core/Grid/Grid.h"
+#include "Core/Parallel/Communicator.h"
+#include "Core/Parallel/Decomposition.h"
+
+namespace anode {
+
+// One nodal array as doubles: `width` per node (1 for a scalar, 3 for a Vec3).
+struct NodeArray {
+  double* values;
+  int width;
+};
+
+class GhostNodes {
+ public:
+  GhostNodes() = default;
+  // The shared nodes of rank `rank` (window `local`) with its neighbours. Collective.
+  GhostNodes(const Decomposition& d, const Grid& whole, const Grid& local, int rank, int ghost);
+
+  bool empty() const { return neighbours_.ranks().empty(); }
+  // Completes the sums of `arrays` on the shared nodes (each rank's part added in rank order).
+  // Collective.
+  void sumOverRanks(const std::vector<NodeArray>& arrays) const;
+  // The bitwise OR of each rank's marks on the shared nodes. Collective.
+  void unionOverRanks(std::vector<unsigned char>& marks) const;
+  const std::vector<int>& neighbours() const { return neighbours_.ranks(); }
+  const Neighbourhood& neighbourhood() const { return neighbours_; }
+
+ private:
+  Neighbourhood neighbours_;
+  int rank_ = 0;
+  // Per neighbour: the local indices of the shared nodes, in the order both sides list them
+  // (global z, y, x), and their places in sharedNodes_.
+  std::vector<std::vector<int>> overlap_, slot_;
+  std::vector<int> sharedNodes_;  // local indices of every shared node, ascending
+};
+
+}  // namespace anode
