@@ -26,6 +26,7 @@ struct GridData {
   double origin[3] = {0, 0, 0};
   double spacing[3] = {1, 1, 1};
   int dims[3] = {1, 1, 1};         // nodes in each direction
+  int first[3] = {0, 0, 0};        // index of the first node from the origin (a rank's piece)
   std::vector<NamedArray> arrays;  // one value per node, x fastest
 };
 

@@ -81,7 +81,9 @@ void writeParticlesVTU(const std::string& path, const ParticleData& data) {
 
 void writeGridVTI(const std::string& path, const GridData& data) {
   auto image = vtkSmartPointer<vtkImageData>::New();
-  image->SetDimensions(data.dims[0], data.dims[1], data.dims[2]);
+  image->SetExtent(data.first[0], data.first[0] + data.dims[0] - 1, data.first[1],
+                   data.first[1] + data.dims[1] - 1, data.first[2],
+                   data.first[2] + data.dims[2] - 1);
   image->SetOrigin(data.origin[0], data.origin[1], data.origin[2]);
   image->SetSpacing(data.spacing[0], data.spacing[1], data.spacing[2]);
   const size_t nodes = static_cast<size_t>(data.dims[0]) * data.dims[1] * data.dims[2];
@@ -89,6 +91,61 @@ void writeGridVTI(const std::string& path, const GridData& data) {
   auto writer = vtkSmartPointer<vtkXMLImageDataWriter>::New();
   writer->SetInputData(image);
   runWriter(writer.Get(), path);
+}
+
+namespace {
+
+// The <PDataArray> lines of a parallel file for the arrays of one piece.
+std::string parallelArrays(const std::vector<NamedArray>& arrays) {
+  std::ostringstream s;
+  for (const NamedArray& a : arrays)
+    s << "      <PDataArray type=\"" << (a.isInteger() ? "Int64" : "Float64") << "\" Name=\""
+      << a.name << "\" NumberOfComponents=\"" << a.components << "\"/>\n";
+  return s.str();
+}
+
+}  // namespace
+
+void writeParticlesPVTU(const std::string& path, const std::vector<std::string>& pieces,
+                        const ParticleData& sample) {
+  std::ostringstream s;
+  s << "<?xml version=\"1.0\"?>\n"
+    << "<VTKFile type=\"PUnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
+       "header_type=\"UInt64\">\n"
+    << "  <PUnstructuredGrid GhostLevel=\"0\">\n    <PPointData>\n"
+    << parallelArrays(sample.arrays) << "    </PPointData>\n"
+    << "    <PPoints>\n      <PDataArray type=\"Float64\" Name=\"Points\" "
+       "NumberOfComponents=\"3\"/>\n    </PPoints>\n"
+    << "    <PCells>\n      <PDataArray type=\"Int64\" Name=\"connectivity\"/>\n"
+    << "      <PDataArray type=\"Int64\" Name=\"offsets\"/>\n"
+    << "      <PDataArray type=\"UInt8\" Name=\"types\"/>\n    </PCells>\n";
+  for (const std::string& piece : pieces) s << "    <Piece Source=\"" << piece << "\"/>\n";
+  s << "  </PUnstructuredGrid>\n</VTKFile>\n";
+  writeFileAtomically(path, s.str());
+}
+
+void writeGridPVTI(const std::string& path, const std::vector<std::string>& pieces,
+                   const std::vector<std::array<int, 6>>& pieceExtents,
+                   const std::array<int, 6>& wholeExtent, const GridData& sample) {
+  auto extent = [](const std::array<int, 6>& e) {
+    std::ostringstream s;
+    for (int k = 0; k < 6; ++k) s << (k ? " " : "") << e[k];
+    return s.str();
+  };
+  std::ostringstream s;
+  s << std::setprecision(17) << "<?xml version=\"1.0\"?>\n"
+    << "<VTKFile type=\"PImageData\" version=\"1.0\" byte_order=\"LittleEndian\" "
+       "header_type=\"UInt64\">\n"
+    << "  <PImageData WholeExtent=\"" << extent(wholeExtent) << "\" GhostLevel=\"0\" Origin=\""
+    << sample.origin[0] << " " << sample.origin[1] << " " << sample.origin[2] << "\" Spacing=\""
+    << sample.spacing[0] << " " << sample.spacing[1] << " " << sample.spacing[2] << "\">\n"
+    << "    <PPointData>\n"
+    << parallelArrays(sample.arrays) << "    </PPointData>\n";
+  for (size_t k = 0; k < pieces.size(); ++k)
+    s << "    <Piece Extent=\"" << extent(pieceExtents[k]) << "\" Source=\"" << pieces[k]
+      << "\"/>\n";
+  s << "  </PImageData>\n</VTKFile>\n";
+  writeFileAtomically(path, s.str());
 }
 
 void PVDSeries::write(const std::string& path) const {

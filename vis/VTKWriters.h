@@ -1,6 +1,7 @@
 // VTK XML writers (binary, zlib-compressed), each file written to a temporary name and renamed.
 #pragma once
 
+#include <array>
 #include <string>
 #include <utility>
 #include <vector>
@@ -13,6 +14,16 @@ namespace anode {
 void writeParticlesVTU(const std::string& path, const ParticleData& data);
 // Grid nodes as image data (.vti).
 void writeGridVTI(const std::string& path, const GridData& data);
+
+// A distributed run's output of one time (ParaView's parallel formats): the pieces of the ranks
+// that hold particles (.pvtu, over .vtu pieces of the arrays `sample` has) or nodes (.pvti over
+// .vti pieces of extent `pieceExtents` x0 x1 y0 y1 z0 z1 in `wholeExtent`); `pieces` are
+// relative to the file's folder.
+void writeParticlesPVTU(const std::string& path, const std::vector<std::string>& pieces,
+                        const ParticleData& sample);
+void writeGridPVTI(const std::string& path, const std::vector<std::string>& pieces,
+                   const std::vector<std::array<int, 6>>& pieceExtents,
+                   const std::array<int, 6>& wholeExtent, const GridData& sample);
 
 // A ParaView collection (.pvd) listing one file per output time.
 class PVDSeries {

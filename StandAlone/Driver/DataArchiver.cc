@@ -7,6 +7,7 @@
 #include <regex>
 #include <sstream>
 
+#include "Core/Parallel/Communicator.h"
 #include "Core/Util/AtomicFile.h"
 #include "StandAlone/Driver/OutputLabels.h"
 
@@ -69,11 +70,96 @@ std::string chooseOutputDirectory(const std::string& requested, const std::strin
 
 void DataArchiver::open(const std::string& dir, const std::string& inputFile) {
   dir_ = dir;
-  fs::create_directories(fs::path(dir_) / "particles");
-  if (wantsGrid()) fs::create_directories(fs::path(dir_) / "grid");
-  writeAtomically((fs::path(dir_) / "input.ups").string(), [&](const std::string& tmp) {
-    fs::copy_file(inputFile, tmp, fs::copy_options::overwrite_existing);
-  });
+  if (Communicator::isRoot()) {
+    fs::create_directories(fs::path(dir_) / "particles");
+    if (wantsGrid()) fs::create_directories(fs::path(dir_) / "grid");
+    writeAtomically((fs::path(dir_) / "input.ups").string(), [&](const std::string& tmp) {
+      fs::copy_file(inputFile, tmp, fs::copy_options::overwrite_existing);
+    });
+  }
+  Communicator::barrier();
+}
+
+namespace {
+
+std::string stepName(const char* prefix, long step) {
+  std::ostringstream name;
+  name << prefix << std::setw(6) << std::setfill('0') << step;
+  return name.str();
+}
+
+std::string pieceName(const std::string& base, int rank, const char* extension) {
+  std::ostringstream name;
+  name << base << ".r" << std::setw(4) << std::setfill('0') << rank << extension;
+  return name.str();
+}
+
+// 'I' or 'F' per array: the types of a rank's arrays (all integer-looking when it holds none).
+std::string arrayTypes(const std::vector<NamedArray>& arrays) {
+  std::string t;
+  for (const NamedArray& a : arrays) t += a.isInteger() ? 'I' : 'F';
+  return t;
+}
+
+}  // namespace
+
+std::string DataArchiver::writeParticles(const std::string& base, const ParticleData& data) const {
+  if (Communicator::size() == 1) {
+    writeParticlesVTU((fs::path(dir_) / (base + ".vtu")).string(), data);
+    return base + ".vtu";
+  }
+  // The pieces of the ranks holding particles (rank 0's when none does), then the .pvtu: every
+  // piece is in place when the gather returns.
+  const bool anyHeld = Communicator::any(data.count() > 0);
+  const bool writes = data.count() > 0 || (!anyHeld && Communicator::isRoot());
+  if (writes)
+    writeParticlesVTU((fs::path(dir_) / pieceName(base, Communicator::rank(), ".vtu")).string(),
+                      data);
+  const std::vector<std::string> types =
+      Communicator::allGather(writes ? "+" + arrayTypes(data.arrays) : "");
+  if (Communicator::isRoot()) {
+    std::vector<std::string> pieces;
+    ParticleData sample;
+    for (int r = 0; r < Communicator::size(); ++r) {
+      if (types[r].empty()) continue;
+      pieces.push_back(fs::path(pieceName(base, r, ".vtu")).filename().string());
+      if (!sample.arrays.empty() || types[r].size() != data.arrays.size() + 1) continue;
+      for (size_t a = 0; a < data.arrays.size(); ++a) {
+        NamedArray& typed = sample.arrays.emplace_back();
+        typed.name = data.arrays[a].name;
+        typed.components = data.arrays[a].components;
+        if (types[r][a + 1] == 'F') typed.real = {0.0};
+      }
+    }
+    writeParticlesPVTU((fs::path(dir_) / (base + ".pvtu")).string(), pieces, sample);
+  }
+  return base + ".pvtu";
+}
+
+std::string DataArchiver::writeGrid(const std::string& base, const GridData& data) const {
+  if (Communicator::size() == 1) {
+    writeGridVTI((fs::path(dir_) / (base + ".vti")).string(), data);
+    return base + ".vti";
+  }
+  writeGridVTI((fs::path(dir_) / pieceName(base, Communicator::rank(), ".vti")).string(), data);
+  std::ostringstream extent;
+  for (int d = 0; d < 3; ++d)
+    extent << data.first[d] << " " << data.first[d] + data.dims[d] - 1 << " ";
+  const std::vector<std::string> extents = Communicator::allGather(extent.str());
+  if (Communicator::isRoot()) {
+    std::vector<std::string> pieces;
+    std::vector<std::array<int, 6>> pieceExtents;
+    std::array<int, 6> whole{0, 0, 0, 0, 0, 0};
+    for (int r = 0; r < Communicator::size(); ++r) {
+      pieces.push_back(fs::path(pieceName(base, r, ".vti")).filename().string());
+      std::istringstream in(extents[r]);
+      std::array<int, 6>& e = pieceExtents.emplace_back();
+      for (int& v : e) in >> v;
+      for (int d = 0; d < 3; ++d) whole[2 * d + 1] = std::max(whole[2 * d + 1], e[2 * d + 1]);
+    }
+    writeGridPVTI((fs::path(dir_) / (base + ".pvti")).string(), pieces, pieceExtents, whole, data);
+  }
+  return base + ".pvti";
 }
 
 bool DataArchiver::isOutputStep(long step, double time) const {
@@ -84,18 +170,15 @@ bool DataArchiver::isOutputStep(long step, double time) const {
 }
 
 void DataArchiver::writeOutput(long step, double time, const MPM& mpm) {
-  std::ostringstream name;
-  name << "step_" << std::setw(6) << std::setfill('0') << step;
-  const std::string particleFile = "particles/" + name.str() + ".vtu";
-  writeParticlesVTU((fs::path(dir_) / particleFile).string(),
-                    gatherParticles(mpm, particleLabels_));
+  const std::string name = stepName("step_", step);
+  const std::string particleFile =
+      writeParticles("particles/" + name, gatherParticles(mpm, particleLabels_));
   particleSeries_.add(time, particleFile);
-  particleSeries_.write((fs::path(dir_) / "particles.pvd").string());
+  if (Communicator::isRoot()) particleSeries_.write((fs::path(dir_) / "particles.pvd").string());
   if (wantsGrid()) {
-    const std::string gridFile = "grid/" + name.str() + ".vti";
-    writeGridVTI((fs::path(dir_) / gridFile).string(), gatherGrid(mpm, gridLabels_));
+    const std::string gridFile = writeGrid("grid/" + name, gatherGrid(mpm, gridLabels_));
     gridSeries_.add(time, gridFile);
-    gridSeries_.write((fs::path(dir_) / "grid.pvd").string());
+    if (Communicator::isRoot()) gridSeries_.write((fs::path(dir_) / "grid.pvd").string());
   }
   lastOutputTime_ = time;
   lastOutputStep_ = step;
@@ -103,14 +186,13 @@ void DataArchiver::writeOutput(long step, double time, const MPM& mpm) {
 }
 
 std::string DataArchiver::writeFailedState(long step, const MPM& mpm) const {
-  std::ostringstream name;
-  name << "particles/failed_step_" << std::setw(6) << std::setfill('0') << step << ".vtu";
-  const std::string path = (fs::path(dir_) / name.str()).string();
-  writeParticlesVTU(path, gatherParticles(mpm, particleLabels_));
-  return path;
+  const std::string file = writeParticles("particles/" + stepName("failed_step_", step),
+                                          gatherParticles(mpm, particleLabels_));
+  return (fs::path(dir_) / file).string();
 }
 
 void DataArchiver::writeHistory() const {
+  if (!Communicator::isRoot()) return;
   std::ostringstream s;
   const bool diffusion = !history_.empty() && history_.front().diffusion;
   s << "step,time,dt,particles,kinetic_energy,min_J,max_J,"
@@ -164,7 +246,11 @@ void DataArchiver::loadState(BinaryReader& in) {
 }
 
 void DataArchiver::removeOutputsAfter(long step) const {
-  static const std::regex output(R"(step_(\d+)\.vt[ui])");
+  static const std::regex output(R"(step_(\d+)(\.r\d+)?\.p?vt[ui])");
+  if (!Communicator::isRoot()) {
+    Communicator::barrier();
+    return;
+  }
   for (const char* folder : {"particles", "grid"}) {
     const fs::path path = fs::path(dir_) / folder;
     if (!fs::is_directory(path)) continue;
@@ -177,9 +263,11 @@ void DataArchiver::removeOutputsAfter(long step) const {
     }
     for (const fs::path& p : later) fs::remove(p);
   }
+  Communicator::barrier();
 }
 
 void DataArchiver::writeIndexFiles() const {
+  if (!Communicator::isRoot()) return;
   particleSeries_.write((fs::path(dir_) / "particles.pvd").string());
   if (wantsGrid()) gridSeries_.write((fs::path(dir_) / "grid.pvd").string());
   writeHistory();

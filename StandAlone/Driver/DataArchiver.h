@@ -35,12 +35,14 @@ class DataArchiver {
 
   // True if the step that ended at `time` (number `step`) is an output step.
   bool isOutputStep(long step, double time) const;
-  // Writes particles (and grid, if asked) for this state and records it in the .pvd series.
+  // Writes particles (and grid, if asked) for this state and records it in the .pvd series; in a
+  // distributed run every rank writes its piece and rank 0 the .pvtu (.pvti) over them, then the
+  // .pvd. Collective.
   void writeOutput(long step, double time, const MPM& mpm);
   // The step of the last writeOutput (-1 before the first).
   long lastOutputStep() const { return lastOutputStep_; }
-  // Writes the particles of a step that failed a check to particles/failed_step_NNNNNN.vtu,
-  // outside the .pvd series; returns that path.
+  // Writes the particles of a step that failed a check to particles/failed_step_NNNNNN.vtu (or
+  // .pvtu), outside the .pvd series; returns that path. Collective.
   std::string writeFailedState(long step, const MPM& mpm) const;
   void recordHistory(const HistoryRow& row) { history_.push_back(row); }
   void writeHistory() const;
@@ -58,6 +60,11 @@ class DataArchiver {
   void removeOutputsAfter(long step) const;
 
  private:
+  // This rank's particles (grid nodes) under `base` (relative to the directory): base.vtu on one
+  // rank, else its piece base.rNNNN.vtu and, from rank 0, base.pvtu; returns the file to list.
+  std::string writeParticles(const std::string& base, const ParticleData& data) const;
+  std::string writeGrid(const std::string& base, const GridData& data) const;
+
   std::string filebase_;
   std::optional<double> interval_;
   long stepInterval_ = 0;

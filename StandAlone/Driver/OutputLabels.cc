@@ -253,11 +253,13 @@ ParticleData gatherParticlesWhere(
 GridData gatherGrid(const MPM& mpm, const std::vector<std::string>& labels) {
   const Grid& g = mpm.grid();
   GridData out;
+  // The whole grid's first node is the origin; a rank's window starts further in.
   const Vec3 origin = g.nodePosition(-g.extra.x(), -g.extra.y(), -g.extra.z());
   for (int d = 0; d < 3; ++d) {
     out.origin[d] = origin[d];
     out.spacing[d] = g.dx[d];
     out.dims[d] = g.nodes()[d];
+    out.first[d] = g.trimLower[d];
   }
   const size_t nodes = g.numNodes();
   const size_t nm = mpm.gridFields().size();

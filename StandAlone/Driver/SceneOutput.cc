@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 
+#include "Core/Parallel/Communicator.h"
 #include "StandAlone/Driver/OutputLabels.h"
 #include "vis/SceneRenderer.h"
 
@@ -43,6 +45,40 @@ SceneOutput SceneOutput::fromInput(const PSNode& root, const TimeControl& time, 
 
 namespace {
 
+// A distributed run draws on rank 0 what every rank holds of a scene (its position and the few
+// arrays it needs; docs/parallel.md), in rank order; one rank keeps its own.
+ParticleData gatherToRoot(ParticleData data) {
+  if (Communicator::size() == 1) return data;
+  std::string bytes;
+  auto append = [&bytes](const std::vector<double>& v) {
+    const uint64_t n = v.size();
+    bytes.append(reinterpret_cast<const char*>(&n), sizeof n);
+    bytes.append(reinterpret_cast<const char*>(v.data()), n * sizeof(double));
+  };
+  append(data.points);
+  for (const NamedArray& a : data.arrays) append(a.real);
+  const std::vector<std::string> all = Communicator::allGather(bytes);
+  if (!Communicator::isRoot()) return {};
+  ParticleData out = data;
+  out.points.clear();
+  for (NamedArray& a : out.arrays) a.real.clear();
+  for (const std::string& piece : all) {
+    const char* in = piece.data();
+    auto take = [&in](std::vector<double>& v) {
+      uint64_t n = 0;
+      std::memcpy(&n, in, sizeof n);
+      in += sizeof n;
+      const size_t at = v.size();
+      v.resize(at + n);
+      std::memcpy(v.data() + at, in, n * sizeof(double));
+      in += n * sizeof(double);
+    };
+    take(out.points);
+    for (NamedArray& a : out.arrays) take(a.real);
+  }
+  return out;
+}
+
 // The first state at or after a scene time renders it (as <outputInterval> output steps).
 bool crossed(double time, double t) {
   return time <= t + 1e-12 * std::max(std::abs(time), std::abs(t));
@@ -63,9 +99,14 @@ void SceneOutput::renderDue(double t, MPM& mpm, const std::string& outputDir) {
     ScopedTimer timer(mpm.timers(), mpm.timers().task("render"));
     std::vector<std::string> labels = {scene.field.label};
     if (scene.field.label != "p.volume") labels.push_back("p.volume");
-    const ParticleData data = gatherParticlesWhere(mpm, labels, [&](size_t m, const double* x) {
-      return scene.drawsMaterial(static_cast<int>(m)) && scene.keeps(x);
-    });
+    const ParticleData data =
+        gatherToRoot(gatherParticlesWhere(mpm, labels, [&](size_t m, const double* x) {
+          return scene.drawsMaterial(static_cast<int>(m)) && scene.keeps(x);
+        }));
+    if (!Communicator::isRoot()) {
+      while (next_[k] < times.size() && crossed(times[next_[k]], t)) ++next_[k];
+      continue;
+    }
     if (!renderer_) renderer_ = std::make_unique<SceneRenderer>();
     const RenderedScene picture = renderer_->render(scene, makeSprites(scene, data), t);
     std::filesystem::create_directories(std::filesystem::path(outputDir) / "images");

@@ -10,6 +10,7 @@
 #include <iterator>
 #include <sstream>
 
+#include "Core/Parallel/Communicator.h"
 #include "Core/Util/AtomicFile.h"
 #include "StandAlone/Driver/Progress.h"
 
@@ -84,6 +85,8 @@ void Simulation::run() {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   };
   const bool restart = !options_.restartDir.empty();
+  const bool root = Communicator::isRoot();
+  const bool progressLine = options_.progress && root;
   inputHash_ = fileHash(options_.input);
   std::string restartedFrom;
   if (restart) {
@@ -93,7 +96,11 @@ void Simulation::run() {
     newestCheckpoint_ = restartedFrom;
     scenes_.skipTimesUpTo(t_);
   } else {
-    archiver_.open(chooseOutputDirectory(options_.outputDir, archiver_.filebase()), options_.input);
+    // Rank 0 picks the directory (the next free version) for all.
+    archiver_.open(
+        Communicator::broadcast(
+            root ? chooseOutputDirectory(options_.outputDir, archiver_.filebase()) : "", 0),
+        options_.input);
   }
   const int outputTask = mpm_.timers().task("output");
   const int checkpointTask = mpm_.timers().task("checkpoint");
@@ -108,6 +115,7 @@ void Simulation::run() {
     archiver_.recordHistory({step_, s.particles, t_, stepDt, s.kineticEnergy, s.minJ, s.maxJ,
                              earlierWallSeconds_ + wall(), s.diffusion, s.totalLithium,
                              s.minConcentration, s.maxConcentration});
+    return s.particles;
   };
   // Grid labels hold the last step's nodal values; before any step of this process (the start,
   // or a restart with no step left) they are interpolated from the particles.
@@ -119,17 +127,28 @@ void Simulation::run() {
     mpm_.releaseInterpolationWeights();
     archiver_.writeOutput(step_, t_, mpm_);
   };
-  std::fprintf(stderr, "sus: %zu particles in %zu material(s), grid %dx%dx%d cells, output in %s\n",
-               mpm_.numParticles(), mpm_.materials().size(), mpm_.grid().cells.x(),
-               mpm_.grid().cells.y(), mpm_.grid().cells.z(), archiver_.directory().c_str());
-  if (mpm_.diffusion())
-    for (const std::string& line : mpm_.diffusion()->setupReport())
-      std::fprintf(stderr, "sus: %s\n", line.c_str());
+  const size_t particles = mpm_.summarize().particles;
+  const double imbalance = mpm_.imbalance();
+  if (root) {
+    std::fprintf(stderr,
+                 "sus: %zu particles in %zu material(s), grid %dx%dx%d cells, output in %s\n",
+                 particles, mpm_.materials().size(), mpm_.grid().cells.x(), mpm_.grid().cells.y(),
+                 mpm_.grid().cells.z(), archiver_.directory().c_str());
+    if (Communicator::size() > 1)
+      std::fprintf(stderr,
+                   "sus: %d ranks: %s, ghost layers %d cells; particles per rank max/mean %.3f\n",
+                   Communicator::size(), mpm_.decomposition().describe().c_str(), mpm_.ghostWidth(),
+                   imbalance);
+    if (mpm_.diffusion())
+      for (const std::string& line : mpm_.diffusion()->setupReport())
+        std::fprintf(stderr, "sus: %s\n", line.c_str());
+  }
   for (const std::string& note : symmetryFaces_.start(mpm_))
-    std::fprintf(stderr, "%s\n", note.c_str());
+    if (root) std::fprintf(stderr, "%s\n", note.c_str());
   if (restart) {
-    std::fprintf(stderr, "sus: restarting from %s (step %ld, t = %.6e)\n", restartedFrom.c_str(),
-                 step_, t_);
+    if (root)
+      std::fprintf(stderr, "sus: restarting from %s (step %ld, t = %.6e)\n", restartedFrom.c_str(),
+                   step_, t_);
   } else {
     summaryRow(0.0);
     output(false);
@@ -150,13 +169,13 @@ void Simulation::run() {
       advance();
     } catch (const SimulationError&) {
       archiver_.writeHistory();
-      if (options_.progress) progress.finish();
+      if (progressLine) progress.finish();
       writeStateOnStop();
       throw;
     }
-    summaryRow(stepDt);
+    allParticleSteps_ += static_cast<double>(summaryRow(stepDt));
     for (const std::string& warning : symmetryFaces_.afterStep(mpm_, step_, t_)) {
-      if (options_.progress) progress.finish();
+      if (progressLine) progress.finish();
       std::fprintf(stderr, "%s\n", warning.c_str());
     }
     const bool done = finished();
@@ -166,10 +185,10 @@ void Simulation::run() {
       checkpoint(CheckpointKind::Scheduled);
     else if (!done && wall() - lastAutomaticCheckpoint >= kReplayInterval)
       checkpoint(CheckpointKind::Automatic);
-    if (options_.progress) progress.update(step_, t_, stepDt, particleSteps_, done);
+    if (progressLine) progress.update(step_, t_, stepDt, allParticleSteps_, done);
     if (done) break;
   }
-  if (options_.progress) progress.finish();
+  if (progressLine) progress.finish();
   removeAutomaticCheckpoints(archiver_.directory());
   wallSeconds_ = wall();
 }
@@ -303,20 +322,37 @@ std::string Simulation::loadNewestCheckpoint() {
 }
 
 void Simulation::printTimings() const {
+  // Per task the slowest rank's time (the others wait for it at the next exchange).
   const TaskTimers& timers = mpm_.timers();
-  double total = 0;
-  for (double s : timers.seconds()) total += s;
-  std::fprintf(stderr, "sus: %ld steps, t = %.6e, %zu particles, wall %.3f s\n", step_, t_,
-               mpm_.numParticles(), wallSeconds_);
-  std::fprintf(stderr, "  %-34s %10s %7s\n", "task", "seconds", "share");
-  for (size_t i = 0; i < timers.names().size(); ++i)
-    std::fprintf(stderr, "  %-34s %10.3f %6.1f%%\n", timers.names()[i].c_str(), timers.seconds()[i],
-                 total > 0 ? 100 * timers.seconds()[i] / total : 0.0);
-  std::fprintf(stderr, "  particle-steps per second: %.4e\n",
-               wallSeconds_ > 0 ? particleSteps_ / wallSeconds_ : 0.0);
+  std::vector<double> seconds = timers.seconds();
+  Communicator::maximum(seconds.data(), static_cast<int>(seconds.size()));
+  const double particleSteps = Communicator::sum(particleSteps_);
+  const size_t particles =
+      static_cast<size_t>(Communicator::sum(static_cast<int64_t>(mpm_.numParticles())));
+  const double imbalance = mpm_.imbalance();
+  double communication[2] = {Communicator::bytesSent(), Communicator::communicationSeconds()};
+  Communicator::sum(communication, 1);
+  Communicator::maximum(communication + 1, 1);
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
-  const double peakBytes = usage.ru_maxrss * 1024.0;  // Linux reports kilobytes
+  const double peakBytes = Communicator::maximum(usage.ru_maxrss * 1024.0);  // Linux: kilobytes
+  if (!Communicator::isRoot()) return;
+  double total = 0;
+  for (double v : seconds) total += v;
+  std::fprintf(stderr, "sus: %ld steps, t = %.6e, %zu particles, wall %.3f s\n", step_, t_,
+               particles, wallSeconds_);
+  std::fprintf(stderr, "  %-34s %10s %7s\n", "task", "seconds", "share");
+  for (size_t i = 0; i < timers.names().size(); ++i)
+    std::fprintf(stderr, "  %-34s %10.3f %6.1f%%\n", timers.names()[i].c_str(), seconds[i],
+                 total > 0 ? 100 * seconds[i] / total : 0.0);
+  std::fprintf(stderr, "  particle-steps per second: %.4e\n",
+               wallSeconds_ > 0 ? particleSteps / wallSeconds_ : 0.0);
+  if (Communicator::size() > 1)
+    std::fprintf(stderr,
+                 "  %d ranks: particles per rank max/mean %.3f; sent %.4g bytes in all, %.4g per "
+                 "step; communication at most %.3f s on a rank\n",
+                 Communicator::size(), imbalance, communication[0],
+                 step_ > 0 ? communication[0] / step_ : 0.0, communication[1]);
   std::fprintf(stderr, "  peak memory: %.1f MB, %.0f bytes per particle\n", peakBytes / 1e6,
                peakBytes / std::max<size_t>(mpm_.numParticles(), 1));
 }

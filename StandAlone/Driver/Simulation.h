@@ -74,7 +74,8 @@ class Simulation {
   std::string newestCheckpoint_;  // of either kind: where a replay to the last good state starts
   double t_ = 0, dt_ = 0;
   long step_ = 0;
-  double particleSteps_ = 0, wallSeconds_ = 0;
+  double particleSteps_ = 0, wallSeconds_ = 0;  // particle-steps of this rank
+  double allParticleSteps_ = 0;                 // of every rank, in this process's run
   double lastCheckpointTime_ = 0;
   double earlierWallSeconds_ = 0;  // of the runs before a restart, for history.csv
   uint64_t inputHash_ = 0;         // of the input file, stored in checkpoints
