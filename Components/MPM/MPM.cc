@@ -162,6 +162,11 @@ void MPM::decompose(bool allHere) {
       for (MPMMaterial& mat : materials_) unpackParticles(in, mat.particles);
     }
   }
+  layOutWindow();
+}
+
+void MPM::layOutWindow() {
+  const int me = Communicator::rank();
   grid_ = decomposition_.window(whole_, me, ghostWidth_);
   ghosts_ = GhostNodes(decomposition_, whole_, grid_, me, ghostWidth_);
   layOutGrid();
@@ -567,8 +572,10 @@ double MPM::computeStableTimestep() const {
 }
 
 void MPM::interpolateToGridForOutput() {
-  computeInterpolationWeights();
+  stopTogether([&] { computeInterpolationWeights(); });
   interpolateParticlesToGrid();
+  if (distributed_) sumGhostNodes();
+  computeNodalVelocityAndConcentration();
 }
 
 void MPM::releaseInterpolationWeights() {

@@ -54,6 +54,20 @@ class MPM {
   // std::runtime_error when the saved state does not fit them.
   void saveState(BinaryWriter& out) const;
   void loadState(BinaryReader& in);
+  // The same particles appended to this rank's (a distributed checkpoint read part by part).
+  void appendState(BinaryReader& in);
+  // The boxes of a distributed run, for its checkpoint; adoptLayout takes them back after each
+  // rank loaded its own part (Collective).
+  struct Layout {
+    std::array<std::vector<int>, 3> cuts;  // per axis (Decomposition::cuts)
+    int ghostWidth = 0;
+  };
+  void saveLayout(BinaryWriter& out) const;
+  static Layout readLayout(BinaryReader& in);
+  void adoptLayout(const Layout& layout);
+  // After every rank loaded all particles (a checkpoint of another rank count): puts them in ID
+  // order and keeps this rank's share under a decomposition drawn anew. Collective.
+  void keepOwnShare();
 
   // The nodes this rank stores (the whole grid on one rank; its window in a distributed run).
   const Grid& grid() const { return grid_; }
@@ -102,6 +116,10 @@ class MPM {
   // Keeps this rank's particles (all of the problem's are here when `allHere`) under a new
   // decomposition from the particle counts per cell plane, and lays out its window.
   void decompose(bool allHere);
+  // Lays out this rank's window and its shared nodes under decomposition_.
+  void layOutWindow();
+  // Reads particle arrays and the scalars; appends to this rank's particles when `append`.
+  void readState(BinaryReader& in, bool append);
   void layOutGrid();
   int computeGhostWidth(bool allHere) const;
   // Rank of the box holding material m's particle i.

@@ -1,8 +1,12 @@
 // MPM::saveState / loadState: what a restarted run needs to take the same steps as the run that
 // wrote the checkpoint. Grid fields are not saved: every step rebuilds them from the particles.
+#include <algorithm>
+#include <numeric>
 #include <stdexcept>
 
 #include "Components/MPM/MPM.h"
+#include "Components/MPM/ParticleMigration.h"
+#include "Core/Parallel/Communicator.h"
 
 namespace anode {
 
@@ -15,28 +19,70 @@ void MPM::saveState(BinaryWriter& out) const {
 }
 
 void MPM::loadState(BinaryReader& in) {
+  readState(in, false);
+}
+
+void MPM::appendState(BinaryReader& in) {
+  readState(in, true);
+}
+
+void MPM::readState(BinaryReader& in, bool append) {
   if (in.value<uint64_t>() != materials_.size())
     throw std::runtime_error("the checkpoint has another number of materials than the input");
   for (size_t m = 0; m < materials_.size(); ++m) {
     ParticleSet& p = materials_[m].particles;
     // An array the input's setup creates must come back with the particle count, and one it
     // does not create must stay empty: otherwise the checkpoint is of another input.
-    p.forEachArray([&](auto& array) {
-      const bool used = !array.empty();
-      in.array(array);
-      if (used != !array.empty())
-        throw std::runtime_error("material " + std::to_string(m) +
-                                 ": the checkpoint's particle arrays do not match the input");
+    size_t n = 0;
+    bool first = true, fits = true;
+    p.forEachField([&](auto& array, const auto& field) {
+      std::decay_t<decltype(array)> read;
+      in.array(read);
+      if (first) n = read.size(), first = false;
+      fits = fits && (p.has(field.physics) ? read.size() == n : read.empty());
+      if (append)
+        array.insert(array.end(), read.begin(), read.end());
+      else
+        array.swap(read);
     });
-    size_t n = p.count();
-    p.forEachArray([&](const auto& array) {
-      if (!array.empty() && array.size() != n)
-        throw std::runtime_error("material " + std::to_string(m) +
-                                 ": particle arrays of different lengths in the checkpoint");
-    });
+    if (!fits)
+      throw std::runtime_error("material " + std::to_string(m) +
+                               ": the checkpoint's particle arrays do not match the input");
   }
   nextParticleId_ = in.value<int64_t>();
   if (diffusion_) diffusion_->loadState(materials_, in);
+}
+
+void MPM::saveLayout(BinaryWriter& out) const {
+  for (int d = 0; d < 3; ++d) out.array(decomposition_.cuts(d));
+  out.value<int32_t>(ghostWidth_);
+}
+
+MPM::Layout MPM::readLayout(BinaryReader& in) {
+  Layout layout;
+  for (std::vector<int>& c : layout.cuts) in.array(c);
+  layout.ghostWidth = in.value<int32_t>();
+  return layout;
+}
+
+void MPM::adoptLayout(const Layout& layout) {
+  ghostWidth_ = layout.ghostWidth;
+  for (int d = 0; d < 3; ++d)
+    if (layout.cuts[d].size() < 2 || layout.cuts[d].back() != whole_.cells[d])
+      throw std::runtime_error("the checkpoint's boxes are for another grid");
+  decomposition_ = Decomposition::fromCuts(layout.cuts);
+  layOutWindow();
+}
+
+void MPM::keepOwnShare() {
+  for (MPMMaterial& mat : materials_) {
+    ParticleSet& p = mat.particles;
+    std::vector<long> order(p.count());
+    std::iota(order.begin(), order.end(), 0L);
+    std::sort(order.begin(), order.end(), [&p](long a, long b) { return p.id[a] < p.id[b]; });
+    reorderParticles(p, order);
+  }
+  decompose(true);
 }
 
 }  // namespace anode

@@ -43,4 +43,14 @@ void keepParticles(ParticleSet& p, const std::vector<long>& keep) {
   });
 }
 
+void reorderParticles(ParticleSet& p, const std::vector<long>& order) {
+  p.forEachArray([&](auto& v) {
+    if (v.empty()) return;
+    std::decay_t<decltype(v)> sorted;
+    sorted.reserve(v.size());
+    for (long i : order) sorted.push_back(v[i]);
+    v.swap(sorted);
+  });
+}
+
 }  // namespace anode

@@ -15,5 +15,7 @@ void packParticles(const ParticleSet& p, const std::vector<long>& which, std::st
 void unpackParticles(const char*& in, ParticleSet& p);
 // Keeps the particles `keep` (ascending indices), in their order, and drops the others.
 void keepParticles(ParticleSet& p, const std::vector<long>& keep);
+// Puts the particles in the order `order` (a permutation of their indices).
+void reorderParticles(ParticleSet& p, const std::vector<long>& order);
 
 }  // namespace anode

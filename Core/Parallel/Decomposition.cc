@@ -92,6 +92,13 @@ Decomposition Decomposition::balanced(const Vec3i& cells, int ranks,
   return out;
 }
 
+Decomposition Decomposition::fromCuts(const std::array<std::vector<int>, 3>& cuts) {
+  Decomposition out;
+  out.cuts_ = cuts;
+  for (int d = 0; d < 3; ++d) out.ranksPerAxis_[d] = static_cast<int>(cuts[d].size()) - 1;
+  return out;
+}
+
 CellBox Decomposition::box(int rank) const {
   const Vec3i& n = ranksPerAxis_;
   const Vec3i k(rank % n.x(), (rank / n.x()) % n.y(), rank / (n.x() * n.y()));

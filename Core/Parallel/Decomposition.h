@@ -33,6 +33,9 @@ class Decomposition {
   static Decomposition balanced(const Vec3i& cells, int ranks,
                                 const std::array<std::vector<double>, 3>& planeCounts);
 
+  // The boxes `cuts` (per axis: the first cell of each box and, last, the cell count) draw.
+  static Decomposition fromCuts(const std::array<std::vector<int>, 3>& cuts);
+
   int ranks() const { return ranksPerAxis_.prod(); }
   const Vec3i& ranksPerAxis() const { return ranksPerAxis_; }
   // Along axis d: the first cell of each box and, last, cells[d].

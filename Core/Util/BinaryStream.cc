@@ -87,12 +87,13 @@ void BinaryWriter::string(const std::string& s) {
   bytes(s.data(), s.size());
 }
 
-void BinaryWriter::finish() {
+uint64_t BinaryWriter::finish() {
   const uint64_t h = hash_.value();
   const bool written = std::fwrite(&h, sizeof h, 1, file_) == 1;
   const bool closed = std::fclose(file_) == 0;
   file_ = nullptr;
   if (!written || !closed) throw std::runtime_error("cannot write " + path_);
+  return h;
 }
 
 BinaryReader::BinaryReader(const std::string& path)
@@ -129,11 +130,12 @@ std::string BinaryReader::string() {
   return s;
 }
 
-void BinaryReader::finish() {
+uint64_t BinaryReader::finish() {
   if (remaining() != 0) fail("unread bytes before the end");
   uint64_t stored = 0;
   if (std::fread(&stored, sizeof stored, 1, file_) != 1) fail("no hash at the end");
   if (stored != hash_.value()) fail("hash mismatch");
+  return stored;
 }
 
 }  // namespace anode

@@ -55,8 +55,8 @@ class BinaryWriter {
     value<uint64_t>(v.size());
     bytes(v.data(), v.size() * sizeof(T));
   }
-  // Appends the hash and closes the file; throws if any write failed.
-  void finish();
+  // Appends the hash and closes the file; returns the hash; throws if any write failed.
+  uint64_t finish();
 
  private:
   std::string path_;
@@ -92,7 +92,7 @@ class BinaryReader {
     bytes(v.data(), n * sizeof(T));
   }
   // Checks the hash at the end against the bytes read, and that nothing follows it.
-  void finish();
+  uint64_t finish();
 
  private:
   [[noreturn]] void fail(const std::string& what) const;

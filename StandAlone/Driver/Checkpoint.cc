@@ -104,6 +104,16 @@ std::string checkpointPath(const std::string& dir, long step, CheckpointKind kin
   return (fs::path(dir) / "checkpoints" / name.str()).string();
 }
 
+std::string checkpointParts(const std::string& checkpoint) {
+  return checkpoint + ".parts";
+}
+
+std::string checkpointPart(const std::string& checkpoint, int rank) {
+  std::ostringstream name;
+  name << "rank_" << std::setw(4) << std::setfill('0') << rank << ".part";
+  return (fs::path(checkpointParts(checkpoint)) / name.str()).string();
+}
+
 std::vector<std::string> listCheckpoints(const std::string& dir) {
   return checkpoints(dir, true, true);
 }
@@ -111,7 +121,11 @@ std::vector<std::string> listCheckpoints(const std::string& dir) {
 void removeOldCheckpoints(const std::string& dir, CheckpointKind kind, int keep) {
   const std::vector<std::string> all =
       checkpoints(dir, kind == CheckpointKind::Scheduled, kind == CheckpointKind::Automatic);
-  for (size_t i = static_cast<size_t>(std::max(keep, 0)); i < all.size(); ++i) fs::remove(all[i]);
+  // The manifest first: a checkpoint without it is no checkpoint, whatever parts remain.
+  for (size_t i = static_cast<size_t>(std::max(keep, 0)); i < all.size(); ++i) {
+    fs::remove(all[i]);
+    fs::remove_all(checkpointParts(all[i]));
+  }
 }
 
 void removeAutomaticCheckpoints(const std::string& dir) {

@@ -36,6 +36,10 @@ constexpr double kReplayInterval = 600;
 
 // DIR/checkpoints/step_NNNNNN.ckpt (scheduled) or auto_step_NNNNNN.ckpt (automatic)
 std::string checkpointPath(const std::string& dir, long step, CheckpointKind kind);
+// A distributed run's checkpoint is the manifest at checkpointPath and one part per rank in the
+// folder checkpointParts: rank_NNNN.part.
+std::string checkpointParts(const std::string& checkpoint);
+std::string checkpointPart(const std::string& checkpoint, int rank);
 // The checkpoints of both kinds in DIR/checkpoints, newest (highest step) first.
 std::vector<std::string> listCheckpoints(const std::string& dir);
 // Removes all but the newest `keep` checkpoints of that kind.

@@ -19,6 +19,9 @@ namespace anode {
 namespace {
 
 constexpr char kCheckpointMagic[] = "anode-mpm checkpoint";
+// A distributed run's checkpoint: the manifest under the checkpoint's name, one part per rank.
+constexpr char kDistributedCheckpointMagic[] = "anode-mpm distributed checkpoint";
+constexpr char kCheckpointPartMagic[] = "anode-mpm checkpoint part";
 constexpr uint32_t kCheckpointVersion = 2;
 
 uint64_t fileHash(const std::string& path) {
@@ -91,7 +94,8 @@ void Simulation::run() {
   std::string restartedFrom;
   if (restart) {
     archiver_.reopen(options_.restartDir);
-    removeTemporaryFiles(options_.restartDir);
+    if (root) removeTemporaryFiles(options_.restartDir);
+    Communicator::barrier();
     restartedFrom = loadNewestCheckpoint();
     newestCheckpoint_ = restartedFrom;
     scenes_.skipTimesUpTo(t_);
@@ -158,7 +162,7 @@ void Simulation::run() {
   ProgressReporter progress(t_, time_.maxTime, step_, time_.maxTimesteps);
   const auto finished = [&] {
     return t_ >= time_.maxTime || (time_.maxTimesteps > 0 && step_ >= time_.maxTimesteps) ||
-           (time_.maxWallTime > 0 && wall() >= time_.maxWallTime);
+           (time_.maxWallTime > 0 && Communicator::any(wall() >= time_.maxWallTime));
   };
   // A checkpoint at the end of the run (killed before it wrote its last output) has no step left.
   const bool nothingLeft = restart && finished();
@@ -183,13 +187,13 @@ void Simulation::run() {
     scenes_.renderDue(t_, mpm_, archiver_.directory());
     if (checkpoints_.isDue(step_, t_, lastCheckpointTime_))
       checkpoint(CheckpointKind::Scheduled);
-    else if (!done && wall() - lastAutomaticCheckpoint >= kReplayInterval)
+    else if (!done && Communicator::any(wall() - lastAutomaticCheckpoint >= kReplayInterval))
       checkpoint(CheckpointKind::Automatic);
     if (progressLine) progress.update(step_, t_, stepDt, allParticleSteps_, done);
     if (done) break;
   }
   if (progressLine) progress.finish();
-  removeAutomaticCheckpoints(archiver_.directory());
+  if (Communicator::isRoot()) removeAutomaticCheckpoints(archiver_.directory());
   wallSeconds_ = wall();
 }
 
@@ -198,22 +202,23 @@ void Simulation::writeStateOnStop() {
   // step_) as the series' last entry.
   const std::string failed = archiver_.writeFailedState(step_ + 1, mpm_);
   replayToLastGoodState();
-  removeAutomaticCheckpoints(archiver_.directory());
+  if (Communicator::isRoot()) removeAutomaticCheckpoints(archiver_.directory());
   if (archiver_.lastOutputStep() != step_) {
     if (archiver_.wantsGrid()) mpm_.interpolateToGridForOutput();
     archiver_.writeOutput(step_, t_, mpm_);
   }
-  std::fprintf(
-      stderr,
-      "sus: the last good state (step %ld, t = %.6e) is the last entry of %s/particles.pvd; "
-      "the failing step's particles are in %s\n",
-      step_, t_, archiver_.directory().c_str(), failed.c_str());
+  if (Communicator::isRoot())
+    std::fprintf(
+        stderr,
+        "sus: the last good state (step %ld, t = %.6e) is the last entry of %s/particles.pvd; "
+        "the failing step's particles are in %s\n",
+        step_, t_, archiver_.directory().c_str(), failed.c_str());
 }
 
 void Simulation::replayToLastGoodState() {
   const long lastGood = step_;
   loadCheckpoint(newestCheckpoint_, false);
-  if (step_ < lastGood)
+  if (step_ < lastGood && Communicator::isRoot())
     std::fprintf(stderr, "sus: replaying steps %ld to %ld from %s for the last good state\n",
                  step_ + 1, lastGood, newestCheckpoint_.c_str());
   while (step_ < lastGood) {
@@ -223,8 +228,9 @@ void Simulation::replayToLastGoodState() {
   // The replayed state must be the one the run had: its history row says what it was.
   const StepSummary s = mpm_.summarize();
   const HistoryRow& row = archiver_.history().back();
-  if (row.step != step_ || row.kineticEnergy != s.kineticEnergy ||
-      row.totalLithium != s.totalLithium)
+  if ((row.step != step_ || row.kineticEnergy != s.kineticEnergy ||
+       row.totalLithium != s.totalLithium) &&
+      Communicator::isRoot())
     std::fprintf(
         stderr,
         "warning: the replayed step %ld differs from the run's (kinetic energy %.17g, not %.17g)\n",
@@ -233,47 +239,117 @@ void Simulation::replayToLastGoodState() {
 
 void Simulation::writeCheckpoint(double wallSeconds, CheckpointKind kind) {
   const std::string dir = archiver_.directory();
-  std::filesystem::create_directories(std::filesystem::path(dir) / "checkpoints");
   if (kind == CheckpointKind::Scheduled) lastCheckpointTime_ = t_;
   newestCheckpoint_ = checkpointPath(dir, step_, kind);
-  writeAtomically(newestCheckpoint_, [&](const std::string& tmp) {
-    BinaryWriter out(tmp);
-    out.string(kCheckpointMagic);
-    out.value(kCheckpointVersion);
-    out.value<int32_t>(omp_get_max_threads());
-    out.value(inputHash_);
-    out.value(t_);
-    out.value(dt_);
-    out.value(step_);
-    out.value(particleSteps_);
-    out.value(wallSeconds);
-    out.value(lastCheckpointTime_);
-    archiver_.saveState(out);
-    mpm_.saveState(out);
-    out.finish();
-  });
-  if (kind == CheckpointKind::Scheduled) {
-    removeOldCheckpoints(dir, kind, checkpoints_.cycle);
-    removeOldCheckpoints(dir, CheckpointKind::Automatic, 0);  // the scheduled one is newer
+  const bool distributed = Communicator::size() > 1;
+  // A distributed checkpoint: every rank's part first, then rank 0's manifest (header, output
+  // state, boxes, the parts' hashes) under the checkpoint's name, so it is complete once that name
+  // exists.
+  std::vector<std::string> partHashes;
+  const double particleSteps = Communicator::sum(particleSteps_);
+  if (distributed) {
+    const std::string parts = checkpointParts(newestCheckpoint_);
+    std::error_code exists;
+    std::filesystem::create_directories(parts, exists);
+    uint64_t hash = 0;
+    writeAtomically(checkpointPart(newestCheckpoint_, Communicator::rank()),
+                    [&](const std::string& tmp) {
+                      BinaryWriter out(tmp);
+                      out.string(kCheckpointPartMagic);
+                      mpm_.saveState(out);
+                      hash = out.finish();
+                    });
+    partHashes = Communicator::allGather(std::string(reinterpret_cast<const char*>(&hash), 8));
   } else {
-    removeOldCheckpoints(dir, kind, 1);
+    std::filesystem::create_directories(std::filesystem::path(dir) / "checkpoints");
   }
+  if (Communicator::isRoot()) {
+    writeAtomically(newestCheckpoint_, [&](const std::string& tmp) {
+      BinaryWriter out(tmp);
+      out.string(distributed ? kDistributedCheckpointMagic : kCheckpointMagic);
+      out.value(kCheckpointVersion);
+      out.value<int32_t>(omp_get_max_threads());
+      out.value(inputHash_);
+      out.value(t_);
+      out.value(dt_);
+      out.value(step_);
+      out.value(particleSteps);
+      out.value(wallSeconds);
+      out.value(lastCheckpointTime_);
+      archiver_.saveState(out);
+      if (distributed) {
+        out.value<int32_t>(Communicator::size());
+        mpm_.saveLayout(out);
+        for (const std::string& h : partHashes) out.bytes(h.data(), h.size());
+      } else {
+        mpm_.saveState(out);
+      }
+      out.finish();
+    });
+    if (kind == CheckpointKind::Scheduled) {
+      removeOldCheckpoints(dir, kind, checkpoints_.cycle);
+      removeOldCheckpoints(dir, CheckpointKind::Automatic, 0);  // the scheduled one is newer
+    } else {
+      removeOldCheckpoints(dir, kind, 1);
+    }
+  }
+  Communicator::barrier();
 }
 
 void Simulation::loadCheckpoint(const std::string& path, bool outputs) {
+  // Read on every rank, then agreed on, before any collective step of laying the particles out.
+  CheckpointRead read;
+  std::string error;
+  try {
+    read = readCheckpoint(path, outputs);
+  } catch (const std::runtime_error& e) {
+    error = e.what();
+  }
+  const int failed = Communicator::firstRankWith(!error.empty());
+  if (failed >= 0)
+    throw std::runtime_error(failed == Communicator::rank()
+                                 ? error
+                                 : path + ": unreadable on rank " + std::to_string(failed));
+  if (read.ranks != Communicator::size())
+    mpm_.keepOwnShare();
+  else if (read.ranks > 1)
+    mpm_.adoptLayout(read.layout);
+  if (!Communicator::isRoot()) return;
+  if (read.inputHash != inputHash_)
+    std::fprintf(
+        stderr,
+        "warning: %s changed since %s was written; the run continues with the changed input\n",
+        options_.input.c_str(), path.c_str());
+  if (read.threads != omp_get_max_threads())
+    std::fprintf(stderr,
+                 "warning: %s was written with %d thread(s), this run has %d: the continued run "
+                 "matches an uninterrupted one to round-off, not bit for bit\n",
+                 path.c_str(), read.threads, omp_get_max_threads());
+  if (read.ranks != Communicator::size())
+    std::fprintf(stderr,
+                 "sus: %s was written by %d rank(s), this run has %d: its particles are shared out "
+                 "anew; the continued run matches an uninterrupted one to round-off\n",
+                 path.c_str(), read.ranks, Communicator::size());
+}
+
+Simulation::CheckpointRead Simulation::readCheckpoint(const std::string& path, bool outputs) {
+  CheckpointRead read;
   BinaryReader in(path);
-  if (in.string() != kCheckpointMagic)
+  const std::string magic = in.string();
+  const bool distributed = magic == kDistributedCheckpointMagic;
+  if (magic != kCheckpointMagic && !distributed)
     throw std::runtime_error(path + ": not a checkpoint of this code");
   const auto version = in.value<uint32_t>();
   if (version != kCheckpointVersion)
     throw std::runtime_error(path + ": checkpoint format " + std::to_string(version) +
                              ", this code reads " + std::to_string(kCheckpointVersion));
-  const auto threads = in.value<int32_t>();
-  const auto inputHash = in.value<uint64_t>();
+  read.threads = in.value<int32_t>();
+  read.inputHash = in.value<uint64_t>();
   t_ = in.value<double>();
   dt_ = in.value<double>();
   step_ = in.value<long>();
-  particleSteps_ = in.value<double>();
+  // Every rank's particle-steps so far, counted once (on rank 0).
+  particleSteps_ = in.value<double>() * (Communicator::isRoot() ? 1 : 0);
   earlierWallSeconds_ = in.value<double>();
   lastCheckpointTime_ = in.value<double>();
   if (outputs) {
@@ -282,18 +358,37 @@ void Simulation::loadCheckpoint(const std::string& path, bool outputs) {
     DataArchiver unused;
     unused.loadState(in);
   }
-  mpm_.loadState(in);
+  if (!distributed) {
+    mpm_.loadState(in);
+    in.finish();
+    return read;
+  }
+  read.ranks = in.value<int32_t>();
+  if (read.ranks < 1) throw std::runtime_error(path + ": a checkpoint of no rank");
+  read.layout = MPM::readLayout(in);
+  std::vector<uint64_t> hashes(read.ranks);
+  for (uint64_t& h : hashes) h = in.value<uint64_t>();
   in.finish();
-  if (inputHash != inputHash_)
-    std::fprintf(
-        stderr,
-        "warning: %s changed since %s was written; the run continues with the changed input\n",
-        options_.input.c_str(), path.c_str());
-  if (threads != omp_get_max_threads())
-    std::fprintf(stderr,
-                 "warning: %s was written with %d thread(s), this run has %d: the continued run "
-                 "matches an uninterrupted one to round-off, not bit for bit\n",
-                 path.c_str(), threads, omp_get_max_threads());
+  // The same rank count continues with the same boxes, each rank from its own part; another
+  // reads every part and shares the particles out anew.
+  std::vector<int> parts;
+  if (read.ranks == Communicator::size())
+    parts.push_back(Communicator::rank());
+  else
+    for (int r = 0; r < read.ranks; ++r) parts.push_back(r);
+  for (int r : parts) {
+    const std::string partPath = checkpointPart(path, r);
+    BinaryReader part(partPath);
+    if (part.string() != kCheckpointPartMagic)
+      throw std::runtime_error(partPath + ": not a part of a checkpoint of this code");
+    if (r == parts.front())
+      mpm_.loadState(part);
+    else
+      mpm_.appendState(part);
+    if (part.finish() != hashes[r])
+      throw std::runtime_error(partPath + ": not the part " + path + " names (another hash)");
+  }
+  return read;
 }
 
 std::string Simulation::loadNewestCheckpoint() {
@@ -304,9 +399,10 @@ std::string Simulation::loadNewestCheckpoint() {
                              "<checkpoint cycle=\"N\" interval=\"T\"/> in <DataArchiver>)");
   for (const std::string& path : found) {
     if (!hasIntactHash(path)) {
-      std::fprintf(stderr,
-                   "warning: skipping %s: incomplete or damaged (its hash does not match)\n",
-                   path.c_str());
+      if (Communicator::isRoot())
+        std::fprintf(stderr,
+                     "warning: skipping %s: incomplete or damaged (its hash does not match)\n",
+                     path.c_str());
       continue;
     }
     try {
@@ -315,7 +411,8 @@ std::string Simulation::loadNewestCheckpoint() {
       archiver_.writeIndexFiles();
       return path;
     } catch (const std::runtime_error& e) {
-      std::fprintf(stderr, "warning: skipping %s: %s\n", path.c_str(), e.what());
+      if (Communicator::isRoot())
+        std::fprintf(stderr, "warning: skipping %s: %s\n", path.c_str(), e.what());
     }
   }
   throw std::runtime_error("no complete checkpoint in " + options_.restartDir + "/checkpoints");

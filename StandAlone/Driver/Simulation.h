@@ -59,8 +59,15 @@ class Simulation {
   // Loads the newest complete checkpoint of the restart directory; returns its path.
   std::string loadNewestCheckpoint();
   // Reads one checkpoint (everything writeCheckpoint wrote; the output series and history only
-  // if `outputs`); throws std::runtime_error.
+  // if `outputs`); throws std::runtime_error, on every rank together. Collective.
   void loadCheckpoint(const std::string& path, bool outputs);
+  // What loadCheckpoint needs besides the state it read (this rank only).
+  struct CheckpointRead {
+    int threads = 0, ranks = 1;
+    uint64_t inputHash = 0;
+    MPM::Layout layout;
+  };
+  CheckpointRead readCheckpoint(const std::string& path, bool outputs);
 
   RunOptions options_;
   std::unique_ptr<ProblemSpec> spec_;
