@@ -134,6 +134,21 @@ void removeAutomaticCheckpoints(const std::string& dir) {
   fs::remove(fs::path(dir) / "checkpoints", notEmpty);
 }
 
+void removeUnfinishedCheckpointParts(const std::string& dir) {
+  const fs::path folder = fs::path(dir) / "checkpoints";
+  if (!fs::is_directory(folder)) return;
+  std::vector<fs::path> unfinished;
+  for (const fs::directory_entry& e : fs::directory_iterator(folder)) {
+    const std::string name = e.path().filename().string();
+    const std::string suffix = ".parts";
+    if (e.is_directory() && name.size() > suffix.size() &&
+        name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0 &&
+        !fs::exists(folder / name.substr(0, name.size() - suffix.size())))
+      unfinished.push_back(e.path());
+  }
+  for (const fs::path& p : unfinished) fs::remove_all(p);
+}
+
 int removeTemporaryFiles(const std::string& dir) {
   static const std::regex temporary(R"(.*\.tmp\d+)");
   std::vector<fs::path> leftovers;

@@ -46,6 +46,8 @@ std::vector<std::string> listCheckpoints(const std::string& dir);
 void removeOldCheckpoints(const std::string& dir, CheckpointKind kind, int keep);
 // At the end of a run: removes the automatic checkpoints, and DIR/checkpoints if that empties it.
 void removeAutomaticCheckpoints(const std::string& dir);
+// Removes the parts of distributed checkpoints whose manifest was never written (a killed run).
+void removeUnfinishedCheckpointParts(const std::string& dir);
 // Removes the temporary files a killed run left in DIR (names ending in .tmp<pid>); returns
 // how many.
 int removeTemporaryFiles(const std::string& dir);

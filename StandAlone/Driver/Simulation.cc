@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "Core/Parallel/Communicator.h"
+#include "Core/Parallel/StopTogether.h"
 #include "Core/Util/AtomicFile.h"
 #include "StandAlone/Driver/Progress.h"
 
@@ -67,6 +68,8 @@ void Simulation::advance() {
     mpm_.timeAdvance(t_, dt_);
     ScopedTimer timer(mpm_.timers(), mpm_.timers().task("stateChecks"));
     checks_.afterStep(mpm_, dt_);
+  } catch (const StoppedOnAnotherRank&) {
+    throw;
   } catch (const SimulationError& e) {
     std::ostringstream s;
     s << "step " << step_ + 1 << ", t = " << t_ + dt_ << ": " << e.what();
@@ -94,7 +97,10 @@ void Simulation::run() {
   std::string restartedFrom;
   if (restart) {
     archiver_.reopen(options_.restartDir);
-    if (root) removeTemporaryFiles(options_.restartDir);
+    if (root) {
+      removeTemporaryFiles(options_.restartDir);
+      removeUnfinishedCheckpointParts(options_.restartDir);
+    }
     Communicator::barrier();
     restartedFrom = loadNewestCheckpoint();
     newestCheckpoint_ = restartedFrom;

@@ -1,0 +1,152 @@
+#!/usr/bin/env bash
+# Distributed runs under mpirun (docs/parallel.md), against the one-rank run of the same input.
+# Usage: ranks_test.sh MODE SUS ARGS...
+#   agree INPUT STEPS            1, 2, 3 and 4 ranks agree after STEPS steps (compare_runs.py:
+#                                1e-9 of each array's scale, totals to 1e-12); 2 ranks twice
+#                                write the same bytes
+#   restart INPUT STEPS FROM TO  FROM ranks stop at 3/5 of STEPS, TO ranks continue from the
+#                                checkpoint to STEPS; agrees with one rank
+#   kill INPUT STEPS             a rank of 3 is killed (SIGKILL) at a random moment: the job ends
+#                                within 60 s, every output file is complete, a 2-rank restart agrees
+#   badinput INPUT               3 ranks: exit code 2, the file:line message once, within 30 s
+#   stop INPUT                   3 ranks, a particle leaves the grid on one rank: exit code 3 in
+#                                the same step, the message once, the last good state written
+#   paraview INPUT STEPS         VTK's own reader opens the .pvd of a 3-rank run: every time, all
+#                                particles, every array
+set -uo pipefail
+mode=$1
+sus=$2
+shift 2
+here=$(cd "$(dirname "$0")" && pwd)
+compare="/usr/bin/python3 $here/compare_runs.py"
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
+export OMP_WAIT_POLICY=passive
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+fail() {
+  echo "FAIL: $*"
+  exit 1
+}
+# run N DIR ARGS...: N ranks of one thread (N = 1: no mpirun), output in DIR; its log in DIR.log.
+run() {
+  local n=$1 dir=$2
+  shift 2
+  if [ "$n" = 1 ]; then
+    "$sus" --threads 1 -o "$dir" "$@" > "$dir.log" 2>&1
+  else
+    timeout 300 mpirun -np "$n" "$sus" --threads 1 -o "$dir" "$@" > "$dir.log" 2>&1
+  fi
+}
+restartRun() {  # N DIR ARGS...
+  local n=$1 dir=$2
+  shift 2
+  if [ "$n" = 1 ]; then
+    "$sus" --threads 1 -restart "$dir" "$@" > "$dir.restart.log" 2>&1
+  else
+    timeout 300 mpirun -np "$n" "$sus" --threads 1 -restart "$dir" "$@" > "$dir.restart.log" 2>&1
+  fi
+}
+# The particle file of step S in DIR (.vtu of one rank, .pvtu of several).
+stepFile() {
+  local f
+  f=$(ls "$1"/particles/step_$(printf %06d "$2").vtu "$1"/particles/step_$(printf %06d "$2").pvtu 2>/dev/null | head -1)
+  [ -n "$f" ] || fail "$1 has no output of step $2"
+  echo "$f"
+}
+
+case $mode in
+  agree)
+    input=$1 steps=$2
+    run 1 "$work/r1" --max-timesteps "$steps" "$input" || fail "1 rank: exit $? ($(tail -3 "$work/r1.log"))"
+    for n in 2 3 4; do
+      run $n "$work/r$n" --max-timesteps "$steps" "$input" || fail "$n ranks: exit $? ($(tail -3 "$work/r$n.log"))"
+      grep "ranks:" "$work/r$n.log" | head -1
+      $compare "$(stepFile "$work/r1" "$steps")" "$(stepFile "$work/r$n" "$steps")" | tail -3 ||
+        fail "$n ranks differ from 1"
+    done
+    run 2 "$work/again" --max-timesteps "$steps" "$input" || fail "2 ranks again: exit $?"
+    for f in "$work"/r2/particles/*.vtu; do
+      cmp -s "$f" "$work/again/particles/$(basename "$f")" || fail "2 ranks twice: $(basename "$f") differs"
+    done
+    echo "2 ranks twice: the same bytes"
+    ;;
+  restart)
+    input=$1 steps=$2 from=$3 to=$4
+    run 1 "$work/reference" --max-timesteps "$steps" "$input" || fail "reference: exit $?"
+    run "$from" "$work/r" --max-timesteps $((steps * 3 / 5)) "$input" || fail "$from ranks: exit $?"
+    restartRun "$to" "$work/r" --max-timesteps "$steps" || fail "restart on $to ranks: exit $? ($(tail -3 "$work/r.restart.log"))"
+    grep "restarting\|shared out" "$work/r.restart.log"
+    $compare "$(stepFile "$work/reference" "$steps")" "$(stepFile "$work/r" "$steps")" | tail -3 ||
+      fail "$from -> $to ranks differs from 1 rank"
+    ;;
+  kill)
+    input=$1 steps=$2
+    run 1 "$work/reference" --max-timesteps "$steps" "$input" || fail "reference: exit $?"
+    timeout 300 mpirun -np 3 "$sus" --threads 1 -o "$work/r" --max-timesteps "$steps" "$input" > "$work/r.log" 2>&1 &
+    job=$!
+    # A moment within the run (a one-rank run of it took as long as the reference).
+    sleep "$(/usr/bin/python3 -c "import random; print(round(random.uniform(0.2, 0.9) * $(grep -o 'wall [0-9.]*' "$work/reference.log" | cut -d' ' -f2), 2))")"
+    victim=$(pgrep -f -- "^$sus .*-o $work/r " | shuf -n 1)
+    if [ -n "$victim" ]; then
+      kill -9 "$victim" && echo "killed rank process $victim (SIGKILL)"
+    else
+      echo "the run ended before the kill"
+    fi
+    for _ in $(seq 60); do kill -0 $job 2>/dev/null || break; sleep 1; done
+    kill -0 $job 2>/dev/null && fail "the job still runs 60 s after a rank was killed"
+    wait $job
+    echo "the job ended (exit $?)"
+    # Every file under its final name is complete: each output the .pvd lists opens.
+    /usr/bin/python3 "$here/read_series.py" "$work/r/particles.pvd" --any || fail "incomplete output after the kill"
+    if ls "$work"/r/checkpoints/*.ckpt > /dev/null 2>&1; then
+      restartRun 2 "$work/r" --max-timesteps "$steps" || fail "restart after the kill: exit $?"
+      $compare "$(stepFile "$work/reference" "$steps")" "$(stepFile "$work/r" "$steps")" | tail -1 ||
+        fail "the restart after the kill differs from 1 rank"
+    else
+      echo "killed before the first checkpoint"
+    fi
+    ;;
+  badinput)
+    input=$1
+    start=$(date +%s)
+    timeout 30 mpirun -np 3 "$sus" --threads 1 -o "$work/r" "$input" > "$work/r.log" 2>&1
+    code=$?
+    [ $code = 124 ] && fail "no end within 30 s"
+    [ $code = 2 ] || fail "exit code $code, not 2"
+    count=$(grep -c "$(basename "$input"):[0-9]*:" "$work/r.log")
+    [ "$count" = 1 ] || fail "the message appears $count times: $(cat "$work/r.log")"
+    [ -e "$work/r" ] && fail "output written for a bad input"
+    grep "$(basename "$input"):" "$work/r.log"
+    echo "exit 2 after $(($(date +%s) - start)) s"
+    ;;
+  stop)
+    input=$1
+    run 1 "$work/r1" "$input"
+    [ $? = 3 ] || fail "1 rank: exit code not 3"
+    run 3 "$work/r3" "$input"
+    code=$?
+    [ $code = 3 ] || fail "3 ranks: exit code $code, not 3 ($(tail -5 "$work/r3.log"))"
+    count=$(grep -c "simulation stopped" "$work/r3.log")
+    [ "$count" = 1 ] || fail "the diagnostic appears $count times"
+    grep "simulation stopped" "$work/r1.log" | sed 's/^/1 rank:  /'
+    grep "simulation stopped" "$work/r3.log" | sed 's/^/3 ranks: /'
+    [ "$(grep "simulation stopped" "$work/r1.log")" = "$(grep "simulation stopped" "$work/r3.log")" ] ||
+      fail "3 ranks stop elsewhere than 1 rank"
+    last1=$(grep -o 'file="[^"]*"' "$work/r1/particles.pvd" | tail -1 | sed 's/.*step_\([0-9]*\).*/\1/')
+    last3=$(grep -o 'file="[^"]*"' "$work/r3/particles.pvd" | tail -1 | sed 's/.*step_\([0-9]*\).*/\1/')
+    [ "$last1" = "$last3" ] || fail "last good state: step $last3 on 3 ranks, $last1 on 1"
+    $compare "$(stepFile "$work/r1" $((10#$last1)))" "$(stepFile "$work/r3" $((10#$last3)))" | tail -1 ||
+      fail "the last good states differ"
+    ;;
+  paraview)
+    input=$1 steps=$2
+    run 1 "$work/r1" --max-timesteps "$steps" "$input" || fail "1 rank: exit $?"
+    run 3 "$work/r3" --max-timesteps "$steps" "$input" || fail "3 ranks: exit $?"
+    /usr/bin/python3 "$here/read_series.py" "$work/r3/particles.pvd" --like "$work/r1/particles.pvd" ||
+      fail "the 3-rank series does not read as the 1-rank one"
+    ;;
+  *)
+    fail "unknown mode $mode"
+    ;;
+esac
+echo PASS
