@@ -5,56 +5,71 @@
 
 namespace anode {
 
-GhostNodes::GhostNodes(const Decomposition& d, const Grid& whole, const Grid& local, int rank,
-                       int ghost)
-    : neighbours_(d.neighbours(whole, rank, ghost)), rank_(rank) {
-  for (int r : neighbours_.ranks()) {
-    const Grid other = d.window(whole, r, ghost);
-    const Vec3i lo = local.firstNode().cwiseMax(other.firstNode());
-    const Vec3i hi = local.lastNode().cwiseMin(other.lastNode());
-    std::vector<int>& nodes = overlap_.emplace_back();
-    for (int k = lo.z(); k <= hi.z(); ++k)
-      for (int j = lo.y(); j <= hi.y(); ++j)
-        for (int i = lo.x(); i <= hi.x(); ++i) nodes.push_back(local.nodeIndex(i, j, k));
-    sharedNodes_.insert(sharedNodes_.end(), nodes.begin(), nodes.end());
-  }
-  std::sort(sharedNodes_.begin(), sharedNodes_.end());
-  sharedNodes_.erase(std::unique(sharedNodes_.begin(), sharedNodes_.end()), sharedNodes_.end());
-  for (const std::vector<int>& nodes : overlap_) {
-    std::vector<int>& slots = slot_.emplace_back();
-    for (int n : nodes)
-      slots.push_back(static_cast<int>(
-          std::lower_bound(sharedNodes_.begin(), sharedNodes_.end(), n) - sharedNodes_.begin()));
-  }
+namespace {
+
+// Calls f(local index) for the nodes of box b, z slowest and x fastest (the order both sides of
+// an exchange list them in).
+template <class F>
+void forNodes(const Grid& local, const NodeBox& b, F&& f) {
+  for (int k = b.first.z(); k <= b.last.z(); ++k)
+    for (int j = b.first.y(); j <= b.last.y(); ++j)
+      for (int i = b.first.x(); i <= b.last.x(); ++i) f(local.nodeIndex(i, j, k));
 }
 
-void GhostNodes::sumOverRanks(const std::vector<NodeArray>& arrays) const {
+}  // namespace
+
+GhostNodes::GhostNodes(const Decomposition& d, const Grid& whole, const Grid& local, int rank,
+                       int ghost)
+    : neighbours_(d.neighbours(whole, rank, ghost)), rank_(rank), local_(local) {
+  slotOfNode_.assign(local.numNodes(), -1);
+  for (int r : neighbours_.ranks()) {
+    const Grid other = d.window(whole, r, ghost);
+    overlap_.push_back(NodeBox{local.firstNode(), local.lastNode()}.intersection(
+        NodeBox{other.firstNode(), other.lastNode()}));
+    forNodes(local, overlap_.back(), [&](int n) { slotOfNode_[n] = 0; });
+  }
+  for (int n = 0; n < local.numNodes(); ++n)
+    if (slotOfNode_[n] == 0) {
+      slotOfNode_[n] = static_cast<int>(sharedNodes_.size());
+      sharedNodes_.push_back(n);
+    }
+}
+
+void GhostNodes::sumOverRanks(const std::vector<NodeArray>& arrays, const NodeBox& reach) const {
   const std::vector<int>& ranks = neighbours_.ranks();
   if (ranks.empty()) return;
   int width = 0;
   for (const NodeArray& a : arrays) width += a.width;
+  // To each neighbour: this rank's reach box, then its parts on the shared nodes within it.
   std::vector<std::string> send(ranks.size()), receive;
   std::vector<double> values;
   for (size_t q = 0; q < ranks.size(); ++q) {
     values.clear();
-    for (int n : overlap_[q])
+    forNodes(local_, overlap_[q].intersection(reach), [&](int n) {
       for (const NodeArray& a : arrays)
         for (int c = 0; c < a.width; ++c)
           values.push_back(a.values[static_cast<size_t>(n) * a.width + c]);
-    send[q].assign(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(double));
+    });
+    const int box[6] = {reach.first.x(), reach.first.y(), reach.first.z(),
+                        reach.last.x(),  reach.last.y(),  reach.last.z()};
+    send[q].assign(reinterpret_cast<const char*>(box), sizeof box);
+    send[q].append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(double));
   }
   neighbours_.exchange(send, receive);
   // Every rank storing a shared node adds the parts in the same order (rank order, 0 + ...), so
   // they all hold the same value.
   std::vector<double> total(sharedNodes_.size() * width, 0.0);
   auto addReceived = [&](size_t q) {
-    values.resize(receive[q].size() / sizeof(double));
-    std::memcpy(values.data(), receive[q].data(), values.size() * sizeof(double));
+    int box[6];
+    std::memcpy(box, receive[q].data(), sizeof box);
+    const NodeBox theirs{Vec3i(box[0], box[1], box[2]), Vec3i(box[3], box[4], box[5])};
+    values.resize((receive[q].size() - sizeof box) / sizeof(double));
+    std::memcpy(values.data(), receive[q].data() + sizeof box, values.size() * sizeof(double));
     const double* in = values.data();
-    for (int s : slot_[q]) {
-      double* t = &total[static_cast<size_t>(s) * width];
+    forNodes(local_, overlap_[q].intersection(theirs), [&](int n) {
+      double* t = &total[static_cast<size_t>(slotOfNode_[n]) * width];
       for (int c = 0; c < width; ++c) t[c] += *in++;
-    }
+    });
   };
   auto addOwn = [&] {
     for (size_t s = 0; s < sharedNodes_.size(); ++s) {
@@ -86,11 +101,13 @@ void GhostNodes::unionOverRanks(std::vector<unsigned char>& marks) const {
   if (ranks.empty()) return;
   std::vector<std::string> send(ranks.size()), receive;
   for (size_t q = 0; q < ranks.size(); ++q)
-    for (int n : overlap_[q]) send[q] += static_cast<char>(marks[n]);
+    forNodes(local_, overlap_[q], [&](int n) { send[q] += static_cast<char>(marks[n]); });
   neighbours_.exchange(send, receive);
-  for (size_t q = 0; q < ranks.size(); ++q)
-    for (size_t e = 0; e < overlap_[q].size(); ++e)
-      marks[overlap_[q][e]] |= static_cast<unsigned char>(receive[q][e]);
+  for (size_t q = 0; q < ranks.size(); ++q) {
+    size_t e = 0;
+    forNodes(local_, overlap_[q],
+             [&](int n) { marks[n] |= static_cast<unsigned char>(receive[q][e++]); });
+  }
 }
 
 }  // namespace anode

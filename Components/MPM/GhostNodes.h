@@ -2,7 +2,9 @@
 // own particles' part of the nodal sums on its window; the ranks whose windows overlap exchange
 // those parts on the shared nodes and every holder adds them in rank order, so a shared node has
 // the same complete sum, bit for bit, on every rank that stores it and the node-by-node grid
-// tasks (contact, integration, boundary conditions) run on ghost nodes as on owned ones.
+// tasks (contact, integration, boundary conditions) run on ghost nodes as on owned ones. A rank
+// sends only the shared nodes its particles can reach this step (its reach box): elsewhere its
+// part is zero.
 #pragma once
 
 #include <vector>
@@ -19,6 +21,15 @@ struct NodeArray {
   int width;
 };
 
+// Nodes [first, last] (grid indices, inclusive); empty when first exceeds last on an axis.
+struct NodeBox {
+  Vec3i first = Vec3i::Zero(), last = -Vec3i::Ones();
+  bool empty() const { return (first.array() > last.array()).any(); }
+  NodeBox intersection(const NodeBox& b) const {
+    return {first.cwiseMax(b.first), last.cwiseMin(b.last)};
+  }
+};
+
 class GhostNodes {
  public:
   GhostNodes() = default;
@@ -26,9 +37,9 @@ class GhostNodes {
   GhostNodes(const Decomposition& d, const Grid& whole, const Grid& local, int rank, int ghost);
 
   bool empty() const { return neighbours_.ranks().empty(); }
-  // Completes the sums of `arrays` on the shared nodes (each rank's part added in rank order).
-  // Collective.
-  void sumOverRanks(const std::vector<NodeArray>& arrays) const;
+  // Completes the sums of `arrays` on the shared nodes (each rank's part added in rank order);
+  // this rank's particles reach no node outside `reach`. Collective.
+  void sumOverRanks(const std::vector<NodeArray>& arrays, const NodeBox& reach) const;
   // The bitwise OR of each rank's marks on the shared nodes. Collective.
   void unionOverRanks(std::vector<unsigned char>& marks) const;
   const std::vector<int>& neighbours() const { return neighbours_.ranks(); }
@@ -37,10 +48,10 @@ class GhostNodes {
  private:
   Neighbourhood neighbours_;
   int rank_ = 0;
-  // Per neighbour: the local indices of the shared nodes, in the order both sides list them
-  // (global z, y, x), and their places in sharedNodes_.
-  std::vector<std::vector<int>> overlap_, slot_;
+  Grid local_;
+  std::vector<NodeBox> overlap_;  // per neighbour: the nodes both windows hold
   std::vector<int> sharedNodes_;  // local indices of every shared node, ascending
+  std::vector<int> slotOfNode_;   // per local node: its place in sharedNodes_, or -1
 };
 
 }  // namespace anode

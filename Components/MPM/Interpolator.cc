@@ -105,6 +105,20 @@ int gimpWeights(const Grid& g, const Vec3& x, const Mat3& size, int32_t* nodes, 
   return tensorProduct(g, first, len, n, dn, nodes, w, grad);
 }
 
+void supportBounds(InterpolatorKind kind, const Grid& g, const Vec3& x, const Mat3& size,
+                   const Mat3& F, Vec3i& first, Vec3i& last) {
+  // Nodes floor(xi - r) to floor(xi + r) + 1 per axis: r = 0 for linear, 1 for GIMP (its three
+  // nodes about the nearest one), the domain's half extent for CPDI.
+  const Vec3 xi = g.indexCoordinate(x);
+  Vec3 r = Vec3::Zero();
+  if (kind == InterpolatorKind::GIMP) r = Vec3::Ones();
+  if (kind == InterpolatorKind::CPDI) r = 0.5 * (F * size).cwiseAbs().rowwise().sum();
+  for (int d = 0; d < 3; ++d) {
+    first[d] = floorIndex(xi[d] - r[d]);
+    last[d] = floorIndex(xi[d] + r[d]) + 1;
+  }
+}
+
 int cpdiCapacity(const Grid& g, const Vec3& x, const Mat3& size, const Mat3& F) {
   const Mat3 A = F * size;
   const Vec3 xi = g.indexCoordinate(x);

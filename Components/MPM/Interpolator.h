@@ -30,6 +30,11 @@ int cpdiWeights(const Grid& g, const Vec3& x, const Mat3& size, const Mat3& F, i
 // span, at most 64): a domain within one cell per axis touches 27 nodes, not 64.
 int cpdiCapacity(const Grid& g, const Vec3& x, const Mat3& size, const Mat3& F);
 
+// Bounds on the nodes a particle's weights can touch: within [first, last] (grid indices), for
+// ranks that send only the shared nodes their particles reach.
+void supportBounds(InterpolatorKind kind, const Grid& g, const Vec3& x, const Mat3& size,
+                   const Mat3& F, Vec3i& first, Vec3i& last);
+
 // Per-particle weights of one material for the current step: particle i owns the entries
 // [offset[i], offset[i] + count[i]).
 struct InterpolationWeights {

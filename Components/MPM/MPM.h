@@ -112,6 +112,8 @@ class MPM {
   void migrateParticles();
   // Completes the nodal sums of P2G on the nodes shared with other ranks.
   void sumGhostNodes();
+  // The nodes this rank's particles can reach this step (distributed runs).
+  NodeBox computeReach() const;
   void computeNodalVelocityAndConcentration();
   // Keeps this rank's particles (all of the problem's are here when `allHere`) under a new
   // decomposition from the particle counts per cell plane, and lays out its window.
@@ -139,6 +141,7 @@ class MPM {
   int ghostWidth_ = 0;
   bool distributed_ = false;  // more than one rank
   std::vector<Reordering> reordering_;
+  NodeBox reach_;  // of this step's particles
   std::vector<FaceBC> faceBCs_;
   Contact contact_;
   std::vector<MPMMaterial> materials_;

@@ -1,7 +1,8 @@
 // Linked into every target of the sanitizer build (-DANODE_SANITIZE=ON): the options the runtime
 // uses when the environment sets none, so ctest, sus and the tests all fail on the first report.
-// The one suppression is a leak inside libOSMesa (its current-context state, allocated by
-// OSMesaMakeCurrent and kept after OSMesaDestroyContext); our own allocations are all checked.
+// The suppressions are leaks inside libOSMesa (its current-context state, allocated by
+// OSMesaMakeCurrent and kept after OSMesaDestroyContext) and inside Open MPI's own libraries and
+// plugins (state they keep past MPI_Finalize); our own allocations are all checked.
 extern "C" {
 
 const char* __asan_default_options() {
@@ -13,7 +14,14 @@ const char* __ubsan_default_options() {
 }
 
 const char* __lsan_default_suppressions() {
-  return "leak:libOSMesa.so\n";
+  return "leak:libOSMesa.so\n"
+         "leak:libmpi.so\n"
+         "leak:libopen-pal.so\n"
+         "leak:libopen-rte.so\n"
+         "leak:libpmix.so\n"
+         "leak:libhwloc.so\n"
+         "leak:libevent\n"
+         "leak:/openmpi/\n";
 }
 
 }  // extern "C"
