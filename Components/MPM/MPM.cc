@@ -125,6 +125,7 @@ int MPM::computeGhostWidth(bool allHere) const {
 }
 
 void MPM::decompose(bool allHere) {
+  ++layoutGeneration_;
   const int ranks = Communicator::size(), me = Communicator::rank();
   if (ranks == 1) {
     decomposition_ = Decomposition(whole_.cells);

@@ -83,6 +83,9 @@ class MPM {
     std::vector<long> kept;
   };
   const std::vector<Reordering>& lastReordering() const { return reordering_; }
+  // Counts the times the particles were shared out among the ranks (setup, restart, rebalance):
+  // per-particle histories kept elsewhere start over when it changes.
+  int layoutGeneration() const { return layoutGeneration_; }
   const MPMFlags& flags() const { return flags_; }
   const std::vector<MPMMaterial>& materials() const { return materials_; }
   std::vector<MPMMaterial>& materials() { return materials_; }
@@ -142,6 +145,7 @@ class MPM {
   bool distributed_ = false;  // more than one rank
   std::vector<Reordering> reordering_;
   NodeBox reach_;  // of this step's particles
+  int layoutGeneration_ = 0;
   std::vector<FaceBC> faceBCs_;
   Contact contact_;
   std::vector<MPMMaterial> materials_;

@@ -63,7 +63,8 @@ bool StateChecks::oscillates(Oscillation& o, double energy, double product, doub
 void StateChecks::afterStep(const MPM& mpm, double dt) {
   const auto& materials = mpm.materials();
   const size_t count = materials.size();
-  if (velocity_.size() != count) {
+  if (velocity_.size() != count || mpm.layoutGeneration() != layoutGeneration_) {
+    layoutGeneration_ = mpm.layoutGeneration();
     velocity_.assign(count, {});
     velocityIncrement_.assign(count, {});
     localStreak_.assign(count, {});

@@ -78,6 +78,7 @@ class StateChecks {
   std::vector<std::vector<double>> concentration_, concentrationIncrement_;
   Oscillation velocityOscillation_, concentrationOscillation_;
 
+  int layoutGeneration_ = 0;  // MPM::layoutGeneration of the histories above
   double lastKineticEnergy_ = 0, lastMass_ = 0;
   int growingSteps_ = 0;
   double energyBeforeGrowth_ = 0;

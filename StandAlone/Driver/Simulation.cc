@@ -139,6 +139,7 @@ void Simulation::run() {
   };
   const size_t particles = mpm_.summarize().particles;
   const double imbalance = mpm_.imbalance();
+  layoutImbalance_ = imbalance;
   if (root) {
     std::fprintf(stderr,
                  "sus: %zu particles in %zu material(s), grid %dx%dx%d cells, output in %s\n",
@@ -189,11 +190,18 @@ void Simulation::run() {
       std::fprintf(stderr, "%s\n", warning.c_str());
     }
     const bool done = finished();
-    if (done || archiver_.isOutputStep(step_, t_)) output(true);
+    // A rebalance is followed by a checkpoint, so a replay to the last good state never
+    // crosses one (it takes the same steps with the same boxes).
+    bool rebalanced = false;
+    if (done || archiver_.isOutputStep(step_, t_)) {
+      output(true);
+      rebalanced = !done && rebalance();
+    }
     scenes_.renderDue(t_, mpm_, archiver_.directory());
     if (checkpoints_.isDue(step_, t_, lastCheckpointTime_))
       checkpoint(CheckpointKind::Scheduled);
-    else if (!done && Communicator::any(wall() - lastAutomaticCheckpoint >= kReplayInterval))
+    else if (rebalanced ||
+             (!done && Communicator::any(wall() - lastAutomaticCheckpoint >= kReplayInterval)))
       checkpoint(CheckpointKind::Automatic);
     if (progressLine) progress.update(step_, t_, stepDt, allParticleSteps_, done);
     if (done) break;
@@ -201,6 +209,23 @@ void Simulation::run() {
   if (progressLine) progress.finish();
   if (Communicator::isRoot()) removeAutomaticCheckpoints(archiver_.directory());
   wallSeconds_ = wall();
+}
+
+bool Simulation::rebalance() {
+  if (Communicator::size() == 1) return false;
+  const double before = mpm_.imbalance();
+  if (before <= kRebalanceImbalance * layoutImbalance_) return false;
+  ScopedTimer timer(mpm_.timers(), mpm_.timers().task("rebalance"));
+  mpm_.redistributeParticles();
+  const double after = mpm_.imbalance();
+  if (Communicator::isRoot())
+    std::fprintf(stderr,
+                 "sus: step %ld: particles per rank max/mean %.3f, %.2f times the %.3f the boxes "
+                 "started with: boxes drawn anew (%s), now %.3f\n",
+                 step_, before, before / layoutImbalance_, layoutImbalance_,
+                 mpm_.decomposition().describe().c_str(), after);
+  layoutImbalance_ = after;
+  return true;
 }
 
 void Simulation::writeStateOnStop() {

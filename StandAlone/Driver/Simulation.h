@@ -14,6 +14,10 @@
 
 namespace anode {
 
+// A distributed run draws its boxes anew (at an output step) when the particles per rank, max
+// over mean, have grown by this factor since the boxes were drawn.
+constexpr double kRebalanceImbalance = 1.2;
+
 struct RunOptions {
   std::string input;
   std::string outputDir;   // empty: from <filebase>
@@ -49,6 +53,10 @@ class Simulation {
   void setup();
   // The end of a step: time, step count and the next dt.
   void finishStep();
+  // At an output step of a distributed run: draws the boxes anew from the particle counts when
+  // the particles per rank (max/mean) grew by kRebalanceImbalance since they were drawn; true
+  // if it did. Collective.
+  bool rebalance();
   // After a failed step: writes its particles and the last good state (DESIGN.md §8).
   void writeStateOnStop();
   // Brings the state back to the end of step_ (the last good one) by loading the newest
@@ -86,6 +94,7 @@ class Simulation {
   double lastCheckpointTime_ = 0;
   double earlierWallSeconds_ = 0;  // of the runs before a restart, for history.csv
   uint64_t inputHash_ = 0;         // of the input file, stored in checkpoints
+  double layoutImbalance_ = 1;     // particles per rank, max/mean, when the boxes were drawn
 };
 
 }  // namespace anode

@@ -13,6 +13,8 @@
 #                                the same step, the message once, the last good state written
 #   paraview INPUT STEPS         VTK's own reader opens the .pvd of a 3-rank run: every time, all
 #                                particles, every array
+#   rebalance INPUT STEPS        2 ranks draw their boxes anew as the particles drift, and agree
+#                                with one rank
 set -uo pipefail
 mode=$1
 sus=$2
@@ -144,6 +146,14 @@ case $mode in
     run 3 "$work/r3" --max-timesteps "$steps" "$input" || fail "3 ranks: exit $?"
     /usr/bin/python3 "$here/read_series.py" "$work/r3/particles.pvd" --like "$work/r1/particles.pvd" ||
       fail "the 3-rank series does not read as the 1-rank one"
+    ;;
+  rebalance)
+    input=$1 steps=$2
+    run 1 "$work/r1" --max-timesteps "$steps" "$input" || fail "1 rank: exit $?"
+    run 2 "$work/r2" --max-timesteps "$steps" "$input" || fail "2 ranks: exit $?"
+    grep "boxes drawn anew" "$work/r2.log" || fail "no rebalance"
+    $compare "$(stepFile "$work/r1" "$steps")" "$(stepFile "$work/r2" "$steps")" | tail -1 ||
+      fail "2 ranks with rebalancing differ from 1 rank"
     ;;
   *)
     fail "unknown mode $mode"
