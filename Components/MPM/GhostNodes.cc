@@ -64,7 +64,8 @@ void GhostNodes::sumOverRanks(const std::vector<NodeArray>& arrays, const NodeBo
     std::memcpy(box, receive[q].data(), sizeof box);
     const NodeBox theirs{Vec3i(box[0], box[1], box[2]), Vec3i(box[3], box[4], box[5])};
     values.resize((receive[q].size() - sizeof box) / sizeof(double));
-    std::memcpy(values.data(), receive[q].data() + sizeof box, values.size() * sizeof(double));
+    if (!values.empty())
+      std::memcpy(values.data(), receive[q].data() + sizeof box, values.size() * sizeof(double));
     const double* in = values.data();
     forNodes(local_, overlap_[q].intersection(theirs), [&](int n) {
       double* t = &total[static_cast<size_t>(slotOfNode_[n]) * width];

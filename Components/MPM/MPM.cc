@@ -498,7 +498,7 @@ void MPM::splitParticles() {
              reinterpret_cast<const char*>(mine.data()), mine.size() * sizeof(int64_t)))) {
       const size_t at = parents.size();
       parents.resize(at + r.size() / sizeof(int64_t));
-      std::memcpy(parents.data() + at, r.data(), r.size());
+      if (!r.empty()) std::memcpy(parents.data() + at, r.data(), r.size());
     }
     std::sort(parents.begin(), parents.end());
     const int64_t first = nextParticleId_;

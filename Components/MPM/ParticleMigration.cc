@@ -27,9 +27,10 @@ void unpackParticles(const char*& in, ParticleSet& p) {
   p.forEachField([&](auto& v, const auto& field) {
     if (!p.has(field.physics)) return;
     using T = typename std::decay_t<decltype(v)>::value_type;
+    if (n == 0) return;
     const size_t at = v.size();
     v.resize(at + n);
-    std::memcpy(static_cast<void*>(&v[at]), in, n * sizeof(T));
+    std::memcpy(static_cast<void*>(v.data() + at), in, n * sizeof(T));
     in += n * sizeof(T);
   });
 }

@@ -128,7 +128,7 @@ NamedArray gatherLabel(const MPM& mpm, const std::string& name, const std::strin
   size_t offset = 0;
   for (size_t m = 0; m < indices.size(); ++m) {
     const MPMMaterial& mat = mpm.materials()[m];
-    double* out = &a.real[offset * components];
+    double* out = a.real.data() + offset * components;  // a rank may hold none
     if (stored) {
       copyField(mat.particles, label, indices[m], out);
     } else {

@@ -70,7 +70,7 @@ ParticleData gatherToRoot(ParticleData data) {
       in += sizeof n;
       const size_t at = v.size();
       v.resize(at + n);
-      std::memcpy(v.data() + at, in, n * sizeof(double));
+      if (n > 0) std::memcpy(v.data() + at, in, n * sizeof(double));
       in += n * sizeof(double);
     };
     take(out.points);
