@@ -30,24 +30,25 @@ fail() {
   echo "FAIL: $*"
   exit 1
 }
-# run N DIR ARGS...: N ranks of one thread (N = 1: no mpirun), output in DIR; its log in DIR.log.
-run() {
-  local n=$1 dir=$2
+# launch N LOG ARGS...: sus ARGS on N ranks of one thread (N = 1: no mpirun), its output in LOG.
+launch() {
+  local n=$1 log=$2
   shift 2
   if [ "$n" = 1 ]; then
-    "$sus" --threads 1 -o "$dir" "$@" > "$dir.log" 2>&1
+    "$sus" --threads 1 "$@" > "$log" 2>&1
   else
-    timeout 300 mpirun -np "$n" "$sus" --threads 1 -o "$dir" "$@" > "$dir.log" 2>&1
+    timeout 300 mpirun -np "$n" "$sus" --threads 1 "$@" > "$log" 2>&1
   fi
 }
-restartRun() {  # N DIR ARGS...
+run() {  # N DIR ARGS...: a run with output in DIR, its log in DIR.log
   local n=$1 dir=$2
   shift 2
-  if [ "$n" = 1 ]; then
-    "$sus" --threads 1 -restart "$dir" "$@" > "$dir.restart.log" 2>&1
-  else
-    timeout 300 mpirun -np "$n" "$sus" --threads 1 -restart "$dir" "$@" > "$dir.restart.log" 2>&1
-  fi
+  launch "$n" "$dir.log" -o "$dir" "$@"
+}
+restartRun() {  # N DIR ARGS...: the run in DIR continued, its log in DIR.restart.log
+  local n=$1 dir=$2
+  shift 2
+  launch "$n" "$dir.restart.log" -restart "$dir" "$@"
 }
 # The particle file of step S in DIR (.vtu of one rank, .pvtu of several).
 stepFile() {

@@ -1,0 +1,186 @@
+// MPM's part in a distributed run (docs/parallel.md): drawing the boxes and laying out this
+// rank's window, the nodes its particles reach, the ghost sums after P2G and the migration of
+// particles after the step. The decomposition itself is Core/Parallel/Decomposition, the talking
+// Core/Parallel/Communicator; on one rank only decompose() runs, once, and lays out the whole grid.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <string>
+
+#include "Components/MPM/MPM.h"
+#include "Components/MPM/ParticleMigration.h"
+#include "Core/Parallel/StopTogether.h"
+#include "Core/Util/Errors.h"
+
+namespace anode {
+
+int MPM::ownerOf(const ParticleSet& p, size_t i) const {
+  const Vec3 xi = whole_.indexCoordinate(p.x[i]);
+  return decomposition_.ownerOfCell(Vec3i(static_cast<int>(std::floor(xi.x())),
+                                          static_cast<int>(std::floor(xi.y())),
+                                          static_cast<int>(std::floor(xi.z()))));
+}
+
+int MPM::computeGhostWidth(bool allHere) const {
+  if (flags_.interpolator != InterpolatorKind::CPDI)
+    return flags_.interpolator == InterpolatorKind::Linear ? 1 : 2;
+  // CPDI: as far as a domain reaches (its half extent F size / 2 along an axis, in cells), and a
+  // cell more for the domains to stretch until the next decomposition.
+  double reach = 0;
+  for (const MPMMaterial& mat : materials_) {
+    const ParticleSet& p = mat.particles;
+    const long n = static_cast<long>(p.count());
+#pragma omp parallel for schedule(static) reduction(max : reach)
+    for (long i = 0; i < n; ++i)
+      reach = std::max(reach, 0.5 * (p.F[i] * p.size[i]).cwiseAbs().rowwise().sum().maxCoeff());
+  }
+  if (!allHere) reach = Communicator::maximum(reach);
+  return std::max(2, static_cast<int>(std::ceil(reach)) + 1);
+}
+
+void MPM::decompose(bool allHere) {
+  ++layoutGeneration_;
+  const int ranks = Communicator::size(), me = Communicator::rank();
+  if (ranks == 1) {
+    decomposition_ = Decomposition(whole_.cells);
+    grid_ = whole_;
+    layOutGrid();
+    return;
+  }
+  std::array<std::vector<double>, 3> planes;
+  for (int d = 0; d < 3; ++d) planes[d].assign(whole_.cells[d], 0.0);
+  for (const MPMMaterial& mat : materials_)
+    for (const Vec3& x : mat.particles.x) {
+      const Vec3 xi = whole_.indexCoordinate(x);
+      for (int d = 0; d < 3; ++d)
+        planes[d][std::clamp(static_cast<int>(std::floor(xi[d])), 0, whole_.cells[d] - 1)] += 1;
+    }
+  if (!allHere)
+    for (int d = 0; d < 3; ++d) Communicator::sum(planes[d].data(), whole_.cells[d]);
+  decomposition_ = Decomposition::balanced(whole_.cells, ranks, planes);
+  ghostWidth_ = computeGhostWidth(allHere);
+  std::vector<std::string> send(ranks);
+  for (MPMMaterial& mat : materials_) {
+    ParticleSet& p = mat.particles;
+    std::vector<std::vector<long>> to(ranks);
+    for (size_t i = 0; i < p.count(); ++i) to[ownerOf(p, i)].push_back(static_cast<long>(i));
+    if (!allHere)
+      for (int r = 0; r < ranks; ++r)
+        if (r != me) packParticles(p, to[r], send[r]);
+    keepParticles(p, to[me]);
+  }
+  if (!allHere) {
+    const std::vector<std::string> received = Communicator::exchangeWithAll(send);
+    for (int r = 0; r < ranks; ++r) {
+      if (r == me) continue;
+      const char* in = received[r].data();
+      for (MPMMaterial& mat : materials_) unpackParticles(in, mat.particles);
+    }
+  }
+  layOutWindow();
+}
+
+void MPM::layOutWindow() {
+  const int me = Communicator::rank();
+  grid_ = decomposition_.window(whole_, me, ghostWidth_);
+  ghosts_ = GhostNodes(decomposition_, whole_, grid_, me, ghostWidth_);
+  layOutGrid();
+}
+
+void MPM::redistributeParticles() {
+  decompose(false);
+}
+
+double MPM::imbalance() const {
+  const double mine = static_cast<double>(numParticles());
+  const double most = Communicator::maximum(mine), total = Communicator::sum(mine);
+  return total > 0 ? most / (total / Communicator::size()) : 1.0;
+}
+
+NodeBox MPM::computeReach() const {
+  int lo[3] = {1 << 30, 1 << 30, 1 << 30}, hi[3] = {-(1 << 30), -(1 << 30), -(1 << 30)};
+  for (const MPMMaterial& mat : materials_) {
+    const ParticleSet& p = mat.particles;
+    const long n = static_cast<long>(p.count());
+    int x0 = lo[0], y0 = lo[1], z0 = lo[2], x1 = hi[0], y1 = hi[1], z1 = hi[2];
+#pragma omp parallel for schedule(static) reduction(min : x0, y0, z0) reduction(max : x1, y1, z1)
+    for (long i = 0; i < n; ++i) {
+      Vec3i first, last;
+      supportBounds(flags_.interpolator, whole_, p.x[i], p.size[i], p.F[i], first, last);
+      x0 = std::min(x0, first.x()), y0 = std::min(y0, first.y()), z0 = std::min(z0, first.z());
+      x1 = std::max(x1, last.x()), y1 = std::max(y1, last.y()), z1 = std::max(z1, last.z());
+    }
+    lo[0] = x0, lo[1] = y0, lo[2] = z0, hi[0] = x1, hi[1] = y1, hi[2] = z1;
+  }
+  return NodeBox{Vec3i(lo[0], lo[1], lo[2]), Vec3i(hi[0], hi[1], hi[2])};
+}
+
+void MPM::sumGhostNodes() {
+  std::vector<NodeArray> sums;
+  for (GridFields& g : fields_) {
+    sums.push_back({g.mass.data(), 1});
+    sums.push_back({g.momentum.data()->data(), 3});
+    sums.push_back({g.internalForce.data()->data(), 3});
+  }
+  if (diffusion_) diffusion_->addScatteredArrays(sums);
+  ghosts_.sumOverRanks(sums, reach_);
+}
+
+void MPM::migrateParticles() {
+  const int me = Communicator::rank();
+  const std::vector<int>& neighbours = ghosts_.neighbours();
+  std::vector<std::string> send(neighbours.size());
+  std::vector<std::vector<long>> keep(materials_.size());
+  long strayMaterial = -1, stray = -1;
+  int strayOwner = -1;
+  for (size_t m = 0; m < materials_.size(); ++m) {
+    const ParticleSet& p = materials_[m].particles;
+    const long n = static_cast<long>(p.count());
+    std::vector<int> owner(n);
+#pragma omp parallel for schedule(static)
+    for (long i = 0; i < n; ++i) owner[i] = ownerOf(p, i);
+    std::vector<std::vector<long>> leaving(neighbours.size());
+    for (long i = 0; i < n; ++i) {
+      if (owner[i] == me) {
+        keep[m].push_back(i);
+        continue;
+      }
+      const auto q = std::lower_bound(neighbours.begin(), neighbours.end(), owner[i]);
+      if (q == neighbours.end() || *q != owner[i]) {
+        if (stray < 0) strayMaterial = static_cast<long>(m), stray = i, strayOwner = owner[i];
+        keep[m].push_back(i);
+        continue;
+      }
+      leaving[q - neighbours.begin()].push_back(i);
+    }
+    for (size_t q = 0; q < neighbours.size(); ++q) packParticles(p, leaving[q], send[q]);
+  }
+  stopTogether([&] {
+    if (stray >= 0)
+      throw SimulationError(describeParticle(materials_[strayMaterial], strayMaterial, stray) +
+                            " moved in one step from rank " + std::to_string(me) +
+                            "'s box to rank " + std::to_string(strayOwner) +
+                            "'s, beyond the boxes next to it");
+  });
+  std::vector<std::string> received;
+  ghosts_.neighbourhood().exchange(send, received);
+  for (size_t m = 0; m < materials_.size(); ++m) {
+    ParticleSet& p = materials_[m].particles;
+    Reordering& r = reordering_[m];
+    r.before = p.count();
+    r.happened = keep[m].size() != p.count();
+    keepParticles(p, keep[m]);
+    r.kept = std::move(keep[m]);
+  }
+  for (size_t q = 0; q < neighbours.size(); ++q) {
+    const char* in = received[q].data();
+    for (MPMMaterial& mat : materials_) unpackParticles(in, mat.particles);
+  }
+  for (size_t m = 0; m < materials_.size(); ++m) {
+    Reordering& r = reordering_[m];
+    r.arrived = materials_[m].particles.count() - r.kept.size();
+    r.happened = r.happened || r.arrived > 0;
+  }
+}
+
+}  // namespace anode
