@@ -1,0 +1,126 @@
+// Pins the decomposition into boxes (Core/Parallel/Decomposition.h, docs/parallel.md) and the
+// stored window of a grid (Grid::trimLower/trimUpper): factors to the widest particle span,
+// cuts at the quantiles of the counts per cell plane, the owner of a cell, each rank's window of
+// nodes with its ghost layers, and the neighbours whose windows share nodes. No MPI is needed.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "Core/Parallel/Decomposition.h"
+
+namespace anode {
+namespace {
+
+std::array<std::vector<double>, 3> uniformPlanes(const Vec3i& cells) {
+  std::array<std::vector<double>, 3> planes;
+  for (int d = 0; d < 3; ++d) planes[d].assign(cells[d], 1.0);
+  return planes;
+}
+
+TEST(Decomposition, FactorsGoToTheWidestParticleSpan) {
+  // Particles span 20 planes in z, 5 in x and y: 4 ranks cut z twice over.
+  const Vec3i cells(40, 40, 40);
+  std::array<std::vector<double>, 3> planes;
+  for (int d = 0; d < 3; ++d) planes[d].assign(40, 0.0);
+  for (int c = 10; c < 15; ++c) planes[0][c] = planes[1][c] = 4;
+  for (int c = 0; c < 20; ++c) planes[2][c] = 1;
+  const Decomposition d = Decomposition::balanced(cells, 4, planes);
+  EXPECT_EQ(d.ranksPerAxis(), Vec3i(1, 1, 4));
+  // Quantiles of the 20 occupied planes: 5 planes of particles per box, the last box to the top.
+  EXPECT_EQ(d.cuts(2), (std::vector<int>{0, 5, 10, 15, 40}));
+  // 6 = 3 x 2: the 3 to the widest span, the 2 to the widest left per box.
+  const Decomposition six = Decomposition::balanced(cells, 6, uniformPlanes(cells));
+  EXPECT_EQ(six.ranksPerAxis().prod(), 6);
+  EXPECT_EQ(six.ranksPerAxis(), Vec3i(3, 2, 1));
+}
+
+TEST(Decomposition, NeverCutsAnAxisOfTooFewCells) {
+  // A 2-D grid (one cell in z) is never cut in z; too many boxes for the cells is an error.
+  const Vec3i cells(6, 4, 1);
+  const Decomposition d = Decomposition::balanced(cells, 8, uniformPlanes(cells));
+  EXPECT_EQ(d.ranksPerAxis().z(), 1);
+  EXPECT_EQ(d.ranksPerAxis().prod(), 8);
+  EXPECT_THROW(Decomposition::balanced(cells, 25, uniformPlanes(cells)), std::runtime_error);
+}
+
+TEST(Decomposition, CutsAtQuantilesEachBoxAtLeastOneCell) {
+  // All particles in one plane: the other boxes still get one plane each.
+  const Vec3i cells(10, 1, 1);
+  std::array<std::vector<double>, 3> planes = uniformPlanes(cells);
+  planes[0].assign(10, 0.0);
+  planes[0][9] = 100;
+  const Decomposition d = Decomposition::balanced(cells, 3, planes);
+  const std::vector<int>& cuts = d.cuts(0);
+  ASSERT_EQ(cuts.size(), 4u);
+  EXPECT_EQ(cuts.front(), 0);
+  EXPECT_EQ(cuts.back(), 10);
+  for (size_t k = 1; k < cuts.size(); ++k) EXPECT_GE(cuts[k] - cuts[k - 1], 1);
+  EXPECT_EQ(d.ownerOfCell(Vec3i(9, 0, 0)), 2);
+}
+
+TEST(Decomposition, OwnerOfCellsAndOfCellsOutsideTheGrid) {
+  const Vec3i cells(8, 6, 4);
+  const Decomposition d = Decomposition::fromCuts({{{0, 3, 8}, {0, 6}, {0, 2, 4}}});
+  EXPECT_EQ(d.ranks(), 4);
+  EXPECT_EQ(d.ownerOfCell(Vec3i(0, 0, 0)), 0);
+  EXPECT_EQ(d.ownerOfCell(Vec3i(3, 5, 1)), 1);  // x box 1, z box 0
+  EXPECT_EQ(d.ownerOfCell(Vec3i(2, 0, 2)), 2);  // x box 0, z box 1
+  EXPECT_EQ(d.ownerOfCell(Vec3i(7, 5, 3)), 3);
+  EXPECT_EQ(d.ownerOfCell(Vec3i(-4, 9, 99)), 2);  // the nearest interior cell (0, 5, 3)
+  for (int r = 0; r < d.ranks(); ++r) {
+    const CellBox b = d.box(r);
+    EXPECT_EQ(d.ownerOfCell(b.lower), r);
+    EXPECT_EQ(d.ownerOfCell(b.upper - Vec3i::Ones()), r);
+  }
+  long cellsInBoxes = 0;
+  for (int r = 0; r < d.ranks(); ++r) cellsInBoxes += d.box(r).cellCount();
+  EXPECT_EQ(cellsInBoxes, cells.prod());
+}
+
+TEST(Decomposition, WindowsHoldTheBoxGhostLayersAndTheGridsExtraNodes) {
+  Grid whole;
+  whole.cells = Vec3i(10, 4, 4);
+  whole.extra = Vec3i(1, 1, 1);
+  const Decomposition d = Decomposition::fromCuts({{{0, 3, 6, 10}, {0, 4}, {0, 4}}});
+  // The first box: the extra nodes below, its cells [0, 3) and 2 ghost layers above.
+  const Grid first = d.window(whole, 0, 2);
+  EXPECT_EQ(first.firstNode(), Vec3i(-1, -1, -1));
+  EXPECT_EQ(first.lastNode(), Vec3i(5, 5, 5));
+  // The middle box: 2 ghost layers on either side in x.
+  const Grid middle = d.window(whole, 1, 2);
+  EXPECT_EQ(middle.firstNode().x(), 1);
+  EXPECT_EQ(middle.lastNode().x(), 8);
+  EXPECT_EQ(middle.nodes(), Vec3i(8, 7, 7));
+  // Flat indices cover the window; grid indices stay global.
+  EXPECT_EQ(middle.nodeIndex(1, -1, -1), 0);
+  EXPECT_EQ(middle.nodeIndex(8, 5, 5), middle.numNodes() - 1);
+  EXPECT_EQ(middle.nodeOf(middle.nodeIndex(4, 2, 3)), Vec3i(4, 2, 3));
+  EXPECT_TRUE(middle.hasNode(1, 0, 0));
+  EXPECT_FALSE(middle.hasNode(0, 0, 0));
+  EXPECT_TRUE(middle.inGrid(0, 0, 0));
+  EXPECT_EQ(middle.nodePosition(4, 2, 3), whole.nodePosition(4, 2, 3));
+  // The last box: the extra nodes above.
+  EXPECT_EQ(d.window(whole, 2, 2).lastNode().x(), 11);
+}
+
+TEST(Decomposition, NeighboursAreTheRanksWhoseWindowsShareNodes) {
+  Grid whole;
+  whole.cells = Vec3i(12, 1, 1);
+  // Boxes [0,4) [4,5) [5,9) [9,12): with 2 ghost layers the windows are nodes [0,6], [2,7],
+  // [3,11] and [7,12]; the one-cell box 1 lets box 1 reach box 3's window.
+  const Decomposition d = Decomposition::fromCuts({{{0, 4, 5, 9, 12}, {0, 1}, {0, 1}}});
+  EXPECT_EQ(d.neighbours(whole, 0, 2), (std::vector<int>{1, 2}));
+  EXPECT_EQ(d.neighbours(whole, 1, 2), (std::vector<int>{0, 2, 3}));
+  for (int r = 0; r < d.ranks(); ++r)
+    for (int q : d.neighbours(whole, r, 2)) {
+      const std::vector<int> back = d.neighbours(whole, q, 2);
+      EXPECT_NE(std::find(back.begin(), back.end(), r), back.end()) << r << " and " << q;
+    }
+  // One ghost layer: windows [0,5], [3,6], [4,10], [8,12].
+  EXPECT_EQ(d.neighbours(whole, 0, 1), (std::vector<int>{1, 2}));
+  EXPECT_EQ(d.neighbours(whole, 3, 1), (std::vector<int>{2}));
+}
+
+}  // namespace
+}  // namespace anode

@@ -1,0 +1,81 @@
+// Pins particles moving between ranks (Components/MPM/ParticleMigration.h): every array a
+// material has travels with its particle, through ParticleSet's one list of arrays; the
+// particles that stay keep their order; an empty batch is a count of zero.
+#include <gtest/gtest.h>
+
+#include "Components/MPM/ParticleMigration.h"
+
+namespace anode {
+namespace {
+
+// Five particles with mechanics, diffusion and splitting arrays, each value telling its particle.
+ParticleSet numberedParticles() {
+  ParticleSet p;
+  p.resize(5);
+  p.enable(Physics::Diffusion);
+  p.enable(Physics::Splitting);
+  for (size_t i = 0; i < 5; ++i) {
+    p.id[i] = 10 + static_cast<int64_t>(i);
+    p.x[i] = Vec3(i, 2.0 * i, 3.0 * i);
+    p.mass[i] = 1.0 + i;
+    p.F[i] = (1.0 + i) * Mat3::Identity();
+    p.concentration[i] = 0.1 * i;
+    p.concentrationGradient[i] = Vec3::Constant(-1.0 * i);
+    p.refined[i] = static_cast<uint8_t>(i % 2);
+  }
+  return p;
+}
+
+void expectSameParticle(const ParticleSet& a, size_t i, const ParticleSet& b, size_t j) {
+  EXPECT_EQ(a.id[i], b.id[j]);
+  EXPECT_EQ(a.x[i], b.x[j]);
+  EXPECT_EQ(a.mass[i], b.mass[j]);
+  EXPECT_EQ(a.F[i], b.F[j]);
+  EXPECT_EQ(a.concentration[i], b.concentration[j]);
+  EXPECT_EQ(a.concentrationGradient[i], b.concentrationGradient[j]);
+  EXPECT_EQ(a.refined[i], b.refined[j]);
+}
+
+TEST(ParticleMigration, PackedParticlesArriveWithEveryArray) {
+  const ParticleSet from = numberedParticles();
+  std::string message;
+  packParticles(from, {1, 3}, message);
+  packParticles(from, {}, message);  // a second material with nothing to send
+  ParticleSet to = numberedParticles();
+  ParticleSet none = numberedParticles();
+  keepParticles(none, {});
+  const char* in = message.data();
+  unpackParticles(in, to);
+  unpackParticles(in, none);
+  EXPECT_EQ(in, message.data() + message.size());
+  ASSERT_EQ(to.count(), 7u);
+  expectSameParticle(from, 1, to, 5);
+  expectSameParticle(from, 3, to, 6);
+  EXPECT_EQ(none.count(), 0u);
+  // Arrays of physics the material lacks stay empty.
+  EXPECT_TRUE(to.plasticStrain.empty());
+  EXPECT_EQ(to.externalScalarFlux.size(), 0u);
+}
+
+TEST(ParticleMigration, KeptParticlesKeepTheirOrder) {
+  const ParticleSet before = numberedParticles();
+  ParticleSet p = before;
+  keepParticles(p, {0, 2, 4});
+  ASSERT_EQ(p.count(), 3u);
+  expectSameParticle(before, 0, p, 0);
+  expectSameParticle(before, 2, p, 1);
+  expectSameParticle(before, 4, p, 2);
+}
+
+TEST(ParticleMigration, ReorderedParticlesCarryEveryArray) {
+  const ParticleSet before = numberedParticles();
+  ParticleSet p = before;
+  reorderParticles(p, {4, 0, 3, 1, 2});
+  ASSERT_EQ(p.count(), 5u);
+  expectSameParticle(before, 4, p, 0);
+  expectSameParticle(before, 0, p, 1);
+  expectSameParticle(before, 2, p, 4);
+}
+
+}  // namespace
+}  // namespace anode
