@@ -38,7 +38,7 @@ def series(path):
 
 def main():
     a = series(sys.argv[1])
-    if not a:
+    if not a and "--any" not in sys.argv:
         sys.exit(f"{sys.argv[1]}: no time")
     for t, n, arrays in a:
         print(f"t = {t:.6g}: {n} particles, {len(arrays)} arrays")
