@@ -4,6 +4,7 @@
 // code on every rank and prints each message once.
 #include <malloc.h>
 #include <omp.h>
+#include <sched.h>
 
 #include <cstdio>
 #include <cstdlib>
@@ -37,6 +38,14 @@ long positiveNumber(const char* flag, const char* value) {
   return v;
 }
 
+// The cores this process may run on (its affinity mask), 0 if unknown.
+int coresOfThisRank() {
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  if (sched_getaffinity(0, sizeof set, &set) != 0) return 0;
+  return CPU_COUNT(&set);
+}
+
 }  // namespace
 
 // Runs the input; returns the exit code.
@@ -46,12 +55,23 @@ int run(anode::RunOptions& options) {
     anode::Simulation sim(options);
     if (root)
       for (const std::string& w : sim.warnings()) std::fprintf(stderr, "warning: %s\n", w.c_str());
+    // A launcher that binds each rank to fewer cores than it has threads (Open MPI binds to one
+    // core for 2 ranks or fewer) makes the threads take turns: said once, not changed.
+    const int cores = coresOfThisRank();
+    const int crowded =
+        anode::Communicator::firstRankWith(cores > 0 && omp_get_max_threads() > cores);
     if (root) {
       if (anode::Communicator::size() > 1)
         std::fprintf(stderr, "sus: %d ranks x %d thread(s)\n", anode::Communicator::size(),
                      omp_get_max_threads());
       else
         std::fprintf(stderr, "sus: %d thread(s)\n", omp_get_max_threads());
+      if (crowded >= 0)
+        std::fprintf(stderr,
+                     "warning: rank %d runs %d threads on fewer cores (its binding): give "
+                     "--threads, or bind each rank to as many cores (mpirun --map-by "
+                     "slot:pe=N, srun --cpus-per-task=N)\n",
+                     crowded, omp_get_max_threads());
     }
     try {
       sim.run();
