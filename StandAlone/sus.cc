@@ -12,6 +12,7 @@
 #include <string>
 
 #include "Core/Parallel/StopTogether.h"
+#include "Core/Util/InstructionSet.h"
 #include "StandAlone/Driver/Simulation.h"
 
 namespace {
@@ -62,10 +63,12 @@ int run(anode::RunOptions& options) {
         anode::Communicator::firstRankWith(cores > 0 && omp_get_max_threads() > cores);
     if (root) {
       if (anode::Communicator::size() > 1)
-        std::fprintf(stderr, "sus: %d ranks x %d thread(s)\n", anode::Communicator::size(),
-                     omp_get_max_threads());
+        std::fprintf(stderr, "sus: %d ranks x %d thread(s), instruction set %s\n",
+                     anode::Communicator::size(), omp_get_max_threads(),
+                     anode::instructionSet().c_str());
       else
-        std::fprintf(stderr, "sus: %d thread(s)\n", omp_get_max_threads());
+        std::fprintf(stderr, "sus: %d thread(s), instruction set %s\n", omp_get_max_threads(),
+                     anode::instructionSet().c_str());
       if (crowded >= 0)
         std::fprintf(stderr,
                      "warning: rank %d runs %d threads on fewer cores (its binding): give "
@@ -104,6 +107,14 @@ int main(int argc, char** argv) {
   // the threshold as they are freed and keep them in the heap): buffers freed between steps for
   // output then leave the peak memory.
   mallopt(M_MMAP_THRESHOLD, 1 << 20);
+  const std::string missing = anode::missingInstructions();
+  if (!missing.empty()) {
+    std::fprintf(stderr,
+                 "sus: built for instruction set %s, which this CPU lacks (%s): build for it with "
+                 "cmake -DANODE_SIMD=none (or avx2), docs/performance.md\n",
+                 anode::instructionSet().c_str(), missing.c_str());
+    return 1;
+  }
   anode::RunOptions options;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];

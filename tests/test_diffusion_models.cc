@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "Components/MPM/ReactiveFlow/FluxRestriction.h"
 #include "Components/MPM/ReactiveFlow/ScalarDiffusionModel.h"
 #include "Components/MPM/ReactiveFlow/ScalarFluxBC.h"
 #include "Core/Geometry/GeometryPiece.h"
@@ -69,6 +70,29 @@ TEST(FluxRestriction, SlopeConstantIsEToTheFourOverFour) {
     const double c = cStar * k / 100.0;
     EXPECT_LE(fluxRestriction(c), kRestrictionSlope * (cStar - c) + 1e-15);
   }
+}
+
+TEST(FluxRestriction, StepToTheRootFollowsTheConcentration) {
+  EXPECT_NEAR(kRestrictionRoot, 1 - std::exp(-4.0), 1e-16);
+  EXPECT_NEAR(fluxRestriction(kRestrictionRoot), 0.0, 1e-15);
+  EXPECT_NEAR(fluxStepToRoot(0.0), kRestrictionRoot, 1e-15);  // R(0) = 1
+  double previous = HUGE_VAL;
+  for (int k = 0; k <= 1000; ++k) {
+    const double c = kRestrictionRoot * k / 1000.0;
+    const double g = fluxStepToRoot(c);
+    // Falls as c rises, never below the bound at the root, never beyond 1/|R'(c)| (monotone).
+    EXPECT_LE(g, previous);
+    EXPECT_GE(g, 1 / kRestrictionSlope);
+    EXPECT_LE(g, 4 * (1 - c) * (1 + 1e-12));
+    previous = g;
+    // One explicit step of dc/dt = k R(c) with dt = g(c)/k lands on the root, not past it.
+    if (k < 1000) {
+      EXPECT_NEAR(c + g * fluxRestriction(c), kRestrictionRoot, 1e-15);
+    }
+  }
+  // Near the root the quotient holds its limit; past it nothing flows in.
+  EXPECT_NEAR(fluxStepToRoot(kRestrictionRoot - 1e-13), 1 / kRestrictionSlope, 1e-6);
+  EXPECT_EQ(fluxStepToRoot(0.999), 1 / kRestrictionSlope);
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -122,7 +122,7 @@ const std::map<std::string, Expectation>& expectations() {
         }}},
       {"Beta_0.5_confined", {600, 0, "", 0, cInRange}},
       {"Beta_2_confined",
-       {0, 3, "has concentration -[0-9.e-]+ at t = .*outside \\[0, 1\\]", 55, cInRange}},
+       {0, 3, "has concentration -[0-9.e-]+ at t = .*outside \\[0, 1\\]", 20, cInRange}},
       {"Flux_1e-10",
        {300, 0, "", 0,
         [](const auto& h) {
@@ -130,14 +130,17 @@ const std::map<std::string, Expectation>& expectations() {
           EXPECT_LT(column(h, "max_c", true), 0.01);
         }}},
       {"Flux_1e-6",
-       {0, 3, "has concentration 1\\.000[0-9]* at t = .*outside \\[0, 1\\]", 1761,
+       {0, 3, "the particle concentrations oscillate with growing amplitude", 1506,
         [](const auto& h) {
           // The flux fills the surface up to the restriction's root 1 - e^-4 = 0.98168 and no
           // further: each particle receives the source restricted by its own c. The stop comes
-          // later, from the diffusion update in a body swollen 8-fold (max J in the history).
+          // later, from the diffusion update in a body swollen 8-fold (max J in the history), at
+          // about the same time at any multiplier (docs/stability.md); the diagnostic confirms
+          // the oscillation over up to 10 steps, in which c may pass the root.
           cInRange(h);
-          EXPECT_GT(column(h, "max_c", true), 0.979);
-          EXPECT_LT(column(h, "max_c", true), 1 - std::exp(-4.0));
+          const std::vector<std::map<std::string, double>> before(h.begin(), h.end() - 10);
+          EXPECT_GT(column(before, "max_c", true), 0.979);
+          EXPECT_LT(column(before, "max_c", true), 1 - std::exp(-4.0));
           EXPECT_GT(column(h, "max_J", true), 8);
         }}},
       {"Flux_out_1e-6",

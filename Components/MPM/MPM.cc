@@ -403,8 +403,9 @@ size_t MPM::numParticles() const {
   return n;
 }
 
-double MPM::computeStableTimestep() const {
-  double dt = std::numeric_limits<double>::infinity();
+StableTimestep MPM::computeStableTimestep() const {
+  StableTimestep limits;
+  double& dt = limits.bound[StableTimestep::Mechanics];
   for (const MPMMaterial& mat : materials_) {
     const ParticleSet& p = mat.particles;
     const double modulus = mat.model->dilatationalModulus();
@@ -419,8 +420,12 @@ double MPM::computeStableTimestep() const {
     }
     dt = std::min({dt, grid_.dx.x() / wx, grid_.dx.y() / wy, grid_.dx.z() / wz});  // Eq. 43
   }
-  if (diffusion_) dt = std::min(dt, diffusion_->stableTimestep(grid_));  // Eq. 44, flux limit
-  return Communicator::minimum(dt);
+  if (diffusion_) {
+    limits.bound[StableTimestep::Diffusion] = diffusion_->diffusionTimestep(grid_);
+    limits.bound[StableTimestep::Flux] = diffusion_->fluxTimestep(materials_);
+  }
+  Communicator::minimum(limits.bound.data(), 2);  // Eqs. 43 and 44 over ranks
+  return limits;
 }
 
 void MPM::interpolateToGridForOutput() {

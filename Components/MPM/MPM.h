@@ -13,6 +13,7 @@
 #include "Components/MPM/MPMFlags.h"
 #include "Components/MPM/Materials/MPMMaterial.h"
 #include "Components/MPM/ReactiveFlow/ReactiveFlow.h"
+#include "Components/MPM/StableTimestep.h"
 #include "Components/MPM/StepSummary.h"
 #include "Core/Grid/BoundaryConditions.h"
 #include "Core/Grid/Grid.h"
@@ -33,9 +34,9 @@ class MPM {
   // leaves the grid, J <= 0, or a concentration leaves [min, max] beyond kConcentrationTolerance
   // (in a distributed run on every rank together: Core/Parallel/StopTogether.h). Collective.
   void timeAdvance(double t, double dt);
-  // Largest stable dt of the current state before the multiplier: paper Eq. 45, the smaller of
+  // Largest stable dt of the current state before the multiplier: paper Eq. 45, the smallest of
   // the mechanical Eq. 43 and the diffusion limits (Eq. 44 and the flux limit). Collective.
-  double computeStableTimestep() const;
+  StableTimestep computeStableTimestep() const;
   // Shares the particles out anew among the ranks from their counts per cell plane (after a
   // restart, or when the particles per rank have drifted apart). Collective.
   void redistributeParticles();

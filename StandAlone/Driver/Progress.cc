@@ -41,7 +41,8 @@ double ProgressReporter::fractionDone(long step, double time) const {
   return std::min(done, 1.0);
 }
 
-void ProgressReporter::update(long step, double time, double dt, double particleSteps, bool force) {
+void ProgressReporter::update(long step, double time, double dt, const char* limit,
+                              double particleSteps, bool force) {
   const auto now = std::chrono::steady_clock::now();
   const double sinceLast = std::chrono::duration<double>(now - last_).count();
   if (!force && sinceLast < (terminal_ ? 0.25 : 10.0)) return;
@@ -51,8 +52,9 @@ void ProgressReporter::update(long step, double time, double dt, double particle
   const double eta = done > 0 ? elapsed * (1 - done) / done : -1;
   char line[256];
   std::snprintf(line, sizeof line,
-                "step %ld  t = %.4e / %.4e  dt = %.3e  %.3e particle-steps/s  ETA %s", step, time,
-                maxTime_, dt, elapsed > 0 ? particleSteps / elapsed : 0.0, duration(eta).c_str());
+                "step %ld  t = %.4e / %.4e  dt = %.3e (%s)  %.3e particle-steps/s  ETA %s", step,
+                time, maxTime_, dt, limit, elapsed > 0 ? particleSteps / elapsed : 0.0,
+                duration(eta).c_str());
   if (terminal_) {
     std::fprintf(stderr, "\r%-100s", line);
     pending_ = true;

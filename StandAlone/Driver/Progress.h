@@ -12,7 +12,9 @@ class ProgressReporter {
   // maxTime or maxSteps (0: no step limit), whichever comes first.
   ProgressReporter(double startTime, double maxTime, long startStep, long maxSteps);
   // Called after every step; prints at most a few times per second (terminal) or every 10 s.
-  void update(long step, double time, double dt, double particleSteps, bool force = false);
+  // `limit` names what set dt.
+  void update(long step, double time, double dt, const char* limit, double particleSteps,
+              bool force = false);
   void finish();
   // The fraction of the run done at (step, time), which the ETA extrapolates.
   double fractionDone(long step, double time) const;

@@ -13,6 +13,7 @@
 #include "Core/Parallel/Communicator.h"
 #include "Core/Parallel/StopTogether.h"
 #include "Core/Util/AtomicFile.h"
+#include "Core/Util/InstructionSet.h"
 #include "StandAlone/Driver/Progress.h"
 
 namespace anode {
@@ -23,7 +24,7 @@ constexpr char kCheckpointMagic[] = "anode-mpm checkpoint";
 // A distributed run's checkpoint: the manifest under the checkpoint's name, one part per rank.
 constexpr char kDistributedCheckpointMagic[] = "anode-mpm distributed checkpoint";
 constexpr char kCheckpointPartMagic[] = "anode-mpm checkpoint part";
-constexpr uint32_t kCheckpointVersion = 2;
+constexpr uint32_t kCheckpointVersion = 3;
 
 uint64_t fileHash(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -60,7 +61,13 @@ void Simulation::setup() {
     time_.maxTimesteps = options_.maxTimesteps;
   t_ = time_.initTime;
   lastCheckpointTime_ = t_;
-  dt_ = time_.nextTimestep(mpm_.computeStableTimestep(), 0.0, t_);
+  takeStableTimestep(0.0);
+}
+
+void Simulation::takeStableTimestep(double previousDt) {
+  const StableTimestep stable = mpm_.computeStableTimestep();
+  dt_ = time_.nextTimestep(stable.dt(), previousDt, t_);
+  dtLimit_ = stable.binding();
 }
 
 void Simulation::advance() {
@@ -76,13 +83,14 @@ void Simulation::advance() {
     throw SimulationError(s.str());
   }
   particleSteps_ += static_cast<double>(mpm_.numParticles());
+  ++stepsLimitedBy_[dtLimit_];
   finishStep();
 }
 
 void Simulation::finishStep() {
   t_ += dt_;
   ++step_;
-  dt_ = time_.nextTimestep(mpm_.computeStableTimestep(), dt_, t_);
+  takeStableTimestep(dt_);
 }
 
 void Simulation::run() {
@@ -176,6 +184,7 @@ void Simulation::run() {
   if (nothingLeft && archiver_.lastOutputStep() != step_) output(false);
   while (!nothingLeft) {
     const double stepDt = dt_;
+    const StableTimestep::Limit stepLimit = dtLimit_;
     try {
       advance();
     } catch (const SimulationError&) {
@@ -203,7 +212,8 @@ void Simulation::run() {
     else if (rebalanced ||
              (!done && Communicator::any(wall() - lastAutomaticCheckpoint >= kReplayInterval)))
       checkpoint(CheckpointKind::Automatic);
-    if (progressLine) progress.update(step_, t_, stepDt, allParticleSteps_, done);
+    if (progressLine)
+      progress.update(step_, t_, stepDt, StableTimestep::name(stepLimit), allParticleSteps_, done);
     if (done) break;
   }
   if (progressLine) progress.finish();
@@ -303,6 +313,7 @@ void Simulation::writeCheckpoint(double wallSeconds, CheckpointKind kind) {
       out.value(inputHash_);
       out.value(t_);
       out.value(dt_);
+      out.value<int32_t>(dtLimit_);
       out.value(step_);
       out.value(particleSteps);
       out.value(wallSeconds);
@@ -378,6 +389,9 @@ Simulation::CheckpointRead Simulation::readCheckpoint(const std::string& path, b
   read.inputHash = in.value<uint64_t>();
   t_ = in.value<double>();
   dt_ = in.value<double>();
+  dtLimit_ = static_cast<StableTimestep::Limit>(in.value<int32_t>());
+  if (dtLimit_ < 0 || dtLimit_ >= StableTimestep::kLimits)
+    throw std::runtime_error(path + ": unknown time-step limit " + std::to_string(dtLimit_));
   step_ = in.value<long>();
   // Every rank's particle-steps so far, counted once (on rank 0).
   particleSteps_ = in.value<double>() * (Communicator::isRoot() ? 1 : 0);
@@ -473,6 +487,14 @@ void Simulation::printTimings() const {
   for (size_t i = 0; i < timers.names().size(); ++i)
     std::fprintf(stderr, "  %-34s %10.3f %6.1f%%\n", timers.names()[i].c_str(), seconds[i],
                  total > 0 ? 100 * seconds[i] / total : 0.0);
+  std::string limits;
+  for (int l = 0; l < StableTimestep::kLimits; ++l)
+    if (stepsLimitedBy_[l] > 0)
+      limits += (limits.empty() ? "" : ", ") +
+                std::string(StableTimestep::name(static_cast<StableTimestep::Limit>(l))) + " " +
+                std::to_string(stepsLimitedBy_[l]);
+  if (!limits.empty()) std::fprintf(stderr, "  steps whose dt the limit set: %s\n", limits.c_str());
+  std::fprintf(stderr, "  instruction set: %s\n", instructionSet().c_str());
   std::fprintf(stderr, "  particle-steps per second: %.4e\n",
                wallSeconds_ > 0 ? particleSteps / wallSeconds_ : 0.0);
   if (Communicator::size() > 1)

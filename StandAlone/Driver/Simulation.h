@@ -1,6 +1,7 @@
 // A run of one input: setup (all validation, before any output), then the time loop.
 #pragma once
 
+#include <array>
 #include <memory>
 #include <string>
 
@@ -53,6 +54,8 @@ class Simulation {
   void setup();
   // The end of a step: time, step count and the next dt.
   void finishStep();
+  // dt_ for the step from t_: the multiplier times the state's stable dt, then <Time>'s clamps.
+  void takeStableTimestep(double previousDt);
   // At an output step of a distributed run: draws the boxes anew from the particle counts when
   // the particles per rank (max/mean) grew by kRebalanceImbalance since they were drawn; true
   // if it did. Collective.
@@ -88,6 +91,8 @@ class Simulation {
   CheckpointSchedule checkpoints_;
   std::string newestCheckpoint_;  // of either kind: where a replay to the last good state starts
   double t_ = 0, dt_ = 0;
+  StableTimestep::Limit dtLimit_ = StableTimestep::Mechanics;   // the limit that set dt_
+  std::array<long, StableTimestep::kLimits> stepsLimitedBy_{};  // steps of this process's run
   long step_ = 0;
   double particleSteps_ = 0, wallSeconds_ = 0;  // particle-steps of this rank
   double allParticleSteps_ = 0;                 // of every rank, in this process's run

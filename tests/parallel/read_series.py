@@ -44,7 +44,12 @@ def main():
         print(f"t = {t:.6g}: {n} particles, {len(arrays)} arrays")
     if "--like" in sys.argv:
         b = series(sys.argv[sys.argv.index("--like") + 1])
-        if [(round(t, 12), n, arrays) for t, n, arrays in a] != [(round(t, 12), n, arrays) for t, n, arrays in b]:
+        # Times to round-off: the ranks sum shared nodes in another order, so dt (Eq. 43 from the
+        # particle velocities) may differ in its last bits.
+        same = len(a) == len(b) and all(
+            abs(ta - tb) <= 1e-12 * max(abs(ta), abs(tb)) and (na, xa) == (nb, xb)
+            for (ta, na, xa), (tb, nb, xb) in zip(a, b))
+        if not same:
             sys.exit("the series differ in times, particle counts or arrays")
         print(f"{len(a)} times, the same particles and arrays as the other series")
     return 0

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "Components/MPM/ReactiveFlow/FluxRestriction.h"
 #include "Components/MPM/ReactiveFlow/FluxSurfaceArea.h"
 #include "Core/Parallel/Communicator.h"
 
@@ -65,7 +66,7 @@ std::vector<ExternalScalarFlux::Flagged> ExternalScalarFlux::assignToParticles(
 }
 
 void ExternalScalarFlux::computeFluxRates(std::vector<MPMMaterial>& materials, double t) {
-  maxRateCoefficient_ = 0;
+  maxInflowRate_ = maxOutflowRate_ = 0;
   if (bcs_.empty()) return;
   std::vector<double> J(bcs_.size());
   for (size_t b = 0; b < bcs_.size(); ++b) J[b] = sign_ * bcs_[b].load.at(t);
@@ -74,10 +75,10 @@ void ExternalScalarFlux::computeFluxRates(std::vector<MPMMaterial>& materials, d
     if (p.loadCurveID.empty()) continue;
     const double cmax = mat.diffusion->maxConcentration;
     const long n = static_cast<long>(p.count());
-    double kmax = 0;
-#pragma omp parallel for schedule(static) reduction(max : kmax)
+    double inflow = 0, outflow = 0;
+#pragma omp parallel for schedule(static) reduction(max : inflow, outflow)
     for (long i = 0; i < n; ++i) {
-      double rate = 0, k = 0;
+      double rate = 0, in = 0, out = 0;
       for (int s = 0; s < 3 && p.loadCurveID[i][s] > 0; ++s) {
         const int b = p.loadCurveID[i][s] - 1;
         const double area =
@@ -85,15 +86,43 @@ void ExternalScalarFlux::computeFluxRates(std::vector<MPMMaterial>& materials, d
                 ? p.area[i][s] * bcs_[b].areaStretch(p.F[i], p.x[i] - p.displacement[i])
                 : p.area[i][s];
         rate += J[b] * area;
-        k += std::abs(J[b]) * area;
+        (J[b] > 0 ? in : out) += std::abs(J[b]) * area;
       }
       // Eq. 17 restricts inflow as c -> 1; outflow is restricted the same way as c -> 0.
       const double c = p.concentration[i] / cmax;
       p.externalScalarFlux[i] = rate / p.volume[i] * fluxRestriction(c, rate >= 0) * cmax;
-      kmax = std::max(kmax, k / p.volume[i]);
+      inflow = std::max(inflow, in / p.volume[i]);
+      outflow = std::max(outflow, out / p.volume[i]);
     }
-    maxRateCoefficient_ = std::max(maxRateCoefficient_, kmax);
+    maxInflowRate_ = std::max(maxInflowRate_, inflow);
+    maxOutflowRate_ = std::max(maxOutflowRate_, outflow);
   }
+}
+
+double ExternalScalarFlux::stableTimestep(const std::vector<MPMMaterial>& materials) const {
+  // A particle's source s_p = R(c_p) sum_i S_ip G_i / W_i (docs/diffusion.md step 5), and each
+  // G_i / W_i is a weighted mean of unrestricted rates, at most the largest of its sign. The
+  // step to the root falls as c nears it, so the fullest particle below the root (for an
+  // outflow: the emptiest above e^-4) bounds them all.
+  double fullest = 0, emptiest = 1;
+  for (const MPMMaterial& mat : materials) {
+    const ParticleSet& p = mat.particles;
+    if (p.loadCurveID.empty()) continue;
+    const double cmax = mat.diffusion->maxConcentration;
+    const long n = static_cast<long>(p.count());
+#pragma omp parallel for schedule(static) reduction(max : fullest) reduction(min : emptiest)
+    for (long i = 0; i < n; ++i) {
+      const double c = p.concentration[i] / cmax;
+      if (c < kRestrictionRoot) fullest = std::max(fullest, c);
+      if (1 - c < kRestrictionRoot) emptiest = std::min(emptiest, c);
+    }
+  }
+  double lows[4] = {-maxInflowRate_, -maxOutflowRate_, -fullest, emptiest};
+  Communicator::minimum(lows, 4);
+  double dt = std::numeric_limits<double>::infinity();
+  if (lows[0] < 0) dt = std::min(dt, fluxStepToRoot(-lows[2]) / -lows[0]);
+  if (lows[1] < 0) dt = std::min(dt, fluxStepToRoot(1 - lows[3]) / -lows[1]);
+  return dt;
 }
 
 void ExternalScalarFlux::updateAutoCycle(const std::vector<MPMMaterial>& materials,
@@ -126,12 +155,14 @@ void ExternalScalarFlux::updateAutoCycle(const std::vector<MPMMaterial>& materia
 
 void ExternalScalarFlux::saveState(BinaryWriter& out) const {
   out.value(sign_);
-  out.value(maxRateCoefficient_);
+  out.value(maxInflowRate_);
+  out.value(maxOutflowRate_);
 }
 
 void ExternalScalarFlux::loadState(BinaryReader& in) {
   sign_ = in.value<double>();
-  maxRateCoefficient_ = in.value<double>();
+  maxInflowRate_ = in.value<double>();
+  maxOutflowRate_ = in.value<double>();
 }
 
 void markSourceNodes(const ParticleSet& p, const InterpolationWeights& W,

@@ -36,9 +36,14 @@ class ExternalScalarFlux {
                                          const std::vector<MaterialSeeds>& seeds,
                                          const Grid& grid) const;
   // Eqs. 16-17: rate_p = R(c_p) sum_k J_k(t) A_k / V_p, the restriction applied once; also the
-  // largest unrestricted rate coefficient sum |J| A / V for the time-step limit.
+  // largest unrestricted inflow and outflow rates, sum J A / V over the BCs of either sign, for
+  // the time-step limit.
   void computeFluxRates(std::vector<MPMMaterial>& materials, double t);
-  double maxRateCoefficient() const { return maxRateCoefficient_; }
+  // The flux limit (docs/diffusion.md, "Time step"): the longest step in which no particle of a
+  // material the fluxes reach passes the restriction's root, taken at the fullest particle below
+  // the root (the emptiest above the mirrored root for an outflow), as every particle's source
+  // is at most R(c) times the largest rate; over all ranks, infinity without flux. Collective.
+  double stableTimestep(const std::vector<MPMMaterial>& materials) const;
   // <do_auto_cycle_bc>: flips the sign of every flux when the concentration of the particles
   // that receive flux crosses the thresholds.
   void updateAutoCycle(const std::vector<MPMMaterial>& materials, const MPMFlags& flags);
@@ -48,8 +53,9 @@ class ExternalScalarFlux {
 
  private:
   std::vector<ScalarFluxBC> bcs_;
-  double sign_ = 1;                // do_auto_cycle_bc: +1 lithiates, -1 delithiates
-  double maxRateCoefficient_ = 0;  // max unrestricted sum |J| A / V over particles
+  double sign_ = 1;            // do_auto_cycle_bc: +1 lithiates, -1 delithiates
+  double maxInflowRate_ = 0;   // max over particles of sum J A / V over the BCs with J > 0
+  double maxOutflowRate_ = 0;  // the same for |J|, J < 0
 };
 
 // Marks, on nodes [begin, end), the nodes the flux sources of this step reach: those of the

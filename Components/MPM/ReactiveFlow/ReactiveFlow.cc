@@ -187,14 +187,10 @@ void ReactiveFlow::checkConcentrationRange(const std::vector<MPMMaterial>& mater
   }
 }
 
-double ReactiveFlow::stableTimestep(const Grid& grid) const {
-  double dt = std::numeric_limits<double>::infinity();
+double ReactiveFlow::diffusionTimestep(const Grid& grid) const {
   const double dx = grid.dx.minCoeff();
-  if (maxDiffusivity_ > 0) dt = std::min(dt, dx * dx / (2 * maxDiffusivity_));  // Eq. 44
-  // The flux limit: no particle steps past the restriction's root in one step.
-  if (flux_.maxRateCoefficient() > 0)
-    dt = std::min(dt, 1.0 / (kRestrictionSlope * flux_.maxRateCoefficient()));
-  return dt;
+  return maxDiffusivity_ > 0 ? dx * dx / (2 * maxDiffusivity_)  // Eq. 44
+                             : std::numeric_limits<double>::infinity();
 }
 
 void ReactiveFlow::summarize(const std::vector<MPMMaterial>& materials, StepSummary& s) const {

@@ -70,8 +70,12 @@ class ReactiveFlow {
   // diffusivity (Eq. 23 or 24) and flux rates (Eqs. 16-17), which output, the next time step
   // and the next step use.
   void updateDiffusionState(std::vector<MPMMaterial>& materials, double t);
-  // Eq. 44 and the flux limit (docs/diffusion.md, "Time step").
-  double stableTimestep(const Grid& grid) const;
+  // Eq. 44 over this rank's particles: dx^2 / (2 D_max), infinity without diffusivity.
+  double diffusionTimestep(const Grid& grid) const;
+  // The flux limit over all ranks (docs/diffusion.md, "Time step"). Collective.
+  double fluxTimestep(const std::vector<MPMMaterial>& materials) const {
+    return flux_.stableTimestep(materials);
+  }
 
   // Adds the total lithium and the concentration range (initialised by the caller).
   void summarize(const std::vector<MPMMaterial>& materials, StepSummary& s) const;

@@ -1,0 +1,30 @@
+// The stable time step of the current state before the multiplier (paper Eq. 45): the smallest
+// of the mechanical limit (Eq. 43), the diffusion limit (Eq. 44) and the flux limit
+// (docs/diffusion.md, "Time step"), each over all ranks, and which of them sets it.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <limits>
+
+namespace anode {
+
+struct StableTimestep {
+  enum Limit { Mechanics, Diffusion, Flux, kLimits };
+  // Each limit's dt; infinity where it does not apply.
+  std::array<double, kLimits> bound{std::numeric_limits<double>::infinity(),
+                                    std::numeric_limits<double>::infinity(),
+                                    std::numeric_limits<double>::infinity()};
+
+  double dt() const { return *std::min_element(bound.begin(), bound.end()); }
+  Limit binding() const {
+    return static_cast<Limit>(std::min_element(bound.begin(), bound.end()) - bound.begin());
+  }
+  static const char* name(Limit limit) {
+    constexpr const char* names[kLimits] = {"mechanics (Eq. 43)", "diffusion (Eq. 44)",
+                                            "flux restriction"};
+    return names[limit];
+  }
+};
+
+}  // namespace anode
