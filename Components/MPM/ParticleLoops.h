@@ -9,6 +9,7 @@
 #include "Components/MPM/GridFields.h"
 #include "Components/MPM/Interpolator.h"
 #include "Components/MPM/ParticleSet.h"
+#include "Core/Math/Simd.h"
 
 namespace anode {
 
@@ -56,9 +57,28 @@ struct ParticleUpdate {
   double dt;
 };
 
+// The stress update's inputs and outputs for one block of particles, a lane each
+// (Core/Math/Simd.h); lanes without a particle, or with an inverted one, hold an unstrained
+// placeholder and are not written back.
+struct StressBlock {
+  Mat3Pack stress, rotation, F, L;
+  Pack dc, ep, epdot;
+  bool update[Pack::size()];
+
+  void setPlaceholder(int l) {
+    setLane(stress, l, Mat3::Zero());
+    setLane(rotation, l, Mat3::Identity());
+    setLane(F, l, Mat3::Identity());
+    setLane(L, l, Mat3::Zero());
+    dc[l] = ep[l] = epdot[l] = 0;
+    update[l] = false;
+  }
+};
+
 // G2P and the stress update of particles [0, n) (Eqs. 8, 25-39): velocity, position and F from
-// the grid, volume, the concentration kernel's update, then the model's stress. Returns the
-// first particle whose det F is not positive (n if none); its stress is not updated.
+// the grid, volume, the concentration kernel's update, then the model's stress, one block of
+// Pack::size() particles at a time. Returns the first particle whose det F is not positive (n if
+// none); its stress is not updated.
 template <class Model, class Concentration>
 long updateParticles(ParticleSet& p, const ParticleUpdate& u, const Model& model,
                      const Concentration& concentration) {
@@ -67,50 +87,69 @@ long updateParticles(ParticleSet& p, const ParticleUpdate& u, const Model& model
   const bool yields = model.canYield();
   const double dt = u.dt;
   const long n = static_cast<long>(p.count());
+  constexpr int lanes = static_cast<int>(Pack::size());
+  const long blocks = (n + lanes - 1) / lanes;
   long firstInverted = n;
 #pragma omp parallel for schedule(static) reduction(min : firstInverted)
-  for (long i = 0; i < n; ++i) {
-    Mat3 gradV = Mat3::Zero();
-    Vec3 acc = Vec3::Zero(), vel = Vec3::Zero();
-    typename Concentration::Particle c{};
-    const size_t b = W.offset[i];
-    for (int e = 0; e < W.count[i]; ++e) {
-      const int k = W.node[b + e];
-      const double w = W.weight[b + e];
-      gradV.noalias() += g.velocityStar[k] * W.gradient[b + e].transpose();
-      acc += g.acceleration[k] * w;
-      vel += g.velocityStar[k] * w;
-      concentration.gather(c, k, w, W.gradient[b + e]);
-    }
-    // F^{n+1} = (I + L dt/N)^N F^n, subcycled when L dt is large (Uintah's rule).
-    const int cycles =
-        std::min(std::max(u.minimumSubcyclesForF, 2 * static_cast<int>(gradV.norm() * dt)), 10000);
-    const Mat3 increment = Mat3::Identity() + gradV * (dt / cycles);
-    Mat3 F = p.F[i];
-    for (int s = 0; s < cycles; ++s) F = increment * F;
-    const double J = F.determinant();
-    p.velocity[i] += acc * dt;
-    p.x[i] += vel * dt;
-    p.displacement[i] += vel * dt;
-    p.volume[i] = p.mass[i] / u.density * J;
-    const double dc = concentration.update(i, c, dt);
-    if (!(J > 0)) {  // no stress update for an inverted particle: the caller stops the run
-      firstInverted = std::min(firstInverted, i);
+  for (long block = 0; block < blocks; ++block) {
+    StressBlock s;
+    for (int l = 0; l < lanes; ++l) {
+      const long i = block * lanes + l;
+      if (i >= n) {
+        s.setPlaceholder(l);
+        continue;
+      }
+      Mat3 gradV = Mat3::Zero();
+      Vec3 acc = Vec3::Zero(), vel = Vec3::Zero();
+      typename Concentration::Particle c{};
+      const size_t b = W.offset[i];
+      for (int e = 0; e < W.count[i]; ++e) {
+        const int k = W.node[b + e];
+        const double w = W.weight[b + e];
+        gradV.noalias() += g.velocityStar[k] * W.gradient[b + e].transpose();
+        acc += g.acceleration[k] * w;
+        vel += g.velocityStar[k] * w;
+        concentration.gather(c, k, w, W.gradient[b + e]);
+      }
+      // F^{n+1} = (I + L dt/N)^N F^n, subcycled when L dt is large (Uintah's rule).
+      const int cycles = std::min(
+          std::max(u.minimumSubcyclesForF, 2 * static_cast<int>(gradV.norm() * dt)), 10000);
+      const Mat3 increment = Mat3::Identity() + gradV * (dt / cycles);
+      Mat3 F = p.F[i];
+      for (int step = 0; step < cycles; ++step) F = increment * F;
+      const double J = F.determinant();
+      p.velocity[i] += acc * dt;
+      p.x[i] += vel * dt;
+      p.displacement[i] += vel * dt;
+      p.volume[i] = p.mass[i] / u.density * J;
+      const double dc = concentration.update(i, c, dt);
       p.F[i] = F;
-      continue;
+      if (!(J > 0)) {  // no stress update for an inverted particle: the caller stops the run
+        firstInverted = std::min(firstInverted, i);
+        s.setPlaceholder(l);
+        continue;
+      }
+      setLane(s.stress, l, p.stress[i]);
+      setLane(s.rotation, l, p.rotation[i]);
+      setLane(s.F, l, F);
+      setLane(s.L, l, gradV);
+      s.dc[l] = u.swells ? dc : 0.0;
+      s.ep[l] = yields ? p.plasticStrain[i] : 0.0;
+      s.epdot[l] = yields ? p.plasticStrainRate[i] : 0.0;
+      s.update[l] = true;
     }
-    double ep = 0, epdot = 0;
-    if (yields) {
-      ep = p.plasticStrain[i];
-      epdot = p.plasticStrainRate[i];
+    const Mat3Pack stress =
+        model.updateStress(s.stress, s.rotation, s.F, s.L, s.dc, dt, s.ep, s.epdot);
+    for (int l = 0; l < lanes; ++l) {
+      if (!s.update[l]) continue;
+      const long i = block * lanes + l;
+      p.stress[i] = lane(stress, l);
+      p.rotation[i] = lane(s.rotation, l);
+      if (yields) {
+        p.plasticStrain[i] = s.ep[l];
+        p.plasticStrainRate[i] = s.epdot[l];
+      }
     }
-    p.stress[i] = model.updateStress(p.stress[i], p.rotation[i], F, gradV, u.swells ? dc : 0.0, dt,
-                                     ep, epdot);
-    if (yields) {
-      p.plasticStrain[i] = ep;
-      p.plasticStrainRate[i] = epdot;
-    }
-    p.F[i] = F;
   }
   return firstInverted;
 }

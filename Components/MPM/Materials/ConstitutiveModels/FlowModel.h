@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "Core/Math/Simd.h"
 #include "Core/ProblemSpec/ProblemSpec.h"
 
 namespace anode {
@@ -16,14 +17,17 @@ struct FlowModel {
 
   static FlowModel fromInput(const PSNode& flowNode);
 
-  double flowStress(double ep) const {
-    if (type == Type::IsotropicHardening) return sigmaY + K * ep;
-    return A + B * std::pow(ep, n);
+  // For one particle (S = double) or a pack of them (Core/Math/Simd.h).
+  template <class S>
+  S flowStress(const S& ep) const {
+    if (type == Type::IsotropicHardening) return S(sigmaY) + S(K) * ep;
+    return S(A) + S(B) * powOf(ep, n);
   }
   // d sigma_y / d eps_p.
-  double hardeningModulus(double ep) const {
-    if (type == Type::IsotropicHardening) return K;
-    return ep > 0 ? B * n * std::pow(ep, n - 1) : 0.0;
+  template <class S>
+  S hardeningModulus(const S& ep) const {
+    if (type == Type::IsotropicHardening) return S(K);
+    return select(ep > S(0.0), S(B * n) * powOf(ep, n - 1), S(0.0));
   }
 };
 

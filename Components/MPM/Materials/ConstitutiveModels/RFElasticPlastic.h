@@ -7,6 +7,8 @@
 
 #include "Components/MPM/Materials/ConstitutiveModels/ConstitutiveModel.h"
 #include "Components/MPM/Materials/ConstitutiveModels/FlowModel.h"
+#include "Core/Math/PolarDecomposition.h"
+#include "Core/Math/Simd.h"
 
 namespace anode {
 
@@ -24,15 +26,74 @@ class RFElasticPlastic : public ConstitutiveModel {
   bool canYield() const override { return flow_.has_value(); }
   ConcreteConstitutiveModel concrete() const override { return this; }
 
-  // One particle: returns the new lab-frame stress; `rotation` is R of the old F on entry and R
-  // of Fnew on return; ep/epdot are the plastic strain and its rate (untouched for an elastic
-  // material); dc is the concentration change of the step.
+  // Returns the new lab-frame stress; `rotation` is R of the old F on entry and R of Fnew on
+  // return; ep/epdot are the plastic strain and its rate (untouched for an elastic material); dc
+  // is the concentration change of the step. For one particle (S = double) or a pack of them
+  // (Core/Math/Simd.h: each lane gets the bits of the scalar update).
+  template <class S>
+  Mat3Of<S> updateStress(const Mat3Of<S>& stress, Mat3Of<S>& rotation, const Mat3Of<S>& Fnew,
+                         const Mat3Of<S>& L, const S& dc, double dt, S& ep, S& epdot) const;
   Mat3 updateStress(const Mat3& stress, Mat3& rotation, const Mat3& Fnew, const Mat3& L, double dc,
-                    double dt, double& ep, double& epdot) const;
+                    double dt, double& ep, double& epdot) const {
+    return updateStress<double>(stress, rotation, Fnew, L, dc, dt, ep, epdot);
+  }
 
  private:
   double K_, G_, eta_;
   std::optional<FlowModel> flow_;
 };
+
+template <class S>
+Mat3Of<S> RFElasticPlastic::updateStress(const Mat3Of<S>& stress, Mat3Of<S>& rotation,
+                                         const Mat3Of<S>& Fnew, const Mat3Of<S>& L, const S& dc,
+                                         double dt, S& ep, S& epdot) const {
+  using M = Mat3Of<S>;
+  const M I = M::Identity();
+  // Unrotate the rate of deformation and the stress with R of the old F (Eqs. 26-29).
+  const M Rold = rotation;
+  const M D = S(0.5) * (L + L.transpose());
+  // Elastic-plus-plastic rate: the swelling rate eta dc/dt on each normal component removed
+  // (Eqs. 25, 33, 36); c of this step, not the previous one as in Uintah.
+  const M Dbar = Rold.transpose() * D * Rold - S(eta_) * dc / S(dt) * I;
+  const M sigmaBar = Rold.transpose() * stress * Rold;
+
+  // Hypoelastic trial (Eqs. 31, 37-38): deviatoric and volumetric parts separately.
+  const S trD = Dbar.trace();
+  const M Ddev = Dbar - trD / S(3.0) * I;
+  const S mean = sigmaBar.trace() / S(3.0);
+  M s = sigmaBar - mean * I + S(2.0 * G_ * dt) * Ddev;
+
+  if (flow_) {
+    // Radial return to the von Mises surface (Eqs. 34-35), in the lanes that yield; each lane's
+    // Newton iteration stops where it converges.
+    const S sNorm = frobeniusNorm(s);
+    const double sqrt23 = std::sqrt(2.0 / 3.0);
+    const auto yields = S(std::sqrt(1.5)) * sNorm > flow_->flowStress(ep);
+    epdot = S(0.0);
+    if (anyOf(yields)) {
+      S dgamma(0.0);
+      auto iterating = yields;
+      for (int iter = 0; iter < 50; ++iter) {
+        const S e = ep + S(sqrt23) * dgamma;
+        const S g = sNorm - S(sqrt23) * flow_->flowStress(e) - S(2.0 * G_) * dgamma;
+        const S dg = S(-2.0 / 3.0) * flow_->hardeningModulus(e) - S(2.0 * G_);
+        const S step = g / dg;
+        dgamma = select(iterating, dgamma - step, dgamma);
+        iterating = iterating && !(absOf(step) <= S(1e-15) * sNorm / S(G_));
+        if (!anyOf(iterating)) break;
+      }
+      dgamma = maxOf(dgamma, S(0.0));
+      const S scale = S(1.0) - S(2.0 * G_) * dgamma / sNorm;
+      for (int k = 0; k < 9; ++k) s(k) = select(yields, s(k) * scale, s(k));
+      ep = select(yields, ep + S(sqrt23) * dgamma, ep);
+      epdot = select(yields, S(sqrt23) * dgamma / S(dt), S(0.0));
+    }
+  }
+  // default_hypo equation of state: p_{n+1} = p_n + K tr(D) dt (Eq. 38, volumetric part).
+  const M sigmaBarNew = s + (mean + S(K_) * trD * S(dt)) * I;
+  // Rotate back with R of the new F (Eq. 39).
+  rotation = rotationOf(Fnew);
+  return rotation * sigmaBarNew * rotation.transpose();
+}
 
 }  // namespace anode
