@@ -1,96 +1,129 @@
 #include "vis/VTKWriters.h"
 
-#include <vtkCellArray.h>
-#include <vtkDoubleArray.h>
-#include <vtkImageData.h>
-#include <vtkPointData.h>
-#include <vtkPoints.h>
-#include <vtkSmartPointer.h>
-#include <vtkTypeInt64Array.h>
-#include <vtkUnstructuredGrid.h>
-#include <vtkXMLImageDataWriter.h>
-#include <vtkXMLUnstructuredGridWriter.h>
-
 #include <cstdio>
 #include <iomanip>
+#include <memory>
 #include <sstream>
 #include <stdexcept>
 
 #include "Core/Util/AtomicFile.h"
+#include "vis/AppendedData.h"
 
 namespace anode {
 
 namespace {
 
-// Wraps the array's own storage (no copy: output must not double the memory of a large run);
-// `a` must outlive the VTK object.
-vtkSmartPointer<vtkDataArray> toVTK(const NamedArray& a, size_t tuples) {
-  const vtkIdType values = static_cast<vtkIdType>(tuples) * a.components;
-  if (a.isInteger()) {
-    auto arr = vtkSmartPointer<vtkTypeInt64Array>::New();
-    arr->SetName(a.name.c_str());
-    arr->SetNumberOfComponents(a.components);
-    arr->SetArray(
-        const_cast<vtkTypeInt64*>(reinterpret_cast<const vtkTypeInt64*>(a.integer.data())), values,
-        1);
-    return arr;
+constexpr const char* fileHeader =
+    "<?xml version=\"1.0\"?>\n<VTKFile type=\"%s\" version=\"1.0\" byte_order=\"LittleEndian\" "
+    "header_type=\"UInt64\" compressor=\"vtkZLibDataCompressor\">\n";
+
+// The arrays of one file, described in its XML and stored in its appended section.
+class ArrayList {
+ public:
+  void add(const char* type, const std::string& name, int components, const void* data,
+           size_t bytes) {
+    descriptions_.push_back({type, name, components});
+    raw_.push_back({data, bytes});
   }
-  auto arr = vtkSmartPointer<vtkDoubleArray>::New();
-  arr->SetName(a.name.c_str());
-  arr->SetNumberOfComponents(a.components);
-  arr->SetArray(const_cast<double*>(a.real.data()), values, 1);
-  return arr;
+  void add(const NamedArray& a, size_t tuples) {
+    const size_t values = tuples * static_cast<size_t>(a.components);
+    if (a.isInteger())
+      add("Int64", a.name, a.components, a.integer.data(), values * sizeof(int64_t));
+    else
+      add("Float64", a.name, a.components, a.real.data(), values * sizeof(double));
+  }
+  // The <DataArray> lines of arrays [first, last).
+  std::string xml(size_t first, size_t last, const AppendedData& data) const {
+    std::ostringstream s;
+    for (size_t k = first; k < last; ++k) {
+      const Description& d = descriptions_[k];
+      s << "        <DataArray type=\"" << d.type << "\" Name=\"" << d.name
+        << "\" NumberOfComponents=\"" << d.components << "\" format=\"appended\" offset=\""
+        << data.offset(k) << "\"/>\n";
+    }
+    return s.str();
+  }
+  size_t size() const { return raw_.size(); }
+  const std::vector<RawArray>& raw() const { return raw_; }
+
+ private:
+  struct Description {
+    const char* type;
+    std::string name;
+    int components;
+  };
+  std::vector<Description> descriptions_;
+  std::vector<RawArray> raw_;
+};
+
+// The XML `head`, then the appended section, written atomically.
+void writeVTKFile(const std::string& path, const std::string& head, const AppendedData& data) {
+  writeAtomically(path, [&](const std::string& tmp) {
+    std::unique_ptr<std::FILE, int (*)(std::FILE*)> out(std::fopen(tmp.c_str(), "wb"),
+                                                        &std::fclose);
+    if (!out) throw std::runtime_error("cannot open " + tmp + " for writing");
+    const std::string open = head + "  <AppendedData encoding=\"raw\">\n   _";
+    const std::string close = "\n  </AppendedData>\n</VTKFile>\n";
+    bool ok = std::fwrite(open.data(), 1, open.size(), out.get()) == open.size();
+    data.write(out.get());
+    ok = ok && std::fwrite(close.data(), 1, close.size(), out.get()) == close.size();
+    ok = std::fclose(out.release()) == 0 && ok;
+    if (!ok) throw std::runtime_error("cannot write " + tmp);
+  });
 }
 
-template <class Writer>
-void runWriter(Writer* writer, const std::string& path) {
-  writeAtomically(path, [&](const std::string& tmp) {
-    writer->SetFileName(tmp.c_str());
-    writer->SetDataModeToBinary();
-    writer->SetCompressorTypeToZLib();
-    // Level 1: particle doubles barely compress further at VTK's default 5 (the same 15 MB for
-    // three outputs of the 141k-particle case), which takes a third longer.
-    writer->SetCompressionLevel(1);
-    if (writer->Write() != 1) throw std::runtime_error("VTK could not write " + tmp);
-  });
+std::string formatHeader(const char* type) {
+  char text[256];
+  std::snprintf(text, sizeof text, fileHeader, type);
+  return text;
 }
 
 }  // namespace
 
 void writeParticlesVTU(const std::string& path, const ParticleData& data) {
   const size_t n = data.count();
-  auto coordinates = vtkSmartPointer<vtkDoubleArray>::New();
-  coordinates->SetNumberOfComponents(3);
-  coordinates->SetArray(const_cast<double*>(data.points.data()), static_cast<vtkIdType>(3 * n), 1);
-  auto points = vtkSmartPointer<vtkPoints>::New();
-  points->SetData(coordinates);
-  auto cells = vtkSmartPointer<vtkCellArray>::New();
-  cells->AllocateExact(static_cast<vtkIdType>(n), static_cast<vtkIdType>(n));
+  ArrayList arrays;
+  for (const NamedArray& a : data.arrays) arrays.add(a, n);
+  const size_t pointData = arrays.size();
+  arrays.add("Float64", "Points", 3, data.points.data(), 3 * n * sizeof(double));
+  // One vertex cell per particle (VTK_VERTEX = 1).
+  std::vector<int64_t> connectivity(n), offsets(n);
   for (size_t i = 0; i < n; ++i) {
-    const vtkIdType id = static_cast<vtkIdType>(i);
-    cells->InsertNextCell(1, &id);
+    connectivity[i] = static_cast<int64_t>(i);
+    offsets[i] = static_cast<int64_t>(i) + 1;
   }
-  auto ug = vtkSmartPointer<vtkUnstructuredGrid>::New();
-  ug->SetPoints(points);
-  ug->SetCells(VTK_VERTEX, cells);
-  for (const NamedArray& a : data.arrays) ug->GetPointData()->AddArray(toVTK(a, n));
-  auto writer = vtkSmartPointer<vtkXMLUnstructuredGridWriter>::New();
-  writer->SetInputData(ug);
-  runWriter(writer.Get(), path);
+  const std::vector<uint8_t> types(n, 1);
+  arrays.add("Int64", "connectivity", 1, connectivity.data(), n * sizeof(int64_t));
+  arrays.add("Int64", "offsets", 1, offsets.data(), n * sizeof(int64_t));
+  arrays.add("UInt8", "types", 1, types.data(), n);
+  const AppendedData appended(arrays.raw());
+  std::ostringstream s;
+  s << formatHeader("UnstructuredGrid") << "  <UnstructuredGrid>\n    <Piece NumberOfPoints=\"" << n
+    << "\" NumberOfCells=\"" << n << "\">\n      <PointData>\n"
+    << arrays.xml(0, pointData, appended) << "      </PointData>\n      <Points>\n"
+    << arrays.xml(pointData, pointData + 1, appended) << "      </Points>\n      <Cells>\n"
+    << arrays.xml(pointData + 1, arrays.size(), appended)
+    << "      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n";
+  writeVTKFile(path, s.str(), appended);
 }
 
 void writeGridVTI(const std::string& path, const GridData& data) {
-  auto image = vtkSmartPointer<vtkImageData>::New();
-  image->SetExtent(data.first[0], data.first[0] + data.dims[0] - 1, data.first[1],
-                   data.first[1] + data.dims[1] - 1, data.first[2],
-                   data.first[2] + data.dims[2] - 1);
-  image->SetOrigin(data.origin[0], data.origin[1], data.origin[2]);
-  image->SetSpacing(data.spacing[0], data.spacing[1], data.spacing[2]);
   const size_t nodes = static_cast<size_t>(data.dims[0]) * data.dims[1] * data.dims[2];
-  for (const NamedArray& a : data.arrays) image->GetPointData()->AddArray(toVTK(a, nodes));
-  auto writer = vtkSmartPointer<vtkXMLImageDataWriter>::New();
-  writer->SetInputData(image);
-  runWriter(writer.Get(), path);
+  ArrayList arrays;
+  for (const NamedArray& a : data.arrays) arrays.add(a, nodes);
+  const AppendedData appended(arrays.raw());
+  std::ostringstream extent;
+  for (int d = 0; d < 3; ++d)
+    extent << (d ? " " : "") << data.first[d] << " " << data.first[d] + data.dims[d] - 1;
+  std::ostringstream s;
+  s << std::setprecision(17) << formatHeader("ImageData") << "  <ImageData WholeExtent=\""
+    << extent.str() << "\" Origin=\"" << data.origin[0] << " " << data.origin[1] << " "
+    << data.origin[2] << "\" Spacing=\"" << data.spacing[0] << " " << data.spacing[1] << " "
+    << data.spacing[2] << "\" Direction=\"1 0 0 0 1 0 0 0 1\">\n    <Piece Extent=\""
+    << extent.str() << "\">\n      <PointData>\n"
+    << arrays.xml(0, arrays.size(), appended)
+    << "      </PointData>\n    </Piece>\n  </ImageData>\n";
+  writeVTKFile(path, s.str(), appended);
 }
 
 namespace {
