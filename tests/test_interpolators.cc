@@ -116,6 +116,39 @@ TEST(Interpolators, CpdiReproducesLinearFieldsForRotatedAndShearedDomains) {
   }
 }
 
+TEST(Interpolators, CpdiCapacityHoldsEveryNodeTheWeightsWrite) {
+  // The storage laid out per particle (cpdiCapacity) must never be below the entries cpdiWeights
+  // writes: random rotated, sheared and stretched domains, also with corners on node planes.
+  const Grid g = testGrid();
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1, 1);
+  int onPlanes = 0;
+  for (int trial = 0; trial < 4000; ++trial) {
+    Mat3 F = Mat3::Identity();
+    for (int k = 0; k < 9; ++k) F(k) += 0.4 * u(rng);
+    if (F.determinant() < 0.2) continue;
+    const Mat3 size = Vec3(0.5, 0.25, 1.0 / 3).asDiagonal();
+    Vec3 x = 0.5 * (g.lower + g.upper) + Vec3(u(rng), u(rng), u(rng)).cwiseProduct(g.dx);
+    if (trial % 2 == 0) {
+      // An axis-aligned domain whose corners lie exactly on node planes.
+      F = Mat3::Identity();
+      x = g.nodePosition(4, 3, 5) + 0.5 * size.diagonal().cwiseProduct(g.dx);
+      x[trial % 3] += g.dx[trial % 3] * (trial % 7) / 4.0;
+      ++onPlanes;
+    }
+    Weights W;
+    W.count = cpdiWeights(g, x, size, F, W.node, W.w, W.grad);
+    ASSERT_GT(W.count, 0);
+    ASSERT_GE(cpdiCapacity(g, x, size, F), W.count) << "trial " << trial;
+  }
+  EXPECT_GT(onPlanes, 1000);
+  // Not more than needed either: half a cell wide, the domain inside one cell touches its 8
+  // nodes; across a node plane on every axis the 27 nodes of two cells, not 64.
+  const Mat3 size = Vec3(0.5, 0.5, 0.5).asDiagonal();
+  EXPECT_EQ(cpdiCapacity(g, g.nodePosition(4, 3, 5) + 0.5 * g.dx, size, Mat3::Identity()), 8);
+  EXPECT_EQ(cpdiCapacity(g, g.nodePosition(4, 3, 5), size, Mat3::Identity()), 27);
+}
+
 TEST(Interpolators, CpdiStretchedOverManyCellsStillPartitionsUnity) {
   // A domain spanning more than three cells per axis takes the unmerged path.
   const Grid g = testGrid();

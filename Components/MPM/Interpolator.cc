@@ -1,5 +1,6 @@
 #include "Components/MPM/Interpolator.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace anode {
@@ -120,18 +121,17 @@ void supportBounds(InterpolatorKind kind, const Grid& g, const Vec3& x, const Ma
 }
 
 int cpdiCapacity(const Grid& g, const Vec3& x, const Mat3& size, const Mat3& F) {
+  // The corners lie within xi +- r per axis, r the domain's half extent (as in supportBounds).
+  // A margin far above the corners' own round-off keeps the bound at or above the nodes
+  // cpdiWeights writes (one node plane more when a corner lies within the margin of a plane).
   const Mat3 A = F * size;
   const Vec3 xi = g.indexCoordinate(x);
-  int lo[3] = {1 << 30, 1 << 30, 1 << 30}, hi[3] = {-(1 << 30), -(1 << 30), -(1 << 30)};
-  for (int c = 0; c < 8; ++c) {
-    const Vec3 corner = xi + ((c & 1) ? 0.5 : -0.5) * A.col(0) + ((c & 2) ? 0.5 : -0.5) * A.col(1) +
-                        ((c & 4) ? 0.5 : -0.5) * A.col(2);
-    for (int d = 0; d < 3; ++d) {
-      lo[d] = std::min(lo[d], floorIndex(corner[d]));
-      hi[d] = std::max(hi[d], floorIndex(corner[d]) + 1);
-    }
+  const Vec3 r = 0.5 * A.cwiseAbs().rowwise().sum();
+  long span = 1;
+  for (int d = 0; d < 3; ++d) {
+    const double margin = 1e-12 * (std::abs(xi[d]) + r[d] + 1);
+    span *= floorIndex(xi[d] + r[d] + margin) - floorIndex(xi[d] - r[d] - margin) + 2;
   }
-  const long span = long(hi[0] - lo[0] + 1) * (hi[1] - lo[1] + 1) * (hi[2] - lo[2] + 1);
   return static_cast<int>(std::min(span, 64L));
 }
 
@@ -180,26 +180,29 @@ int cpdiWeights(const Grid& g, const Vec3& x, const Mat3& size, const Mat3& F, i
       }
     return count;
   }
-  // Corners of one particle share nodes: sum into a dense block so each node appears once.
-  double bw[64];
-  Vec3 bg[64];
+  // Corners of one particle share nodes: sum into a dense block so each node appears once (the
+  // gradient by component, so that a corner's two nodes along x are adjacent in memory).
+  double bw[64], bgx[64], bgy[64], bgz[64];
   const int slots = sx * sy * sz;
-  for (int b = 0; b < slots; ++b) {
-    bw[b] = 0;
-    bg[b].setZero();
-  }
+  std::fill_n(bw, slots, 0.0);
+  std::fill_n(bgx, slots, 0.0);
+  std::fill_n(bgy, slots, 0.0);
+  std::fill_n(bgz, slots, 0.0);
   for (int c = 0; c < 8; ++c) {
     const int base = ((f[c][2] - lo[2]) * sy + (f[c][1] - lo[1])) * sx + (f[c][0] - lo[0]);
     const double wx[2] = {1 - fr[c][0], fr[c][0]}, wy[2] = {1 - fr[c][1], fr[c][1]},
                  wz[2] = {1 - fr[c][2], fr[c][2]};
     for (int k = 0; k < 2; ++k)
-      for (int j = 0; j < 2; ++j)
+      for (int j = 0; j < 2; ++j) {
+        const int row = base + (k * sy + j) * sx;
         for (int i = 0; i < 2; ++i) {
           const double nl = wx[i] * wy[j] * wz[k];
-          const int slot = base + (k * sy + j) * sx + i;
-          bw[slot] += nl;
-          bg[slot] += nl * alpha[c];
+          bw[row + i] += nl;
+          bgx[row + i] += nl * alpha[c].x();
+          bgy[row + i] += nl * alpha[c].y();
+          bgz[row + i] += nl * alpha[c].z();
         }
+      }
   }
   const Vec3i n = g.nodes();
   const int first = g.nodeIndex(lo[0], lo[1], lo[2]);
@@ -210,7 +213,7 @@ int cpdiWeights(const Grid& g, const Vec3& x, const Mat3& size, const Mat3& F, i
         if (bw[slot] <= 0) continue;
         nodes[count] = first + (k * n.y() + j) * n.x() + i;
         w[count] = 0.125 * bw[slot];
-        grad[count] = bg[slot];
+        grad[count] = Vec3(bgx[slot], bgy[slot], bgz[slot]);
         ++count;
       }
   return count;
