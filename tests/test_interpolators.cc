@@ -116,21 +116,43 @@ TEST(Interpolators, CpdiReproducesLinearFieldsForRotatedAndShearedDomains) {
   }
 }
 
-TEST(Interpolators, CpdiCapacityHoldsEveryNodeTheWeightsWrite) {
-  // The storage laid out per particle (cpdiCapacity) must never be below the entries cpdiWeights
-  // writes: random rotated, sheared and stretched domains, also with corners on node planes.
+// The nodes of the cells the 8 corners of a CPDI domain fall in, at most 64 (cpdiWeights' span,
+// with its floor: a conversion after adding 1024, which rounds a corner within 1e-13 below a
+// node plane onto the plane).
+int cornerSpan(const Grid& g, const Vec3& x, const Mat3& size, const Mat3& F) {
+  const Mat3 A = F * size;
+  const Vec3 xi = g.indexCoordinate(x);
+  long span = 1;
+  for (int d = 0; d < 3; ++d) {
+    int lo = 1 << 30, hi = -(1 << 30);
+    for (int c = 0; c < 8; ++c) {
+      const Vec3 corner = xi + ((c & 1) ? 0.5 : -0.5) * A.col(0) +
+                          ((c & 2) ? 0.5 : -0.5) * A.col(1) + ((c & 4) ? 0.5 : -0.5) * A.col(2);
+      const int floor = static_cast<int>(corner[d] + 1024.0) - 1024;
+      lo = std::min(lo, floor);
+      hi = std::max(hi, floor + 1);
+    }
+    span *= hi - lo + 1;
+  }
+  return static_cast<int>(std::min(span, 64L));
+}
+
+TEST(Interpolators, CpdiCapacityIsTheSpanOfTheCorners) {
+  // The storage laid out per particle (cpdiCapacity) is never below the entries cpdiWeights
+  // writes and not above the nodes of the cells its corners fall in: random rotated, sheared
+  // and stretched domains, and axis-aligned ones with corners exactly on node planes (a grid
+  // fill's particles), where a bound with a margin would lay out 27 entries for 8.
   const Grid g = testGrid();
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> u(-1, 1);
   int onPlanes = 0;
   for (int trial = 0; trial < 4000; ++trial) {
     Mat3 F = Mat3::Identity();
-    for (int k = 0; k < 9; ++k) F(k) += 0.4 * u(rng);
+    for (int k = 0; k < 9; ++k) F(k) += 0.6 * u(rng);
     if (F.determinant() < 0.2) continue;
     const Mat3 size = Vec3(0.5, 0.25, 1.0 / 3).asDiagonal();
     Vec3 x = 0.5 * (g.lower + g.upper) + Vec3(u(rng), u(rng), u(rng)).cwiseProduct(g.dx);
     if (trial % 2 == 0) {
-      // An axis-aligned domain whose corners lie exactly on node planes.
       F = Mat3::Identity();
       x = g.nodePosition(4, 3, 5) + 0.5 * size.diagonal().cwiseProduct(g.dx);
       x[trial % 3] += g.dx[trial % 3] * (trial % 7) / 4.0;
@@ -139,13 +161,15 @@ TEST(Interpolators, CpdiCapacityHoldsEveryNodeTheWeightsWrite) {
     Weights W;
     W.count = cpdiWeights(g, x, size, F, W.node, W.w, W.grad);
     ASSERT_GT(W.count, 0);
-    ASSERT_GE(cpdiCapacity(g, x, size, F), W.count) << "trial " << trial;
+    const int capacity = cpdiCapacity(g, x, size, F);
+    ASSERT_GE(capacity, W.count) << "trial " << trial;
+    ASSERT_EQ(capacity, cornerSpan(g, x, size, F)) << "trial " << trial;
   }
   EXPECT_GT(onPlanes, 1000);
-  // Not more than needed either: half a cell wide, the domain inside one cell touches its 8
-  // nodes; across a node plane on every axis the 27 nodes of two cells, not 64.
+  // Half a cell wide, inside one cell: its 8 nodes; across a node plane on every axis: 27.
   const Mat3 size = Vec3(0.5, 0.5, 0.5).asDiagonal();
   EXPECT_EQ(cpdiCapacity(g, g.nodePosition(4, 3, 5) + 0.5 * g.dx, size, Mat3::Identity()), 8);
+  EXPECT_EQ(cpdiCapacity(g, g.nodePosition(4, 3, 5) + 0.25 * g.dx, size, Mat3::Identity()), 8);
   EXPECT_EQ(cpdiCapacity(g, g.nodePosition(4, 3, 5), size, Mat3::Identity()), 27);
 }
 

@@ -121,16 +121,17 @@ void supportBounds(InterpolatorKind kind, const Grid& g, const Vec3& x, const Ma
 }
 
 int cpdiCapacity(const Grid& g, const Vec3& x, const Mat3& size, const Mat3& F) {
-  // The corners lie within xi +- r per axis, r the domain's half extent (as in supportBounds).
-  // A margin far above the corners' own round-off keeps the bound at or above the nodes
-  // cpdiWeights writes (one node plane more when a corner lies within the margin of a plane).
+  // Per axis only the lowest and the highest of the 8 corners matter: summed in cpdiWeights'
+  // order, xi + s1 r1 + s2 r2 + s3 r3 with each s_j taking the sign that lowers (raises) the sum,
+  // they are those corners bit for bit (s_j r_j is exact and rounding is monotone).
   const Mat3 A = F * size;
   const Vec3 xi = g.indexCoordinate(x);
-  const Vec3 r = 0.5 * A.cwiseAbs().rowwise().sum();
   long span = 1;
   for (int d = 0; d < 3; ++d) {
-    const double margin = 1e-12 * (std::abs(xi[d]) + r[d] + 1);
-    span *= floorIndex(xi[d] + r[d] + margin) - floorIndex(xi[d] - r[d] - margin) + 2;
+    const double h0 = 0.5 * std::abs(A(d, 0)), h1 = 0.5 * std::abs(A(d, 1)),
+                 h2 = 0.5 * std::abs(A(d, 2));
+    const double lowest = xi[d] - h0 - h1 - h2, highest = xi[d] + h0 + h1 + h2;
+    span *= floorIndex(highest) - floorIndex(lowest) + 2;
   }
   return static_cast<int>(std::min(span, 64L));
 }
