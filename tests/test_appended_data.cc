@@ -24,15 +24,23 @@ namespace fs = std::filesystem;
 namespace anode {
 namespace {
 
-std::vector<unsigned char> writtenBytes(const AppendedData& data) {
-  char* buffer = nullptr;
-  size_t size = 0;
-  std::FILE* out = open_memstream(&buffer, &size);
-  data.write(out);
+// The section's bytes and the arrays' offsets, written after `lead` bytes of something else.
+struct Written {
+  std::vector<unsigned char> bytes;
+  std::vector<uint64_t> offsets;
+};
+Written writtenBytes(const std::vector<RawArray>& arrays, size_t lead = 7) {
+  std::FILE* out = std::tmpfile();
+  const std::vector<unsigned char> before(lead, 'x');
+  std::fwrite(before.data(), 1, lead, out);
+  Written w;
+  w.offsets = writeAppendedData(out, arrays);
+  const long size = std::ftell(out);
+  w.bytes.resize(static_cast<size_t>(size) - lead);
+  std::fseek(out, static_cast<long>(lead), SEEK_SET);
+  EXPECT_EQ(std::fread(w.bytes.data(), 1, w.bytes.size(), out), w.bytes.size());
   std::fclose(out);
-  std::vector<unsigned char> bytes(buffer, buffer + size);
-  std::free(buffer);
-  return bytes;
+  return w;
 }
 
 std::vector<unsigned char> randomBytes(size_t n, unsigned seed) {
@@ -43,17 +51,18 @@ std::vector<unsigned char> randomBytes(size_t n, unsigned seed) {
 }
 
 TEST(AppendedData, EveryArrayIsRecoveredFromVTKsBlockLayout) {
-  const size_t block = AppendedData::blockSize;
-  const std::vector<size_t> sizes = {0, 1, block, block + 1, 3 * block + 5};
+  // Also more blocks than one batch of compression (64).
+  const size_t block = kAppendedBlockSize;
+  const std::vector<size_t> sizes = {0, 1, block, block + 1, 3 * block + 5, 130 * block + 9};
   std::vector<std::vector<unsigned char>> arrays;
   std::vector<RawArray> raw;
   for (size_t k = 0; k < sizes.size(); ++k) arrays.push_back(randomBytes(sizes[k], k));
   for (const auto& a : arrays) raw.push_back({a.data(), a.size()});
-  const AppendedData data(raw);
-  const std::vector<unsigned char> bytes = writtenBytes(data);
+  const Written written = writtenBytes(raw);
+  const std::vector<unsigned char>& bytes = written.bytes;
   for (size_t k = 0; k < arrays.size(); ++k) {
     SCOPED_TRACE("array of " + std::to_string(sizes[k]) + " bytes");
-    const unsigned char* at = bytes.data() + data.offset(k);
+    const unsigned char* at = bytes.data() + written.offsets[k];
     uint64_t header[3];
     std::memcpy(header, at, sizeof header);
     const uint64_t blocks = header[0];
@@ -72,20 +81,20 @@ TEST(AppendedData, EveryArrayIsRecoveredFromVTKsBlockLayout) {
       next += compressed[b];
     }
     EXPECT_EQ(recovered, arrays[k]);
-    const size_t end = k + 1 < arrays.size() ? data.offset(k + 1) : bytes.size();
+    const size_t end = k + 1 < arrays.size() ? written.offsets[k + 1] : bytes.size();
     EXPECT_EQ(static_cast<size_t>(next - bytes.data()), end) << "arrays follow each other";
   }
 }
 
 TEST(AppendedData, BytesDoNotDependOnTheThreadCount) {
-  const std::vector<unsigned char> a = randomBytes(10 * AppendedData::blockSize + 3, 1);
+  const std::vector<unsigned char> a = randomBytes(100 * kAppendedBlockSize + 3, 1);
   const std::vector<unsigned char> b = randomBytes(77, 2);
   const std::vector<RawArray> raw = {{a.data(), a.size()}, {b.data(), b.size()}};
   const int threads = omp_get_max_threads();
   omp_set_num_threads(1);
-  const std::vector<unsigned char> one = writtenBytes(AppendedData(raw));
+  const std::vector<unsigned char> one = writtenBytes(raw).bytes;
   omp_set_num_threads(3);
-  const std::vector<unsigned char> three = writtenBytes(AppendedData(raw));
+  const std::vector<unsigned char> three = writtenBytes(raw).bytes;
   omp_set_num_threads(threads);
   EXPECT_EQ(one, three);
 }

@@ -1,7 +1,8 @@
 // The binary section of a VTK XML file: "appended" data, raw (not base64), zlib-compressed in
-// VTK's block layout. Every array is cut into blocks of `blockSize` bytes and all blocks of all
-// arrays are compressed at once on the run's OpenMP threads (output is no longer one serial zlib
-// stream: docs/performance.md, "Output"). The bytes do not depend on the thread count.
+// VTK's block layout. Every array is cut into blocks of `blockSize` bytes; the blocks are
+// compressed a batch at a time on the run's OpenMP threads (output is not one serial zlib stream:
+// docs/performance.md, "Output") and written as each batch is done, so the memory held is one
+// batch, not the file. The bytes do not depend on the thread count.
 #pragma once
 
 #include <cstdint>
@@ -16,30 +17,12 @@ struct RawArray {
   size_t bytes;
 };
 
-class AppendedData {
- public:
-  static constexpr size_t blockSize = 1 << 15;  // VTK's own writer's block size
+constexpr size_t kAppendedBlockSize = 1 << 15;  // VTK's own writer's block size
 
-  // Compresses every block of `arrays` (the arrays are read only here). Throws
-  // std::runtime_error if zlib fails.
-  explicit AppendedData(const std::vector<RawArray>& arrays);
-
-  // The offset attribute of array k: where its header starts, counted from the byte after '_'.
-  uint64_t offset(size_t k) const { return offsets_[k]; }
-  // Writes the section's bytes (each array: UInt64 block count, block size, size of a partial
-  // last block or 0, each block's compressed size; then the compressed blocks).
-  void write(std::FILE* out) const;
-  // Memory held for the compressed blocks, in bytes.
-  size_t bytesHeld() const;
-
- private:
-  struct Array {
-    size_t bytes;
-    size_t firstBlock, blocks;
-  };
-  std::vector<Array> arrays_;
-  std::vector<std::vector<unsigned char>> compressed_;  // every array's blocks, in file order
-  std::vector<uint64_t> offsets_;
-};
+// Writes `arrays` at the current position of `out` (which must be seekable: each array's header,
+// its block count, block size, size of a partial last block or 0 and each block's compressed
+// size, is filled in after its blocks). Returns each array's offset from the section's start,
+// the `offset` attribute of its <DataArray>. Throws std::runtime_error if zlib or a write fails.
+std::vector<uint64_t> writeAppendedData(std::FILE* out, const std::vector<RawArray>& arrays);
 
 }  // namespace anode

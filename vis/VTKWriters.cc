@@ -1,6 +1,7 @@
 #include "vis/VTKWriters.h"
 
 #include <cstdio>
+#include <functional>
 #include <iomanip>
 #include <memory>
 #include <sstream>
@@ -32,14 +33,15 @@ class ArrayList {
     else
       add("Float64", a.name, a.components, a.real.data(), values * sizeof(double));
   }
-  // The <DataArray> lines of arrays [first, last).
-  std::string xml(size_t first, size_t last, const AppendedData& data) const {
+  // The <DataArray> lines of arrays [first, last), with their offsets in the appended section
+  // written 20 digits wide, so that the head keeps its length when the offsets are filled in.
+  std::string xml(size_t first, size_t last, const std::vector<uint64_t>& offsets) const {
     std::ostringstream s;
     for (size_t k = first; k < last; ++k) {
       const Description& d = descriptions_[k];
       s << "        <DataArray type=\"" << d.type << "\" Name=\"" << d.name
         << "\" NumberOfComponents=\"" << d.components << "\" format=\"appended\" offset=\""
-        << data.offset(k) << "\"/>\n";
+        << std::setw(20) << std::setfill('0') << offsets[k] << std::setfill(' ') << "\"/>\n";
     }
     return s.str();
   }
@@ -56,17 +58,22 @@ class ArrayList {
   std::vector<RawArray> raw_;
 };
 
-// The XML `head`, then the appended section, written atomically.
-void writeVTKFile(const std::string& path, const std::string& head, const AppendedData& data) {
+// The XML head (`head(offsets)`), then the appended section, written atomically; the head is
+// written first with zero offsets and again once the arrays are written and their offsets known.
+void writeVTKFile(const std::string& path, const ArrayList& arrays,
+                  const std::function<std::string(const std::vector<uint64_t>&)>& head) {
   writeAtomically(path, [&](const std::string& tmp) {
     std::unique_ptr<std::FILE, int (*)(std::FILE*)> out(std::fopen(tmp.c_str(), "wb"),
                                                         &std::fclose);
     if (!out) throw std::runtime_error("cannot open " + tmp + " for writing");
-    const std::string open = head + "  <AppendedData encoding=\"raw\">\n   _";
+    const std::string open =
+        head(std::vector<uint64_t>(arrays.size(), 0)) + "  <AppendedData encoding=\"raw\">\n   _";
     const std::string close = "\n  </AppendedData>\n</VTKFile>\n";
     bool ok = std::fwrite(open.data(), 1, open.size(), out.get()) == open.size();
-    data.write(out.get());
+    const std::string filled = head(writeAppendedData(out.get(), arrays.raw()));
     ok = ok && std::fwrite(close.data(), 1, close.size(), out.get()) == close.size();
+    ok = ok && std::fseek(out.get(), 0, SEEK_SET) == 0;
+    ok = ok && std::fwrite(filled.data(), 1, filled.size(), out.get()) == filled.size();
     ok = std::fclose(out.release()) == 0 && ok;
     if (!ok) throw std::runtime_error("cannot write " + tmp);
   });
@@ -87,43 +94,45 @@ void writeParticlesVTU(const std::string& path, const ParticleData& data) {
   const size_t pointData = arrays.size();
   arrays.add("Float64", "Points", 3, data.points.data(), 3 * n * sizeof(double));
   // One vertex cell per particle (VTK_VERTEX = 1).
-  std::vector<int64_t> connectivity(n), offsets(n);
+  std::vector<int64_t> connectivity(n), cellEnds(n);
   for (size_t i = 0; i < n; ++i) {
     connectivity[i] = static_cast<int64_t>(i);
-    offsets[i] = static_cast<int64_t>(i) + 1;
+    cellEnds[i] = static_cast<int64_t>(i) + 1;
   }
   const std::vector<uint8_t> types(n, 1);
   arrays.add("Int64", "connectivity", 1, connectivity.data(), n * sizeof(int64_t));
-  arrays.add("Int64", "offsets", 1, offsets.data(), n * sizeof(int64_t));
+  arrays.add("Int64", "offsets", 1, cellEnds.data(), n * sizeof(int64_t));
   arrays.add("UInt8", "types", 1, types.data(), n);
-  const AppendedData appended(arrays.raw());
-  std::ostringstream s;
-  s << formatHeader("UnstructuredGrid") << "  <UnstructuredGrid>\n    <Piece NumberOfPoints=\"" << n
-    << "\" NumberOfCells=\"" << n << "\">\n      <PointData>\n"
-    << arrays.xml(0, pointData, appended) << "      </PointData>\n      <Points>\n"
-    << arrays.xml(pointData, pointData + 1, appended) << "      </Points>\n      <Cells>\n"
-    << arrays.xml(pointData + 1, arrays.size(), appended)
-    << "      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n";
-  writeVTKFile(path, s.str(), appended);
+  writeVTKFile(path, arrays, [&](const std::vector<uint64_t>& offsets) {
+    std::ostringstream s;
+    s << formatHeader("UnstructuredGrid") << "  <UnstructuredGrid>\n    <Piece NumberOfPoints=\""
+      << n << "\" NumberOfCells=\"" << n << "\">\n      <PointData>\n"
+      << arrays.xml(0, pointData, offsets) << "      </PointData>\n      <Points>\n"
+      << arrays.xml(pointData, pointData + 1, offsets) << "      </Points>\n      <Cells>\n"
+      << arrays.xml(pointData + 1, arrays.size(), offsets)
+      << "      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n";
+    return s.str();
+  });
 }
 
 void writeGridVTI(const std::string& path, const GridData& data) {
   const size_t nodes = static_cast<size_t>(data.dims[0]) * data.dims[1] * data.dims[2];
   ArrayList arrays;
   for (const NamedArray& a : data.arrays) arrays.add(a, nodes);
-  const AppendedData appended(arrays.raw());
   std::ostringstream extent;
   for (int d = 0; d < 3; ++d)
     extent << (d ? " " : "") << data.first[d] << " " << data.first[d] + data.dims[d] - 1;
-  std::ostringstream s;
-  s << std::setprecision(17) << formatHeader("ImageData") << "  <ImageData WholeExtent=\""
-    << extent.str() << "\" Origin=\"" << data.origin[0] << " " << data.origin[1] << " "
-    << data.origin[2] << "\" Spacing=\"" << data.spacing[0] << " " << data.spacing[1] << " "
-    << data.spacing[2] << "\" Direction=\"1 0 0 0 1 0 0 0 1\">\n    <Piece Extent=\""
-    << extent.str() << "\">\n      <PointData>\n"
-    << arrays.xml(0, arrays.size(), appended)
-    << "      </PointData>\n    </Piece>\n  </ImageData>\n";
-  writeVTKFile(path, s.str(), appended);
+  writeVTKFile(path, arrays, [&](const std::vector<uint64_t>& offsets) {
+    std::ostringstream s;
+    s << std::setprecision(17) << formatHeader("ImageData") << "  <ImageData WholeExtent=\""
+      << extent.str() << "\" Origin=\"" << data.origin[0] << " " << data.origin[1] << " "
+      << data.origin[2] << "\" Spacing=\"" << data.spacing[0] << " " << data.spacing[1] << " "
+      << data.spacing[2] << "\" Direction=\"1 0 0 0 1 0 0 0 1\">\n    <Piece Extent=\""
+      << extent.str() << "\">\n      <PointData>\n"
+      << arrays.xml(0, arrays.size(), offsets)
+      << "      </PointData>\n    </Piece>\n  </ImageData>\n";
+    return s.str();
+  });
 }
 
 namespace {
