@@ -14,10 +14,6 @@ namespace anode {
 
 namespace {
 
-constexpr const char* fileHeader =
-    "<?xml version=\"1.0\"?>\n<VTKFile type=\"%s\" version=\"1.0\" byte_order=\"LittleEndian\" "
-    "header_type=\"UInt64\" compressor=\"vtkZLibDataCompressor\">\n";
-
 // The arrays of one file, described in its XML and stored in its appended section.
 class ArrayList {
  public:
@@ -79,10 +75,11 @@ void writeVTKFile(const std::string& path, const ArrayList& arrays,
   });
 }
 
-std::string formatHeader(const char* type) {
-  char text[256];
-  std::snprintf(text, sizeof text, fileHeader, type);
-  return text;
+// The file's first lines: a VTK XML file of `type` with UInt64 headers and zlib blocks.
+std::string fileHeader(const std::string& type) {
+  return "<?xml version=\"1.0\"?>\n<VTKFile type=\"" + type +
+         "\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\" "
+         "compressor=\"vtkZLibDataCompressor\">\n";
 }
 
 }  // namespace
@@ -105,8 +102,8 @@ void writeParticlesVTU(const std::string& path, const ParticleData& data) {
   arrays.add("UInt8", "types", 1, types.data(), n);
   writeVTKFile(path, arrays, [&](const std::vector<uint64_t>& offsets) {
     std::ostringstream s;
-    s << formatHeader("UnstructuredGrid") << "  <UnstructuredGrid>\n    <Piece NumberOfPoints=\""
-      << n << "\" NumberOfCells=\"" << n << "\">\n      <PointData>\n"
+    s << fileHeader("UnstructuredGrid") << "  <UnstructuredGrid>\n    <Piece NumberOfPoints=\"" << n
+      << "\" NumberOfCells=\"" << n << "\">\n      <PointData>\n"
       << arrays.xml(0, pointData, offsets) << "      </PointData>\n      <Points>\n"
       << arrays.xml(pointData, pointData + 1, offsets) << "      </Points>\n      <Cells>\n"
       << arrays.xml(pointData + 1, arrays.size(), offsets)
@@ -124,7 +121,7 @@ void writeGridVTI(const std::string& path, const GridData& data) {
     extent << (d ? " " : "") << data.first[d] << " " << data.first[d] + data.dims[d] - 1;
   writeVTKFile(path, arrays, [&](const std::vector<uint64_t>& offsets) {
     std::ostringstream s;
-    s << std::setprecision(17) << formatHeader("ImageData") << "  <ImageData WholeExtent=\""
+    s << std::setprecision(17) << fileHeader("ImageData") << "  <ImageData WholeExtent=\""
       << extent.str() << "\" Origin=\"" << data.origin[0] << " " << data.origin[1] << " "
       << data.origin[2] << "\" Spacing=\"" << data.spacing[0] << " " << data.spacing[1] << " "
       << data.spacing[2] << "\" Direction=\"1 0 0 0 1 0 0 0 1\">\n    <Piece Extent=\""
