@@ -1,0 +1,134 @@
+#!/usr/bin/env python3
+"""Remakes Gritton et al.'s Figures 3-10 and the numbers of docs/paper/README.md.
+
+  python3 StandAlone/Studies/reproduce_paper.py [--out DIR] [--threads N] [--only NAME ...]
+                                                [--figures-only] [--quick STEPS] [--report DIR]
+
+1. Runs every scenario of inputs/Paper/ that a figure needs into DIR/runs/NAME (default DIR:
+   out/paper), cheapest first. It is resumable: a finished run (DIR/runs/NAME/complete.json) is
+   skipped, a run with a checkpoint (sus keeps one of its own every 10 minutes) is continued with
+   `sus -restart`, so the command can be stopped at any moment and started again. Each session's
+   wall time is appended to DIR/runs/NAME.wall.
+2. Renders each figure as one PNG (DIR/figures/figN.png) through the project's renderer
+   (`render_figure`: panels side by side, a shared colour bar, panel letters and times).
+3. Measures the numbers of each figure from the VTU files (paper_numbers.py) into
+   DIR/numbers.md; with --report DIR2 the figures and numbers.md are copied there too.
+
+--quick STEPS runs each scenario for STEPS steps only (into DIR, which should then be another
+directory) and makes the figures and numbers from what that gives: the pipeline's test.
+Needs /usr/bin/python3 with VTK (python3-vtk9, which libvtk9-dev installs) for the numbers.
+"""
+import argparse
+import datetime
+import json
+import os
+import shutil
+import subprocess
+import sys
+import time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.normpath(os.path.join(HERE, "..", ".."))
+sys.path.insert(0, HERE)
+
+import paper_figures  # noqa: E402
+
+# Cheapest first (measured here on 2 cores; docs/paper/README.md has the wall times).
+SCENARIOS = ["Flux_1e-8", "Flux_1e-9", "Constitutive_elastic", "Constitutive_perfect",
+             "Constitutive_hardening", "Beta_0", "Beta_1", "Substrate_fixed", "Density_2.33e24",
+             "Density_2.33e8", "Substrate_deformable", "Cycle_LargePillar", "Density_2.33e3",
+             "Density_2.33e18"]
+
+
+def last_history_row(run_dir):
+    path = os.path.join(run_dir, "history.csv")
+    if not os.path.exists(path):
+        return None
+    with open(path) as f:
+        rows = f.read().split("\n")
+    header = rows[0].split(",")
+    values = [r for r in rows[1:] if r.strip()]
+    return dict(zip(header, values[-1].split(","))) if values else None
+
+
+def has_checkpoint(run_dir):
+    folder = os.path.join(run_dir, "checkpoints")
+    return os.path.isdir(folder) and any(f.endswith(".ckpt") for f in os.listdir(folder))
+
+
+def wall_seconds(run_dir):
+    """The wall time of every session of a run, summed (DIR/runs/NAME.wall)."""
+    path = run_dir + ".wall"
+    if not os.path.exists(path):
+        return 0.0
+    with open(path) as f:
+        return sum(float(line.split()[1]) for line in f if line.strip())
+
+
+def run_scenario(name, args, runs):
+    run_dir = os.path.join(runs, name)
+    done = os.path.join(run_dir, "complete.json")
+    if os.path.exists(done):
+        print("%-22s done" % name, flush=True)
+        return True
+    sus = [args.sus, "--threads", str(args.threads)]
+    if args.quick:
+        sus += ["--max-timesteps", str(args.quick)]
+    if not args.quick and has_checkpoint(run_dir):
+        command = [args.sus, "-restart", run_dir, "--threads", str(args.threads)]
+        how = "continued from its newest checkpoint"
+    else:
+        shutil.rmtree(run_dir, ignore_errors=True)
+        command = sus + ["-o", run_dir, os.path.join(ROOT, "inputs", "Paper", name + ".ups")]
+        how = "started"
+    print("%-22s %s: %s" % (name, how, " ".join(command)), flush=True)
+    start = time.time()
+    with open(run_dir + ".log", "a") as log:
+        code = subprocess.call(command, stdout=log, stderr=subprocess.STDOUT,
+                               env=dict(os.environ, OMP_WAIT_POLICY="passive"))
+    seconds = time.time() - start
+    with open(run_dir + ".wall", "a") as f:
+        f.write("%s %.1f exit=%d\n" % (datetime.datetime.now().isoformat(timespec="seconds"), seconds, code))
+    if code != 0:
+        print("%-22s stopped with exit code %d after %.0f s (see %s.log)" % (name, code, seconds, run_dir),
+              flush=True)
+        return False
+    last = last_history_row(run_dir)
+    summary = dict(steps=int(last["step"]), time=float(last["time"]), particles=int(last["particles"]),
+                   wall_seconds=wall_seconds(run_dir), threads=args.threads, quick=args.quick)
+    with open(done, "w") as f:
+        json.dump(summary, f, indent=1)
+    print("%-22s finished: %d steps to t = %g in %.0f s of wall time" %
+          (name, summary["steps"], summary["time"], summary["wall_seconds"]), flush=True)
+    return True
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--out", default=os.path.join(ROOT, "out", "paper"))
+    parser.add_argument("--sus", default=os.path.join(ROOT, "build", "StandAlone", "sus"))
+    parser.add_argument("--render", default=os.path.join(ROOT, "build", "StandAlone", "render_figure"))
+    parser.add_argument("--threads", type=int, default=os.cpu_count())
+    parser.add_argument("--only", nargs="+", choices=SCENARIOS, help="run only these scenarios")
+    parser.add_argument("--figures-only", action="store_true", help="make figures and numbers, run nothing")
+    parser.add_argument("--quick", type=int, default=0, metavar="STEPS")
+    parser.add_argument("--report", help="copy the figures and numbers.md into this directory")
+    args = parser.parse_args()
+    runs = os.path.join(args.out, "runs")
+    os.makedirs(runs, exist_ok=True)
+    ok = True
+    if not args.figures_only:
+        for name in args.only or SCENARIOS:
+            ok = run_scenario(name, args, runs) and ok
+    finished = [n for n in SCENARIOS if os.path.exists(os.path.join(runs, n, "complete.json"))]
+    made = paper_figures.make_all(args, runs, finished)
+    if args.report:
+        os.makedirs(args.report, exist_ok=True)
+        for path in made:
+            shutil.copy(path, args.report)
+    if not ok:
+        sys.exit(1)
+
+
+if __name__ == "__main__":
+    main()
