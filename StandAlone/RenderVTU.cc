@@ -38,7 +38,7 @@ const char* kUsage =
     "  -o DIR           write DIR/images/<scene>_<time>.png (default DIR: DATA's folder)\n"
     "  --name NAME      the name of a scene made of options (default view)\n"
     "  --TAG VALUE      a scene option: sets that tag, written as in the input\n"
-    "                   (docs/input-reference.md): --field, --range, --colormap,\n"
+    "                   (docs/input-reference.md): --field, --scale, --range, --colormap,\n"
     "                   --materials, --clip-point, --clip-normal, --camera,\n"
     "                   --camera-position, --camera-focal-point, --camera-up,\n"
     "                   --camera-view-angle, --size, --background, --title, --units,\n"

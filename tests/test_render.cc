@@ -214,6 +214,16 @@ TEST(Render, MaterialsNotDrawnAreLeftOut) {
   for (size_t i = 0; i < s.count(); ++i) EXPECT_GT(s.position[3 * i], 0);
 }
 
+TEST(Render, ScaleMultipliesTheDrawnValues) {
+  const ParticleData data = block(10, 0.01);
+  Scene scene = frontScene();
+  const SpriteSet plain = makeSprites(scene, data);
+  setSceneValue(scene, "scale", "-1e-6");
+  const SpriteSet scaled = makeSprites(scene, data);
+  ASSERT_EQ(scaled.count(), plain.count());
+  for (size_t i = 0; i < plain.count(); ++i) EXPECT_EQ(scaled.value[i], -1e-6 * plain.value[i]);
+}
+
 TEST(Render, DarkBackgroundAndOtherCameras) {
   const ParticleData data = block(10, 0.01);
   for (const char* camera : {"iso", "front", "back", "side", "top"}) {

@@ -46,6 +46,7 @@ TEST(SceneSpec, ReadsEveryTag) {
   const auto scenes = read(R"(<scene name="cut">
   <times>[5, 1, 2.5]</times>
   <field>p.stress:zy</field>
+  <scale>1e-6</scale>
   <range>[-1, 3]</range>
   <colormap>blue_red</colormap>
   <materials>[1]</materials>
@@ -66,6 +67,7 @@ TEST(SceneSpec, ReadsEveryTag) {
   EXPECT_EQ(s.field.reduce, FieldSpec::Reduce::Component);
   EXPECT_EQ(s.field.component, 7);  // row z, column y, row-major as saved
   EXPECT_EQ(s.field.components, 9);
+  EXPECT_EQ(s.scale, 1e-6);
   ASSERT_TRUE(s.range);
   EXPECT_EQ(s.range->first, -1);
   EXPECT_EQ(s.range->second, 3);
@@ -97,6 +99,7 @@ TEST(SceneSpec, Defaults) {
   ASSERT_EQ(scenes.size(), 2u);
   const Scene& a = scenes[0];
   EXPECT_FALSE(a.range);
+  EXPECT_EQ(a.scale, 1);
   EXPECT_EQ(a.colourMap, ColourMapKind::Viridis);
   EXPECT_TRUE(a.materials.empty());
   EXPECT_TRUE(a.drawsMaterial(1));
@@ -147,6 +150,7 @@ TEST(SceneSpec, ErrorsNameFileAndLine) {
   expect("<size>[10, 10]</size>", "each 64 to 8192");
   expect("<background>[2, 0, 0]</background>", "each in [0, 1]");
   expect("<interval>-1</interval>", "positive");
+  expect("<scale>0</scale>", "<scale> multiplies the field's values: a finite number, not 0");
   expect("<colour>grey</colour>", "unknown tag <colour> in <scene>");
   expect("<clip/>", "<clip> needs <point> and <normal>");
   expect("<title><b>x</b></title>", "takes a value, not tags");

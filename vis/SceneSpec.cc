@@ -119,6 +119,7 @@ const std::vector<std::string>& sceneTags() {
   static const std::vector<std::string> tags = {"times",
                                                 "interval",
                                                 "field",
+                                                "scale",
                                                 "range",
                                                 "colormap",
                                                 "materials",
@@ -147,6 +148,10 @@ void setSceneValue(Scene& s, const std::string& tag, const std::string& raw) {
     if (!(s.interval > 0)) throw std::invalid_argument("the interval must be positive");
   } else if (tag == "field") {
     s.field = parseField(v);
+  } else if (tag == "scale") {
+    s.scale = parseNumber(v);
+    if (!std::isfinite(s.scale) || s.scale == 0)
+      throw std::invalid_argument("<scale> multiplies the field's values: a finite number, not 0");
   } else if (tag == "range") {
     if (v == "data") {
       s.range.reset();

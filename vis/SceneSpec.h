@@ -51,7 +51,8 @@ struct Scene {
   std::vector<double> times;  // explicit times, ascending
   double interval = 0;        // > 0: every `interval` from the first time of the run
   FieldSpec field;
-  std::optional<std::pair<double, double>> range;  // empty: from the drawn particles
+  double scale = 1;  // the field's values are drawn times this (1e-6: the code's stress in GPa)
+  std::optional<std::pair<double, double>> range;  // of the scaled values; empty: from the data
   ColourMapKind colourMap = ColourMapKind::Viridis;
   std::vector<int> materials;  // empty: all
   std::optional<ClipPlane> clip;

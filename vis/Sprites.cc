@@ -64,7 +64,7 @@ SpriteSet makeSprites(const Scene& scene, const ParticleData& data) {
     if (material && !scene.drawsMaterial(static_cast<int>(material->integer[i]))) continue;
     if (!scene.keeps(x)) continue;
     s.position.insert(s.position.end(), x, x + 3);
-    s.value.push_back(field.evaluate(&values->real[i * field.components]));
+    s.value.push_back(scene.scale * field.evaluate(&values->real[i * field.components]));
     s.radius.push_back(volume ? sphereRadius(volume->real[i]) : fallbackRadius);
   }
   return s;

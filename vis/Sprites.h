@@ -11,7 +11,7 @@ namespace anode {
 
 struct SpriteSet {
   std::vector<double> position;  // x0 y0 z0 x1 ...
-  std::vector<double> value;     // the scene's field
+  std::vector<double> value;     // the scene's field, times the scene's scale
   std::vector<double> radius;    // of the sphere with the particle's volume
   size_t count() const { return value.size(); }
 };
