@@ -190,6 +190,8 @@ View makeView(const Camera& camera, const Bounds& bounds, double aspect) {
   return v;
 }
 
+}  // namespace
+
 std::pair<double, double> colourRange(const Scene& scene, const SpriteSet& s) {
   if (scene.range) return *scene.range;
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;
@@ -209,8 +211,6 @@ std::string formatNumber(double v) {
   std::snprintf(buffer, sizeof buffer, "%.4g", v == 0 ? 0.0 : v);
   return buffer;
 }
-
-}  // namespace
 
 std::vector<double> niceTicks(double lo, double hi, int target) {
   const double raw = (hi - lo) / std::max(target - 1, 1);
@@ -315,20 +315,55 @@ int SceneRenderer::contextsCreated() {
   return contextCount;
 }
 
-RenderedScene SceneRenderer::render(const Scene& scene, const SpriteSet& sprites, double time) {
+RGB inkOn(const Vec3& background) {
+  const double luminance = 0.2126 * background[0] + 0.7152 * background[1] + 0.0722 * background[2];
+  return luminance > 0.5 ? RGB{0, 0, 0} : RGB{1, 1, 1};
+}
+
+void drawColourBar(Canvas& canvas, const std::array<int, 4>& bar, std::pair<double, double> range,
+                   ColourMapKind map, const std::string& name, const std::string& units,
+                   const RGB& ink, int labelSize) {
+  const ColourMap colours(map);
+  const auto [x0, y0, x1, y1] = bar;
+  const int barWidth = x1 - x0;
+  for (int y = y0; y < y1; ++y) {
+    const auto c = colours.colour((y - y0 + 0.5) / (y1 - y0));
+    canvas.fillRect(x0, y, x1, y + 1, {c[0], c[1], c[2]});
+  }
+  canvas.fillRect(x0 - 1, y0 - 1, x1 + 1, y0, ink);
+  canvas.fillRect(x0 - 1, y1, x1 + 1, y1 + 1, ink);
+  canvas.fillRect(x0 - 1, y0, x0, y1, ink);
+  canvas.fillRect(x1, y0, x1 + 1, y1, ink);
+  const auto [lo, hi] = range;
+  for (double tick : niceTicks(lo, hi)) {
+    const int y = y0 + static_cast<int>(std::lround((tick - lo) / (hi - lo) * (y1 - y0 - 1)));
+    canvas.fillRect(x1, y, x1 + barWidth / 3, y + 1, ink);
+    canvas.text(formatNumber(tick), x1 + barWidth / 3 + 4, y, labelSize, ink, Canvas::Align::Start,
+                Canvas::Align::Centre);
+  }
+  int labelY = y1 + labelSize;
+  if (!units.empty()) {
+    canvas.text("[" + units + "]", x0, labelY, labelSize, ink);
+    labelY += labelSize * 3 / 2;
+  }
+  const int nameWidth = Canvas::textSize(name, labelSize)[0];
+  canvas.text(name, std::min(x0, canvas.width() - 4 - nameWidth), labelY, labelSize, ink);
+}
+
+RenderedScene SceneRenderer::render(const Scene& scene, const SpriteSet& sprites, double time,
+                                    Overlay overlay) {
   const int W = scene.width, H = scene.height;
   const RGB background = {scene.background[0], scene.background[1], scene.background[2]};
-  const double luminance = 0.2126 * background[0] + 0.7152 * background[1] + 0.0722 * background[2];
-  const RGB ink = luminance > 0.5 ? RGB{0, 0, 0} : RGB{1, 1, 1};
+  const RGB ink = inkOn(scene.background);
   const int titleSize = std::max(12, H / 30), labelSize = std::max(10, H / 44);
-  const int titleBand = 2 * titleSize;
-  const int barArea = std::clamp(W * 17 / 100, 110, 400);
+  const bool overlaid = overlay == Overlay::TitleAndColourBar;
+  const int titleBand = overlaid ? 2 * titleSize : 0;
+  const int barArea = overlaid ? std::clamp(W * 17 / 100, 110, 400) : 0;
 
   RenderedScene out(Canvas(W, H, background));
   out.viewport = {0, 0, W - barArea, H - titleBand};
   out.range = colourRange(scene, sprites);
   const ColourMap colours(scene.colourMap);
-
   // Particles.
   if (!gl_) gl_ = std::make_unique<GLState>();
   gl_->makeCurrent(W, H);
@@ -386,6 +421,8 @@ RenderedScene SceneRenderer::render(const Scene& scene, const SpriteSet& sprites
   for (size_t p = 0; p < static_cast<size_t>(W) * H; ++p)
     for (int c = 0; c < 3; ++c) dst[3 * p + c] = src[4 * p + c];
 
+  if (!overlaid) return out;
+
   // Title with the time.
   std::string title =
       (scene.title.empty() ? scene.name : scene.title) + "    t = " + formatNumber(time);
@@ -395,31 +432,10 @@ RenderedScene SceneRenderer::render(const Scene& scene, const SpriteSet& sprites
 
   // Colour bar: the table's colours, a frame, ticks with values, the field name and units above.
   const int barWidth = std::max(10, W / 48);
-  const int x0 = W - barArea + barWidth / 2, x1 = x0 + barWidth;
-  const int y0 = H * 12 / 100, y1 = H * 70 / 100;
-  out.colourBar = {x0, y0, x1, y1};
-  for (int y = y0; y < y1; ++y) {
-    const auto c = colours.colour((y - y0 + 0.5) / (y1 - y0));
-    out.canvas.fillRect(x0, y, x1, y + 1, {c[0], c[1], c[2]});
-  }
-  out.canvas.fillRect(x0 - 1, y0 - 1, x1 + 1, y0, ink);
-  out.canvas.fillRect(x0 - 1, y1, x1 + 1, y1 + 1, ink);
-  out.canvas.fillRect(x0 - 1, y0, x0, y1, ink);
-  out.canvas.fillRect(x1, y0, x1 + 1, y1, ink);
-  const auto [lo, hi] = out.range;
-  for (double tick : niceTicks(lo, hi)) {
-    const int y = y0 + static_cast<int>(std::lround((tick - lo) / (hi - lo) * (y1 - y0 - 1)));
-    out.canvas.fillRect(x1, y, x1 + barWidth / 3, y + 1, ink);
-    out.canvas.text(formatNumber(tick), x1 + barWidth / 3 + 4, y, labelSize, ink,
-                    Canvas::Align::Start, Canvas::Align::Centre);
-  }
-  int labelY = y1 + labelSize;
-  if (!scene.units.empty()) {
-    out.canvas.text("[" + scene.units + "]", x0, labelY, labelSize, ink);
-    labelY += labelSize * 3 / 2;
-  }
-  const int nameWidth = Canvas::textSize(scene.field.text, labelSize)[0];
-  out.canvas.text(scene.field.text, std::min(x0, W - 4 - nameWidth), labelY, labelSize, ink);
+  const int x0 = W - barArea + barWidth / 2;
+  out.colourBar = {x0, H * 12 / 100, x0 + barWidth, H * 70 / 100};
+  drawColourBar(out.canvas, out.colourBar, out.range, scene.colourMap, scene.field.text,
+                scene.units, ink, labelSize);
   return out;
 }
 

@@ -6,7 +6,9 @@
 
 #include <array>
 #include <memory>
+#include <string>
 #include <utility>
+#include <vector>
 
 #include "Core/Math/Types.h"
 #include "vis/Canvas.h"
@@ -28,6 +30,10 @@ struct RenderedScene {
   std::array<double, 2> project(const Vec3& x) const;
 };
 
+// What a rendered scene holds besides the particles: the title with the time and the colour bar
+// (a run's pictures), or nothing (the panels of a figure, which draws them once for all).
+enum class Overlay { TitleAndColourBar, None };
+
 class SceneRenderer {
  public:
   // Creates no OpenGL context yet: the first render does.
@@ -37,7 +43,8 @@ class SceneRenderer {
   SceneRenderer& operator=(const SceneRenderer&) = delete;
 
   // Draws the sprites with the scene's camera, colour map and range, and the title with `time`.
-  RenderedScene render(const Scene& scene, const SpriteSet& sprites, double time);
+  RenderedScene render(const Scene& scene, const SpriteSet& sprites, double time,
+                       Overlay overlay = Overlay::TitleAndColourBar);
 
   // OSMesa contexts created by this process so far (a run without scenes creates none).
   static int contextsCreated();
@@ -49,5 +56,20 @@ class SceneRenderer {
 
 // Colour-bar ticks: round numbers within [lo, hi], about `target` of them.
 std::vector<double> niceTicks(double lo, double hi, int target = 5);
+
+// The values the scene's colours span for these sprites: its <range>, else the drawn values'.
+std::pair<double, double> colourRange(const Scene& scene, const SpriteSet& sprites);
+
+// Black on a light background, white on a dark one.
+RGB inkOn(const Vec3& background);
+
+// A number as the overlay writes it (4 significant digits).
+std::string formatNumber(double v);
+
+// A vertical colour bar filling `bar` (x0, y0, x1, y1, exclusive), framed, with ticks and values
+// to its right and the units and field name above it.
+void drawColourBar(Canvas& canvas, const std::array<int, 4>& bar, std::pair<double, double> range,
+                   ColourMapKind map, const std::string& name, const std::string& units,
+                   const RGB& ink, int labelSize);
 
 }  // namespace anode

@@ -298,6 +298,32 @@ void checkScene(const Scene& s, const SceneContext& context) {
   }
 }
 
+void readSceneTags(const PSNode& node, Scene& scene) {
+  std::set<std::string> given;
+  auto set = [&](const PSNode& tagNode, const std::string& tag) {
+    if (tagNode.hasChildren()) tagNode.fail("<" + tagNode.name() + "> takes a value, not tags");
+    if (!given.insert(tag).second) tagNode.fail("<" + tagNode.name() + "> is given twice");
+    try {
+      setSceneValue(scene, tag, tagNode.text());
+    } catch (const std::invalid_argument& e) {
+      tagNode.fail("<" + tagNode.name() + ">: " + e.what());
+    }
+  };
+  for (const PSNode& child : node.children()) {
+    const std::string tag = child.name();
+    if ((tag == "clip" || tag == "camera") && child.hasChildren()) {
+      if (!trim(child.text()).empty())
+        child.fail("<" + tag + "> holds either a preset name or tags, not both");
+      if (!given.insert(tag).second) child.fail("<" + tag + "> is given twice");
+      for (const PSNode& part : child.children()) set(part, tag + "/" + part.name());
+    } else if (tag == "clip") {
+      child.fail("<clip> needs <point> and <normal>");
+    } else {
+      set(child, tag);
+    }
+  }
+}
+
 std::vector<Scene> readScenes(const PSNode& visualization, const SceneContext& context) {
   std::vector<Scene> scenes;
   std::set<std::string> names;
@@ -307,29 +333,7 @@ std::vector<Scene> readScenes(const PSNode& visualization, const SceneContext& c
     Scene scene;
     scene.name = node.requireAttribute("name");
     if (!names.insert(scene.name).second) node.fail("a second scene named \"" + scene.name + "\"");
-    std::set<std::string> given;
-    auto set = [&](const PSNode& tagNode, const std::string& tag) {
-      if (tagNode.hasChildren()) tagNode.fail("<" + tagNode.name() + "> takes a value, not tags");
-      if (!given.insert(tag).second) tagNode.fail("<" + tagNode.name() + "> is given twice");
-      try {
-        setSceneValue(scene, tag, tagNode.text());
-      } catch (const std::invalid_argument& e) {
-        tagNode.fail("<" + tagNode.name() + ">: " + e.what());
-      }
-    };
-    for (const PSNode& child : node.children()) {
-      const std::string tag = child.name();
-      if ((tag == "clip" || tag == "camera") && child.hasChildren()) {
-        if (!trim(child.text()).empty())
-          child.fail("<" + tag + "> holds either a preset name or tags, not both");
-        if (!given.insert(tag).second) child.fail("<" + tag + "> is given twice");
-        for (const PSNode& part : child.children()) set(part, tag + "/" + part.name());
-      } else if (tag == "clip") {
-        child.fail("<clip> needs <point> and <normal>");
-      } else {
-        set(child, tag);
-      }
-    }
+    readSceneTags(node, scene);
     try {
       checkScene(scene, context);
     } catch (const std::invalid_argument& e) {

@@ -99,6 +99,9 @@ const std::vector<std::string>& sceneTags();
 // Throws std::invalid_argument.
 void checkScene(const Scene& scene, const SceneContext& context);
 
+// Sets the scene's tags from the children of `node` (each once; errors name the file and line).
+void readSceneTags(const PSNode& node, Scene& scene);
+
 // Reads every <scene> of a <Visualization> block; errors name the file and line of the tag.
 std::vector<Scene> readScenes(const PSNode& visualization, const SceneContext& context);
 

@@ -253,21 +253,21 @@ ANODE_INSTANTIATE(std::vector<int>)
 ProblemSpec::ProblemSpec(const std::string& name, bool ignoreUnsupported, int)
     : file_(name), ignoreUnsupported_(ignoreUnsupported) {}
 
-ProblemSpec::ProblemSpec(const std::string& file, bool ignoreUnsupported)
+ProblemSpec::ProblemSpec(const std::string& file, bool ignoreUnsupported, const char* rootName)
     : ProblemSpec(file, ignoreUnsupported, 0) {
   std::ifstream probe(file);
   if (!probe) throw InputError(file, 0, "cannot open the input file");
-  parse(doc_.LoadFile(file.c_str()));
+  parse(doc_.LoadFile(file.c_str()), rootName);
 }
 
 std::unique_ptr<ProblemSpec> ProblemSpec::fromText(const std::string& text, const std::string& name,
                                                    bool ignoreUnsupported) {
   std::unique_ptr<ProblemSpec> spec(new ProblemSpec(name, ignoreUnsupported, 0));
-  spec->parse(spec->doc_.Parse(text.c_str(), text.size()));
+  spec->parse(spec->doc_.Parse(text.c_str(), text.size()), "Uintah_specification");
   return spec;
 }
 
-void ProblemSpec::parse(tinyxml2::XMLError status) {
+void ProblemSpec::parse(tinyxml2::XMLError status, const char* rootName) {
   if (status == tinyxml2::XML_ERROR_EMPTY_DOCUMENT)
     throw InputError(file_, 1, "the input is empty: no XML element");
   if (status != tinyxml2::XML_SUCCESS) {
@@ -278,10 +278,10 @@ void ProblemSpec::parse(tinyxml2::XMLError status) {
   }
   const auto* r = doc_.RootElement();
   if (!r) throw InputError(file_, 1, "the input holds no XML element");
-  if (std::string(r->Name()) != "Uintah_specification")
-    throw InputError(
-        file_, r->GetLineNum(),
-        "the root element must be <Uintah_specification>, found <" + std::string(r->Name()) + ">");
+  if (std::string(r->Name()) != rootName)
+    throw InputError(file_, r->GetLineNum(),
+                     "the root element must be <" + std::string(rootName) + ">, found <" +
+                         std::string(r->Name()) + ">");
 }
 
 PSNode ProblemSpec::root() {

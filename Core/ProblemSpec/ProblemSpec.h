@@ -76,8 +76,10 @@ class PSNode {
 
 class ProblemSpec {
  public:
-  // Parses the file; broken XML is an InputError with the line tinyxml2 reports.
-  ProblemSpec(const std::string& file, bool ignoreUnsupported);
+  // Parses the file; broken XML is an InputError with the line tinyxml2 reports, and so is a
+  // root element of another name (an input's is <Uintah_specification>).
+  ProblemSpec(const std::string& file, bool ignoreUnsupported,
+              const char* rootName = "Uintah_specification");
   // Parses text held in memory; `name` stands for the file name in messages.
   static std::unique_ptr<ProblemSpec> fromText(const std::string& text, const std::string& name,
                                                bool ignoreUnsupported = false);
@@ -94,7 +96,7 @@ class ProblemSpec {
 
  private:
   ProblemSpec(const std::string& name, bool ignoreUnsupported, int);
-  void parse(tinyxml2::XMLError status);
+  void parse(tinyxml2::XMLError status, const char* rootName);
 
   std::string file_;
   bool ignoreUnsupported_;

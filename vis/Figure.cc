@@ -1,0 +1,86 @@
+#include "vis/Figure.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "vis/SceneRenderer.h"
+
+namespace anode {
+
+Figure readFigure(const PSNode& node) {
+  if (node.name() != "figure")
+    node.fail("expected a <figure> element, found <" + node.name() + ">");
+  Figure f;
+  f.title = node.get<std::string>("title", "");
+  f.columns = node.get<int>("columns", 1);
+  if (f.columns < 1) node.requireChild("columns").fail("<columns> must be at least 1");
+  f.timeScale = node.get<double>("time_scale", 1.0);
+  if (!(f.timeScale > 0)) node.requireChild("time_scale").fail("<time_scale> must be positive");
+  f.timeUnit = node.get<std::string>("time_unit", "");
+  f.scene.name = "figure";
+  f.scene.times = {0};
+  readSceneTags(node.requireChild("scene"), f.scene);
+  try {
+    checkScene(f.scene, SceneContext());
+  } catch (const std::invalid_argument& e) {
+    node.requireChild("scene").fail(std::string("<scene>: ") + e.what());
+  }
+  for (const PSNode& p : node.children("panel")) {
+    FigurePanel panel;
+    panel.data = p.require<std::string>("data");
+    panel.time = p.require<double>("time");
+    panel.label = p.get<std::string>("label", "");
+    f.panels.push_back(panel);
+  }
+  if (f.panels.empty()) node.fail("a <figure> needs at least one <panel>");
+  return f;
+}
+
+std::string panelLetter(size_t index) {
+  std::string letters;
+  for (size_t k = index + 1; k > 0; k = (k - 1) / 26)
+    letters.insert(letters.begin(), static_cast<char>('a' + (k - 1) % 26));
+  return "(" + letters + ")";
+}
+
+Canvas composeFigure(const Figure& figure, const std::vector<Canvas>& panels,
+                     const std::vector<double>& times, std::pair<double, double> range) {
+  const Scene& scene = figure.scene;
+  const int W = scene.width, H = scene.height;
+  const int columns = std::min<int>(figure.columns, static_cast<int>(panels.size()));
+  const int rows = static_cast<int>((panels.size() + columns - 1) / columns);
+  const int labelSize = std::max(12, H / 22), titleSize = std::max(14, H / 16);
+  const int titleBand = figure.title.empty() ? 0 : 2 * titleSize;
+  const int barArea = std::clamp(W * 35 / 100, 150, 400);
+  const RGB background = {scene.background[0], scene.background[1], scene.background[2]};
+  const RGB ink = inkOn(scene.background);
+  Canvas out(columns * W + barArea, rows * H + titleBand, background);
+
+  for (size_t k = 0; k < panels.size(); ++k) {
+    const Canvas& panel = panels[k];
+    if (panel.width() != W || panel.height() != H)
+      throw std::invalid_argument("panel " + panelLetter(k) + " is not of the scene's size");
+    const int x0 = static_cast<int>(k % columns) * W;
+    const int y0 = (rows - 1 - static_cast<int>(k / columns)) * H;  // row 0 of a canvas: bottom
+    for (int y = 0; y < H; ++y)
+      std::copy(panel.pixel(0, y), panel.pixel(0, y) + 3 * W, out.pixel(x0, y0 + y));
+    std::string text = panelLetter(k);
+    if (!figure.panels[k].label.empty()) text += " " + figure.panels[k].label;
+    text += ", t = " + formatNumber(times[k] * figure.timeScale);
+    if (!figure.timeUnit.empty()) text += " " + figure.timeUnit;
+    out.text(text, x0 + labelSize / 2, y0 + H - labelSize / 2, labelSize, ink, Canvas::Align::Start,
+             Canvas::Align::End);
+  }
+  if (titleBand > 0)
+    out.text(figure.title, titleSize / 2, out.height() - titleSize / 2, titleSize, ink,
+             Canvas::Align::Start, Canvas::Align::End);
+
+  const int barWidth = std::max(12, W / 20);
+  const int x0 = columns * W + barWidth / 2;
+  const int panelsHeight = rows * H;
+  drawColourBar(out, {x0, panelsHeight * 15 / 100, x0 + barWidth, panelsHeight * 75 / 100}, range,
+                scene.colourMap, scene.field.text, scene.units, ink, labelSize);
+  return out;
+}
+
+}  // namespace anode
