@@ -51,7 +51,12 @@ Canvas composeFigure(const Figure& figure, const std::vector<Canvas>& panels,
   const int rows = static_cast<int>((panels.size() + columns - 1) / columns);
   const int labelSize = std::max(12, H / 22), titleSize = std::max(14, H / 16);
   const int titleBand = figure.title.empty() ? 0 : 2 * titleSize;
-  const int barArea = std::clamp(W * 35 / 100, 150, 400);
+  const int barWidth = std::max(12, W / 20);
+  // Room for the colour bar with its values, and for the field's name and units above it.
+  const int barArea =
+      std::max({std::clamp(W * 35 / 100, 150, 400),
+                Canvas::textSize(scene.field.text, labelSize)[0] + barWidth,
+                Canvas::textSize("[" + scene.units + "]", labelSize)[0] + barWidth});
   const RGB background = {scene.background[0], scene.background[1], scene.background[2]};
   const RGB ink = inkOn(scene.background);
   Canvas out(columns * W + barArea, rows * H + titleBand, background);
@@ -75,7 +80,6 @@ Canvas composeFigure(const Figure& figure, const std::vector<Canvas>& panels,
     out.text(figure.title, titleSize / 2, out.height() - titleSize / 2, titleSize, ink,
              Canvas::Align::Start, Canvas::Align::End);
 
-  const int barWidth = std::max(12, W / 20);
   const int x0 = columns * W + barWidth / 2;
   const int panelsHeight = rows * H;
   drawColourBar(out, {x0, panelsHeight * 15 / 100, x0 + barWidth, panelsHeight * 75 / 100}, range,

@@ -1,5 +1,131 @@
-"""The paper's Figures 3-10: which runs, times and views each shows (filled in below)."""
+"""The paper's Figures 3-10: which runs, times and view each shows, drawn with render_figure.
+
+A panel's time is either a simulation time (us) or a state of its run found in its history.csv:
+("lithium", f) is the first time the silicon holds the fraction f of its capacity (rho V0, c = 1),
+("end",) its last output. Each figure is written as DIR/figures/figN.xml and drawn to figN.png.
+"""
+import os
+import subprocess
+import xml.etree.ElementTree as ET
+
+# Cut-away views (the half y < 0 removed) with a fixed camera per figure, so swelling shows.
+SMALL_VIEW = dict(position="[0.2178, -0.2723, 0.266]", focal_point="[0, 0, 0.07]")
+SUBSTRATE_VIEW = dict(position="[0.30, -0.375, 0.36]", focal_point="[0, 0, 0.085]")
+LARGE_VIEW = dict(position="[0.80, -1.00, 0.85]", focal_point="[0, 0, 0.02]")
+
+MID, FULL = ("lithium", 0.5), ("end",)
+
+FIGURES = [
+    dict(number=3, view=SMALL_VIEW, columns=2, time_scale=1e3, time_unit="ns",
+         title="Fig. 3 (4.2): density 2.33e3 (a, c, e) and 2.33e8 kg/m^3 (b, d, f), D0 = 1e-10 m^2/s",
+         panels=[(run, t, label) for t in (6e-3, 26e-3, 48e-3)
+                 for run, label in (("Density_2.33e3", "2.33e3 kg/m^3"), ("Density_2.33e8", "2.33e8 kg/m^3"))]),
+    dict(number=4, view=SMALL_VIEW, columns=2, time_scale=1e-6, time_unit="s",
+         title="Fig. 4 (4.2): density 2.33e18 (a, c, e) and 2.33e24 kg/m^3 (b, d, f), D0 = 1e-17 m^2/s",
+         panels=[(run, t, label) for t in (4e6, 16e6, 28e6)
+                 for run, label in (("Density_2.33e18", "2.33e18 kg/m^3"), ("Density_2.33e24", "2.33e24 kg/m^3"))]),
+    dict(number=5, view=SMALL_VIEW, columns=3, time_scale=1e-6, time_unit="s",
+         title="Fig. 5 (4.3): half (a-c) and full lithiation (d-f); elastic, perfectly plastic, linear hardening",
+         panels=[(run, when, label) for when in (MID, FULL)
+                 for run, label in (("Constitutive_elastic", "elastic"), ("Constitutive_perfect", "perfect plasticity"),
+                                    ("Constitutive_hardening", "linear hardening"))]),
+    dict(number=6, view=SMALL_VIEW, columns=4, time_scale=1e-6, time_unit="s",
+         title="Fig. 6 (4.4): lithiation under a flux of 1e-9 m/s (a-d) and 1e-8 m/s (e-h)",
+         panels=[(run, ("lithium", f), label) for run, label in (("Flux_1e-9", "1e-9 m/s"), ("Flux_1e-8", "1e-8 m/s"))
+                 for f in (0.15, 0.3, 0.45, 0.6)]),
+    dict(number=7, view=SMALL_VIEW, columns=2, time_scale=1e-6, time_unit="s",
+         title="Fig. 7 (4.4): the end of lithiation, flux 1e-9 m/s (a) and 1e-8 m/s (b)",
+         panels=[("Flux_1e-9", FULL, "1e-9 m/s"), ("Flux_1e-8", FULL, "1e-8 m/s")]),
+    dict(number=8, view=SMALL_VIEW, columns=2, time_scale=1e-6, time_unit="s",
+         title="Fig. 8 (4.5): alpha = 6 with beta = 0 (a, c) and beta = 1 (b, d): half and full lithiation",
+         panels=[(run, when, label) for when in (MID, FULL)
+                 for run, label in (("Beta_0", "beta = 0"), ("Beta_1", "beta = 1"))]),
+    dict(number=9, view=SUBSTRATE_VIEW, columns=2, time_scale=1e-6, time_unit="s",
+         title="Fig. 9 (4.6): fixed base (a, c) and deformable substrate (b, d): half and full lithiation",
+         panels=[(run, when, label) for when in (MID, FULL)
+                 for run, label in (("Substrate_fixed", "fixed base"), ("Substrate_deformable", "substrate"))]),
+    dict(number=10, view=LARGE_VIEW, columns=5, time_scale=1e-6, time_unit="s",
+         title="Fig. 10 (4.7): the large pillar's lithiation (to 40 s) and delithiation (to 80 s)",
+         panels=[("Cycle_LargePillar", t * 1e6, "") for t in (0, 8, 16, 24, 32, 40, 48, 60, 72, 80)]),
+]
+
+
+def read_history(run_dir):
+    with open(os.path.join(run_dir, "history.csv")) as f:
+        rows = [line.strip().split(",") for line in f if line.strip()]
+    header = rows[0]
+    return [dict(zip(header, map(float, r))) for r in rows[1:]]
+
+
+def silicon_capacity(run_dir):
+    """rho V0 of material 0 (the silicon): the lithium it holds at c = 1 (history's units)."""
+    spec = ET.parse(os.path.join(run_dir, "input.ups")).getroot()
+    material = spec.find("MaterialProperties/MPM/material")
+    density = float(material.find("density").text)
+    import paper_numbers  # VTK is needed only here
+    data = paper_numbers.read_output(run_dir, 0.0, ["p.volume", "material"])
+    return density * sum(v for v, m in zip(data["p.volume"], data["material"]) if m == 0)
+
+
+def lithium_fraction_time(run_dir, fraction):
+    """The first time the silicon holds `fraction` of its capacity (None if never)."""
+    capacity = silicon_capacity(run_dir)
+    for row in read_history(run_dir):
+        if row["total_lithium"] >= fraction * capacity:
+            return row["time"]
+    return None
+
+
+def panel_time(run_dir, when):
+    if isinstance(when, tuple) and when[0] == "lithium":
+        t = lithium_fraction_time(run_dir, when[1])
+        return t if t is not None else read_history(run_dir)[-1]["time"]
+    if isinstance(when, tuple) and when[0] == "end":
+        return read_history(run_dir)[-1]["time"]
+    return when
+
+
+def figure_xml(figure, runs):
+    v = figure["view"]
+    lines = ["<figure>",
+             "  <title>%s</title>" % figure["title"],
+             "  <columns>%d</columns>" % figure["columns"],
+             "  <time_scale>%g</time_scale>" % figure["time_scale"],
+             "  <time_unit>%s</time_unit>" % figure["time_unit"],
+             "  <scene>",
+             "    <field>p.concentration</field>",
+             "    <range>[0, 1]</range>",
+             "    <clip><point>[0, 0, 0]</point><normal>[0, -1, 0]</normal></clip>",
+             "    <camera><position>%s</position><focal_point>%s</focal_point></camera>" % (
+                 v["position"], v["focal_point"]),
+             "    <size>[480, 480]</size>",
+             "    <units>c / c_max</units>",
+             "  </scene>"]
+    for run, when, label in figure["panels"]:
+        run_dir = os.path.join(runs, run)
+        lines.append("  <panel><data>%s</data><time>%.9g</time><label>%s</label></panel>" % (
+            os.path.join(run_dir, "particles.pvd"), panel_time(run_dir, when), label))
+    lines.append("</figure>")
+    return "\n".join(lines) + "\n"
 
 
 def make_all(args, runs, finished):
-    return []
+    """Draws every figure whose runs have all finished; returns the files written."""
+    out = os.path.join(args.out, "figures")
+    os.makedirs(out, exist_ok=True)
+    made = []
+    for figure in FIGURES:
+        needs = sorted({run for run, _, _ in figure["panels"]})
+        missing = [run for run in needs if run not in finished]
+        name = "fig%d" % figure["number"]
+        if missing:
+            print("%-22s not drawn: waiting for %s" % (name, ", ".join(missing)), flush=True)
+            continue
+        spec = os.path.join(out, name + ".xml")
+        with open(spec, "w") as f:
+            f.write(figure_xml(figure, runs))
+        png = os.path.join(out, name + ".png")
+        subprocess.run([args.render, "-o", png, spec], check=True, stdout=subprocess.DEVNULL)
+        print("%-22s %s" % (name, png), flush=True)
+        made.append(png)
+    return made

@@ -14,8 +14,8 @@
 3. Measures the numbers of each figure from the VTU files (paper_numbers.py) into
    DIR/numbers.md; with --report DIR2 the figures and numbers.md are copied there too.
 
---quick STEPS runs each scenario for STEPS steps only (into DIR, which should then be another
-directory) and makes the figures and numbers from what that gives: the pipeline's test.
+--quick STEPS runs each scenario afresh for STEPS steps only (into DIR, which must not hold full
+runs) and makes every figure from what that gives: the pipeline's test (tests/CMakeLists.txt).
 Needs /usr/bin/python3 with VTK (python3-vtk9, which libvtk9-dev installs) for the numbers.
 """
 import argparse
@@ -69,8 +69,13 @@ def run_scenario(name, args, runs):
     run_dir = os.path.join(runs, name)
     done = os.path.join(run_dir, "complete.json")
     if os.path.exists(done):
-        print("%-22s done" % name, flush=True)
-        return True
+        with open(done) as f:
+            quick = json.load(f)["quick"]
+        if args.quick and not quick:
+            sys.exit("reproduce_paper.py: %s holds a full run; give --quick another --out" % run_dir)
+        if not args.quick:
+            print("%-22s done" % name, flush=True)
+            return True
     sus = [args.sus, "--threads", str(args.threads)]
     if args.quick:
         sus += ["--max-timesteps", str(args.quick)]
@@ -122,6 +127,8 @@ def main():
             ok = run_scenario(name, args, runs) and ok
     finished = [n for n in SCENARIOS if os.path.exists(os.path.join(runs, n, "complete.json"))]
     made = paper_figures.make_all(args, runs, finished)
+    if args.quick and len(made) != len(paper_figures.FIGURES):
+        sys.exit("reproduce_paper.py: only %d of %d figures were drawn" % (len(made), len(paper_figures.FIGURES)))
     if args.report:
         os.makedirs(args.report, exist_ok=True)
         for path in made:
