@@ -6,7 +6,8 @@ A panel's time is either a simulation time (us) or a state of its run found in i
 """
 import os
 import subprocess
-import xml.etree.ElementTree as ET
+
+import paper_numbers
 
 # Cut-away views (the half y < 0 removed) with a fixed camera per figure, so swelling shows.
 SMALL_VIEW = dict(position="[0.2178, -0.2723, 0.266]", focal_point="[0, 0, 0.07]")
@@ -50,38 +51,13 @@ FIGURES = [
 ]
 
 
-def read_history(run_dir):
-    with open(os.path.join(run_dir, "history.csv")) as f:
-        rows = [line.strip().split(",") for line in f if line.strip()]
-    header = rows[0]
-    return [dict(zip(header, map(float, r))) for r in rows[1:]]
-
-
-def silicon_capacity(run_dir):
-    """rho V0 of material 0 (the silicon): the lithium it holds at c = 1 (history's units)."""
-    spec = ET.parse(os.path.join(run_dir, "input.ups")).getroot()
-    material = spec.find("MaterialProperties/MPM/material")
-    density = float(material.find("density").text)
-    import paper_numbers  # VTK is needed only here
-    data = paper_numbers.read_output(run_dir, 0.0, ["p.volume", "material"])
-    return density * sum(v for v, m in zip(data["p.volume"], data["material"]) if m == 0)
-
-
-def lithium_fraction_time(run_dir, fraction):
-    """The first time the silicon holds `fraction` of its capacity (None if never)."""
-    capacity = silicon_capacity(run_dir)
-    for row in read_history(run_dir):
-        if row["total_lithium"] >= fraction * capacity:
-            return row["time"]
-    return None
-
-
 def panel_time(run_dir, when):
+    """The simulation time a panel asks for (the figure shows the output nearest to it)."""
     if isinstance(when, tuple) and when[0] == "lithium":
-        t = lithium_fraction_time(run_dir, when[1])
-        return t if t is not None else read_history(run_dir)[-1]["time"]
+        t = paper_numbers.lithium_fraction_time(run_dir, when[1])
+        return t if t is not None else paper_numbers.read_history(run_dir)[-1]["time"]
     if isinstance(when, tuple) and when[0] == "end":
-        return read_history(run_dir)[-1]["time"]
+        return paper_numbers.read_history(run_dir)[-1]["time"]
     return when
 
 
@@ -110,7 +86,7 @@ def figure_xml(figure, runs):
 
 
 def make_all(args, runs, finished):
-    """Draws every figure whose runs have all finished; returns the files written."""
+    """Draws every figure whose runs have all finished and writes numbers.md; returns the files."""
     out = os.path.join(args.out, "figures")
     os.makedirs(out, exist_ok=True)
     made = []
@@ -128,4 +104,8 @@ def make_all(args, runs, finished):
         subprocess.run([args.render, "-o", png, spec], check=True, stdout=subprocess.DEVNULL)
         print("%-22s %s" % (name, png), flush=True)
         made.append(png)
-    return made
+    numbers = os.path.join(args.out, "numbers.md")
+    paper_numbers.write_numbers(numbers, runs, finished, FIGURES,
+                                lambda run, when: panel_time(os.path.join(runs, run), when))
+    print("%-22s %s" % ("numbers", numbers), flush=True)
+    return made + [numbers]

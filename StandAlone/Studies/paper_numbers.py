@@ -1,6 +1,27 @@
-"""Reads a run's particle output (VTK's XML readers, /usr/bin/python3 with python3-vtk9)."""
+"""The numbers of docs/paper/README.md, measured from a run's output (history.csv and the particle
+.vtu files, read with VTK's XML readers: /usr/bin/python3 with python3-vtk9).
+
+Definitions (the report repeats them). Lengths in um, times in us as the runs write them.
+- Reference position X0 = p.x - p.displacement; the silicon is material 0.
+- Layers of the pillar by X0_z: the base layer is the silicon's lowest particle layer, the middle
+  layer the one nearest half the height, the top layer its highest.
+- Radial growth of a layer: (largest current radius sqrt(x^2 + y^2) of its particles) / (largest
+  reference radius of its particles) - 1.
+- Rings: the silicon's particles grouped by reference radius into the pillar's pie-slice rings
+  (ring 0 on the axis, the last at the surface); a ring's c is the mean c of its particles in the
+  middle layers (X0_z within 20% of the height around half the height).
+- Front: from the innermost ring whose c is at least 0.1 (the axis ring below 0.1: an unlithiated
+  core), outwards while c rises by at least 0.1 from ring to ring; "c behind the front" is the c
+  of its outermost ring, where the shallow region behind it begins (the surface ring if it
+  reaches it). Its width is its number of rings (each 5 nm in the small pillar).
+- Height growth: (highest - lowest current z of the silicon's particles) / (the same in X0) - 1.
+- Lithium fraction: history's total lithium (sum of m c) over rho V0 of the silicon (c = 1).
+"""
+import math
 import os
 import xml.etree.ElementTree as ET
+
+SILICON = 0
 
 
 def outputs(run_dir):
@@ -28,3 +49,249 @@ def read_output(run_dir, time, arrays):
         k = a.GetNumberOfComponents()
         data[name] = [a.GetValue(i) for i in range(n)] if k == 1 else [a.GetTuple(i) for i in range(n)]
     return data
+
+
+def read_history(run_dir):
+    with open(os.path.join(run_dir, "history.csv")) as f:
+        rows = [line.strip().split(",") for line in f if line.strip()]
+    return [dict(zip(rows[0], map(float, r))) for r in rows[1:]]
+
+
+def input_of(run_dir):
+    return ET.parse(os.path.join(run_dir, "input.ups")).getroot()
+
+
+def cell_size(run_dir):
+    box = input_of(run_dir).find("Grid/Level/Box")
+    lower, upper, cells = (list(map(float, box.find(tag).text.strip(" []").split(",")))
+                           for tag in ("lower", "upper", "resolution"))
+    return (upper[0] - lower[0]) / cells[0]
+
+
+def silicon_capacity(run_dir):
+    """rho V0 of the silicon: the lithium it holds at c = 1 (history's units)."""
+    density = float(input_of(run_dir).find("MaterialProperties/MPM/material/density").text)
+    data = read_output(run_dir, 0.0, ["p.volume", "material"])
+    return density * sum(v for v, m in zip(data["p.volume"], data["material"]) if m == SILICON)
+
+
+def lithium_fraction_time(run_dir, fraction):
+    """The first time the silicon holds `fraction` of its capacity (None if never)."""
+    capacity = silicon_capacity(run_dir)
+    for row in read_history(run_dir):
+        if row["total_lithium"] >= fraction * capacity:
+            return row["time"]
+    return None
+
+
+def lithium_fraction_at(run_dir, time):
+    rows = read_history(run_dir)
+    row = min(rows, key=lambda r: abs(r["time"] - time))
+    return row["total_lithium"] / silicon_capacity(run_dir)
+
+
+class State:
+    """The silicon (and other materials') particles of one output, with reference positions."""
+
+    def __init__(self, run_dir, time):
+        d = read_output(run_dir, time, ["p.concentration", "p.displacement", "p.plasticStrain", "material",
+                                        "p.particleID", "p.volume"])
+        self.time = d["time"]
+        self.x = d["points"]
+        self.X0 = [tuple(x[k] - u[k] for k in range(3)) for x, u in zip(d["points"], d["p.displacement"])]
+        self.c = d["p.concentration"]
+        self.ep = d["p.plasticStrain"]
+        self.material = d["material"]
+        self.id = d["p.particleID"]
+        self.silicon = [i for i, m in enumerate(self.material) if m == SILICON]
+        zs = sorted({round(self.X0[i][2], 9) for i in self.silicon})
+        self.layers = zs
+        self.base, self.top = zs[0], zs[-1]
+
+    def layer(self, z):
+        """Silicon particles whose reference z is the layer nearest z."""
+        nearest = min(self.layers, key=lambda q: abs(q - z))
+        return [i for i in self.silicon if abs(self.X0[i][2] - nearest) < 1e-7]
+
+    def radial_growth(self, particles):
+        r_now = max(math.hypot(self.x[i][0], self.x[i][1]) for i in particles)
+        r_ref = max(math.hypot(self.X0[i][0], self.X0[i][1]) for i in particles)
+        return r_now / r_ref - 1
+
+    def height_growth(self):
+        """(highest - lowest current z of the silicon) / (its top layer's - base layer's X0_z) - 1."""
+        z = [self.x[i][2] for i in self.silicon]
+        return (max(z) - min(z)) / (self.top - self.base) - 1
+
+    def ring_profile(self):
+        """Mean c per ring of the middle layers, axis first."""
+        height = self.top - self.base
+        middle = self.base + height / 2
+        radii = sorted({round(math.hypot(self.X0[i][0], self.X0[i][1]), 7) for i in self.silicon})
+        sums, counts = [0.0] * len(radii), [0] * len(radii)
+        index = {r: k for k, r in enumerate(radii)}
+        for i in self.silicon:
+            if abs(self.X0[i][2] - middle) > 0.1 * height:
+                continue
+            k = index[round(math.hypot(self.X0[i][0], self.X0[i][1]), 7)]
+            sums[k] += self.c[i]
+            counts[k] += 1
+        return [s / n for s, n in zip(sums, counts) if n > 0]
+
+
+def front(profile, threshold=0.1, rise=0.1):
+    """(first ring of the front, its width in rings, c behind it), or None without an unlithiated core.
+
+    The front starts at the innermost ring with c >= threshold (a ring inside it below threshold)
+    and goes outwards while c rises by at least `rise` from one ring to the next; c behind the
+    front is that of its outermost ring, where the shallow region behind it begins.
+    """
+    if not profile or profile[0] >= threshold:
+        return None
+    first = next((k for k, c in enumerate(profile) if c >= threshold), None)
+    if first is None:
+        return None
+    last = first
+    while last + 1 < len(profile) and profile[last + 1] - profile[last] >= rise:
+        last += 1
+    return first, last - first + 1, profile[last]
+
+
+def pair_difference(run_a, run_b, time):
+    """Largest and mean |c_a - c_b| and largest |x_a - x_b| in cells, particles matched by ID."""
+    a, b = State(run_a, time), State(run_b, time)
+    where = {pid: i for i, pid in enumerate(b.id)}
+    dx = cell_size(run_a)
+    dc, dxs = [], []
+    for i, pid in enumerate(a.id):
+        j = where[pid]
+        dc.append(abs(a.c[i] - b.c[j]))
+        dxs.append(math.dist(a.x[i], b.x[j]) / dx)
+    return dict(time_a=a.time, time_b=b.time, max_dc=max(dc), mean_dc=sum(dc) / len(dc), max_dx_cells=max(dxs))
+
+
+def shape(run_dir, time):
+    """Lithium fraction, radial growth of the base, middle and top layers, height growth, plastic strain."""
+    s = State(run_dir, time)
+    base, top = s.layer(s.base), s.layer(s.top)
+    middle = s.layer((s.base + s.top) / 2)
+    ep_base = [s.ep[i] for i in base]
+    other = [i for i, m in enumerate(s.material) if m != SILICON]
+    return dict(time=s.time, lithium=lithium_fraction_at(run_dir, s.time), base_growth=s.radial_growth(base),
+                middle_growth=s.radial_growth(middle), top_growth=s.radial_growth(top),
+                height_growth=s.height_growth(), ep_base_max=max(ep_base), ep_base_mean=sum(ep_base) / len(ep_base),
+                ep_max=max(s.ep[i] for i in s.silicon),
+                ep_substrate_max=max((s.ep[i] for i in other), default=None))
+
+
+# ---- The tables of numbers.md, one section per figure ----
+
+PAPER_CYCLE = "27,472 steps, 48.57 h on 9 cores (Intel Xeon E5-2667, 2.9 GHz)"
+
+
+def percent(v):
+    return "—" if v is None else "%.1f%%" % (100 * v)
+
+
+def num(v, digits=3):
+    return "—" if v is None else "%.*g" % (digits, v)
+
+
+def table(header, rows):
+    lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
+    lines += ["| " + " | ".join(str(c) for c in r) + " |" for r in rows]
+    return "\n".join(lines)
+
+
+def runs_table(runs, finished):
+    import json
+    rows = []
+    for name in finished:
+        with open(os.path.join(runs, name, "complete.json")) as f:
+            s = json.load(f)
+        rows.append([name, s["particles"], s["steps"], "%.4g" % s["time"], "%.0f" % s["wall_seconds"], s["threads"]])
+    return table(["scenario", "particles", "steps", "simulated time (us)", "wall (s)", "threads"], rows)
+
+
+def density_section(runs, pair, times, unit_scale, unit):
+    rows = []
+    for t in times:
+        d = pair_difference(os.path.join(runs, pair[0]), os.path.join(runs, pair[1]), t)
+        rows.append(["%g %s" % (t * unit_scale, unit), "%.4g / %.4g" % (d["time_a"] * unit_scale, d["time_b"] * unit_scale),
+                     num(d["max_dc"]), num(d["mean_dc"]), num(d["max_dx_cells"])])
+    return table(["figure time", "output times (%s)" % unit, "largest abs(c difference)", "mean abs(c difference)",
+                  "largest position difference (cells)"], rows)
+
+
+def shape_section(runs, panels, time_of):
+    rows = []
+    for run, when, label in panels:
+        s = shape(os.path.join(runs, run), time_of(run, when))
+        rows.append([label, "%.3g" % (s["time"] * 1e-6), percent(s["lithium"]), percent(s["base_growth"]),
+                     percent(s["middle_growth"]), percent(s["top_growth"]), percent(s["height_growth"]),
+                     num(s["ep_base_max"]), num(s["ep_base_mean"]), num(s["ep_max"]), num(s["ep_substrate_max"])])
+    return table(["run", "t (s)", "lithium", "base radial growth", "middle radial growth", "top radial growth",
+                  "height growth", "max plastic strain, base layer", "mean, base layer", "max, silicon",
+                  "max, substrate"], rows)
+
+
+def front_section(runs, panels, time_of):
+    rows = []
+    for run, when, label in panels:
+        run_dir = os.path.join(runs, run)
+        s = State(run_dir, time_of(run, when))
+        profile = s.ring_profile()
+        f = front(profile)
+        rows.append([label, "%.3g" % (s.time * 1e-6), percent(lithium_fraction_at(run_dir, s.time)),
+                     " ".join("%.2f" % c for c in profile),
+                     "none" if f is None else "rings %d-%d" % (f[0], f[0] + f[1] - 1),
+                     "—" if f is None else "%.3f" % f[2]])
+    return table(["run", "t (s)", "lithium", "ring c, axis to surface (middle layers)", "front", "c behind the front"],
+                 rows)
+
+
+def cycle_section(runs):
+    run_dir = os.path.join(runs, "Cycle_LargePillar")
+    history = read_history(run_dir)
+    capacity = silicon_capacity(run_dir)
+    rows = []
+    for t in (40e6, 80e6):
+        r = min(history, key=lambda h: abs(h["time"] - t))
+        s = State(run_dir, r["time"])
+        pillar = [s.ep[i] for i in s.silicon]
+        substrate = [s.ep[i] for i, m in enumerate(s.material) if m != SILICON]
+        rows.append(["%.4g" % (r["time"] * 1e-6), int(r["step"]), percent(r["total_lithium"] / capacity),
+                     "%.4f - %.4f" % (r["min_c"], r["max_c"]), "%.4f - %.4f" % (r["min_J"], r["max_J"]),
+                     "%.3g / %.3g" % (max(pillar), sum(pillar) / len(pillar)),
+                     "%.3g / %.3g" % (max(substrate), sum(substrate) / len(substrate))])
+    peak = max(history, key=lambda h: h["total_lithium"])
+    return table(["t (s)", "step", "lithium", "c range", "J range", "plastic strain max / mean, pillar",
+                  "max / mean, substrate"], rows) + (
+        "\n\nMost lithium: %s of the capacity at t = %.4g s. The paper's run: %s." %
+        (percent(peak["total_lithium"] / capacity), peak["time"] * 1e-6, PAPER_CYCLE))
+
+
+def write_numbers(path, runs, finished, figures, time_of):
+    """numbers.md: the runs, then each figure's numbers (sections whose runs are not done say so)."""
+    out = ["# Numbers of the paper's figures, measured from the runs",
+           "", "Written by `StandAlone/Studies/reproduce_paper.py`; definitions in `paper_numbers.py` and "
+           "`docs/paper/README.md`.", "", "## Runs", "", runs_table(runs, finished)]
+    sections = {
+        3: lambda f: density_section(runs, ("Density_2.33e3", "Density_2.33e8"), (6e-3, 26e-3, 48e-3), 1e3, "ns"),
+        4: lambda f: density_section(runs, ("Density_2.33e18", "Density_2.33e24"), (4e6, 16e6, 28e6), 1e-6, "s"),
+        5: lambda f: shape_section(runs, f["panels"], time_of),
+        6: lambda f: front_section(runs, f["panels"], time_of),
+        7: lambda f: front_section(runs, f["panels"], time_of) + "\n\n" + shape_section(runs, f["panels"], time_of),
+        8: lambda f: shape_section(runs, f["panels"], time_of),
+        9: lambda f: shape_section(runs, f["panels"], time_of),
+        10: lambda f: cycle_section(runs),
+    }
+    for figure in figures:
+        out += ["", "## Figure %d" % figure["number"], ""]
+        missing = sorted({run for run, _, _ in figure["panels"]} - set(finished))
+        if missing:
+            out.append("Not measured yet: waiting for " + ", ".join(missing) + ".")
+            continue
+        out.append(sections[figure["number"]](figure))
+    with open(path, "w") as f:
+        f.write("\n".join(out) + "\n")
