@@ -11,7 +11,6 @@ import paper_numbers
 
 # Cut-away views (the half y < 0 removed) with a fixed camera per figure, so swelling shows.
 SMALL_VIEW = dict(position="[0.2178, -0.2723, 0.266]", focal_point="[0, 0, 0.07]")
-SUBSTRATE_VIEW = dict(position="[0.30, -0.375, 0.36]", focal_point="[0, 0, 0.085]")
 LARGE_VIEW = dict(position="[0.80, -1.00, 0.85]", focal_point="[0, 0, 0.02]")
 
 MID, FULL = ("lithium", 0.5), ("end",)
@@ -41,7 +40,7 @@ FIGURES = [
          title="Fig. 8 (4.5): alpha = 6 with beta = 0 (a, c) and beta = 1 (b, d): half and full lithiation",
          panels=[(run, when, label) for when in (MID, FULL)
                  for run, label in (("Beta_0", "beta = 0"), ("Beta_1", "beta = 1"))]),
-    dict(number=9, view=SUBSTRATE_VIEW, columns=2, time_scale=1e-6, time_unit="s",
+    dict(number=9, view=LARGE_VIEW, columns=2, time_scale=1e-6, time_unit="s",
          title="Fig. 9 (4.6): fixed base (a, c) and deformable substrate (b, d): half and full lithiation",
          panels=[(run, when, label) for when in (MID, FULL)
                  for run, label in (("Substrate_fixed", "fixed base"), ("Substrate_deformable", "substrate"))]),
