@@ -217,6 +217,14 @@ for J, tag in [(1e-9, "1e-9"), (1e-8, "1e-8")]:
                           notes=describe(COMMON + ["Linear hardening; alpha = 6, beta = 0.5; flux " + tag + " m/s;",
                                                    "the paper finds c ~ 0.5-0.6 behind the front at 1e-9 and > 0.7 at 1e-8."]),
                           pillar=SMALL, density=2.33e24, D0=1e-17, flux=J, maxTime=1.0e8 if J < 5e-9 else 1.0e7, model="hardening"))
+# Not in the paper: why is there no sharp front at 1e-9 with D0 = 1e-17 (docs/paper/README.md)?
+# The same run with smaller D0 (the paper does not give D0 for §4.4).
+for D0, tag in [(5e-18, "5e-18"), (2e-18, "2e-18")]:
+    SCENARIOS.append(dict(name="Front_D0_" + tag, section="§4.4, Figs. 6-7 (a study of ours)",
+                          title="Flux 1e-9 m/s with D0 = " + tag + " m^2/s",
+                          notes=describe(COMMON + ["As Flux_1e-9 but D0 = " + tag + " m^2/s: how c behind the front depends on D0",
+                                                   "(not in the paper, which does not give D0 for 4.4)."]),
+                          pillar=SMALL, density=2.33e24, D0=D0, flux=1e-9, maxTime=3.0e7, output=1e6, model="hardening"))
 for beta in [0.0, 1.0]:
     SCENARIOS.append(dict(name="Beta_%g" % beta, section="§4.5, Fig. 8", title="Pressure dependence beta = %g" % beta,
                           notes=describe(COMMON + ["Linear hardening; alpha = 6, beta = %g (1/GPa); flux 1e-9 m/s." % beta]),

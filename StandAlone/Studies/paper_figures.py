@@ -1,4 +1,5 @@
-"""The paper's Figures 3-10: which runs, times and view each shows, drawn with render_figure.
+"""The paper's Figures 3-10 (and one of ours, fig6_D0): which runs, times and view each shows,
+drawn with render_figure, and which numbers measure it (paper_numbers.write_numbers).
 
 A panel's time is either a simulation time (us) or a state of its run found in its history.csv:
 ("lithium", f) is the first time the silicon holds the fraction f of its capacity (rho V0, c = 1),
@@ -16,35 +17,40 @@ LARGE_VIEW = dict(position="[0.80, -1.00, 0.85]", focal_point="[0, 0, 0.02]")
 MID, FULL = ("lithium", 0.5), ("end",)
 
 FIGURES = [
-    dict(number=3, view=SMALL_VIEW, columns=2, time_scale=1e3, time_unit="ns",
+    dict(name="fig3", measure="density", pair=("Density_2.33e3", "Density_2.33e8"), view=SMALL_VIEW, columns=2, time_scale=1e3, time_unit="ns",
          title="Fig. 3 (4.2): density 2.33e3 (a, c, e) and 2.33e8 kg/m^3 (b, d, f), D0 = 1e-10 m^2/s",
          panels=[(run, t, label) for t in (6e-3, 26e-3, 48e-3)
                  for run, label in (("Density_2.33e3", "2.33e3 kg/m^3"), ("Density_2.33e8", "2.33e8 kg/m^3"))]),
-    dict(number=4, view=SMALL_VIEW, columns=2, time_scale=1e-6, time_unit="s",
+    dict(name="fig4", measure="density", pair=("Density_2.33e18", "Density_2.33e24"), view=SMALL_VIEW, columns=2, time_scale=1e-6, time_unit="s",
          title="Fig. 4 (4.2): density 2.33e18 (a, c, e) and 2.33e24 kg/m^3 (b, d, f), D0 = 1e-17 m^2/s",
          panels=[(run, t, label) for t in (4e6, 16e6, 28e6)
                  for run, label in (("Density_2.33e18", "2.33e18 kg/m^3"), ("Density_2.33e24", "2.33e24 kg/m^3"))]),
-    dict(number=5, view=SMALL_VIEW, columns=3, time_scale=1e-6, time_unit="s",
+    dict(name="fig5", measure="shape", view=SMALL_VIEW, columns=3, time_scale=1e-6, time_unit="s",
          title="Fig. 5 (4.3): half (a-c) and full lithiation (d-f); elastic, perfectly plastic, linear hardening",
          panels=[(run, when, label) for when in (MID, FULL)
                  for run, label in (("Constitutive_elastic", "elastic"), ("Constitutive_perfect", "perfect plasticity"),
                                     ("Constitutive_hardening", "linear hardening"))]),
-    dict(number=6, view=SMALL_VIEW, columns=4, time_scale=1e-6, time_unit="s",
+    dict(name="fig6", measure="front", view=SMALL_VIEW, columns=4, time_scale=1e-6, time_unit="s",
          title="Fig. 6 (4.4): lithiation under a flux of 1e-9 m/s (a-d) and 1e-8 m/s (e-h)",
          panels=[(run, ("lithium", f), label) for run, label in (("Flux_1e-9", "1e-9 m/s"), ("Flux_1e-8", "1e-8 m/s"))
                  for f in (0.15, 0.3, 0.45, 0.6)]),
-    dict(number=7, view=SMALL_VIEW, columns=2, time_scale=1e-6, time_unit="s",
+    dict(name="fig6_D0", measure="front", view=SMALL_VIEW, columns=3, time_scale=1e-6, time_unit="s",
+         title="Ours, not the paper's: flux 1e-9 m/s with D0 = 1e-17, 5e-18 and 2e-18 m^2/s at 15% and 30% lithium",
+         panels=[(run, ("lithium", f), label) for f in (0.15, 0.3)
+                 for run, label in (("Flux_1e-9", "D0 = 1e-17"), ("Front_D0_5e-18", "D0 = 5e-18"),
+                                    ("Front_D0_2e-18", "D0 = 2e-18"))]),
+    dict(name="fig7", measure="front and shape", view=SMALL_VIEW, columns=2, time_scale=1e-6, time_unit="s",
          title="Fig. 7 (4.4): the end of lithiation, flux 1e-9 m/s (a) and 1e-8 m/s (b)",
          panels=[("Flux_1e-9", FULL, "1e-9 m/s"), ("Flux_1e-8", FULL, "1e-8 m/s")]),
-    dict(number=8, view=SMALL_VIEW, columns=2, time_scale=1e-6, time_unit="s",
+    dict(name="fig8", measure="shape", view=SMALL_VIEW, columns=2, time_scale=1e-6, time_unit="s",
          title="Fig. 8 (4.5): alpha = 6 with beta = 0 (a, c) and beta = 1 (b, d): half and full lithiation",
          panels=[(run, when, label) for when in (MID, FULL)
                  for run, label in (("Beta_0", "beta = 0"), ("Beta_1", "beta = 1"))]),
-    dict(number=9, view=LARGE_VIEW, columns=2, time_scale=1e-6, time_unit="s",
+    dict(name="fig9", measure="shape", view=LARGE_VIEW, columns=2, time_scale=1e-6, time_unit="s",
          title="Fig. 9 (4.6): fixed base (a, c) and deformable substrate (b, d): half and full lithiation",
          panels=[(run, when, label) for when in (MID, FULL)
                  for run, label in (("Substrate_fixed", "fixed base"), ("Substrate_deformable", "substrate"))]),
-    dict(number=10, view=LARGE_VIEW, columns=5, time_scale=1e-6, time_unit="s",
+    dict(name="fig10", measure="cycle", view=LARGE_VIEW, columns=5, time_scale=1e-6, time_unit="s",
          title="Fig. 10 (4.7): the large pillar's lithiation (to 40 s) and delithiation (to 80 s)",
          panels=[("Cycle_LargePillar", t * 1e6, "") for t in (0, 8, 16, 24, 32, 40, 48, 60, 72, 80)]),
 ]
@@ -92,7 +98,7 @@ def make_all(args, runs, finished):
     for figure in FIGURES:
         needs = sorted({run for run, _, _ in figure["panels"]})
         missing = [run for run in needs if run not in finished]
-        name = "fig%d" % figure["number"]
+        name = figure["name"]
         if missing:
             print("%-22s not drawn: waiting for %s" % (name, ", ".join(missing)), flush=True)
             continue

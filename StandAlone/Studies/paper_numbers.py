@@ -277,21 +277,20 @@ def write_numbers(path, runs, finished, figures, time_of):
            "", "Written by `StandAlone/Studies/reproduce_paper.py`; definitions in `paper_numbers.py` and "
            "`docs/paper/README.md`.", "", "## Runs", "", runs_table(runs, finished)]
     sections = {
-        3: lambda f: density_section(runs, ("Density_2.33e3", "Density_2.33e8"), (6e-3, 26e-3, 48e-3), 1e3, "ns"),
-        4: lambda f: density_section(runs, ("Density_2.33e18", "Density_2.33e24"), (4e6, 16e6, 28e6), 1e-6, "s"),
-        5: lambda f: shape_section(runs, f["panels"], time_of),
-        6: lambda f: front_section(runs, f["panels"], time_of),
-        7: lambda f: front_section(runs, f["panels"], time_of) + "\n\n" + shape_section(runs, f["panels"], time_of),
-        8: lambda f: shape_section(runs, f["panels"], time_of),
-        9: lambda f: shape_section(runs, f["panels"], time_of),
-        10: lambda f: cycle_section(runs),
+        "density": lambda f: density_section(runs, f["pair"], sorted({when for _, when, _ in f["panels"]}),
+                                             f["time_scale"], f["time_unit"]),
+        "shape": lambda f: shape_section(runs, f["panels"], time_of),
+        "front": lambda f: front_section(runs, f["panels"], time_of),
+        "front and shape": lambda f: front_section(runs, f["panels"], time_of) + "\n\n" +
+        shape_section(runs, f["panels"], time_of),
+        "cycle": lambda f: cycle_section(runs),
     }
     for figure in figures:
-        out += ["", "## Figure %d" % figure["number"], ""]
+        out += ["", "## " + figure["title"], ""]
         missing = sorted({run for run, _, _ in figure["panels"]} - set(finished))
         if missing:
             out.append("Not measured yet: waiting for " + ", ".join(missing) + ".")
             continue
-        out.append(sections[figure["number"]](figure))
+        out.append(sections[figure["measure"]](figure))
     with open(path, "w") as f:
         f.write("\n".join(out) + "\n")

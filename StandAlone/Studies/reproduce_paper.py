@@ -35,8 +35,8 @@ import paper_figures  # noqa: E402
 
 # Cheapest first (measured here on 2 cores; docs/paper/README.md has the wall times).
 SCENARIOS = ["Flux_1e-8", "Flux_1e-9", "Constitutive_elastic", "Constitutive_perfect",
-             "Constitutive_hardening", "Beta_0", "Beta_1", "Density_2.33e24", "Density_2.33e8",
-             "Substrate_fixed", "Substrate_deformable", "Cycle_LargePillar", "Density_2.33e3",
+             "Constitutive_hardening", "Beta_0", "Beta_1", "Front_D0_5e-18", "Front_D0_2e-18",
+             "Density_2.33e24", "Density_2.33e8", "Substrate_fixed", "Substrate_deformable", "Cycle_LargePillar", "Density_2.33e3",
              "Density_2.33e18"]
 
 
