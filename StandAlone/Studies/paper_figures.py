@@ -11,10 +11,16 @@ import subprocess
 import paper_numbers
 
 # Cut-away views (the half y < 0 removed) with a fixed camera per figure, so swelling shows.
-SMALL_VIEW = dict(position="[0.2178, -0.2723, 0.266]", focal_point="[0, 0, 0.07]")
-LARGE_VIEW = dict(position="[0.80, -1.00, 0.85]", focal_point="[0, 0, 0.02]")
+SMALL_VIEW = dict(position="[0.2178, -0.2723, 0.266]", focal_point="[0, 0, 0.07]", size="[480, 480]")
+LARGE_VIEW = dict(position="[0.68, -0.85, 0.62]", focal_point="[0, 0, 0.03]", size="[640, 400]")
 
 MID, FULL = ("lithium", 0.5), ("end",)
+
+# What colours the particles: scene tags (docs/input-reference.md); a figure's "colour" replaces some.
+CONCENTRATION = dict(field="p.concentration", scale=None, range="[0, 1]", colormap=None, units="c / c_max")
+# The code's stress is in kPa (um, us, pg): drawn in GPa.
+VON_MISES = dict(field="p.stress:von_mises", scale="1e-6", range="data", colormap="blue_red", units="GPa")
+PLASTIC_STRAIN = dict(field="p.plasticStrain", range="data", colormap="blue_red", units=None)
 
 FIGURES = [
     dict(name="fig3", measure="density", pair=("Density_2.33e3", "Density_2.33e8"), view=SMALL_VIEW, columns=2, time_scale=1e3, time_unit="ns",
@@ -27,6 +33,12 @@ FIGURES = [
                  for run, label in (("Density_2.33e18", "2.33e18 kg/m^3"), ("Density_2.33e24", "2.33e24 kg/m^3"))]),
     dict(name="fig5", measure="shape", view=SMALL_VIEW, columns=3, time_scale=1e-6, time_unit="s",
          title="Fig. 5 (4.3): half (a-c) and full lithiation (d-f); elastic, perfectly plastic, linear hardening",
+         panels=[(run, when, label) for when in (MID, FULL)
+                 for run, label in (("Constitutive_elastic", "elastic"), ("Constitutive_perfect", "perfect plasticity"),
+                                    ("Constitutive_hardening", "linear hardening"))]),
+    dict(name="fig5_plastic_strain", measure=None, view=SMALL_VIEW, columns=3, time_scale=1e-6, time_unit="s",
+         colour=PLASTIC_STRAIN,
+         title="Fig. 5 as plastic strain: where each model yields at half (a-c) and full lithiation (d-f)",
          panels=[(run, when, label) for when in (MID, FULL)
                  for run, label in (("Constitutive_elastic", "elastic"), ("Constitutive_perfect", "perfect plasticity"),
                                     ("Constitutive_hardening", "linear hardening"))]),
@@ -48,6 +60,11 @@ FIGURES = [
                  for run, label in (("Beta_0", "beta = 0"), ("Beta_1", "beta = 1"))]),
     dict(name="fig9", measure="shape", view=LARGE_VIEW, columns=2, time_scale=1e-6, time_unit="s",
          title="Fig. 9 (4.6): fixed base (a, c) and deformable substrate (b, d): half and full lithiation",
+         panels=[(run, when, label) for when in (MID, FULL)
+                 for run, label in (("Substrate_fixed", "fixed base"), ("Substrate_deformable", "substrate"))]),
+    dict(name="fig9_von_mises", measure=None, view=LARGE_VIEW, columns=2, time_scale=1e-6, time_unit="s",
+         colour=VON_MISES,
+         title="Fig. 9 as von Mises stress: fixed base (a, c) and deformable substrate (b, d)",
          panels=[(run, when, label) for when in (MID, FULL)
                  for run, label in (("Substrate_fixed", "fixed base"), ("Substrate_deformable", "substrate"))]),
     dict(name="fig10", measure="cycle", view=LARGE_VIEW, columns=5, time_scale=1e-6, time_unit="s",
@@ -73,15 +90,14 @@ def figure_xml(figure, runs):
              "  <columns>%d</columns>" % figure["columns"],
              "  <time_scale>%g</time_scale>" % figure["time_scale"],
              "  <time_unit>%s</time_unit>" % figure["time_unit"],
-             "  <scene>",
-             "    <field>p.concentration</field>",
-             "    <range>[0, 1]</range>",
-             "    <clip><point>[0, 0, 0]</point><normal>[0, -1, 0]</normal></clip>",
-             "    <camera><position>%s</position><focal_point>%s</focal_point></camera>" % (
-                 v["position"], v["focal_point"]),
-             "    <size>[480, 480]</size>",
-             "    <units>c / c_max</units>",
-             "  </scene>"]
+             "  <scene>"]
+    colour = dict(CONCENTRATION, **figure.get("colour", {}))
+    lines += ["    <%s>%s</%s>" % (tag, value, tag) for tag, value in colour.items() if value is not None]
+    lines += ["    <clip><point>[0, 0, 0]</point><normal>[0, -1, 0]</normal></clip>",
+              "    <camera><position>%s</position><focal_point>%s</focal_point></camera>" % (
+                  v["position"], v["focal_point"]),
+              "    <size>%s</size>" % v["size"],
+              "  </scene>"]
     for run, when, label in figure["panels"]:
         run_dir = os.path.join(runs, run)
         lines.append("  <panel><data>%s</data><time>%.9g</time><label>%s</label></panel>" % (
