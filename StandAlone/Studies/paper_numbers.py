@@ -235,19 +235,31 @@ def shape_section(runs, panels, time_of):
                   "max, substrate"], rows)
 
 
+# §4.4: "c behind the sharp front is 0.5-0.6 at a flux of 1e-9 m/s and above 0.7 at 1e-8".
+PAPER_BEHIND_FRONT = {"Flux_1e-9": "0.5-0.6", "Flux_1e-8": "> 0.7"}
+
+
 def front_section(runs, panels, time_of):
-    rows = []
+    rows, behind = [], {}
     for run, when, label in panels:
         run_dir = os.path.join(runs, run)
         s = State(run_dir, time_of(run, when))
         profile = s.ring_profile()
         f = front(profile)
+        if f is not None:
+            behind.setdefault((run, label), []).append(f[2])
+        else:
+            behind.setdefault((run, label), [])
         rows.append([label, "%.3g" % (s.time * 1e-6), percent(lithium_fraction_at(run_dir, s.time)),
                      " ".join("%.2f" % c for c in profile),
                      "none" if f is None else "rings %d-%d" % (f[0], f[0] + f[1] - 1),
                      "—" if f is None else "%.3f" % f[2]])
+    summary = [[label, "none" if not values else "%.2f-%.2f" % (min(values), max(values)),
+                "%d of %d" % (len(values), sum(1 for p in panels if p[0] == run)),
+                PAPER_BEHIND_FRONT.get(run, "—")] for (run, label), values in behind.items()]
     return table(["run", "t (s)", "lithium", "ring c, axis to surface (middle layers)", "front", "c behind the front"],
-                 rows)
+                 rows) + "\n\n" + table(["run", "c behind the front (ours)", "panels with a front",
+                                          "the paper (4.4)"], summary)
 
 
 def cycle_section(runs):

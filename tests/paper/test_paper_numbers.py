@@ -1,0 +1,30 @@
+"""The front of docs/paper/README.md (paper_numbers.front) on ring profiles of known shape."""
+import os
+import sys
+import unittest
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "StandAlone", "Studies"))
+import paper_numbers  # noqa: E402
+
+
+class Front(unittest.TestCase):
+    def test_sharp_front_and_plateau_behind_it(self):
+        profile = [0.0, 0.0, 0.01, 0.05, 0.12, 0.30, 0.55, 0.72, 0.75, 0.80]
+        self.assertEqual(paper_numbers.front(profile), (4, 4, 0.72))
+
+    def test_front_at_the_surface(self):
+        self.assertEqual(paper_numbers.front([0.0] * 8 + [0.34, 0.62]), (8, 2, 0.62))
+
+    def test_no_unlithiated_core_no_front(self):
+        self.assertIsNone(paper_numbers.front([0.19, 0.24, 0.39, 0.66, 0.84, 0.9]))
+
+    def test_nothing_lithiated_no_front(self):
+        self.assertIsNone(paper_numbers.front([0.0, 0.01, 0.05, 0.09]))
+
+    def test_smooth_profile_gives_a_one_ring_front(self):
+        # A gradient without a jump of 0.1 between rings: the front is its first ring above 0.1.
+        self.assertEqual(paper_numbers.front([0.01, 0.04, 0.07, 0.11, 0.16, 0.2]), (3, 1, 0.11))
+
+
+if __name__ == "__main__":
+    unittest.main()
