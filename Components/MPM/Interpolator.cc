@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "Components/MPM/CpdiCorners.h"
+
 namespace anode {
 
 int maxNodesPerParticle(InterpolatorKind kind) {
@@ -30,12 +32,6 @@ std::string interpolatorName(InterpolatorKind kind) {
 }
 
 namespace {
-
-// floor for index coordinates (> -1024): a conversion instead of a libm call, since the
-// portable x86-64 baseline has no SSE4.1 rounding instruction.
-inline int floorIndex(double x) {
-  return static_cast<int>(x + 1024.0) - 1024;
-}
 
 // Tensor product of per-axis 1-D weights `n[d][a]` and slopes `dn[d][a]` (index space) over
 // `len[d]` nodes starting at `first[d]`.
@@ -136,32 +132,55 @@ int cpdiCapacity(const Grid& g, const Vec3& x, const Mat3& size, const Mat3& F) 
   return static_cast<int>(std::min(span, 64L));
 }
 
-int cpdiWeights(const Grid& g, const Vec3& x, const Mat3& size, const Mat3& F, int32_t* nodes,
-                double* w, Vec3* grad) {
-  // Sadeghirad et al. 2011: the particle domain is the parallelepiped spanned by the columns of
-  // A = F*size (index space); weights average the linear shape functions over its 8 corners and
-  // gradients follow from the divergence theorem over its faces.
-  const Mat3 A = F * size;
-  const Vec3 r1 = A.col(0), r2 = A.col(1), r3 = A.col(2);
-  const Vec3 c23 = r2.cross(r3), c31 = r3.cross(r1), c12 = r1.cross(r2);
-  const Vec3 toPhysical = g.dx.cwiseInverse() / (4 * A.determinant());
-  const Vec3 xi = g.indexCoordinate(x);
+void cpdiCorners(const Grid& g, const Vec3& x, const Mat3& size, const Mat3& F, CpdiCorners& out) {
+  double xs[3], Fs[3][3], sizes[3][3];
+  for (int i = 0; i < 3; ++i) {
+    xs[i] = x[i];
+    for (int j = 0; j < 3; ++j) Fs[i][j] = F(i, j), sizes[i][j] = size(i, j);
+  }
+  computeCorners(g, xs, Fs, sizes, out);
+}
 
-  int f[8][3];
-  double fr[8][3];
-  Vec3 alpha[8];  // physical gradient factor of each corner
-  int lo[3] = {1 << 30, 1 << 30, 1 << 30}, hi[3] = {-(1 << 30), -(1 << 30), -(1 << 30)};
-  for (int c = 0; c < 8; ++c) {
-    const double s1 = (c & 1) ? 0.5 : -0.5, s2 = (c & 2) ? 0.5 : -0.5, s3 = (c & 4) ? 0.5 : -0.5;
-    const Vec3 corner = xi + s1 * r1 + s2 * r2 + s3 * r3;
-    alpha[c] = (2 * (s1 * c23 + s2 * c31 + s3 * c12)).cwiseProduct(toPhysical);
+void cpdiCornersOfPack(const Grid& g, const Vec3* x, const Mat3* size, const Mat3* F,
+                       CpdiCorners* out) {
+  constexpr int lanes = static_cast<int>(Pack::size());
+  Pack xs[3], Fs[3][3], sizes[3][3];
+  for (int l = 0; l < lanes; ++l)
+    for (int i = 0; i < 3; ++i) {
+      xs[i][l] = x[l][i];
+      for (int j = 0; j < 3; ++j) Fs[i][j][l] = F[l](i, j), sizes[i][j][l] = size[l](i, j);
+    }
+  CpdiCornersPack pack;
+  computeCorners(g, xs, Fs, sizes, pack);
+  for (int l = 0; l < lanes; ++l) {
+    CpdiCorners& one = out[l];
+    for (int c = 0; c < 8; ++c)
+      for (int d = 0; d < 3; ++d) {
+        one.cell[c][d] = pack.cell[c][d][l];
+        one.inCell[c][d] = pack.inCell[c][d][l];
+        one.alpha[c][d] = pack.alpha[c][d][l];
+      }
     for (int d = 0; d < 3; ++d) {
-      f[c][d] = floorIndex(corner[d]);
-      fr[c][d] = corner[d] - f[c][d];
-      lo[d] = std::min(lo[d], f[c][d]);
-      hi[d] = std::max(hi[d], f[c][d] + 1);
+      one.lowest[d] = pack.lowest[d][l];
+      one.highest[d] = pack.highest[d][l];
     }
   }
+}
+
+int cpdiWeights(const Grid& g, const Vec3& x, const Mat3& size, const Mat3& F, int32_t* nodes,
+                double* w, Vec3* grad) {
+  CpdiCorners corners;
+  cpdiCorners(g, x, size, F, corners);
+  return cpdiWeights(g, corners, nodes, w, grad);
+}
+
+int cpdiWeights(const Grid& g, const CpdiCorners& corners, int32_t* nodes, double* w, Vec3* grad) {
+  // Weights average the linear shape functions over the 8 corners; gradients sum each corner's
+  // factor alpha times its linear weight.
+  const auto& f = corners.cell;
+  const auto& fr = corners.inCell;
+  const int* lo = corners.lowest;
+  const int* hi = corners.highest;
   if (!g.hasNode(lo[0], lo[1], lo[2]) || !g.hasNode(hi[0], hi[1], hi[2])) return -1;
   const int sx = hi[0] - lo[0] + 1, sy = hi[1] - lo[1] + 1, sz = hi[2] - lo[2] + 1;
 
@@ -176,46 +195,48 @@ int cpdiWeights(const Grid& g, const Vec3& x, const Mat3& size, const Mat3& F, i
         if (nl <= 0) continue;
         nodes[count] = g.nodeIndex(f[c][0] + a, f[c][1] + b, f[c][2] + cc);
         w[count] = 0.125 * nl;
-        grad[count] = nl * alpha[c];
+        grad[count] = nl * Vec3(corners.alpha[c][0], corners.alpha[c][1], corners.alpha[c][2]);
         ++count;
       }
     return count;
   }
-  // Corners of one particle share nodes: sum into a dense block so each node appears once (the
-  // gradient by component, so that a corner's two nodes along x are adjacent in memory).
-  double bw[64], bgx[64], bgy[64], bgz[64];
+  // Corners of one particle share nodes: sum into a dense block so each node appears once. A
+  // slot holds the weight and the gradient side by side, so a corner adds to a node in one
+  // 4-wide operation ((1, alpha) times the node's linear weight).
+  alignas(32) double block[64][4];
   const int slots = sx * sy * sz;
-  std::fill_n(bw, slots, 0.0);
-  std::fill_n(bgx, slots, 0.0);
-  std::fill_n(bgy, slots, 0.0);
-  std::fill_n(bgz, slots, 0.0);
+  std::fill_n(&block[0][0], 4 * slots, 0.0);
   for (int c = 0; c < 8; ++c) {
     const int base = ((f[c][2] - lo[2]) * sy + (f[c][1] - lo[1])) * sx + (f[c][0] - lo[0]);
     const double wx[2] = {1 - fr[c][0], fr[c][0]}, wy[2] = {1 - fr[c][1], fr[c][1]},
                  wz[2] = {1 - fr[c][2], fr[c][2]};
+    alignas(32) const double factorOf[4] = {1, corners.alpha[c][0], corners.alpha[c][1],
+                                            corners.alpha[c][2]};
+    const Quad factor(factorOf, stdx::vector_aligned);
     for (int k = 0; k < 2; ++k)
       for (int j = 0; j < 2; ++j) {
         const int row = base + (k * sy + j) * sx;
         for (int i = 0; i < 2; ++i) {
-          const double nl = wx[i] * wy[j] * wz[k];
-          bw[row + i] += nl;
-          bgx[row + i] += nl * alpha[c].x();
-          bgy[row + i] += nl * alpha[c].y();
-          bgz[row + i] += nl * alpha[c].z();
+          double* slot = block[row + i];
+          Quad sum(slot, stdx::vector_aligned);
+          sum += (wx[i] * wy[j] * wz[k]) * factor;
+          sum.copy_to(slot, stdx::vector_aligned);
         }
       }
   }
+  // Every slot is written and only those with weight kept (no branch): entry `count` is at most
+  // the slot's index, below the capacity cpdiCapacity gave (the slots' count).
   const Vec3i n = g.nodes();
   const int first = g.nodeIndex(lo[0], lo[1], lo[2]);
   int count = 0;
   for (int k = 0, slot = 0; k < sz; ++k)
     for (int j = 0; j < sy; ++j)
       for (int i = 0; i < sx; ++i, ++slot) {
-        if (bw[slot] <= 0) continue;
+        const double* b = block[slot];
         nodes[count] = first + (k * n.y() + j) * n.x() + i;
-        w[count] = 0.125 * bw[slot];
-        grad[count] = Vec3(bgx[slot], bgy[slot], bgz[slot]);
-        ++count;
+        w[count] = 0.125 * b[0];
+        grad[count] = Vec3(b[1], b[2], b[3]);
+        count += b[0] > 0;
       }
   return count;
 }

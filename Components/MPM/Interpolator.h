@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "Components/MPM/CpdiCorners.h"
 #include "Core/Grid/Grid.h"
 #include "Core/Math/Types.h"
 
@@ -26,6 +27,13 @@ int gimpWeights(const Grid& g, const Vec3& x, const Mat3& size, int32_t* nodes, 
                 Vec3* grad);
 int cpdiWeights(const Grid& g, const Vec3& x, const Mat3& size, const Mat3& F, int32_t* nodes,
                 double* w, Vec3* grad);
+// The same in two parts: the domain's corners (of one particle, or of Pack::size() particles at
+// once from x[0], size[0], F[0] on: the same numbers), then the weights from them.
+void cpdiCorners(const Grid& g, const Vec3& x, const Mat3& size, const Mat3& F, CpdiCorners& out);
+void cpdiCornersOfPack(const Grid& g, const Vec3* x, const Mat3* size, const Mat3* F,
+                       CpdiCorners* out);
+int cpdiWeights(const Grid& g, const CpdiCorners& corners, int32_t* nodes, double* w, Vec3* grad);
+// cpdiWeights may write entries beyond the count it returns, never beyond cpdiCapacity's.
 // The most entries cpdiWeights can write for this particle (the nodes of the cells its corners
 // span, at most 64): a domain within one cell per axis touches 27 nodes, not 64.
 int cpdiCapacity(const Grid& g, const Vec3& x, const Mat3& size, const Mat3& F);

@@ -182,17 +182,45 @@ void MPM::computeInterpolationWeights() {
     }
     W.layOut(capacity);
     long firstOutside = n;
+    // Particle i's weights, `count` entries (-1: beyond the nodes stored here), are in place.
+    const auto record = [&W](long i, int count, long& outside, long& low, long& high) {
+      if (count < 0) outside = std::min(outside, i);
+      W.count[i] = static_cast<uint8_t>(std::max(count, 0));
+      const size_t b = W.offset[i];
+      for (int e = 0; e < count; ++e) {
+        low = std::min<long>(low, W.node[b + e]);
+        high = std::max<long>(high, W.node[b + e]);
+      }
+    };
+    if (flags_.interpolator == InterpolatorKind::CPDI) {
+      // The corners of a pack of particles at once, then each one's weights from its corners.
+      constexpr long lanes = static_cast<long>(Pack::size());
 #pragma omp parallel for schedule(static) reduction(min                                   \
                                                     : firstOutside, lowest) reduction(max \
                                                                                       : highest)
-    for (long i = 0; i < n; ++i) {
-      const size_t b = W.offset[i];
-      const int count = computeWeights(grid_, p, i, &W.node[b], &W.weight[b], &W.gradient[b]);
-      if (count < 0) firstOutside = std::min(firstOutside, i);
-      W.count[i] = static_cast<uint8_t>(std::max(count, 0));
-      for (int e = 0; e < count; ++e) {
-        lowest = std::min<long>(lowest, W.node[b + e]);
-        highest = std::max<long>(highest, W.node[b + e]);
+      for (long first = 0; first < n; first += lanes) {
+        CpdiCorners corners[lanes];
+        const long last = std::min(n, first + lanes);
+        if (last - first == lanes)
+          cpdiCornersOfPack(grid_, &p.x[first], &p.size[first], &p.F[first], corners);
+        else
+          for (long i = first; i < last; ++i)
+            cpdiCorners(grid_, p.x[i], p.size[i], p.F[i], corners[i - first]);
+        for (long i = first; i < last; ++i) {
+          const size_t b = W.offset[i];
+          record(i,
+                 cpdiWeights(grid_, corners[i - first], &W.node[b], &W.weight[b], &W.gradient[b]),
+                 firstOutside, lowest, highest);
+        }
+      }
+    } else {
+#pragma omp parallel for schedule(static) reduction(min                                   \
+                                                    : firstOutside, lowest) reduction(max \
+                                                                                      : highest)
+      for (long i = 0; i < n; ++i) {
+        const size_t b = W.offset[i];
+        record(i, computeWeights(grid_, p, i, &W.node[b], &W.weight[b], &W.gradient[b]),
+               firstOutside, lowest, highest);
       }
     }
     if (firstOutside < n) throwOutsideWindow(m, firstOutside);

@@ -15,6 +15,8 @@ namespace anode {
 namespace stdx = std::experimental;
 using Pack = stdx::native_simd<double>;
 using PackMask = Pack::mask_type;
+// Four doubles handled as one (a weight and its gradient): one AVX2 register, two SSE2 ones.
+using Quad = stdx::fixed_size_simd<double, 4>;
 
 }  // namespace anode
 
