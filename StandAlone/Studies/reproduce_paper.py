@@ -7,8 +7,9 @@
 1. Runs every scenario of inputs/Paper/ that a figure needs into DIR/runs/NAME (default DIR:
    out/paper), cheapest first. It is resumable: a finished run (DIR/runs/NAME/complete.json) is
    skipped, a run with a checkpoint (sus keeps one of its own every 10 minutes) is continued with
-   `sus -restart`, so the command can be stopped at any moment and started again. Each session's
-   wall time is appended to DIR/runs/NAME.wall.
+   `sus -restart`, so the command can be stopped at any moment (Ctrl-C or SIGTERM stops the run
+   too and records its time) and started again. Each session's wall time is appended to
+   DIR/runs/NAME.wall.
 2. Renders each figure as one PNG (DIR/figures/figN.png) through the project's renderer
    (`render_figure`: panels side by side, a shared colour bar, panel letters and times).
 3. Measures the numbers of each figure from the VTU files (paper_numbers.py) into
@@ -23,6 +24,7 @@ import datetime
 import json
 import os
 import shutil
+import signal
 import subprocess
 import sys
 import time
@@ -88,12 +90,22 @@ def run_scenario(name, args, runs):
         how = "started"
     print("%-22s %s: %s" % (name, how, " ".join(command)), flush=True)
     start = time.time()
+    interrupted = False
     with open(run_dir + ".log", "a") as log:
-        code = subprocess.call(command, stdout=log, stderr=subprocess.STDOUT,
-                               env=dict(os.environ, OMP_WAIT_POLICY="passive"))
+        child = subprocess.Popen(command, stdout=log, stderr=subprocess.STDOUT,
+                                 env=dict(os.environ, OMP_WAIT_POLICY="passive"))
+        try:
+            code = child.wait()
+        except KeyboardInterrupt:  # SIGINT or SIGTERM: stop the run, keep its wall time so far
+            child.terminate()
+            code = child.wait()
+            interrupted = True
     seconds = time.time() - start
     with open(run_dir + ".wall", "a") as f:
-        f.write("%s %.1f exit=%d\n" % (datetime.datetime.now().isoformat(timespec="seconds"), seconds, code))
+        f.write("%s %.1f exit=%d%s\n" % (datetime.datetime.now().isoformat(timespec="seconds"), seconds, code,
+                                          " interrupted" if interrupted else ""))
+    if interrupted:
+        sys.exit("%-22s interrupted after %.0f s; run the command again to continue it" % (name, seconds))
     if code != 0:
         print("%-22s stopped with exit code %d after %.0f s (see %s.log)" % (name, code, seconds, run_dir),
               flush=True)
@@ -108,7 +120,12 @@ def run_scenario(name, args, runs):
     return True
 
 
+def stop_on_sigterm(signum, frame):
+    raise KeyboardInterrupt
+
+
 def main():
+    signal.signal(signal.SIGTERM, stop_on_sigterm)
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--out", default=os.path.join(ROOT, "out", "paper"))
     parser.add_argument("--sus", default=os.path.join(ROOT, "build", "StandAlone", "sus"))
