@@ -216,7 +216,7 @@ for J, tag in [(1e-9, "1e-9"), (1e-8, "1e-8")]:
     SCENARIOS.append(dict(name="Flux_" + tag, section="§4.4, Figs. 6-7", title="Flux boundary condition " + tag + " m/s",
                           notes=describe(COMMON + ["Linear hardening; alpha = 6, beta = 0.5; flux " + tag + " m/s;",
                                                    "the paper finds c ~ 0.5-0.6 behind the front at 1e-9 and > 0.7 at 1e-8."]),
-                          pillar=SMALL, density=2.33e24, D0=1e-17, flux=J, maxTime=1.0e8 if J < 5e-9 else 1.0e7, model="hardening"))
+                          pillar=SMALL, density=2.33e24, D0=1e-17, flux=J, maxTime=1.0e8 if J < 5e-9 else 3.0e7, model="hardening"))
 # Not in the paper: why is there no sharp front at 1e-9 with D0 = 1e-17 (docs/paper/README.md)?
 # The same run with smaller D0 (the paper does not give D0 for §4.4).
 for D0, tag in [(5e-18, "5e-18"), (2e-18, "2e-18")]:
