@@ -11,7 +11,7 @@ import subprocess
 import paper_numbers
 
 # Cut-away views (the half y < 0 removed) with a fixed camera per figure, so swelling shows.
-SMALL_VIEW = dict(position="[0.2178, -0.2723, 0.266]", focal_point="[0, 0, 0.07]", size="[480, 480]")
+SMALL_VIEW = dict(position="[0.37, -0.463, 0.433]", focal_point="[0, 0, 0.1]", size="[480, 480]")
 LARGE_VIEW = dict(position="[0.68, -0.85, 0.62]", focal_point="[0, 0, 0.03]", size="[640, 400]")
 
 MID, FULL = ("lithium", 0.5), ("end",)
