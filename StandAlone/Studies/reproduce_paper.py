@@ -102,8 +102,9 @@ def run_scenario(name, args, runs):
             interrupted = True
     seconds = time.time() - start
     with open(run_dir + ".wall", "a") as f:
-        f.write("%s %.1f exit=%d%s\n" % (datetime.datetime.now().isoformat(timespec="seconds"), seconds, code,
-                                          " interrupted" if interrupted else ""))
+        # The load average says whether the machine was shared while the run went.
+        f.write("%s %.1f exit=%d load=%.2f%s\n" % (datetime.datetime.now().isoformat(timespec="seconds"), seconds,
+                                                   code, os.getloadavg()[1], " interrupted" if interrupted else ""))
     if interrupted:
         sys.exit("%-22s interrupted after %.0f s; run the command again to continue it" % (name, seconds))
     if code != 0:
