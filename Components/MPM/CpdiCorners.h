@@ -53,39 +53,26 @@ using CpdiCorners = CornersOf<double, int>;
 using CpdiCornersPack = CornersOf<Pack, IntPack>;
 
 // The corners of the domain at x (size: reference edge vectors in cell units, as columns; F the
-// deformation gradient at the start of the step). Each sum is taken in the same order for every
-// S, so a particle's corners do not depend on the pack it is in.
+// deformation gradient at the start of the step). Written once for double and Pack, so a
+// particle's corners do not depend on the pack it is in.
 template <class S, class I>
-void computeCorners(const Grid& g, const S x[3], const S F[3][3], const S size[3][3],
+void computeCorners(const Grid& g, const Vec3Of<S>& x, const Mat3Of<S>& F, const Mat3Of<S>& size,
                     CornersOf<S, I>& out) {
-  S A[3][3];  // F size: its columns r1, r2, r3 span the domain
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j)
-      A[i][j] = F[i][0] * size[0][j] + F[i][1] * size[1][j] + F[i][2] * size[2][j];
-  S c23[3], c31[3], c12[3];  // r2 x r3, r3 x r1, r1 x r2
-  for (int d = 0; d < 3; ++d) {
-    const int e = (d + 1) % 3, h = (d + 2) % 3;
-    c23[d] = A[e][1] * A[h][2] - A[h][1] * A[e][2];
-    c31[d] = A[e][2] * A[h][0] - A[h][2] * A[e][0];
-    c12[d] = A[e][0] * A[h][1] - A[h][0] * A[e][1];
-  }
-  const S det = A[0][0] * (A[1][1] * A[2][2] - A[1][2] * A[2][1]) -
-                A[0][1] * (A[1][0] * A[2][2] - A[1][2] * A[2][0]) +
-                A[0][2] * (A[1][0] * A[2][1] - A[1][1] * A[2][0]);
-  S toPhysical[3], xi[3];
-  for (int d = 0; d < 3; ++d) {
-    toPhysical[d] = (1.0 / g.dx[d]) / (4 * det);
-    xi[d] = (x[d] - g.lower[d]) / g.dx[d];
-  }
+  const Mat3Of<S> A = F * size;  // its columns r1, r2, r3 span the domain
+  const Vec3Of<S> r1 = A.col(0), r2 = A.col(1), r3 = A.col(2);
+  const Vec3Of<S> c23 = r2.cross(r3), c31 = r3.cross(r1), c12 = r1.cross(r2);
+  const S fourDet = 4 * A.determinant();
   for (int d = 0; d < 3; ++d) {
     out.lowest[d] = I(1 << 30);
     out.highest[d] = I(-(1 << 30));
   }
-  for (int c = 0; c < 8; ++c) {
-    const double s1 = (c & 1) ? 0.5 : -0.5, s2 = (c & 2) ? 0.5 : -0.5, s3 = (c & 4) ? 0.5 : -0.5;
-    for (int d = 0; d < 3; ++d) {
-      const S corner = xi[d] + s1 * A[d][0] + s2 * A[d][1] + s3 * A[d][2];
-      out.alpha[c][d] = 2 * (s1 * c23[d] + s2 * c31[d] + s3 * c12[d]) * toPhysical[d];
+  for (int d = 0; d < 3; ++d) {
+    const S xi = (x[d] - g.lower[d]) / g.dx[d];  // index coordinate
+    const S toPhysical = (1.0 / g.dx[d]) / fourDet;
+    for (int c = 0; c < 8; ++c) {
+      const double s1 = (c & 1) ? 0.5 : -0.5, s2 = (c & 2) ? 0.5 : -0.5, s3 = (c & 4) ? 0.5 : -0.5;
+      const S corner = xi + s1 * r1[d] + s2 * r2[d] + s3 * r3[d];
+      out.alpha[c][d] = 2 * (s1 * c23[d] + s2 * c31[d] + s3 * c12[d]) * toPhysical;
       out.cell[c][d] = floorIndex(corner);
       out.inCell[c][d] = corner - realOf(out.cell[c][d]);
       out.lowest[d] = minOf(out.lowest[d], out.cell[c][d]);

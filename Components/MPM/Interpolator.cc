@@ -133,23 +133,19 @@ int cpdiCapacity(const Grid& g, const Vec3& x, const Mat3& size, const Mat3& F) 
 }
 
 void cpdiCorners(const Grid& g, const Vec3& x, const Mat3& size, const Mat3& F, CpdiCorners& out) {
-  double xs[3], Fs[3][3], sizes[3][3];
-  for (int i = 0; i < 3; ++i) {
-    xs[i] = x[i];
-    for (int j = 0; j < 3; ++j) Fs[i][j] = F(i, j), sizes[i][j] = size(i, j);
-  }
-  computeCorners(g, xs, Fs, sizes, out);
+  computeCorners(g, x, F, size, out);
 }
 
 void cpdiCornersOfPack(const Grid& g, const Vec3* x, const Mat3* size, const Mat3* F,
                        CpdiCorners* out) {
   constexpr int lanes = static_cast<int>(Pack::size());
-  Pack xs[3], Fs[3][3], sizes[3][3];
-  for (int l = 0; l < lanes; ++l)
-    for (int i = 0; i < 3; ++i) {
-      xs[i][l] = x[l][i];
-      for (int j = 0; j < 3; ++j) Fs[i][j][l] = F[l](i, j), sizes[i][j][l] = size[l](i, j);
-    }
+  Vec3Of<Pack> xs;
+  Mat3Pack Fs, sizes;
+  for (int l = 0; l < lanes; ++l) {
+    setLane(xs, l, x[l]);
+    setLane(Fs, l, F[l]);
+    setLane(sizes, l, size[l]);
+  }
   CpdiCornersPack pack;
   computeCorners(g, xs, Fs, sizes, pack);
   for (int l = 0; l < lanes; ++l) {

@@ -49,6 +49,8 @@ namespace anode {
 
 template <class S>
 using Mat3Of = Eigen::Matrix<S, 3, 3>;
+template <class S>
+using Vec3Of = Eigen::Matrix<S, 3, 1>;
 using Mat3Pack = Mat3Of<Pack>;
 
 // What the equations need of a scalar, for double and for Pack alike.
@@ -109,6 +111,9 @@ inline Mat3 lane(const Mat3Pack& m, int l) {
 }
 inline void setLane(Mat3Pack& m, int l, const Mat3& value) {
   for (int k = 0; k < 9; ++k) m(k)[l] = value(k);
+}
+inline void setLane(Vec3Of<Pack>& v, int l, const Vec3& value) {
+  for (int k = 0; k < 3; ++k) v(k)[l] = value(k);
 }
 
 }  // namespace anode
