@@ -173,6 +173,50 @@ TEST(Interpolators, CpdiCapacityIsTheSpanOfTheCorners) {
   EXPECT_EQ(cpdiCapacity(g, g.nodePosition(4, 3, 5), size, Mat3::Identity()), 27);
 }
 
+TEST(Interpolators, CpdiCornersOfAPackAreEachParticlesOwn) {
+  // The corners computed for Pack::size() particles at once are bit for bit those of each one
+  // alone, so the weights do not depend on the pack a particle is in.
+  const Grid g = testGrid();
+  std::mt19937 rng(13);
+  std::uniform_real_distribution<double> u(-0.5, 0.5);
+  constexpr int lanes = static_cast<int>(Pack::size());
+  for (int trial = 0; trial < 200; ++trial) {
+    Vec3 x[lanes];
+    Mat3 size[lanes], F[lanes];
+    for (int l = 0; l < lanes; ++l) {
+      F[l] = Mat3::Identity();
+      for (int k = 0; k < 9; ++k) F[l](k) += 0.6 * u(rng);
+      size[l] = Vec3(0.5 + u(rng), 0.5 + u(rng), 0.5 + u(rng)).asDiagonal();
+      x[l] = 0.5 * (g.lower + g.upper) + Vec3(u(rng), u(rng), u(rng)).cwiseProduct(g.dx);
+    }
+    CpdiCorners pack[lanes];
+    cpdiCornersOfPack(g, x, size, F, pack);
+    for (int l = 0; l < lanes; ++l) {
+      CpdiCorners one;
+      cpdiCorners(g, x[l], size[l], F[l], one);
+      for (int c = 0; c < 8; ++c)
+        for (int d = 0; d < 3; ++d) {
+          ASSERT_EQ(pack[l].cell[c][d], one.cell[c][d]);
+          ASSERT_EQ(pack[l].inCell[c][d], one.inCell[c][d]);
+          ASSERT_EQ(pack[l].alpha[c][d], one.alpha[c][d]);
+        }
+      for (int d = 0; d < 3; ++d) {
+        ASSERT_EQ(pack[l].lowest[d], one.lowest[d]);
+        ASSERT_EQ(pack[l].highest[d], one.highest[d]);
+      }
+      Weights a, b;
+      a.count = cpdiWeights(g, pack[l], a.node, a.w, a.grad);
+      b.count = cpdiWeights(g, x[l], size[l], F[l], b.node, b.w, b.grad);
+      ASSERT_EQ(a.count, b.count);
+      for (int e = 0; e < a.count; ++e) {
+        ASSERT_EQ(a.node[e], b.node[e]);
+        ASSERT_EQ(a.w[e], b.w[e]);
+        ASSERT_EQ(a.grad[e], b.grad[e]);
+      }
+    }
+  }
+}
+
 TEST(Interpolators, CpdiStretchedOverManyCellsStillPartitionsUnity) {
   // A domain spanning more than three cells per axis takes the unmerged path.
   const Grid g = testGrid();
