@@ -56,13 +56,11 @@ int draw(const std::string& figureFile, const std::string& png) {
                 time, panel.time);
   }
   Scene scene = figure.scene;
-  if (!scene.range) {
-    std::pair<double, double> range = colourRange(scene, sprites.front());
-    for (const SpriteSet& s : sprites) {
-      const auto r = colourRange(scene, s);
-      range = {std::min(range.first, r.first), std::max(range.second, r.second)};
-    }
-    scene.range = range;
+  if (!scene.range) {  // the span of every panel's values together
+    SpriteSet all;
+    for (const SpriteSet& s : sprites)
+      all.value.insert(all.value.end(), s.value.begin(), s.value.end());
+    scene.range = colourRange(scene, all);
   }
   SceneRenderer renderer;
   std::vector<Canvas> panels;

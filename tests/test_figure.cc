@@ -61,6 +61,10 @@ TEST(Figure, ErrorsNameFileAndLine) {
   EXPECT_NE(errorOf(std::string("<figure>") + kScene + "\n<panel><data>a</data></panel></figure>")
                 .find("fig.xml:3: "),
             std::string::npos);
+  EXPECT_NE(errorOf("<figure><scene><field>p.volume</field>\n<times>[1]</times></scene>"
+                    "<panel><data>a</data><time>0</time></panel></figure>")
+                .find("fig.xml:3: <times> has no place in a figure's scene"),
+            std::string::npos);
   EXPECT_NE(errorOf("<figure><scene><field>p.volume</field>\n<colormap>jet</colormap></scene>"
                     "<panel><data>a</data><time>0</time></panel></figure>")
                 .find("fig.xml:3: <colormap>: unknown colour map"),

@@ -19,7 +19,12 @@ Figure readFigure(const PSNode& node) {
   f.timeUnit = node.get<std::string>("time_unit", "");
   f.scene.name = "figure";
   f.scene.times = {0};
-  readSceneTags(node.requireChild("scene"), f.scene);
+  const PSNode scene = node.requireChild("scene");
+  for (const char* tag : {"times", "interval"})
+    if (const PSNode t = scene.child(tag))
+      t.fail(std::string("<") + tag +
+             "> has no place in a figure's scene: each <panel> has its <time>");
+  readSceneTags(scene, f.scene);
   try {
     checkScene(f.scene, SceneContext());
   } catch (const std::invalid_argument& e) {
@@ -49,17 +54,22 @@ Canvas composeFigure(const Figure& figure, const std::vector<Canvas>& panels,
   const int W = scene.width, H = scene.height;
   const int columns = std::min<int>(figure.columns, static_cast<int>(panels.size()));
   const int rows = static_cast<int>((panels.size() + columns - 1) / columns);
-  const int labelSize = std::max(12, H / 22), titleSize = std::max(14, H / 16);
-  const int titleBand = figure.title.empty() ? 0 : 2 * titleSize;
+  const int labelSize = std::max(12, H / 22);
   const int barWidth = std::max(12, W / 20);
   // Room for the colour bar with its values, and for the field's name and units above it.
   const int barArea =
       std::max({std::clamp(W * 35 / 100, 150, 400),
                 Canvas::textSize(scene.field.text, labelSize)[0] + barWidth,
                 Canvas::textSize("[" + scene.units + "]", labelSize)[0] + barWidth});
+  const int width = columns * W + barArea;
+  // The title's size: H/16, smaller where that would not fit the figure's width.
+  int titleSize = std::max(14, H / 16);
+  while (titleSize > 8 && Canvas::textSize(figure.title, titleSize)[0] + titleSize > width)
+    --titleSize;
+  const int titleBand = figure.title.empty() ? 0 : 2 * titleSize;
   const RGB background = {scene.background[0], scene.background[1], scene.background[2]};
   const RGB ink = inkOn(scene.background);
-  Canvas out(columns * W + barArea, rows * H + titleBand, background);
+  Canvas out(width, rows * H + titleBand, background);
 
   for (size_t k = 0; k < panels.size(); ++k) {
     const Canvas& panel = panels[k];

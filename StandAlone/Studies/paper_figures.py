@@ -74,7 +74,9 @@ FIGURES = [
 
 
 def panel_time(run_dir, when):
-    """The simulation time a panel asks for (the figure shows the output nearest to it)."""
+    """The simulation time a panel asks for (the figure shows the output nearest to it). A run
+    that never holds the asked fraction of lithium shows its end; the panel's label has its time
+    and numbers.md its lithium."""
     if isinstance(when, tuple) and when[0] == "lithium":
         t = paper_numbers.lithium_fraction_time(run_dir, when[1])
         return t if t is not None else paper_numbers.read_history(run_dir)[-1]["time"]

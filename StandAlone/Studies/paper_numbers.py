@@ -15,8 +15,11 @@ Definitions (the report repeats them). Lengths in um, times in us as the runs wr
   of its outermost ring, where the shallow region behind it begins (the surface ring if it
   reaches it). Its width is its number of rings (each 5 nm in the small pillar).
 - Height growth: (highest - lowest current z of the silicon's particles) / (the same in X0) - 1.
-- Lithium fraction: history's total lithium (sum of m c) over rho V0 of the silicon (c = 1).
+- Lithium fraction: history's total lithium (sum of m c over every material; only the silicon
+  takes lithium in these runs, the substrates have D = 0 and start at c = 0) over rho V0 of the
+  silicon (c = 1).
 """
+import json
 import math
 import os
 import xml.etree.ElementTree as ET
@@ -163,6 +166,8 @@ def pair_difference(run_a, run_b, time):
     where = {pid: i for i, pid in enumerate(b.id)}
     dx = cell_size(run_a)
     dc, dxs = [], []
+    if set(where) != set(a.id):
+        raise RuntimeError("%s and %s hold different particles at t = %g: no pair to compare" % (run_a, run_b, time))
     for i, pid in enumerate(a.id):
         j = where[pid]
         dc.append(abs(a.c[i] - b.c[j]))
@@ -204,7 +209,6 @@ def table(header, rows):
 
 
 def runs_table(runs, finished):
-    import json
     rows = []
     for name in finished:
         with open(os.path.join(runs, name, "complete.json")) as f:
@@ -223,14 +227,14 @@ def density_section(runs, pair, times, unit_scale, unit):
                   "largest position difference (cells)"], rows)
 
 
-def shape_section(runs, panels, time_of):
+def shape_section(runs, panels, time_of, scale, unit):
     rows = []
     for run, when, label in panels:
         s = shape(os.path.join(runs, run), time_of(run, when))
-        rows.append([label, "%.3g" % (s["time"] * 1e-6), percent(s["lithium"]), percent(s["base_growth"]),
+        rows.append([label, "%.3g" % (s["time"] * scale), percent(s["lithium"]), percent(s["base_growth"]),
                      percent(s["middle_growth"]), percent(s["top_growth"]), percent(s["height_growth"]),
                      num(s["ep_base_max"]), num(s["ep_base_mean"]), num(s["ep_max"]), num(s["ep_substrate_max"])])
-    return table(["run", "t (s)", "lithium", "base radial growth", "middle radial growth", "top radial growth",
+    return table(["run", "t (%s)" % unit, "lithium", "base radial growth", "middle radial growth", "top radial growth",
                   "height growth", "max plastic strain, base layer", "mean, base layer", "max, silicon",
                   "max, substrate"], rows)
 
@@ -239,7 +243,7 @@ def shape_section(runs, panels, time_of):
 PAPER_BEHIND_FRONT = {"Flux_1e-9": "0.5-0.6", "Flux_1e-8": "> 0.7"}
 
 
-def front_section(runs, panels, time_of):
+def front_section(runs, panels, time_of, scale, unit):
     rows, behind = [], {}
     for run, when, label in panels:
         run_dir = os.path.join(runs, run)
@@ -250,19 +254,20 @@ def front_section(runs, panels, time_of):
             behind.setdefault((run, label), []).append(f[2])
         else:
             behind.setdefault((run, label), [])
-        rows.append([label, "%.3g" % (s.time * 1e-6), percent(lithium_fraction_at(run_dir, s.time)),
+        rows.append([label, "%.3g" % (s.time * scale), percent(lithium_fraction_at(run_dir, s.time)),
                      " ".join("%.2f" % c for c in profile),
                      "none" if f is None else "rings %d-%d" % (f[0], f[0] + f[1] - 1),
                      "—" if f is None else "%.3f" % f[2]])
     summary = [[label, "none" if not values else "%.2f-%.2f" % (min(values), max(values)),
                 "%d of %d" % (len(values), sum(1 for p in panels if p[0] == run)),
                 PAPER_BEHIND_FRONT.get(run, "—")] for (run, label), values in behind.items()]
-    return table(["run", "t (s)", "lithium", "ring c, axis to surface (middle layers)", "front", "c behind the front"],
+    return table(["run", "t (%s)" % unit, "lithium", "ring c, axis to surface (middle layers)", "front",
+                  "c behind the front"],
                  rows) + "\n\n" + table(["run", "c behind the front (ours)", "panels with a front",
                                           "the paper (4.4)"], summary)
 
 
-def cycle_section(runs):
+def cycle_section(runs, scale, unit):
     run_dir = os.path.join(runs, "Cycle_LargePillar")
     history = read_history(run_dir)
     capacity = silicon_capacity(run_dir)
@@ -272,15 +277,15 @@ def cycle_section(runs):
         s = State(run_dir, r["time"])
         pillar = [s.ep[i] for i in s.silicon]
         substrate = [s.ep[i] for i, m in enumerate(s.material) if m != SILICON]
-        rows.append(["%.4g" % (r["time"] * 1e-6), int(r["step"]), percent(r["total_lithium"] / capacity),
+        rows.append(["%.4g" % (r["time"] * scale), int(r["step"]), percent(r["total_lithium"] / capacity),
                      "%.4f - %.4f" % (r["min_c"], r["max_c"]), "%.4f - %.4f" % (r["min_J"], r["max_J"]),
                      "%.3g / %.3g" % (max(pillar), sum(pillar) / len(pillar)),
-                     "%.3g / %.3g" % (max(substrate), sum(substrate) / len(substrate))])
+                     "%.3g / %.3g" % (max(substrate), sum(substrate) / len(substrate)) if substrate else "—"])
     peak = max(history, key=lambda h: h["total_lithium"])
-    return table(["t (s)", "step", "lithium", "c range", "J range", "plastic strain max / mean, pillar",
+    return table(["t (%s)" % unit, "step", "lithium", "c range", "J range", "plastic strain max / mean, pillar",
                   "max / mean, substrate"], rows) + (
-        "\n\nMost lithium: %s of the capacity at t = %.4g s. The paper's run: %s." %
-        (percent(peak["total_lithium"] / capacity), peak["time"] * 1e-6, PAPER_CYCLE))
+        "\n\nMost lithium: %s of the capacity at t = %.4g %s. The paper's run: %s." %
+        (percent(peak["total_lithium"] / capacity), peak["time"] * scale, unit, PAPER_CYCLE))
 
 
 def write_numbers(path, runs, finished, figures, time_of):
@@ -289,13 +294,13 @@ def write_numbers(path, runs, finished, figures, time_of):
            "", "Written by `StandAlone/Studies/reproduce_paper.py`; definitions in `paper_numbers.py` and "
            "`docs/paper/README.md`.", "", "## Runs", "", runs_table(runs, finished)]
     sections = {
-        "density": lambda f: density_section(runs, f["pair"], sorted({when for _, when, _ in f["panels"]}),
-                                             f["time_scale"], f["time_unit"]),
-        "shape": lambda f: shape_section(runs, f["panels"], time_of),
-        "front": lambda f: front_section(runs, f["panels"], time_of),
-        "front and shape": lambda f: front_section(runs, f["panels"], time_of) + "\n\n" +
-        shape_section(runs, f["panels"], time_of),
-        "cycle": lambda f: cycle_section(runs),
+        "density": lambda f, scale, unit: density_section(runs, f["pair"], sorted({w for _, w, _ in f["panels"]}),
+                                                          scale, unit),
+        "shape": lambda f, scale, unit: shape_section(runs, f["panels"], time_of, scale, unit),
+        "front": lambda f, scale, unit: front_section(runs, f["panels"], time_of, scale, unit),
+        "front and shape": lambda f, scale, unit: front_section(runs, f["panels"], time_of, scale, unit) +
+        "\n\n" + shape_section(runs, f["panels"], time_of, scale, unit),
+        "cycle": lambda f, scale, unit: cycle_section(runs, scale, unit),
     }
     for figure in figures:
         if figure["measure"] is None:  # drawn to show what another figure's numbers measure
@@ -305,6 +310,6 @@ def write_numbers(path, runs, finished, figures, time_of):
         if missing:
             out.append("Not measured yet: waiting for " + ", ".join(missing) + ".")
             continue
-        out.append(sections[figure["measure"]](figure))
+        out.append(sections[figure["measure"]](figure, figure["time_scale"], figure["time_unit"]))
     with open(path, "w") as f:
         f.write("\n".join(out) + "\n")

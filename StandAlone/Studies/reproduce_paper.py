@@ -67,25 +67,41 @@ def wall_seconds(run_dir):
         return sum(float(line.split()[1]) for line in f if line.strip())
 
 
+def finished_run(run_dir):
+    """The run's complete.json as a dict, or None if it has not finished."""
+    path = os.path.join(run_dir, "complete.json")
+    if not os.path.exists(path):
+        return None
+    with open(path) as f:
+        return json.load(f)
+
+
+def refuse_quick_over_full_runs(runs, names):
+    """--quick starts its runs afresh: it must not delete a full run, finished or not."""
+    for name in names:
+        run_dir = os.path.join(runs, name)
+        done = finished_run(run_dir)
+        if (done and not done["quick"]) or (not done and has_checkpoint(run_dir)):
+            sys.exit("reproduce_paper.py: %s holds a full run; give --quick another --out" % run_dir)
+
+
 def run_scenario(name, args, runs):
     run_dir = os.path.join(runs, name)
-    done = os.path.join(run_dir, "complete.json")
-    if os.path.exists(done):
-        with open(done) as f:
-            quick = json.load(f)["quick"]
-        if args.quick and not quick:
-            sys.exit("reproduce_paper.py: %s holds a full run; give --quick another --out" % run_dir)
-        if not args.quick:
-            print("%-22s done" % name, flush=True)
-            return True
+    done = finished_run(run_dir)
+    if done and not args.quick and not done["quick"]:
+        print("%-22s done" % name, flush=True)
+        return True
     sus = [args.sus, "--threads", str(args.threads)]
     if args.quick:
         sus += ["--max-timesteps", str(args.quick)]
     if not args.quick and has_checkpoint(run_dir):
         command = [args.sus, "-restart", run_dir, "--threads", str(args.threads)]
         how = "continued from its newest checkpoint"
-    else:
+    else:  # afresh: what an earlier attempt left is not part of this run
         shutil.rmtree(run_dir, ignore_errors=True)
+        for leftover in (run_dir + ".wall", run_dir + ".log"):
+            if os.path.exists(leftover):
+                os.remove(leftover)
         command = sus + ["-o", run_dir, os.path.join(ROOT, "inputs", "Paper", name + ".ups")]
         how = "started"
     print("%-22s %s: %s" % (name, how, " ".join(command)), flush=True)
@@ -112,10 +128,14 @@ def run_scenario(name, args, runs):
               flush=True)
         return False
     last = last_history_row(run_dir)
+    if last is None:
+        sys.exit("reproduce_paper.py: %s ended with exit code 0 but its history.csv holds no step" % run_dir)
     summary = dict(steps=int(last["step"]), time=float(last["time"]), particles=int(last["particles"]),
                    wall_seconds=wall_seconds(run_dir), threads=args.threads, quick=args.quick)
-    with open(done, "w") as f:
+    partial = os.path.join(run_dir, "complete.json.part")  # renamed once whole: a kill leaves no half file
+    with open(partial, "w") as f:
         json.dump(summary, f, indent=1)
+    os.replace(partial, os.path.join(run_dir, "complete.json"))
     print("%-22s finished: %d steps to t = %g in %.0f s of wall time" %
           (name, summary["steps"], summary["time"], summary["wall_seconds"]), flush=True)
     return True
@@ -137,16 +157,23 @@ def main():
     parser.add_argument("--quick", type=int, default=0, metavar="STEPS")
     parser.add_argument("--report", help="copy the figures and numbers.md into this directory")
     args = parser.parse_args()
+    args.out = os.path.abspath(args.out)  # the figure files name the runs' output from elsewhere
     runs = os.path.join(args.out, "runs")
     os.makedirs(runs, exist_ok=True)
+    names = args.only or SCENARIOS
+    if args.quick:
+        refuse_quick_over_full_runs(runs, names)
     ok = True
     if not args.figures_only:
-        for name in args.only or SCENARIOS:
+        for name in names:
             ok = run_scenario(name, args, runs) and ok
-    finished = [n for n in SCENARIOS if os.path.exists(os.path.join(runs, n, "complete.json"))]
+    # Figures of full runs from full runs only, and of the quick test from quick ones.
+    finished = [n for n in SCENARIOS
+                if (done := finished_run(os.path.join(runs, n))) and done["quick"] == args.quick]
     made = paper_figures.make_all(args, runs, finished)
-    if args.quick and len(made) != len(paper_figures.FIGURES) + 1:
-        sys.exit("reproduce_paper.py: only %d of %d figures were drawn" % (len(made), len(paper_figures.FIGURES)))
+    figures = [path for path in made if path.endswith(".png")]
+    if args.quick and len(figures) != len(paper_figures.FIGURES):
+        sys.exit("reproduce_paper.py: only %d of %d figures were drawn" % (len(figures), len(paper_figures.FIGURES)))
     if args.report:
         os.makedirs(args.report, exist_ok=True)
         for path in made:
