@@ -2,6 +2,7 @@
 // a linear field and of its gradient, for linear, GIMP and CPDI (also rotated and sheared).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 
 #include "Components/MPM/Interpolator.h"
@@ -159,11 +160,13 @@ TEST(Interpolators, CpdiCapacityIsTheSpanOfTheCorners) {
       ++onPlanes;
     }
     Weights W;
+    std::fill_n(W.node, 64, -7);  // cpdiWeights may write past its count, never past capacity
     W.count = cpdiWeights(g, x, size, F, W.node, W.w, W.grad);
     ASSERT_GT(W.count, 0);
     const int capacity = cpdiCapacity(g, x, size, F);
     ASSERT_GE(capacity, W.count) << "trial " << trial;
     ASSERT_EQ(capacity, cornerSpan(g, x, size, F)) << "trial " << trial;
+    for (int e = capacity; e < 64; ++e) ASSERT_EQ(W.node[e], -7) << "trial " << trial;
   }
   EXPECT_GT(onPlanes, 1000);
   // Half a cell wide, inside one cell: its 8 nodes; across a node plane on every axis: 27.
