@@ -213,8 +213,9 @@ def runs_table(runs, finished):
     for name in finished:
         with open(os.path.join(runs, name, "complete.json")) as f:
             s = json.load(f)
-        rows.append([name, s["particles"], s["steps"], "%.4g" % s["time"], "%.0f" % s["wall_seconds"], s["threads"]])
-    return table(["scenario", "particles", "steps", "simulated time (us)", "wall (s)", "threads"], rows)
+        rows.append([name, s["particles"], s["steps"], "%.4g" % s["time"], "%.0f" % s["wall_seconds"], s["threads"],
+                     s.get("stopped") or "its maxTime"])
+    return table(["scenario", "particles", "steps", "simulated time (us)", "wall (s)", "threads", "ended at"], rows)
 
 
 def density_section(runs, pair, times, unit_scale, unit):

@@ -35,6 +35,8 @@ sys.path.insert(0, HERE)
 
 import paper_figures  # noqa: E402
 
+SIMULATION_STOPPED = 3  # sus's exit code for a run it stopped with a diagnostic
+
 # Cheapest first (measured here on 2 cores; docs/paper/README.md has the wall times).
 SCENARIOS = ["Flux_1e-8", "Flux_1e-9", "Constitutive_elastic", "Constitutive_perfect",
              "Constitutive_hardening", "Beta_0", "Beta_1", "Front_D0_5e-18", "Front_D0_2e-18",
@@ -123,21 +125,28 @@ def run_scenario(name, args, runs):
                                                    code, os.getloadavg()[1], " interrupted" if interrupted else ""))
     if interrupted:
         sys.exit("%-22s interrupted after %.0f s; run the command again to continue it" % (name, seconds))
-    if code != 0:
-        print("%-22s stopped with exit code %d after %.0f s (see %s.log)" % (name, code, seconds, run_dir),
+    # Exit code 3: sus stopped the run with a diagnostic (docs/stability.md), the same on every
+    # try; its last good state ends the .pvd and is what the figures show. Anything else failed.
+    stopped = None
+    if code == SIMULATION_STOPPED:
+        with open(run_dir + ".log") as log:
+            stopped = [line.strip() for line in log if "simulation stopped" in line][-1]
+    elif code != 0:
+        print("%-22s failed with exit code %d after %.0f s (see %s.log)" % (name, code, seconds, run_dir),
               flush=True)
         return False
     last = last_history_row(run_dir)
     if last is None:
-        sys.exit("reproduce_paper.py: %s ended with exit code 0 but its history.csv holds no step" % run_dir)
+        sys.exit("reproduce_paper.py: %s ended with exit code %d but its history.csv holds no step" % (run_dir, code))
     summary = dict(steps=int(last["step"]), time=float(last["time"]), particles=int(last["particles"]),
-                   wall_seconds=wall_seconds(run_dir), threads=args.threads, quick=args.quick)
+                   wall_seconds=wall_seconds(run_dir), threads=args.threads, quick=args.quick, stopped=stopped)
     partial = os.path.join(run_dir, "complete.json.part")  # renamed once whole: a kill leaves no half file
     with open(partial, "w") as f:
         json.dump(summary, f, indent=1)
     os.replace(partial, os.path.join(run_dir, "complete.json"))
-    print("%-22s finished: %d steps to t = %g in %.0f s of wall time" %
-          (name, summary["steps"], summary["time"], summary["wall_seconds"]), flush=True)
+    print("%-22s %s: %d steps to t = %g in %.0f s of wall time" %
+          (name, "stopped by sus (" + stopped + ")" if stopped else "finished", summary["steps"], summary["time"],
+           summary["wall_seconds"]), flush=True)
     return True
 
 

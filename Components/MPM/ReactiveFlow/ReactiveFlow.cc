@@ -179,6 +179,7 @@ void ReactiveFlow::checkConcentrationRange(const std::vector<MPMMaterial>& mater
       const double c = p.concentration[i];
       if (c >= d.minConcentration - tol && c <= d.maxConcentration + tol) continue;
       std::ostringstream s;
+      s.precision(10);  // enough digits to show by how much it left the range
       s << describeParticle(materials[m], m, i) << " has concentration " << c << " at t = " << t
         << ", outside [" << d.minConcentration << ", " << d.maxConcentration << "] by more than "
         << tol << " (no clamp is applied)";
