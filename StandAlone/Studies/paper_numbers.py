@@ -3,8 +3,9 @@
 
 Definitions (the report repeats them). Lengths in um, times in us as the runs write them.
 - Reference position X0 = p.x - p.displacement; the silicon is material 0.
-- Layers of the pillar by X0_z: the base layer is the silicon's lowest particle layer, the middle
-  layer the one nearest half the height, the top layer its highest.
+- Layers of the pillar by X0_z: the base layer is the silicon's lowest particle layer, the
+  quarter-height and middle layers the ones nearest a quarter and half of the height, the top
+  layer its highest.
 - Radial growth of a layer: (largest current radius sqrt(x^2 + y^2) of its particles) / (largest
   reference radius of its particles) - 1.
 - Rings: the silicon's particles grouped by reference radius into the pillar's pie-slice rings
@@ -179,11 +180,11 @@ def shape(run_dir, time):
     """Lithium fraction, radial growth of the base, middle and top layers, height growth, plastic strain."""
     s = State(run_dir, time)
     base, top = s.layer(s.base), s.layer(s.top)
-    middle = s.layer((s.base + s.top) / 2)
+    lower, middle = s.layer(s.base + (s.top - s.base) / 4), s.layer((s.base + s.top) / 2)
     ep_base = [s.ep[i] for i in base]
     other = [i for i, m in enumerate(s.material) if m != SILICON]
     return dict(time=s.time, lithium=lithium_fraction_at(run_dir, s.time), base_growth=s.radial_growth(base),
-                middle_growth=s.radial_growth(middle), top_growth=s.radial_growth(top),
+                lower_growth=s.radial_growth(lower), middle_growth=s.radial_growth(middle), top_growth=s.radial_growth(top),
                 height_growth=s.height_growth(), ep_base_max=max(ep_base), ep_base_mean=sum(ep_base) / len(ep_base),
                 ep_max=max(s.ep[i] for i in s.silicon),
                 ep_substrate_max=max((s.ep[i] for i in other), default=None))
@@ -233,9 +234,10 @@ def shape_section(runs, panels, time_of, scale, unit):
     for run, when, label in panels:
         s = shape(os.path.join(runs, run), time_of(run, when))
         rows.append([label, "%.3g" % (s["time"] * scale), percent(s["lithium"]), percent(s["base_growth"]),
-                     percent(s["middle_growth"]), percent(s["top_growth"]), percent(s["height_growth"]),
+                     percent(s["lower_growth"]), percent(s["middle_growth"]), percent(s["top_growth"]), percent(s["height_growth"]),
                      num(s["ep_base_max"]), num(s["ep_base_mean"]), num(s["ep_max"]), num(s["ep_substrate_max"])])
-    return table(["run", "t (%s)" % unit, "lithium", "base radial growth", "middle radial growth", "top radial growth",
+    return table(["run", "t (%s)" % unit, "lithium", "base radial growth", "quarter-height radial growth",
+                  "middle radial growth", "top radial growth",
                   "height growth", "max plastic strain, base layer", "mean, base layer", "max, silicon",
                   "max, substrate"], rows)
 
