@@ -1,11 +1,11 @@
 #!/usr/bin/env python3
 """Remakes Gritton et al.'s Figures 3-10 and the numbers of docs/paper/README.md.
 
-  python3 StandAlone/Studies/reproduce_paper.py [--out DIR] [--threads N] [--only NAME ...]
+  python3 StandAlone/Studies/reproduce_paper.py [--out DIR] [--threads N] [--jobs N] [--only NAME ...]
                                                 [--figures-only] [--quick STEPS] [--report DIR]
 
 1. Runs every scenario of inputs/Paper/ that a figure needs into DIR/runs/NAME (default DIR:
-   out/paper), cheapest first. It is resumable: a finished run (DIR/runs/NAME/complete.json) is
+   out/paper), cheapest first, --jobs of them at a time. It is resumable: a finished run (DIR/runs/NAME/complete.json) is
    skipped, a run with a checkpoint (sus keeps one of its own every 10 minutes) is continued with
    `sus -restart`, so the command can be stopped at any moment (Ctrl-C or SIGTERM stops the run
    too and records its time) and started again. Each session's wall time is appended to
@@ -20,6 +20,7 @@ runs) and makes every figure from what that gives: the pipeline's test (tests/CM
 Needs /usr/bin/python3 with VTK (python3-vtk9, which libvtk9-dev installs) for the numbers.
 """
 import argparse
+import concurrent.futures
 import datetime
 import json
 import os
@@ -27,6 +28,7 @@ import shutil
 import signal
 import subprocess
 import sys
+import threading
 import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -106,25 +108,28 @@ def run_scenario(name, args, runs):
                 os.remove(leftover)
         command = sus + ["-o", run_dir, os.path.join(ROOT, "inputs", "Paper", name + ".ups")]
         how = "started"
-    print("%-22s %s: %s" % (name, how, " ".join(command)), flush=True)
-    start = time.time()
-    interrupted = False
-    with open(run_dir + ".log", "a") as log:
+    with RUNNING_LOCK:
+        if STOPPING.is_set():
+            return False
+        print("%-22s %s: %s" % (name, how, " ".join(command)), flush=True)
+        start = time.time()
+        log = open(run_dir + ".log", "a")
         child = subprocess.Popen(command, stdout=log, stderr=subprocess.STDOUT,
                                  env=dict(os.environ, OMP_WAIT_POLICY="passive"))
-        try:
-            code = child.wait()
-        except KeyboardInterrupt:  # SIGINT or SIGTERM: stop the run, keep its wall time so far
-            child.terminate()
-            code = child.wait()
-            interrupted = True
+        RUNNING.add(child)
+    code = child.wait()
+    log.close()
+    with RUNNING_LOCK:
+        RUNNING.discard(child)
+    interrupted = STOPPING.is_set()  # SIGINT or SIGTERM stopped it: keep its wall time so far
     seconds = time.time() - start
     with open(run_dir + ".wall", "a") as f:
         # The load average says whether the machine was shared while the run went.
         f.write("%s %.1f exit=%d load=%.2f%s\n" % (datetime.datetime.now().isoformat(timespec="seconds"), seconds,
                                                    code, os.getloadavg()[1], " interrupted" if interrupted else ""))
     if interrupted:
-        sys.exit("%-22s interrupted after %.0f s; run the command again to continue it" % (name, seconds))
+        print("%-22s interrupted after %.0f s; run the command again to continue it" % (name, seconds), flush=True)
+        return False
     # Exit code 3: sus stopped the run with a diagnostic (docs/stability.md), the same on every
     # try; its last good state ends the .pvd and is what the figures show. Anything else failed.
     stopped = None
@@ -150,8 +155,27 @@ def run_scenario(name, args, runs):
     return True
 
 
+# The sus processes running now (a run per job), and whether the command is being stopped.
+RUNNING, RUNNING_LOCK, STOPPING = set(), threading.Lock(), threading.Event()
+
+
 def stop_on_sigterm(signum, frame):
     raise KeyboardInterrupt
+
+
+def run_all(names, args, runs):
+    """Runs the scenarios in order, --jobs of them at a time; Ctrl-C or SIGTERM stops them all."""
+    with concurrent.futures.ThreadPoolExecutor(max_workers=args.jobs) as pool:
+        futures = [pool.submit(run_scenario, name, args, runs) for name in names]
+        try:
+            return all([f.result() for f in futures])
+        except KeyboardInterrupt:
+            with RUNNING_LOCK:
+                STOPPING.set()
+                for child in RUNNING:
+                    child.terminate()
+            concurrent.futures.wait(futures)
+            sys.exit("reproduce_paper.py: stopped; run the command again to continue")
 
 
 def main():
@@ -160,7 +184,10 @@ def main():
     parser.add_argument("--out", default=os.path.join(ROOT, "out", "paper"))
     parser.add_argument("--sus", default=os.path.join(ROOT, "build", "StandAlone", "sus"))
     parser.add_argument("--render", default=os.path.join(ROOT, "build", "StandAlone", "render_figure"))
-    parser.add_argument("--threads", type=int, default=os.cpu_count())
+    parser.add_argument("--threads", type=int, default=os.cpu_count(), help="threads of each run")
+    parser.add_argument("--jobs", type=int, default=1,
+                        help="runs at a time (the small pillar does not get faster with a second thread: "
+                             "--jobs 2 --threads 1 makes two of them at once on 2 cores)")
     parser.add_argument("--only", nargs="+", choices=SCENARIOS, help="run only these scenarios")
     parser.add_argument("--figures-only", action="store_true", help="make figures and numbers, run nothing")
     parser.add_argument("--quick", type=int, default=0, metavar="STEPS")
@@ -172,10 +199,7 @@ def main():
     names = args.only or SCENARIOS
     if args.quick:
         refuse_quick_over_full_runs(runs, names)
-    ok = True
-    if not args.figures_only:
-        for name in names:
-            ok = run_scenario(name, args, runs) and ok
+    ok = args.figures_only or run_all(names, args, runs)
     # Figures of full runs from full runs only, and of the quick test from quick ones.
     finished = [n for n in SCENARIOS
                 if (done := finished_run(os.path.join(runs, n))) and done["quick"] == args.quick]
