@@ -193,6 +193,9 @@ def main():
     parser.add_argument("--quick", type=int, default=0, metavar="STEPS")
     parser.add_argument("--report", help="copy the figures and numbers.md into this directory")
     args = parser.parse_args()
+    for option, value in (("--threads", args.threads), ("--jobs", args.jobs), ("--quick", args.quick + 1)):
+        if value < 1:
+            parser.error("%s must be at least %d" % (option, 0 if option == "--quick" else 1))
     args.out = os.path.abspath(args.out)  # the figure files name the runs' output from elsewhere
     runs = os.path.join(args.out, "runs")
     os.makedirs(runs, exist_ok=True)
