@@ -105,7 +105,7 @@ void MPM::layOutGrid() {
   for (GridFields& f : fields_) f.resize(nodes);
   weights_.resize(materials_.size());
   capacity_.resize(materials_.size());
-  threadScatter_.assign(omp_get_max_threads() > 1 ? omp_get_max_threads() : 0, {});
+  threadScatter_.assign(std::max(omp_get_max_threads() - 1, 0), {});
   for (GridFields& t : threadScatter_) t.resizeScatter(nodes);
   if (diffusion_)
     diffusion_->layOutGrid(grid_, static_cast<int>(threadScatter_.size()),
@@ -283,31 +283,40 @@ void MPM::scatterMaterial(size_t m, const Concentration& concentration) {
   const ParticleSet& p = materials_[m].particles;
   GridFields& g = fields_[m];
   const long n = static_cast<long>(p.count());
-  const long begin = active_.begin, end = active_.end;
-  if (threadScatter_.empty()) {
-    scatterToGrid(p, weights_[m], 0, n, MomentumScatterTarget::of(g), concentration);
-    return;
-  }
-  // Each thread scatters a contiguous block of particles into its own buffer; the buffers are
-  // summed in thread order, so results do not depend on scheduling.
-  const int threads = static_cast<int>(threadScatter_.size());
+  // Each thread scatters a contiguous block of particles: the first into the grid, every other
+  // into its own buffer, cleared on the nodes its particles touch only (on a small problem the
+  // active range is many times that: whole layers of the grid). The buffers are then added in
+  // thread order, so results do not depend on scheduling, and are the same as when every thread
+  // had a buffer (the grid starts at +0, and adding +0 changes no sum).
+  const int threads = static_cast<int>(threadScatter_.size()) + 1;
+  std::vector<NodeRange> touched(threads);
+  NodeRange buffered;
 #pragma omp parallel num_threads(threads)
   {
     const int t = omp_get_thread_num();
-    GridFields& s = threadScatter_[t];
-    s.clearScatter(begin, end);
-    scatterToGrid(p, weights_[m], n * t / threads, n * (t + 1) / threads,
-                  MomentumScatterTarget::of(s), concentration.forThread(t, begin, end));
+    const long first = n * t / threads, last = n * (t + 1) / threads;
+    if (t == 0) {
+      scatterToGrid(p, weights_[m], first, last, MomentumScatterTarget::of(g), concentration);
+    } else {
+      touched[t] = nodesTouched(weights_[m], first, last);
+      GridFields& s = threadScatter_[t - 1];
+      s.clearScatter(touched[t].begin, touched[t].end);
+      scatterToGrid(p, weights_[m], first, last, MomentumScatterTarget::of(s),
+                    concentration.forThread(t, touched[t]));
+    }
 #pragma omp barrier
+#pragma omp single
+    buffered = spanOf(touched.data() + 1, touched.data() + threads);
 #pragma omp for schedule(static)
-    for (long k = begin; k < end; ++k) {
-      for (int u = 0; u < threads; ++u) {
-        const GridFields& b = threadScatter_[u];
+    for (long k = buffered.begin; k < buffered.end; ++k) {
+      for (int u = 1; u < threads; ++u) {
+        if (!touched[u].contains(k)) continue;
+        const GridFields& b = threadScatter_[u - 1];
         g.mass[k] += b.mass[k];
         g.momentum[k] += b.momentum[k];
         g.internalForce[k] += b.internalForce[k];
       }
-      concentration.addThreadBuffers(k, threads);
+      concentration.addThreadBuffers(k, touched);
     }
   }
 }

@@ -155,14 +155,12 @@ class MPM {
   // Nodes the particles touch this step (flat indices [begin, end)); grid loops run over them
   // only. Outside, nodal fields are zero (the previous step's range is cleared too) except the
   // values face boundary conditions set.
-  struct NodeRange {
-    long begin = 0, end = 0;
-  } active_, previous_;
+  NodeRange active_, previous_;
 
   std::vector<GridFields> fields_;              // per material
   std::vector<InterpolationWeights> weights_;   // per material, for the current step
   std::vector<std::vector<uint8_t>> capacity_;  // per material: weight entries per particle
-  std::vector<GridFields> threadScatter_;       // per thread, for P2G without locks
+  std::vector<GridFields> threadScatter_;       // per thread after the first, for P2G without locks
   TaskTimers timers_;
   struct StepTasks {  // timer indices of the step's tasks
     int interpolationWeights, particlesToGrid, gridIntegration, particleUpdate, splitting,

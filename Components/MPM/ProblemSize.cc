@@ -1,5 +1,6 @@
 #include "Components/MPM/ProblemSize.h"
 
+#include <algorithm>
 #include <string>
 
 #include "Core/Util/MemoryBudget.h"
@@ -21,9 +22,10 @@ double bytesPerGridNode(const MPMFlags& flags, size_t materials, int threads) {
   // Diffusion (ReactiveFlow/DiffusionGridFields.h): 6 fields, 5 more and the source marks for a
   // material with flux BCs (counted for every material: an upper bound).
   const double perMaterial = Grid::kMinBytesPerNode + (flags.doScalarDiffusion ? 11 * 8 + 1 : 0);
-  // Each thread's scatter buffer: mass, momentum, force (and the 5 diffusion sums).
-  const double perThread = threads > 1 ? 8 + 2 * 24 + (flags.doScalarDiffusion ? 5 * 8 : 0) : 0;
-  return perMaterial * static_cast<double>(materials) + perThread * threads;
+  // The scatter buffer of each thread after the first: mass, momentum, force (and the 5
+  // diffusion sums).
+  const double perBuffer = 8 + 2 * 24 + (flags.doScalarDiffusion ? 5 * 8 : 0);
+  return perMaterial * static_cast<double>(materials) + perBuffer * std::max(threads - 1, 0);
 }
 
 double maxParticles(const MPMFlags& flags) {

@@ -19,8 +19,8 @@ struct NoConcentration {
   struct Particle {};
   Particle particle(long) const { return {}; }
   void scatter(const Particle&, int, double, const Vec3&) const {}
-  NoConcentration forThread(int, long, long) const { return {}; }
-  void addThreadBuffers(long, int) const {}
+  NoConcentration forThread(int, const NodeRange&) const { return {}; }
+  void addThreadBuffers(long, const std::vector<NodeRange>&) const {}
   void gather(Particle&, int, double, const Vec3&) const {}
   double update(long, const Particle&, double) const { return 0.0; }
 };
@@ -91,19 +91,22 @@ class ConcentrationScatter {
     }
   }
 
-  // The same kernel writing into thread t's buffer, zeroed first on nodes [begin, end).
-  ConcentrationScatter forThread(int t, long begin, long end) const {
+  // The kernel scattering into the buffer of thread t >= 1 (the first thread scatters into the
+  // grid), cleared on the nodes t's particles touch.
+  ConcentrationScatter forThread(int t, const NodeRange& touched) const {
     ConcentrationScatter k = *this;
-    ConcentrationScatterFields& buffer = (*buffers_)[t];
-    buffer.clear(begin, end);
+    ConcentrationScatterFields& buffer = (*buffers_)[t - 1];
+    buffer.clear(touched.begin, touched.end);
     k.target_ = ConcentrationScatterTarget::of(buffer);
     return k;
   }
 
-  // Adds the thread buffers to the grid at node k, in thread order (deterministic).
-  void addThreadBuffers(long k, int threads) const {
-    for (int u = 0; u < threads; ++u) {
-      const ConcentrationScatterFields& b = (*buffers_)[u];
+  // Adds the buffers of threads 1, 2, ... that touch node k to the grid there, in thread order
+  // (deterministic).
+  void addThreadBuffers(long k, const std::vector<NodeRange>& touched) const {
+    for (size_t u = 1; u < touched.size(); ++u) {
+      if (!touched[u].contains(k)) continue;
+      const ConcentrationScatterFields& b = (*buffers_)[u - 1];
       grid_->massConcentration[k] += b.massConcentration[k];
       grid_->diffusionRate[k] += b.diffusionRate[k];
       if constexpr (Flux) {

@@ -82,7 +82,7 @@ void ReactiveFlow::initialize(const PSNode& root, const Grid& grid,
   flux_.computeFluxRates(materials, initTime);
 }
 
-void ReactiveFlow::layOutGrid(const Grid& grid, int threads, const GhostNodes* ghosts) {
+void ReactiveFlow::layOutGrid(const Grid& grid, int buffers, const GhostNodes* ghosts) {
   grid_ = grid;
   ghosts_ = ghosts;
   dirichletMask_ = dirichletNodeMasks(grid, faceBCs_, receivesFlux_.size());
@@ -91,7 +91,7 @@ void ReactiveFlow::layOutGrid(const Grid& grid, int threads, const GhostNodes* g
   for (size_t m = 0; m < fields_.size(); ++m) fields_[m].resize(nodes, receivesFlux_[m]);
   const bool anyFlux =
       std::find(receivesFlux_.begin(), receivesFlux_.end(), true) != receivesFlux_.end();
-  threadScatter_.assign(threads > 1 ? threads : 0, {});
+  threadScatter_.assign(buffers, {});
   for (ConcentrationScatterFields& t : threadScatter_) t.resize(nodes, anyFlux);
 }
 

@@ -44,9 +44,9 @@ class ReactiveFlow {
                   std::vector<MPMMaterial>& materials, const std::vector<MaterialSeeds>& seeds,
                   double initTime);
   // Lays out the grid fields on the nodes this rank stores (`grid`: the whole grid, or this
-  // rank's window), with `threads` scatter buffers; `ghosts` completes the source marks on the
-  // nodes shared with other ranks (none: a run of one rank).
-  void layOutGrid(const Grid& grid, int threads, const GhostNodes* ghosts);
+  // rank's window), with `buffers` scatter buffers (one per thread after the first); `ghosts`
+  // completes the source marks on the nodes shared with other ranks (none: a run of one rank).
+  void layOutGrid(const Grid& grid, int buffers, const GhostNodes* ghosts);
 
   // --- the step's diffusion tasks, in the order MPM::timeAdvance calls them ---
 
@@ -102,7 +102,8 @@ class ReactiveFlow {
   std::vector<bool> receivesFlux_;               // per material
   double maxDiffusivity_ = 0;                    // over all particles, for Eq. 44
   std::vector<ConcentrationGridFields> fields_;  // per material
-  std::vector<ConcentrationScatterFields> threadScatter_;  // per thread, for P2G without locks
+  // One per thread after the first, for P2G without locks.
+  std::vector<ConcentrationScatterFields> threadScatter_;
   std::vector<std::string> setupReport_;
   const GhostNodes* ghosts_ = nullptr;
 };
