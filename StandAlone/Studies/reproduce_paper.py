@@ -186,8 +186,8 @@ def main():
     parser.add_argument("--render", default=os.path.join(ROOT, "build", "StandAlone", "render_figure"))
     parser.add_argument("--threads", type=int, default=os.cpu_count(), help="threads of each run")
     parser.add_argument("--jobs", type=int, default=1,
-                        help="runs at a time (the small pillar does not get faster with a second thread: "
-                             "--jobs 2 --threads 1 makes two of them at once on 2 cores)")
+                        help="runs at a time (--jobs 2 --threads 1 makes two small-pillar runs at once on "
+                             "2 cores, faster than one after the other with 2 threads each)")
     parser.add_argument("--only", nargs="+", choices=SCENARIOS, help="run only these scenarios")
     parser.add_argument("--figures-only", action="store_true", help="make figures and numbers, run nothing")
     parser.add_argument("--quick", type=int, default=0, metavar="STEPS")
