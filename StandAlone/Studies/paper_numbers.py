@@ -15,6 +15,8 @@ Definitions (the report repeats them). Lengths in um, times in us as the runs wr
   core), outwards while c rises by at least 0.1 from ring to ring; "c behind the front" is the c
   of its outermost ring, where the shallow region behind it begins (the surface ring if it
   reaches it). Its width is its number of rings (each 5 nm in the small pillar).
+- c by height (the cycle): the silicon's mean c in slabs 5 nm thick by X0_z from the base layer up;
+  its front is found as the rings' (base for axis, top for surface).
 - Height growth: (highest - lowest current z of the silicon's particles) / (the same in X0) - 1.
 - Lithium fraction: history's total lithium (sum of m c over every material; only the silicon
   takes lithium in these runs, the substrates have D = 0 and start at c = 0) over rho V0 of the
@@ -107,6 +109,7 @@ class State:
         self.ep = d["p.plasticStrain"]
         self.material = d["material"]
         self.id = d["p.particleID"]
+        self.volume = d["p.volume"]
         self.silicon = [i for i, m in enumerate(self.material) if m == SILICON]
         zs = sorted({round(self.X0[i][2], 9) for i in self.silicon})
         self.layers = zs
@@ -141,6 +144,16 @@ class State:
             sums[k] += self.c[i]
             counts[k] += 1
         return [s / n for s, n in zip(sums, counts) if n > 0]
+
+
+    def height_profile(self, thickness):
+        """Mean c of the silicon in slabs `thickness` thick by X0_z, from the base layer up."""
+        sums, counts = {}, {}
+        for i in self.silicon:
+            k = int((self.X0[i][2] - self.base) / thickness + 1e-6)
+            sums[k] = sums.get(k, 0.0) + self.c[i]
+            counts[k] = counts.get(k, 0) + 1
+        return [sums[k] / counts[k] for k in sorted(sums)]
 
 
 def front(profile, threshold=0.1, rise=0.1):
@@ -192,6 +205,8 @@ def shape(run_dir, time):
 
 # ---- The tables of numbers.md, one section per figure ----
 
+CYCLE_SLAB = 0.005  # um: two particle layers of the large pillar (dz = 2.5 nm), as the small pillar's rings
+CYCLE_PROFILE_TIMES = [t * 1e6 for t in (8, 16, 24, 32, 40, 48, 60, 72, 80)]  # us: Fig. 10's panels after t = 0
 PAPER_CYCLE = "27,472 steps, 48.57 h on 9 cores (Intel Xeon E5-2667, 2.9 GHz)"
 
 
@@ -271,24 +286,48 @@ def front_section(runs, panels, time_of, scale, unit):
 
 
 def cycle_section(runs, scale, unit):
+    """Lithium in and out, and the silicon's c, J (its volume over its volume at t = 0, matched by
+    particle ID) and plastic strain at the outputs nearest 40 s and 80 s."""
     run_dir = os.path.join(runs, "Cycle_LargePillar")
     history = read_history(run_dir)
     capacity = silicon_capacity(run_dir)
+    start = State(run_dir, 0.0)
+    initial_volume = {start.id[i]: start.volume[i] for i in start.silicon}
     rows = []
     for t in (40e6, 80e6):
-        r = min(history, key=lambda h: abs(h["time"] - t))
-        s = State(run_dir, r["time"])
+        s = State(run_dir, t)
+        r = min(history, key=lambda h: abs(h["time"] - s.time))
+        c = [s.c[i] for i in s.silicon]
+        J = [s.volume[i] / initial_volume[s.id[i]] for i in s.silicon]
         pillar = [s.ep[i] for i in s.silicon]
         substrate = [s.ep[i] for i, m in enumerate(s.material) if m != SILICON]
-        rows.append(["%.4g" % (r["time"] * scale), int(r["step"]), percent(r["total_lithium"] / capacity),
-                     "%.4f - %.4f" % (r["min_c"], r["max_c"]), "%.4f - %.4f" % (r["min_J"], r["max_J"]),
+        rows.append(["%.4g" % (s.time * scale), int(r["step"]), percent(r["total_lithium"] / capacity),
+                     "%.4f - %.4f" % (min(c), max(c)), "%.4f - %.4f" % (min(J), max(J)),
                      "%.3g / %.3g" % (max(pillar), sum(pillar) / len(pillar)),
                      "%.3g / %.3g" % (max(substrate), sum(substrate) / len(substrate)) if substrate else "—"])
+    profiles = []
+    for t in CYCLE_PROFILE_TIMES:
+        s = State(run_dir, t)
+        profile = s.height_profile(CYCLE_SLAB)
+        f = front(profile)
+        profiles.append(["%.4g" % (s.time * scale), percent(lithium_fraction_at(run_dir, s.time)),
+                         " ".join("%.2f" % c for c in profile),
+                         "none" if f is None else "slabs %d-%d" % (f[0], f[0] + f[1] - 1),
+                         "—" if f is None else "%.3f" % f[2], "%.2f" % (max(profile) - min(profile))])
     peak = max(history, key=lambda h: h["total_lithium"])
-    return table(["t (%s)" % unit, "step", "lithium", "c range", "J range", "plastic strain max / mean, pillar",
-                  "max / mean, substrate"], rows) + (
-        "\n\nMost lithium: %s of the capacity at t = %.4g %s. The paper's run: %s." %
-        (percent(peak["total_lithium"] / capacity), peak["time"] * scale, unit, PAPER_CYCLE))
+    end = history[-1]
+    gone = (peak["total_lithium"] - end["total_lithium"]) / capacity
+    return table(["t (%s)" % unit, "step", "lithium", "silicon c range", "silicon J range",
+                  "plastic strain max / mean, pillar", "max / mean, substrate"], rows) + (
+        "\n\nLithium in: %s of the capacity by t = %.4g %s (the most the run holds). Out: %s of the capacity "
+        "by t = %.4g %s, %s of what went in. The paper's run: %s." %
+        (percent(peak["total_lithium"] / capacity), peak["time"] * scale, unit, percent(gone),
+         end["time"] * scale, unit, percent(gone / (peak["total_lithium"] / capacity)) if peak["total_lithium"] > 0
+         else "—", PAPER_CYCLE)) + (
+        "\n\nc by height: the mean c of the silicon in slabs %g nm thick by X0_z, base to top (the flux enters "
+        "through the top and the side), with the front found as for Figs. 6-7 and the spread (largest - smallest "
+        "slab c):\n\n" % (CYCLE_SLAB * 1e3)) + table(
+        ["t (%s)" % unit, "lithium", "slab c, base to top", "front", "c behind the front", "spread"], profiles)
 
 
 def write_numbers(path, runs, finished, figures, time_of):

@@ -1,4 +1,5 @@
-"""The front of docs/paper/README.md (paper_numbers.front) on ring profiles of known shape."""
+"""The front of docs/paper/README.md (paper_numbers.front) on ring profiles of known shape, and the
+cycle's c by height (State.height_profile) on particles of known layers."""
 import os
 import sys
 import unittest
@@ -24,6 +25,19 @@ class Front(unittest.TestCase):
     def test_smooth_profile_gives_a_one_ring_front(self):
         # A gradient without a jump of 0.1 between rings: the front is its first ring above 0.1.
         self.assertEqual(paper_numbers.front([0.01, 0.04, 0.07, 0.11, 0.16, 0.2]), (3, 1, 0.11))
+
+
+class HeightProfile(unittest.TestCase):
+    def test_slabs_of_two_layers_from_the_base_up(self):
+        # Layers 2.5 nm apart from z = 0.04 um; c of a layer = its index; a substrate particle
+        # (material 1) below is left out; slabs 5 nm thick hold layers 0-1, 2-3, 4.
+        state = paper_numbers.State.__new__(paper_numbers.State)
+        layers = [0.04 + 0.0025 * k for k in range(5)]
+        state.X0 = [(0.0, 0.0, z) for z in layers for _ in range(2)] + [(0.0, 0.0, 0.01)]
+        state.c = [float(k) for k in range(5) for _ in range(2)] + [9.0]
+        state.silicon = list(range(10))
+        state.base = layers[0]
+        self.assertEqual(state.height_profile(0.005), [0.5, 2.5, 4.0])
 
 
 if __name__ == "__main__":
