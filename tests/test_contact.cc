@@ -30,7 +30,7 @@ TEST(Contact, SingleVelocityGivesTheCentreOfMassVelocityAtSharedNodes) {
   std::vector<GridFields> f = twoMaterials();
   const Contact c =
       readContact("<contact><type>single_velocity</type><materials>[0,1]</materials></contact>", 2);
-  c.exchange(f, &GridFields::velocity, 0, 3);
+  c.exchange(f, &GridFields::velocity, {NodeRange{0, 3}});
   // Node 1: (1 (4,0,0) + 3 (0,8,0)) / 4 = (1, 6, 0) for both; momentum 4 (1,6,0) = (4,0,0) +
   // (0,24,0).
   EXPECT_EQ(f[0].velocity[1], Vec3(1, 6, 0));
@@ -46,7 +46,7 @@ TEST(Contact, SingleVelocityGivesTheCentreOfMassVelocityAtSharedNodes) {
 TEST(Contact, NullContactChangesNothing) {
   std::vector<GridFields> f = twoMaterials();
   const Contact c = readContact("<contact><type>null</type></contact>", 2);
-  c.exchange(f, &GridFields::velocity, 0, 3);
+  c.exchange(f, &GridFields::velocity, {NodeRange{0, 3}});
   EXPECT_EQ(f[0].velocity[1], Vec3(4, 0, 0));
   EXPECT_EQ(f[1].velocity[1], Vec3(0, 8, 0));
   EXPECT_EQ(readContact("", 2).type, Contact::Type::Null);
@@ -56,7 +56,7 @@ TEST(Contact, ExcludedMaterialKeepsItsVelocity) {
   std::vector<GridFields> f = twoMaterials();
   const Contact c = readContact(
       "<contact><type>single_velocity</type><ExcludeMaterial>1</ExcludeMaterial></contact>", 2);
-  c.exchange(f, &GridFields::velocity, 0, 3);
+  c.exchange(f, &GridFields::velocity, {NodeRange{0, 3}});
   EXPECT_EQ(f[1].velocity[1], Vec3(0, 8, 0));
   EXPECT_EQ(f[0].velocity[1], Vec3(4, 0, 0));
 }

@@ -110,7 +110,8 @@ void MPM::layOutGrid() {
   if (diffusion_)
     diffusion_->layOutGrid(grid_, static_cast<int>(threadScatter_.size()),
                            ghosts_.empty() ? nullptr : &ghosts_);
-  active_ = previous_ = NodeRange{};
+  active_ = {};
+  previous_ = {};
 }
 
 void MPM::timeAdvance(double t, double dt) {
@@ -141,7 +142,7 @@ void MPM::timeAdvance(double t, double dt) {
     exchangeMomentumInterpolated();  // 3: contact on the interpolated velocity
     integrateGridMomentum(dt);       // 4: a = f/m + g, v* = v + a dt
     if (diffusion_)                  // 5: c* and the nodal concentration rate (Eq. 18)
-      diffusion_->integrateConcentration(fields_, dt, active_.begin, active_.end);
+      diffusion_->integrateConcentration(fields_, dt, active_.rows);
     setGridBoundaryConditions(dt);  // 6: contact, velocity BCs, acceleration
   }
   {
@@ -164,8 +165,8 @@ void MPM::timeAdvance(double t, double dt) {
 }
 
 void MPM::computeInterpolationWeights() {
-  previous_ = active_;
-  long lowest = grid_.numNodes(), highest = -1;
+  previous_ = active_.box;
+  NodeBox reached;
   for (size_t m = 0; m < materials_.size(); ++m) {
     const ParticleSet& p = materials_[m].particles;
     InterpolationWeights& W = weights_[m];
@@ -182,22 +183,18 @@ void MPM::computeInterpolationWeights() {
     }
     W.layOut(capacity);
     long firstOutside = n;
-    // Particle i's weights, `count` entries (-1: beyond the nodes stored here), are in place.
-    const auto record = [&W](long i, int count, long& outside, long& low, long& high) {
+    // Particle i's weights, `count` entries (-1: beyond the nodes stored here), are in place;
+    // `support` bounds the nodes they touch.
+    const auto record = [&W](long i, int count, const NodeBox& support, long& outside,
+                             NodeBox& box) {
       if (count < 0) outside = std::min(outside, i);
       W.count[i] = static_cast<uint8_t>(std::max(count, 0));
-      const size_t b = W.offset[i];
-      for (int e = 0; e < count; ++e) {
-        low = std::min<long>(low, W.node[b + e]);
-        high = std::max<long>(high, W.node[b + e]);
-      }
+      if (count > 0) box = hullOf(box, support);
     };
     if (flags_.interpolator == InterpolatorKind::CPDI) {
       // The corners of a pack of particles at once, then each one's weights from its corners.
       constexpr long lanes = static_cast<long>(Pack::size());
-#pragma omp parallel for schedule(static) reduction(min                                   \
-                                                    : firstOutside, lowest) reduction(max \
-                                                                                      : highest)
+#pragma omp parallel for schedule(static) reduction(min : firstOutside) reduction(hull : reached)
       for (long first = 0; first < n; first += lanes) {
         CpdiCorners corners[lanes];
         const long last = std::min(n, first + lanes);
@@ -207,30 +204,33 @@ void MPM::computeInterpolationWeights() {
           for (long i = first; i < last; ++i)
             cpdiCorners(grid_, p.x[i], p.size[i], p.F[i], corners[i - first]);
         for (long i = first; i < last; ++i) {
+          const CpdiCorners& c = corners[i - first];
           const size_t b = W.offset[i];
-          record(i,
-                 cpdiWeights(grid_, corners[i - first], &W.node[b], &W.weight[b], &W.gradient[b]),
-                 firstOutside, lowest, highest);
+          record(i, cpdiWeights(grid_, c, &W.node[b], &W.weight[b], &W.gradient[b]),
+                 NodeBox{Vec3i(c.lowest[0], c.lowest[1], c.lowest[2]),
+                         Vec3i(c.highest[0], c.highest[1], c.highest[2])},
+                 firstOutside, reached);
         }
       }
     } else {
-#pragma omp parallel for schedule(static) reduction(min                                   \
-                                                    : firstOutside, lowest) reduction(max \
-                                                                                      : highest)
+#pragma omp parallel for schedule(static) reduction(min : firstOutside) reduction(hull : reached)
       for (long i = 0; i < n; ++i) {
         const size_t b = W.offset[i];
-        record(i, computeWeights(grid_, p, i, &W.node[b], &W.weight[b], &W.gradient[b]),
-               firstOutside, lowest, highest);
+        NodeBox support;
+        supportBounds(flags_.interpolator, grid_, p.x[i], p.size[i], p.F[i], support.first,
+                      support.last);
+        record(i, computeWeights(grid_, p, i, &W.node[b], &W.weight[b], &W.gradient[b]), support,
+               firstOutside, reached);
       }
     }
     if (firstOutside < n) throwOutsideWindow(m, firstOutside);
   }
-  active_ = highest < 0 ? NodeRange{0, 0} : NodeRange{lowest, highest + 1};
   // The ghost nodes get the other ranks' parts: every stored node takes part in the step.
   if (distributed_) {
-    active_ = NodeRange{0, grid_.numNodes()};
+    reached = NodeBox{grid_.firstNode(), grid_.lastNode()};
     reach_ = computeReach();
   }
+  active_ = ActiveNodes::of(grid_, reached);
 }
 
 void MPM::throwOutsideWindow(size_t m, long i) const {
@@ -263,9 +263,9 @@ int MPM::computeWeights(const Grid& g, const ParticleSet& p, long i, int32_t* no
 }
 
 template <class F>
-void MPM::withConcentrationScatter(size_t m, long begin, long end, F&& f) {
+void MPM::withConcentrationScatter(size_t m, const std::vector<NodeRange>& cleared, F&& f) {
   if (diffusion_)
-    diffusion_->withScatter(m, materials_[m].particles, weights_[m], begin, end, f);
+    diffusion_->withScatter(m, materials_[m].particles, weights_[m], cleared, f);
   else
     f(NoConcentration{});
 }
@@ -284,13 +284,13 @@ void MPM::scatterMaterial(size_t m, const Concentration& concentration) {
   GridFields& g = fields_[m];
   const long n = static_cast<long>(p.count());
   // Each thread scatters a contiguous block of particles: the first into the grid, every other
-  // into its own buffer, cleared on the nodes its particles touch only (on a small problem the
-  // active range is many times that: whole layers of the grid). The buffers are then added in
-  // thread order, so results do not depend on scheduling, and are the same as when every thread
-  // had a buffer (the grid starts at +0, and adding +0 changes no sum).
+  // into its own buffer, cleared on the active nodes its particles' range spans only (on a
+  // small problem the active nodes are many times that). The buffers are then added in thread
+  // order, so results do not depend on scheduling, and are the same as when every thread had a
+  // buffer (the grid starts at +0, and adding +0 changes no sum).
   const int threads = static_cast<int>(threadScatter_.size()) + 1;
   std::vector<NodeRange> touched(threads);
-  NodeRange buffered;
+  std::vector<NodeRange> buffered;
 #pragma omp parallel num_threads(threads)
   {
     const int t = omp_get_thread_num();
@@ -299,16 +299,16 @@ void MPM::scatterMaterial(size_t m, const Concentration& concentration) {
       scatterToGrid(p, weights_[m], first, last, MomentumScatterTarget::of(g), concentration);
     } else {
       touched[t] = nodesTouched(weights_[m], first, last);
+      const std::vector<NodeRange> own = active_.within(touched[t]);
       GridFields& s = threadScatter_[t - 1];
-      s.clearScatter(touched[t].begin, touched[t].end);
+      for (const NodeRange& r : own) s.clearScatter(r.begin, r.end);
       scatterToGrid(p, weights_[m], first, last, MomentumScatterTarget::of(s),
-                    concentration.forThread(t, touched[t]));
+                    concentration.forThread(t, own));
     }
 #pragma omp barrier
 #pragma omp single
-    buffered = spanOf(touched.data() + 1, touched.data() + threads);
-#pragma omp for schedule(static)
-    for (long k = buffered.begin; k < buffered.end; ++k) {
+    buffered = active_.within(spanOf(touched.data() + 1, touched.data() + threads));
+    forEachNodeOfThread(buffered, t, threads, [&](long k) {
       for (int u = 1; u < threads; ++u) {
         if (!touched[u].contains(k)) continue;
         const GridFields& b = threadScatter_[u - 1];
@@ -317,61 +317,58 @@ void MPM::scatterMaterial(size_t m, const Concentration& concentration) {
         g.internalForce[k] += b.internalForce[k];
       }
       concentration.addThreadBuffers(k, touched);
-    }
+    });
   }
 }
 
 void MPM::interpolateParticlesToGrid() {
-  const long clearBegin = std::min(active_.begin, previous_.begin),
-             clearEnd = std::max(active_.end, previous_.end);
+  const std::vector<NodeRange> cleared =
+      ActiveNodes::of(grid_, hullOf(active_.box, previous_)).rows;
   for (size_t m = 0; m < materials_.size(); ++m) {
-    fields_[m].clearAll(clearBegin, clearEnd);
-    withConcentrationScatter(m, clearBegin, clearEnd,
+    for (const NodeRange& r : cleared) fields_[m].clearAll(r.begin, r.end);
+    withConcentrationScatter(m, cleared,
                              [&](const auto& concentration) { scatterMaterial(m, concentration); });
   }
 }
 
 void MPM::computeNodalVelocityAndConcentration() {
-  const long begin = active_.begin, end = active_.end;
   for (size_t m = 0; m < materials_.size(); ++m) {
     GridFields& g = fields_[m];
-#pragma omp parallel for schedule(static)
-    for (long k = begin; k < end; ++k)
+    forEachNode(active_.rows, [&g](long k) {
       g.velocity[k] = g.mass[k] > 0 ? Vec3(g.momentum[k] / g.mass[k]) : Vec3::Zero();
+    });
     applySymmetry(grid_, faceBCs_, static_cast<int>(m), g.velocity);
     applySymmetry(grid_, faceBCs_, static_cast<int>(m), g.internalForce);
-    if (diffusion_) diffusion_->computeNodalConcentration(m, g, begin, end);  // Eq. 5
+    if (diffusion_) diffusion_->computeNodalConcentration(m, g, active_.rows);  // Eq. 5
   }
-  if (diffusion_) diffusion_->applyDiffusionInterface(fields_, begin, end);
+  if (diffusion_) diffusion_->applyDiffusionInterface(fields_, active_.rows);
 }
 
 void MPM::exchangeMomentumInterpolated() {
   if (contact_.exchangeInterpolated)
-    contact_.exchange(fields_, &GridFields::velocity, active_.begin, active_.end);
+    contact_.exchange(fields_, &GridFields::velocity, active_.rows);
 }
 
 void MPM::integrateGridMomentum(double dt) {
   for (GridFields& g : fields_) {
-#pragma omp parallel for schedule(static)
-    for (long k = active_.begin; k < active_.end; ++k) {
+    forEachNode(active_.rows, [&](long k) {
       Vec3 a = Vec3::Zero();
       if (g.mass[k] > flags_.minimumMassForAcc && g.mass[k] > 0)
         a = g.internalForce[k] / g.mass[k] + flags_.gravity -
             flags_.artificialDampingCoeff * g.velocity[k];
       g.velocityStar[k] = g.velocity[k] + a * dt;
-    }
+    });
   }
 }
 
 void MPM::setGridBoundaryConditions(double dt) {
-  contact_.exchange(fields_, &GridFields::velocityStar, active_.begin, active_.end);
+  contact_.exchange(fields_, &GridFields::velocityStar, active_.rows);
   for (size_t m = 0; m < fields_.size(); ++m) {
     GridFields& g = fields_[m];
     applyVelocityDirichlet(grid_, faceBCs_, static_cast<int>(m), g.velocityStar);
     applySymmetry(grid_, faceBCs_, static_cast<int>(m), g.velocityStar);
-#pragma omp parallel for schedule(static)
-    for (long k = active_.begin; k < active_.end; ++k)
-      g.acceleration[k] = (g.velocityStar[k] - g.velocity[k]) / dt;
+    forEachNode(active_.rows,
+                [&g, dt](long k) { g.acceleration[k] = (g.velocityStar[k] - g.velocity[k]) / dt; });
   }
 }
 

@@ -6,6 +6,7 @@
 #include <memory>
 #include <vector>
 
+#include "Components/MPM/ActiveNodes.h"
 #include "Components/MPM/Contact/Contact.h"
 #include "Components/MPM/GhostNodes.h"
 #include "Components/MPM/GridFields.h"
@@ -133,7 +134,7 @@ class MPM {
   template <class Concentration>
   void scatterMaterial(size_t m, const Concentration& concentration);
   template <class F>
-  void withConcentrationScatter(size_t m, long begin, long end, F&& f);
+  void withConcentrationScatter(size_t m, const std::vector<NodeRange>& cleared, F&& f);
   template <class F>
   void withConcentrationGather(size_t m, F&& f);
 
@@ -152,10 +153,11 @@ class MPM {
   std::vector<MPMMaterial> materials_;
   std::unique_ptr<ReactiveFlow> diffusion_;  // only with <do_scalar_diffusion>true
   int64_t nextParticleId_ = 0;
-  // Nodes the particles touch this step (flat indices [begin, end)); grid loops run over them
-  // only. Outside, nodal fields are zero (the previous step's range is cleared too) except the
-  // values face boundary conditions set.
-  NodeRange active_, previous_;
+  // The nodes the particles touch this step; grid loops run over them only. Outside, nodal
+  // fields are zero (the previous step's box is cleared too) except the values face boundary
+  // conditions set.
+  ActiveNodes active_;
+  NodeBox previous_;
 
   std::vector<GridFields> fields_;              // per material
   std::vector<InterpolationWeights> weights_;   // per material, for the current step

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <string>
 
+#include "Components/MPM/ActiveNodes.h"
+
 namespace anode {
 
 Contact Contact::fromInput(const PSNode& mpmMaterials, int numMaterials) {
@@ -44,20 +46,19 @@ Contact Contact::fromInput(const PSNode& mpmMaterials, int numMaterials) {
 }
 
 void Contact::exchange(std::vector<GridFields>& fields, std::vector<Vec3> GridFields::*velocity,
-                       long begin, long end) const {
+                       const std::vector<NodeRange>& nodes) const {
   if (type == Type::Null || materials.size() < 2) return;
-#pragma omp parallel for schedule(static)
-  for (long n = begin; n < end; ++n) {
+  forEachNode(nodes, [&](long n) {
     double mass = 0;
     Vec3 momentum = Vec3::Zero();
     for (int m : materials) {
       mass += fields[m].mass[n];
       momentum += fields[m].mass[n] * (fields[m].*velocity)[n];
     }
-    if (mass <= 0) continue;
+    if (mass <= 0) return;
     const Vec3 common = momentum / mass;
     for (int m : materials) (fields[m].*velocity)[n] = common;
-  }
+  });
 }
 
 }  // namespace anode

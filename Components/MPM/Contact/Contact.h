@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "Components/MPM/GridFields.h"
+#include "Components/MPM/Interpolator.h"
 #include "Core/ProblemSpec/ProblemSpec.h"
 
 namespace anode {
@@ -16,9 +17,9 @@ struct Contact {
   static Contact fromInput(const PSNode& mpmMaterials, int numMaterials);
 
   // Replaces each member's nodal velocity by the centre-of-mass velocity sum(m v)/sum(m), on
-  // nodes [begin, end).
+  // the nodes of `nodes`.
   void exchange(std::vector<GridFields>& fields, std::vector<Vec3> GridFields::*velocity,
-                long begin, long end) const;
+                const std::vector<NodeRange>& nodes) const;
 };
 
 }  // namespace anode

@@ -19,7 +19,7 @@ struct NoConcentration {
   struct Particle {};
   Particle particle(long) const { return {}; }
   void scatter(const Particle&, int, double, const Vec3&) const {}
-  NoConcentration forThread(int, const NodeRange&) const { return {}; }
+  NoConcentration forThread(int, const std::vector<NodeRange>&) const { return {}; }
   void addThreadBuffers(long, const std::vector<NodeRange>&) const {}
   void gather(Particle&, int, double, const Vec3&) const {}
   double update(long, const Particle&, double) const { return 0.0; }
@@ -92,11 +92,11 @@ class ConcentrationScatter {
   }
 
   // The kernel scattering into the buffer of thread t >= 1 (the first thread scatters into the
-  // grid), cleared on the nodes t's particles touch.
-  ConcentrationScatter forThread(int t, const NodeRange& touched) const {
+  // grid), cleared on the nodes of `cleared` (those t's particles can touch).
+  ConcentrationScatter forThread(int t, const std::vector<NodeRange>& cleared) const {
     ConcentrationScatter k = *this;
     ConcentrationScatterFields& buffer = (*buffers_)[t - 1];
-    buffer.clear(touched.begin, touched.end);
+    for (const NodeRange& r : cleared) buffer.clear(r.begin, r.end);
     k.target_ = ConcentrationScatterTarget::of(buffer);
     return k;
   }

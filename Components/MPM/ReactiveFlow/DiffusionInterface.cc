@@ -1,5 +1,7 @@
 #include "Components/MPM/ReactiveFlow/DiffusionInterface.h"
 
+#include "Components/MPM/ActiveNodes.h"
+
 namespace anode {
 
 DiffusionInterface DiffusionInterface::fromInput(const PSNode& mpmMaterials, bool diffusion,
@@ -20,11 +22,10 @@ DiffusionInterface DiffusionInterface::fromInput(const PSNode& mpmMaterials, boo
 }
 
 void DiffusionInterface::apply(const std::vector<GridFields>& mechanics,
-                               std::vector<ConcentrationGridFields>& fields, long begin,
-                               long end) const {
+                               std::vector<ConcentrationGridFields>& fields,
+                               const std::vector<NodeRange>& nodes) const {
   if (!common) return;
-#pragma omp parallel for schedule(static)
-  for (long k = begin; k < end; ++k) {
+  forEachNode(nodes, [&](long k) {
     double mass = 0, mc = 0;
     for (size_t m = 0; m < fields.size(); ++m) {
       mass += mechanics[m].mass[k];
@@ -32,7 +33,7 @@ void DiffusionInterface::apply(const std::vector<GridFields>& mechanics,
     }
     if (mass > 0)
       for (ConcentrationGridFields& g : fields) g.concentration[k] = mc / mass;
-  }
+  });
 }
 
 }  // namespace anode

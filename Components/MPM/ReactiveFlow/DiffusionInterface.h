@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "Components/MPM/GridFields.h"
+#include "Components/MPM/Interpolator.h"
 #include "Components/MPM/ReactiveFlow/DiffusionGridFields.h"
 #include "Core/ProblemSpec/ProblemSpec.h"
 
@@ -16,9 +17,9 @@ struct DiffusionInterface {
   // `diffusion`: whether <do_scalar_diffusion> is on (common needs it).
   static DiffusionInterface fromInput(const PSNode& mpmMaterials, bool diffusion, size_t materials);
 
-  // common: c_i = sum_m m_i c_i / sum_m m_i for every material, on nodes [begin, end).
+  // common: c_i = sum_m m_i c_i / sum_m m_i for every material, on the nodes of `nodes`.
   void apply(const std::vector<GridFields>& mechanics, std::vector<ConcentrationGridFields>& fields,
-             long begin, long end) const;
+             const std::vector<NodeRange>& nodes) const;
 };
 
 }  // namespace anode

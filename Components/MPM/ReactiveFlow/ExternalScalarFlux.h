@@ -58,9 +58,9 @@ class ExternalScalarFlux {
   double maxOutflowRate_ = 0;  // the same for |J|, J < 0
 };
 
-// Marks, on nodes [begin, end), the nodes the flux sources of this step reach: those of the
-// particles with a nonzero flux rate, bit 1 for an inflow, bit 2 for an outflow.
+// Marks the nodes the flux sources of this step reach (after zeroing the nodes of `cleared`):
+// those of the particles with a nonzero flux rate, bit 1 for an inflow, bit 2 for an outflow.
 void markSourceNodes(const ParticleSet& p, const InterpolationWeights& W,
-                     std::vector<unsigned char>& reached, long begin, long end);
+                     std::vector<unsigned char>& reached, const std::vector<NodeRange>& cleared);
 
 }  // namespace anode

@@ -5,6 +5,7 @@
 #include <limits>
 #include <sstream>
 
+#include "Components/MPM/ActiveNodes.h"
 #include "Components/MPM/ReactiveFlow/ConcentrationBCs.h"
 #include "Core/Parallel/StopTogether.h"
 #include "Core/Util/Errors.h"
@@ -102,26 +103,25 @@ void ReactiveFlow::addScatteredArrays(std::vector<NodeArray>& arrays) {
       if (!f->empty()) arrays.push_back({f->data(), 1});
 }
 
-void ReactiveFlow::computeNodalConcentration(size_t m, const GridFields& mechanics, long begin,
-                                             long end) {
+void ReactiveFlow::computeNodalConcentration(size_t m, const GridFields& mechanics,
+                                             const std::vector<NodeRange>& nodes) {
   ConcentrationGridFields& g = fields_[m];
-#pragma omp parallel for schedule(static)
-  for (long k = begin; k < end; ++k) {
+  forEachNode(nodes, [&](long k) {
     const double c =
         mechanics.mass[k] > 0 ? g.massConcentration[k] / mechanics.mass[k] : 0.0;  // Eq. 5
     g.concentrationNoBC[k] = c;
     g.concentration[k] = c;
-  }
+  });
   applyConcentrationBCs(grid_, faceBCs_, static_cast<int>(m), g.concentration);
 }
 
-void ReactiveFlow::applyDiffusionInterface(const std::vector<GridFields>& mechanics, long begin,
-                                           long end) {
-  interface_.apply(mechanics, fields_, begin, end);
+void ReactiveFlow::applyDiffusionInterface(const std::vector<GridFields>& mechanics,
+                                           const std::vector<NodeRange>& nodes) {
+  interface_.apply(mechanics, fields_, nodes);
 }
 
 void ReactiveFlow::integrateConcentration(const std::vector<GridFields>& mechanics, double dt,
-                                          long begin, long end) {
+                                          const std::vector<NodeRange>& nodes) {
   // Eq. 18: c* = c + (R/m + G/m) dt, then the SD-Type BCs on c*. Unlike Uintah (UINTAH_UPS.md
   // §6 step 7) the flux source is part of c*, so the next step's gradient sees the lithium that
   // entered. The nodal rate that drives the particles, (c° - c_noBC)/dt with c° = c + (R/m) dt
@@ -135,23 +135,22 @@ void ReactiveFlow::integrateConcentration(const std::vector<GridFields>& mechani
     const double constantRate = constantRate_[m];
     const bool source = receivesFlux_[m];
     std::vector<double>& noSource = source ? g.concentrationNoSource : g.concentrationStar;
-#pragma omp parallel for schedule(static)
-    for (long k = begin; k < end; ++k) {
+    forEachNode(nodes, [&](long k) {
       const double invMass = mass[k] > 0 ? 1.0 / mass[k] : 0.0;
       const double rate = invMass > 0 ? g.diffusionRate[k] * invMass + constantRate : 0.0;
       noSource[k] = g.concentration[k] + rate * dt;
-      if (!source) continue;
+      if (!source) return;
       const double G = g.fluxSource[k];
       g.concentrationStar[k] = noSource[k] + G * invMass * dt;
       const double receivers = G >= 0 ? g.receiverWeightIn[k] : g.receiverWeightOut[k];
       g.sourcePerWeight[k] = receivers > 0 ? G / receivers : 0.0;
-    }
+    });
     applyConcentrationBCs(grid_, faceBCs_, static_cast<int>(m), g.concentrationStar);
     if (source)
       applyConcentrationBCs(grid_, faceBCs_, static_cast<int>(m), g.concentrationNoSource);
-#pragma omp parallel for schedule(static)
-    for (long k = begin; k < end; ++k)
+    forEachNode(nodes, [&](long k) {
       g.concentrationRate[k] = mass[k] > 0 ? (noSource[k] - g.concentrationNoBC[k]) / dt : 0.0;
+    });
   }
 }
 

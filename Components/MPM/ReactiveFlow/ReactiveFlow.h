@@ -50,19 +50,22 @@ class ReactiveFlow {
 
   // --- the step's diffusion tasks, in the order MPM::timeAdvance calls them ---
 
-  // Before P2G of material m: zeroes its fields on nodes [begin, end) and marks the nodes its
-  // flux sources reach; then calls f with the material's P2G kernel.
+  // Before P2G of material m: zeroes its fields on the nodes of `cleared` and marks the nodes
+  // its flux sources reach; then calls f with the material's P2G kernel.
   template <class F>
-  void withScatter(size_t m, const ParticleSet& p, const InterpolationWeights& W, long begin,
-                   long end, F&& f);
+  void withScatter(size_t m, const ParticleSet& p, const InterpolationWeights& W,
+                   const std::vector<NodeRange>& cleared, F&& f);
   // Adds the nodal arrays P2G sums (per material) to `arrays`, for the ranks to complete them.
   void addScatteredArrays(std::vector<NodeArray>& arrays);
   // Eq. 5: c = (mc)/m, then the SD-Type conditions; after all materials, the interface.
-  void computeNodalConcentration(size_t m, const GridFields& mechanics, long begin, long end);
-  void applyDiffusionInterface(const std::vector<GridFields>& mechanics, long begin, long end);
+  // All on the nodes of `nodes` (the step's active nodes).
+  void computeNodalConcentration(size_t m, const GridFields& mechanics,
+                                 const std::vector<NodeRange>& nodes);
+  void applyDiffusionInterface(const std::vector<GridFields>& mechanics,
+                               const std::vector<NodeRange>& nodes);
   // Eq. 18: c* = c + (R + G)/m dt and the nodal rate that drives Eq. 8.
-  void integrateConcentration(const std::vector<GridFields>& mechanics, double dt, long begin,
-                              long end);
+  void integrateConcentration(const std::vector<GridFields>& mechanics, double dt,
+                              const std::vector<NodeRange>& nodes);
   // Calls f with material m's G2P kernel (Eq. 8).
   template <class F>
   void withGather(size_t m, ParticleSet& p, F&& f);
@@ -110,11 +113,11 @@ class ReactiveFlow {
 
 template <class F>
 void ReactiveFlow::withScatter(size_t m, const ParticleSet& p, const InterpolationWeights& W,
-                               long begin, long end, F&& f) {
+                               const std::vector<NodeRange>& cleared, F&& f) {
   ConcentrationGridFields& g = fields_[m];
-  g.clearAll(begin, end);
+  for (const NodeRange& r : cleared) g.clearAll(r.begin, r.end);
   if (receivesFlux_[m]) {
-    markSourceNodes(p, W, g.sourceReached, begin, end);
+    markSourceNodes(p, W, g.sourceReached, cleared);
     if (ghosts_) ghosts_->unionOverRanks(g.sourceReached);
     f(ConcentrationScatter<true>(p, W, g.sourceReached.data(), cmax_[m], g, threadScatter_));
   } else {

@@ -1,0 +1,62 @@
+// The nodes a step's grid tasks visit: the box of stored nodes the particles' weights reach, as
+// rows of contiguous flat indices, so that a small body in a large grid costs its own nodes and
+// not whole layers of the grid. Outside them the nodal fields are zero, except the values face
+// boundary conditions set.
+#pragma once
+
+#include <omp.h>
+
+#include <algorithm>
+#include <vector>
+
+#include "Components/MPM/GhostNodes.h"
+#include "Components/MPM/Interpolator.h"
+#include "Core/Grid/Grid.h"
+
+namespace anode {
+
+// The smallest box holding both (either may be empty).
+NodeBox hullOf(const NodeBox& a, const NodeBox& b);
+#pragma omp declare reduction(hull:NodeBox                         \
+                              : omp_out = hullOf(omp_out, omp_in)) \
+    initializer(omp_priv = NodeBox{})
+
+struct ActiveNodes {
+  NodeBox box;                  // grid indices
+  std::vector<NodeRange> rows;  // x rows of the box; rows meeting end to end are merged
+
+  // The rows of `box` on the nodes g stores (the box is clipped to them).
+  static ActiveNodes of(const Grid& g, const NodeBox& box);
+  // The rows cut to the flat range r (rows outside it left out).
+  std::vector<NodeRange> within(const NodeRange& r) const;
+};
+
+// Calls f(k) for thread t of `threads` on its share of the nodes of `rows`: the t-th of equal
+// consecutive parts of them, whatever the rows' lengths.
+template <class F>
+void forEachNodeOfThread(const std::vector<NodeRange>& rows, int t, int threads, F&& f) {
+  long total = 0;
+  for (const NodeRange& r : rows) total += r.end - r.begin;
+  long skip = total * t / threads, take = total * (t + 1) / threads - skip;
+  for (const NodeRange& r : rows) {
+    if (take == 0) break;
+    const long length = r.end - r.begin;
+    if (skip >= length) {
+      skip -= length;
+      continue;
+    }
+    const long begin = r.begin + skip, end = std::min(r.end, begin + take);
+    for (long k = begin; k < end; ++k) f(k);
+    take -= end - begin;
+    skip = 0;
+  }
+}
+
+// Calls f(k) for every node k of `rows`, shared among the threads.
+template <class F>
+void forEachNode(const std::vector<NodeRange>& rows, F&& f) {
+#pragma omp parallel
+  forEachNodeOfThread(rows, omp_get_thread_num(), omp_get_num_threads(), f);
+}
+
+}  // namespace anode
