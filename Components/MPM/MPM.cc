@@ -337,8 +337,8 @@ void MPM::computeNodalVelocityAndConcentration() {
     forEachNode(active_.rows, [&g](long k) {
       g.velocity[k] = g.mass[k] > 0 ? Vec3(g.momentum[k] / g.mass[k]) : Vec3::Zero();
     });
-    applySymmetry(grid_, faceBCs_, static_cast<int>(m), g.velocity);
-    applySymmetry(grid_, faceBCs_, static_cast<int>(m), g.internalForce);
+    applySymmetry(grid_, faceBCs_, static_cast<int>(m), active_.box, g.velocity);
+    applySymmetry(grid_, faceBCs_, static_cast<int>(m), active_.box, g.internalForce);
     if (diffusion_) diffusion_->computeNodalConcentration(m, g, active_.rows);  // Eq. 5
   }
   if (diffusion_) diffusion_->applyDiffusionInterface(fields_, active_.rows);
@@ -366,7 +366,7 @@ void MPM::setGridBoundaryConditions(double dt) {
   for (size_t m = 0; m < fields_.size(); ++m) {
     GridFields& g = fields_[m];
     applyVelocityDirichlet(grid_, faceBCs_, static_cast<int>(m), g.velocityStar);
-    applySymmetry(grid_, faceBCs_, static_cast<int>(m), g.velocityStar);
+    applySymmetry(grid_, faceBCs_, static_cast<int>(m), active_.box, g.velocityStar);
     forEachNode(active_.rows,
                 [&g, dt](long k) { g.acceleration[k] = (g.velocityStar[k] - g.velocity[k]) / dt; });
   }

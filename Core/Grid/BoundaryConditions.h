@@ -25,10 +25,12 @@ struct FaceBC {
 
 // Reads every <Face>; `numMaterials` bounds the id attribute; SD-Type (concentration) conditions
 // need `diffusion`.
-// Calls f(node) for every stored node on the face of `bc` or outside it (the extra nodes beyond).
+// Calls f(node) for every stored node on the face of `bc` or outside it (the extra nodes beyond)
+// that lies within grid indices [first, last].
 template <class Fn>
-void forFaceNodes(const Grid& g, const FaceBC& bc, Fn f) {
-  Vec3i lo = g.firstNode(), hi = g.lastNode();
+void forFaceNodesWithin(const Grid& g, const FaceBC& bc, const Vec3i& first, const Vec3i& last,
+                        Fn f) {
+  Vec3i lo = g.firstNode().cwiseMax(first), hi = g.lastNode().cwiseMin(last);
   if (bc.side == 0)
     hi[bc.axis] = std::min(hi[bc.axis], 0);
   else
@@ -36,6 +38,12 @@ void forFaceNodes(const Grid& g, const FaceBC& bc, Fn f) {
   for (int k = lo.z(); k <= hi.z(); ++k)
     for (int j = lo.y(); j <= hi.y(); ++j)
       for (int i = lo.x(); i <= hi.x(); ++i) f(g.nodeIndex(i, j, k));
+}
+
+// The same on every stored node of the face.
+template <class Fn>
+void forFaceNodes(const Grid& g, const FaceBC& bc, Fn f) {
+  forFaceNodesWithin(g, bc, g.firstNode(), g.lastNode(), f);
 }
 
 std::vector<FaceBC> readFaceBCs(const PSNode& gridNode, int numMaterials, bool diffusion);
