@@ -9,7 +9,8 @@
    skipped, a run with a checkpoint (sus keeps one of its own every 10 minutes) is continued with
    `sus -restart`, so the command can be stopped at any moment (Ctrl-C or SIGTERM stops the run
    too and records its time) and started again. Each session's wall time is appended to
-   DIR/runs/NAME.wall.
+   DIR/runs/NAME.wall; a session killed outright (SIGKILL) is recorded from its last heartbeat
+   (DIR/runs/NAME.wall.running, every 30 s) when the run is continued.
 2. Renders each figure as one PNG (DIR/figures/figN.png) through the project's renderer
    (`render_figure`: panels side by side, a shared colour bar, panel letters and times).
 3. Measures the numbers of each figure from the VTU files (paper_numbers.py) into
@@ -38,6 +39,7 @@ sys.path.insert(0, HERE)
 import paper_figures  # noqa: E402
 
 SIMULATION_STOPPED = 3  # sus's exit code for a run it stopped with a diagnostic
+HEARTBEAT = 30  # seconds between rewrites of a running run's wall time so far
 
 # Cheapest first (measured here on 2 cores; docs/paper/README.md has the wall times).
 SCENARIOS = ["Flux_1e-8", "Flux_1e-9", "Constitutive_elastic", "Constitutive_perfect",
@@ -71,6 +73,37 @@ def wall_seconds(run_dir):
         return sum(float(line.split()[1]) for line in f if line.strip())
 
 
+def record_killed_session(run_dir):
+    """A session killed outright (SIGKILL, the machine going down) could not write its .wall line;
+    its last heartbeat (DIR/runs/NAME.wall.running, rewritten every HEARTBEAT seconds) is recorded
+    in its place, so the summed wall time misses at most one heartbeat per such session."""
+    beat = run_dir + ".wall.running"
+    if not os.path.exists(beat):
+        return
+    with open(beat) as f:
+        started, seconds = f.read().split()[:2]
+    with open(run_dir + ".wall", "a") as f:
+        f.write("%s %s exit=killed killed (the last heartbeat of the session started then)\n" % (started, seconds))
+    os.remove(beat)
+
+
+def wait_with_heartbeat(child, run_dir, start):
+    """Waits for the run, rewriting DIR/runs/NAME.wall.running with its wall time so far."""
+    beat = run_dir + ".wall.running"
+    started = datetime.datetime.fromtimestamp(start).isoformat(timespec="seconds")
+    while True:
+        try:
+            code = child.wait(timeout=HEARTBEAT)
+            break
+        except subprocess.TimeoutExpired:
+            with open(beat + ".part", "w") as f:
+                f.write("%s %.1f\n" % (started, time.time() - start))
+            os.replace(beat + ".part", beat)
+    if os.path.exists(beat):
+        os.remove(beat)
+    return code
+
+
 def finished_run(run_dir):
     """The run's complete.json as a dict, or None if it has not finished."""
     path = os.path.join(run_dir, "complete.json")
@@ -99,11 +132,12 @@ def run_scenario(name, args, runs):
     if args.quick:
         sus += ["--max-timesteps", str(args.quick)]
     if not args.quick and has_checkpoint(run_dir):
+        record_killed_session(run_dir)
         command = [args.sus, "-restart", run_dir, "--threads", str(args.threads)]
         how = "continued from its newest checkpoint"
     else:  # afresh: what an earlier attempt left is not part of this run
         shutil.rmtree(run_dir, ignore_errors=True)
-        for leftover in (run_dir + ".wall", run_dir + ".log"):
+        for leftover in (run_dir + ".wall", run_dir + ".wall.running", run_dir + ".log"):
             if os.path.exists(leftover):
                 os.remove(leftover)
         command = sus + ["-o", run_dir, os.path.join(ROOT, "inputs", "Paper", name + ".ups")]
@@ -117,7 +151,7 @@ def run_scenario(name, args, runs):
         child = subprocess.Popen(command, stdout=log, stderr=subprocess.STDOUT,
                                  env=dict(os.environ, OMP_WAIT_POLICY="passive"))
         RUNNING.add(child)
-    code = child.wait()
+    code = wait_with_heartbeat(child, run_dir, start)
     log.close()
     with RUNNING_LOCK:
         RUNNING.discard(child)
