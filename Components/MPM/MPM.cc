@@ -225,10 +225,11 @@ void MPM::computeInterpolationWeights() {
     }
     if (firstOutside < n) throwOutsideWindow(m, firstOutside);
   }
-  // The ghost nodes get the other ranks' parts: every stored node takes part in the step.
+  // The ghost nodes get the other ranks' parts: every stored node takes part in the step. This
+  // rank's own parts are nonzero only within the box its particles' weights reach.
   if (distributed_) {
+    reach_ = reached;
     reached = NodeBox{grid_.firstNode(), grid_.lastNode()};
-    reach_ = computeReach();
   }
   active_ = ActiveNodes::of(grid_, reached);
 }

@@ -117,8 +117,6 @@ class MPM {
   void migrateParticles();
   // Completes the nodal sums of P2G on the nodes shared with other ranks.
   void sumGhostNodes();
-  // The nodes this rank's particles can reach this step (distributed runs).
-  NodeBox computeReach() const;
   void computeNodalVelocityAndConcentration();
   // Keeps this rank's particles (all of the problem's are here when `allHere`) under a new
   // decomposition from the particle counts per cell plane, and lays out its window.

@@ -97,24 +97,6 @@ double MPM::imbalance() const {
   return total > 0 ? most / (total / Communicator::size()) : 1.0;
 }
 
-NodeBox MPM::computeReach() const {
-  int lo[3] = {1 << 30, 1 << 30, 1 << 30}, hi[3] = {-(1 << 30), -(1 << 30), -(1 << 30)};
-  for (const MPMMaterial& mat : materials_) {
-    const ParticleSet& p = mat.particles;
-    const long n = static_cast<long>(p.count());
-    int x0 = lo[0], y0 = lo[1], z0 = lo[2], x1 = hi[0], y1 = hi[1], z1 = hi[2];
-#pragma omp parallel for schedule(static) reduction(min : x0, y0, z0) reduction(max : x1, y1, z1)
-    for (long i = 0; i < n; ++i) {
-      Vec3i first, last;
-      supportBounds(flags_.interpolator, whole_, p.x[i], p.size[i], p.F[i], first, last);
-      x0 = std::min(x0, first.x()), y0 = std::min(y0, first.y()), z0 = std::min(z0, first.z());
-      x1 = std::max(x1, last.x()), y1 = std::max(y1, last.y()), z1 = std::max(z1, last.z());
-    }
-    lo[0] = x0, lo[1] = y0, lo[2] = z0, hi[0] = x1, hi[1] = y1, hi[2] = z1;
-  }
-  return NodeBox{Vec3i(lo[0], lo[1], lo[2]), Vec3i(hi[0], hi[1], hi[2])};
-}
-
 void MPM::sumGhostNodes() {
   std::vector<NodeArray> sums;
   for (GridFields& g : fields_) {
