@@ -1,7 +1,10 @@
 // Pins the nodes the grid tasks visit (Components/MPM/ActiveNodes.h): a box of grid nodes as rows
-// of flat indices, clipped to the stored nodes, and each node given to exactly one thread.
+// of flat indices, clipped to the stored nodes, and each node given to exactly one thread; and
+// the flat range a block of particles' weights touch (P2G's thread buffers).
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <iterator>
 #include <vector>
 
 #include "Components/MPM/ActiveNodes.h"
@@ -23,6 +26,32 @@ std::vector<long> nodesOf(const std::vector<NodeRange>& rows) {
   for (const NodeRange& r : rows)
     for (long k = r.begin; k < r.end; ++k) nodes.push_back(k);
   return nodes;
+}
+
+TEST(ActiveNodes, NodesTouchedSpanTheParticlesWeights) {
+  InterpolationWeights W;
+  W.layOut({2, 3, 2});
+  const int32_t nodes[] = {40, 12, 7, 90, 33, 5, 6};
+  std::copy(std::begin(nodes), std::end(nodes), W.node.begin());
+  W.count = {2, 3, 0};  // the third particle's entries are laid out but not written
+  const NodeRange all = nodesTouched(W, 0, 3), second = nodesTouched(W, 1, 2);
+  EXPECT_EQ(all.begin, 7);
+  EXPECT_EQ(all.end, 91);
+  EXPECT_EQ(second.begin, 7);
+  EXPECT_EQ(second.end, 91);
+  EXPECT_EQ(nodesTouched(W, 0, 1).begin, 12);
+  EXPECT_EQ(nodesTouched(W, 0, 1).end, 41);
+  const NodeRange none = nodesTouched(W, 2, 3);
+  EXPECT_EQ(none.begin, none.end);
+  EXPECT_TRUE(all.contains(7) && all.contains(90));
+  EXPECT_FALSE(all.contains(6) || all.contains(91));
+
+  const NodeRange ranges[] = {{20, 30}, {}, {5, 8}, {29, 40}};
+  const NodeRange span = spanOf(ranges, ranges + 4);
+  EXPECT_EQ(span.begin, 5);
+  EXPECT_EQ(span.end, 40);
+  const NodeRange empty = spanOf(ranges + 1, ranges + 2);
+  EXPECT_EQ(empty.begin, empty.end);
 }
 
 TEST(ActiveNodes, RowsHoldExactlyTheBoxNodes) {

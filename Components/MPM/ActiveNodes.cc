@@ -1,13 +1,27 @@
 #include "Components/MPM/ActiveNodes.h"
 
 #include <algorithm>
+#include <limits>
 
 namespace anode {
 
-NodeBox hullOf(const NodeBox& a, const NodeBox& b) {
-  if (a.empty()) return b;
-  if (b.empty()) return a;
-  return {a.first.cwiseMin(b.first), a.last.cwiseMax(b.last)};
+NodeRange nodesTouched(const InterpolationWeights& W, long first, long last) {
+  long low = std::numeric_limits<long>::max(), high = -1;
+  for (long i = first; i < last; ++i) {
+    const size_t b = W.offset[i];
+    for (int e = 0; e < W.count[i]; ++e) {
+      low = std::min<long>(low, W.node[b + e]);
+      high = std::max<long>(high, W.node[b + e]);
+    }
+  }
+  return high < 0 ? NodeRange{} : NodeRange{low, high + 1};
+}
+
+NodeRange spanOf(const NodeRange* first, const NodeRange* last) {
+  NodeRange span{std::numeric_limits<long>::max(), 0};
+  for (const NodeRange* r = first; r != last; ++r)
+    if (r->begin < r->end) span = {std::min(span.begin, r->begin), std::max(span.end, r->end)};
+  return span.begin < span.end ? span : NodeRange{};
 }
 
 ActiveNodes ActiveNodes::of(const Grid& g, const NodeBox& box) {

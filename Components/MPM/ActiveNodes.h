@@ -15,8 +15,23 @@
 
 namespace anode {
 
+// A range of flat node indices [begin, end).
+struct NodeRange {
+  long begin = 0, end = 0;
+  bool contains(long k) const { return begin <= k && k < end; }
+};
+
+// The nodes the weights of particles [first, last) touch (empty when they touch none).
+NodeRange nodesTouched(const InterpolationWeights& W, long first, long last);
+// The smallest range holding every non-empty one of [first, last).
+NodeRange spanOf(const NodeRange* first, const NodeRange* last);
+
 // The smallest box holding both (either may be empty).
-NodeBox hullOf(const NodeBox& a, const NodeBox& b);
+inline NodeBox hullOf(const NodeBox& a, const NodeBox& b) {
+  if (a.empty()) return b;
+  if (b.empty()) return a;
+  return {a.first.cwiseMin(b.first), a.last.cwiseMax(b.last)};
+}
 #pragma omp declare reduction(hull:NodeBox                         \
                               : omp_out = hullOf(omp_out, omp_in)) \
     initializer(omp_priv = NodeBox{})

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 #include "Components/MPM/CpdiCorners.h"
 
@@ -236,25 +235,6 @@ int cpdiWeights(const Grid& g, const CpdiCorners& corners, int32_t* nodes, doubl
         count += b[0] > 0;
       }
   return count;
-}
-
-NodeRange nodesTouched(const InterpolationWeights& W, long first, long last) {
-  long low = std::numeric_limits<long>::max(), high = -1;
-  for (long i = first; i < last; ++i) {
-    const size_t b = W.offset[i];
-    for (int e = 0; e < W.count[i]; ++e) {
-      low = std::min<long>(low, W.node[b + e]);
-      high = std::max<long>(high, W.node[b + e]);
-    }
-  }
-  return high < 0 ? NodeRange{} : NodeRange{low, high + 1};
-}
-
-NodeRange spanOf(const NodeRange* first, const NodeRange* last) {
-  NodeRange span{std::numeric_limits<long>::max(), 0};
-  for (const NodeRange* r = first; r != last; ++r)
-    if (r->begin < r->end) span = {std::min(span.begin, r->begin), std::max(span.end, r->end)};
-  return span.begin < span.end ? span : NodeRange{};
 }
 
 }  // namespace anode

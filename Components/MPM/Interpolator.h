@@ -73,15 +73,4 @@ struct InterpolationWeights {
   }
 };
 
-// A range of flat node indices [begin, end).
-struct NodeRange {
-  long begin = 0, end = 0;
-  bool contains(long k) const { return begin <= k && k < end; }
-};
-
-// The nodes the weights of particles [first, last) touch (empty when they touch none).
-NodeRange nodesTouched(const InterpolationWeights& W, long first, long last);
-// The smallest range holding every non-empty one of [first, last).
-NodeRange spanOf(const NodeRange* first, const NodeRange* last);
-
 }  // namespace anode

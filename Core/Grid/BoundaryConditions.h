@@ -23,8 +23,6 @@ struct FaceBC {
   bool appliesTo(int matl) const { return material < 0 || material == matl; }
 };
 
-// Reads every <Face>; `numMaterials` bounds the id attribute; SD-Type (concentration) conditions
-// need `diffusion`.
 // Calls f(node) for every stored node on the face of `bc` or outside it (the extra nodes beyond)
 // that lies within grid indices [first, last].
 template <class Fn>
@@ -46,6 +44,8 @@ void forFaceNodes(const Grid& g, const FaceBC& bc, Fn f) {
   forFaceNodesWithin(g, bc, g.firstNode(), g.lastNode(), f);
 }
 
+// Reads every <Face>; `numMaterials` bounds the id attribute; SD-Type (concentration) conditions
+// need `diffusion`.
 std::vector<FaceBC> readFaceBCs(const PSNode& gridNode, int numMaterials, bool diffusion);
 
 }  // namespace anode

@@ -3,8 +3,8 @@
 
 #include <vector>
 
+#include "Components/MPM/ActiveNodes.h"
 #include "Components/MPM/GridFields.h"
-#include "Components/MPM/Interpolator.h"
 #include "Core/ProblemSpec/ProblemSpec.h"
 
 namespace anode {

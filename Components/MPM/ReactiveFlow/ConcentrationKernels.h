@@ -7,6 +7,7 @@
 
 #include <vector>
 
+#include "Components/MPM/ActiveNodes.h"
 #include "Components/MPM/Interpolator.h"
 #include "Components/MPM/ParticleSet.h"
 #include "Components/MPM/ReactiveFlow/DiffusionGridFields.h"

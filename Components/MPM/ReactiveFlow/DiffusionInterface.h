@@ -4,8 +4,8 @@
 
 #include <vector>
 
+#include "Components/MPM/ActiveNodes.h"
 #include "Components/MPM/GridFields.h"
-#include "Components/MPM/Interpolator.h"
 #include "Components/MPM/ReactiveFlow/DiffusionGridFields.h"
 #include "Core/ProblemSpec/ProblemSpec.h"
 

@@ -5,6 +5,7 @@
 
 #include <vector>
 
+#include "Components/MPM/ActiveNodes.h"
 #include "Components/MPM/Interpolator.h"
 #include "Components/MPM/MPMFlags.h"
 #include "Components/MPM/Materials/MPMMaterial.h"

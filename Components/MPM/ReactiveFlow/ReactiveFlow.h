@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "Components/MPM/ActiveNodes.h"
 #include "Components/MPM/GhostNodes.h"
 #include "Components/MPM/GridFields.h"
 #include "Components/MPM/Interpolator.h"
