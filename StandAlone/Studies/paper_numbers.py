@@ -22,6 +22,7 @@ Definitions (the report repeats them). Lengths in um, times in us as the runs wr
   takes lithium in these runs, the substrates have D = 0 and start at c = 0) over rho V0 of the
   silicon (c = 1).
 """
+import functools
 import json
 import math
 import os
@@ -291,11 +292,12 @@ def cycle_section(runs, scale, unit):
     run_dir = os.path.join(runs, "Cycle_LargePillar")
     history = read_history(run_dir)
     capacity = silicon_capacity(run_dir)
-    start = State(run_dir, 0.0)
+    state = functools.lru_cache(maxsize=None)(lambda t: State(run_dir, t))  # each output read once
+    start = state(0.0)
     initial_volume = {start.id[i]: start.volume[i] for i in start.silicon}
     rows = []
     for t in (40e6, 80e6):
-        s = State(run_dir, t)
+        s = state(t)
         r = min(history, key=lambda h: abs(h["time"] - s.time))
         c = [s.c[i] for i in s.silicon]
         J = [s.volume[i] / initial_volume[s.id[i]] for i in s.silicon]
@@ -307,23 +309,21 @@ def cycle_section(runs, scale, unit):
                      "%.3g / %.3g" % (max(substrate), sum(substrate) / len(substrate)) if substrate else "—"])
     profiles = []
     for t in CYCLE_PROFILE_TIMES:
-        s = State(run_dir, t)
+        s = state(t)
         profile = s.height_profile(CYCLE_SLAB)
         f = front(profile)
         profiles.append(["%.4g" % (s.time * scale), percent(lithium_fraction_at(run_dir, s.time)),
                          " ".join("%.2f" % c for c in profile),
                          "none" if f is None else "slabs %d-%d" % (f[0], f[0] + f[1] - 1),
                          "—" if f is None else "%.3f" % f[2], "%.2f" % (max(profile) - min(profile))])
-    peak = max(history, key=lambda h: h["total_lithium"])
-    end = history[-1]
-    gone = (peak["total_lithium"] - end["total_lithium"]) / capacity
+    peak, end = max(history, key=lambda h: h["total_lithium"]), history[-1]
+    held, out = peak["total_lithium"] / capacity, (peak["total_lithium"] - end["total_lithium"]) / capacity
     return table(["t (%s)" % unit, "step", "lithium", "silicon c range", "silicon J range",
                   "plastic strain max / mean, pillar", "max / mean, substrate"], rows) + (
         "\n\nLithium in: %s of the capacity by t = %.4g %s (the most the run holds). Out: %s of the capacity "
         "by t = %.4g %s, %s of what went in. The paper's run: %s." %
-        (percent(peak["total_lithium"] / capacity), peak["time"] * scale, unit, percent(gone),
-         end["time"] * scale, unit, percent(gone / (peak["total_lithium"] / capacity)) if peak["total_lithium"] > 0
-         else "—", PAPER_CYCLE)) + (
+        (percent(held), peak["time"] * scale, unit, percent(out), end["time"] * scale, unit,
+         percent(out / held) if held > 0 else "—", PAPER_CYCLE)) + (
         "\n\nc by height: the mean c of the silicon in slabs %g nm thick by X0_z, base to top (the flux enters "
         "through the top and the side), with the front found as for Figs. 6-7 and the spread (largest - smallest "
         "slab c):\n\n" % (CYCLE_SLAB * 1e3)) + table(
