@@ -73,6 +73,13 @@ def wall_seconds(run_dir):
         return sum(float(line.split()[1]) for line in f if line.strip())
 
 
+def write_whole(path, text):
+    """Writes path through a temporary file renamed once whole: a kill leaves no half file."""
+    with open(path + ".part", "w") as f:
+        f.write(text)
+    os.replace(path + ".part", path)
+
+
 def record_killed_session(run_dir):
     """A session killed outright (SIGKILL, the machine going down) could not write its .wall line;
     its last heartbeat (DIR/runs/NAME.wall.running, rewritten every HEARTBEAT seconds) is recorded
@@ -96,9 +103,7 @@ def wait_with_heartbeat(child, run_dir, start):
             code = child.wait(timeout=HEARTBEAT)
             break
         except subprocess.TimeoutExpired:
-            with open(beat + ".part", "w") as f:
-                f.write("%s %.1f\n" % (started, time.time() - start))
-            os.replace(beat + ".part", beat)
+            write_whole(beat, "%s %.1f\n" % (started, time.time() - start))
     if os.path.exists(beat):
         os.remove(beat)
     return code
@@ -179,10 +184,7 @@ def run_scenario(name, args, runs):
         sys.exit("reproduce_paper.py: %s ended with exit code %d but its history.csv holds no step" % (run_dir, code))
     summary = dict(steps=int(last["step"]), time=float(last["time"]), particles=int(last["particles"]),
                    wall_seconds=wall_seconds(run_dir), threads=args.threads, quick=args.quick, stopped=stopped)
-    partial = os.path.join(run_dir, "complete.json.part")  # renamed once whole: a kill leaves no half file
-    with open(partial, "w") as f:
-        json.dump(summary, f, indent=1)
-    os.replace(partial, os.path.join(run_dir, "complete.json"))
+    write_whole(os.path.join(run_dir, "complete.json"), json.dumps(summary, indent=1))
     print("%-22s %s: %d steps to t = %g in %.0f s of wall time" %
           (name, "stopped by sus (" + stopped + ")" if stopped else "finished", summary["steps"], summary["time"],
            summary["wall_seconds"]), flush=True)
