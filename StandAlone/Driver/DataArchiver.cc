@@ -1,8 +1,11 @@
 #include "StandAlone/Driver/DataArchiver.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <iomanip>
 #include <regex>
 #include <sstream>
@@ -191,21 +194,29 @@ std::string DataArchiver::writeFailedState(long step, const MPM& mpm) const {
   return (fs::path(dir_) / file).string();
 }
 
-void DataArchiver::writeHistory() const {
-  if (!Communicator::isRoot()) return;
+void DataArchiver::writeHistory() {
+  if (!Communicator::isRoot() || unwritten_.empty()) {
+    unwritten_.clear();
+    return;
+  }
   std::ostringstream s;
-  const bool diffusion = !history_.empty() && history_.front().diffusion;
-  s << "step,time,dt,particles,kinetic_energy,min_J,max_J,"
-    << (diffusion ? "total_lithium,min_c,max_c," : "") << "wall_seconds\n"
-    << std::setprecision(10);
-  for (const HistoryRow& r : history_) {
+  if (!historyStarted_)
+    s << "step,time,dt,particles,kinetic_energy,min_J,max_J,"
+      << (unwritten_.front().diffusion ? "total_lithium,min_c,max_c," : "") << "wall_seconds\n";
+  s << std::setprecision(10);
+  for (const HistoryRow& r : unwritten_) {
     s << r.step << ',' << r.time << ',' << r.dt << ',' << r.particles << ',' << r.kineticEnergy
       << ',' << r.minJ << ',' << r.maxJ << ',';
-    if (diffusion)
+    if (r.diffusion)
       s << r.totalLithium << ',' << r.minConcentration << ',' << r.maxConcentration << ',';
     s << r.wallSeconds << '\n';
   }
-  writeFileAtomically((fs::path(dir_) / "history.csv").string(), s.str());
+  const std::string path = (fs::path(dir_) / "history.csv").string();
+  std::ofstream file(path, historyStarted_ ? std::ios::app : std::ios::trunc);
+  file << s.str() << std::flush;
+  if (!file) throw std::runtime_error(path + ": cannot write the history");
+  historyStarted_ = true;
+  unwritten_.clear();
 }
 
 namespace {
@@ -234,7 +245,7 @@ void DataArchiver::saveState(BinaryWriter& out) const {
   out.value(lastOutputStep_);
   saveSeries(out, particleSeries_);
   saveSeries(out, gridSeries_);
-  out.array(history_);
+  out.value(lastRow_);
 }
 
 void DataArchiver::loadState(BinaryReader& in) {
@@ -242,35 +253,62 @@ void DataArchiver::loadState(BinaryReader& in) {
   lastOutputStep_ = in.value<long>();
   particleSeries_ = loadSeries(in);
   gridSeries_ = loadSeries(in);
-  in.array(history_);
+  lastRow_ = in.value<HistoryRow>();
+  unwritten_.clear();
 }
 
-void DataArchiver::removeOutputsAfter(long step) const {
+namespace {
+
+// history.csv without the rows after `step` (and without a last line a kill cut short); returns
+// an error message, empty on success.
+std::string truncateHistory(const std::string& path, long step) {
+  std::ifstream in(path);
+  std::string header;
+  if (!std::getline(in, header))
+    return path + ": missing or empty; a restart continues the history its run wrote";
+  const auto fields = std::count(header.begin(), header.end(), ',');
+  std::string kept = header + '\n', line;
+  while (std::getline(in, line) && !in.eof()) {  // a last line with no newline was cut short
+    char* end = nullptr;
+    const long rowStep = std::strtol(line.c_str(), &end, 10);
+    if (std::count(line.begin(), line.end(), ',') != fields || *end != ',' || rowStep > step) break;
+    kept += line + '\n';
+  }
+  writeFileAtomically(path, kept);
+  return "";
+}
+
+}  // namespace
+
+void DataArchiver::removeOutputsAfter(long step) {
   static const std::regex output(R"(step_(\d+)(\.r\d+)?\.p?vt[ui])");
-  if (!Communicator::isRoot()) {
-    Communicator::barrier();
-    return;
-  }
-  for (const char* folder : {"particles", "grid"}) {
-    const fs::path path = fs::path(dir_) / folder;
-    if (!fs::is_directory(path)) continue;
-    std::vector<fs::path> later;
-    for (const fs::directory_entry& e : fs::directory_iterator(path)) {
-      std::smatch m;
-      const std::string name = e.path().filename().string();
-      if (std::regex_match(name, m, output) && std::stol(m[1].str()) > step)
-        later.push_back(e.path());
+  std::string error;
+  if (Communicator::isRoot()) {
+    for (const char* folder : {"particles", "grid"}) {
+      const fs::path path = fs::path(dir_) / folder;
+      if (!fs::is_directory(path)) continue;
+      std::vector<fs::path> later;
+      for (const fs::directory_entry& e : fs::directory_iterator(path)) {
+        std::smatch m;
+        const std::string name = e.path().filename().string();
+        if (std::regex_match(name, m, output) && std::stol(m[1].str()) > step)
+          later.push_back(e.path());
+      }
+      for (const fs::path& p : later) fs::remove(p);
     }
-    for (const fs::path& p : later) fs::remove(p);
+    error = truncateHistory((fs::path(dir_) / "history.csv").string(), step);
   }
-  Communicator::barrier();
+  unwritten_.clear();
+  historyStarted_ = true;
+  if (Communicator::any(!error.empty()))
+    throw std::runtime_error(Communicator::isRoot() ? error
+                                                    : "rank 0 could not restore history.csv");
 }
 
 void DataArchiver::writeIndexFiles() const {
   if (!Communicator::isRoot()) return;
   particleSeries_.write((fs::path(dir_) / "particles.pvd").string());
   if (wantsGrid()) gridSeries_.write((fs::path(dir_) / "grid.pvd").string());
-  writeHistory();
 }
 
 }  // namespace anode

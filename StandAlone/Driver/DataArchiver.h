@@ -44,20 +44,29 @@ class DataArchiver {
   // Writes the particles of a step that failed a check to particles/failed_step_NNNNNN.vtu (or
   // .pvtu), outside the .pvd series; returns that path. Collective.
   std::string writeFailedState(long step, const MPM& mpm) const;
-  void recordHistory(const HistoryRow& row) { history_.push_back(row); }
-  void writeHistory() const;
-  const std::vector<HistoryRow>& history() const { return history_; }
+  void recordHistory(const HistoryRow& row) {
+    unwritten_.push_back(row);
+    lastRow_ = row;
+  }
+  // Appends the rows recorded since the last call to history.csv (the header first), so a long
+  // run's history costs neither memory nor checkpoint space in proportion to its steps. The file
+  // grows in whole lines; a kill during the append can cut its last line short, and a restart
+  // drops every row after its checkpoint's step (removeOutputsAfter).
+  void writeHistory();
+  const HistoryRow& lastHistoryRow() const { return lastRow_; }
 
-  // The output schedule, the .pvd series and the history, for checkpoints.
+  // The output schedule, the .pvd series and the last history row, for checkpoints: history.csv
+  // holds the rows up to the checkpoint's step (Simulation writes it first).
   void saveState(BinaryWriter& out) const;
   void loadState(BinaryReader& in);
-  // Writes the .pvd files and history.csv as the state has them: after a restart, outputs the
-  // interrupted run wrote after its checkpoint leave the series (the continued run writes them
-  // again under the same names).
+  // Writes the .pvd files as the state has them: after a restart, outputs the interrupted run
+  // wrote after its checkpoint leave the series (the continued run writes them again under the
+  // same names).
   void writeIndexFiles() const;
-  // Removes the particle and grid files of steps after `step` (an interrupted run's outputs
-  // beyond its checkpoint).
-  void removeOutputsAfter(long step) const;
+  // Removes what an interrupted run wrote beyond its checkpoint at `step`: the particle and grid
+  // files of later steps and the history rows after `step` (history.csv is rewritten whole,
+  // atomically, once).
+  void removeOutputsAfter(long step);
 
  private:
   // This rank's particles (grid nodes) under `base` (relative to the directory): base.vtu on one
@@ -73,7 +82,9 @@ class DataArchiver {
   double lastOutputTime_ = 0;
   long lastOutputStep_ = -1;
   PVDSeries particleSeries_, gridSeries_;
-  std::vector<HistoryRow> history_;
+  std::vector<HistoryRow> unwritten_;  // recorded, not yet in history.csv
+  HistoryRow lastRow_{};
+  bool historyStarted_ = false;  // history.csv exists with its header
 };
 
 // Chooses the output directory: `requested` if given, else the filebase, versioned .000, .001, ...

@@ -24,7 +24,7 @@ constexpr char kCheckpointMagic[] = "anode-mpm checkpoint";
 // A distributed run's checkpoint: the manifest under the checkpoint's name, one part per rank.
 constexpr char kDistributedCheckpointMagic[] = "anode-mpm distributed checkpoint";
 constexpr char kCheckpointPartMagic[] = "anode-mpm checkpoint part";
-constexpr uint32_t kCheckpointVersion = 3;
+constexpr uint32_t kCheckpointVersion = 4;
 
 uint64_t fileHash(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -268,7 +268,7 @@ void Simulation::replayToLastGoodState() {
   }
   // The replayed state must be the one the run had: its history row says what it was.
   const StepSummary s = mpm_.summarize();
-  const HistoryRow& row = archiver_.history().back();
+  const HistoryRow& row = archiver_.lastHistoryRow();
   if ((row.step != step_ || row.kineticEnergy != s.kineticEnergy ||
        row.totalLithium != s.totalLithium) &&
       Communicator::isRoot())
@@ -279,6 +279,7 @@ void Simulation::replayToLastGoodState() {
 }
 
 void Simulation::writeCheckpoint(double wallSeconds, CheckpointKind kind) {
+  archiver_.writeHistory();  // history.csv holds every row up to the checkpoint's step
   const std::string dir = archiver_.directory();
   if (kind == CheckpointKind::Scheduled) lastCheckpointTime_ = t_;
   newestCheckpoint_ = checkpointPath(dir, step_, kind);
