@@ -177,6 +177,29 @@ TEST(Restart, SkipsADamagedNewestCheckpoint) {
   expectSameOutputs(s.dir / "whole", s.dir / "parts");
 }
 
+// Outputs whose files are gone (removed by hand, or not carried with the checkpoint to another
+// machine) leave the series on restart: particles.pvd names no missing file.
+TEST(Restart, LeavesMissingOutputsOutOfTheSeries) {
+  Scratch s("missing");
+  const std::string run = (s.dir / "run").string();
+  ASSERT_EQ(
+      sus({"--max-timesteps", "1000", "-o", run, kSource + "/tests/checkpoint/AutoCycleSlab.ups"})
+          .exitCode,
+      0);
+  fs::remove(s.dir / "run" / "particles" / "step_000250.vtu");
+  const testing::SusResult restart = sus({"--max-timesteps", "1100", "-restart", run});
+  ASSERT_EQ(restart.exitCode, 0) << restart.output;
+  EXPECT_NE(restart.output.find("1 particles output(s) of the checkpoint's series are not in"),
+            std::string::npos)
+      << restart.output;
+  const std::string pvd = readFile(s.dir / "run" / "particles.pvd");
+  EXPECT_EQ(pvd.find("step_000250"), std::string::npos) << pvd;
+  EXPECT_NE(pvd.find("step_000500"), std::string::npos) << pvd;
+  static const std::regex file(R"rx(file="([^"]+)")rx");
+  for (std::sregex_iterator m(pvd.begin(), pvd.end(), file), end; m != end; ++m)
+    EXPECT_TRUE(fs::exists(s.dir / "run" / (*m)[1].str())) << (*m)[1].str();
+}
+
 TEST(Restart, WithoutACheckpointIsAnError) {
   Scratch s("none");
   ASSERT_EQ(sus({"--max-timesteps", "3", "-o", (s.dir / "run").string(),

@@ -1,6 +1,8 @@
 #include "vis/VTKWriters.h"
 
+#include <algorithm>
 #include <cstdio>
+#include <filesystem>
 #include <functional>
 #include <iomanip>
 #include <memory>
@@ -198,6 +200,17 @@ void PVDSeries::write(const std::string& path) const {
       << "\"/>\n";
   s << "  </Collection>\n</VTKFile>\n";
   writeFileAtomically(path, s.str());
+}
+
+size_t PVDSeries::dropMissing(const std::string& directory) {
+  const size_t before = entries_.size();
+  entries_.erase(
+      std::remove_if(entries_.begin(), entries_.end(),
+                     [&](const auto& e) {
+                       return !std::filesystem::exists(std::filesystem::path(directory) / e.second);
+                     }),
+      entries_.end());
+  return before - entries_.size();
 }
 
 }  // namespace anode

@@ -33,6 +33,8 @@ class PVDSeries {
   }
   void write(const std::string& path) const;
   const std::vector<std::pair<double, std::string>>& entries() const { return entries_; }
+  // Drops the entries whose file (relative to `directory`) does not exist; returns how many.
+  size_t dropMissing(const std::string& directory);
 
  private:
   std::vector<std::pair<double, std::string>> entries_;

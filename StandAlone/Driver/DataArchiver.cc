@@ -305,8 +305,14 @@ void DataArchiver::removeOutputsAfter(long step) {
                                                     : "rank 0 could not restore history.csv");
 }
 
-void DataArchiver::writeIndexFiles() const {
+void DataArchiver::writeIndexFiles() {
   if (!Communicator::isRoot()) return;
+  for (auto [series, name] : {std::pair{&particleSeries_, "particles"}, {&gridSeries_, "grid"}})
+    if (const size_t missing = series->dropMissing(dir_))
+      std::fprintf(
+          stderr,
+          "sus: %zu %s output(s) of the checkpoint's series are not in %s: left out of %s.pvd\n",
+          missing, name, dir_.c_str(), name);
   particleSeries_.write((fs::path(dir_) / "particles.pvd").string());
   if (wantsGrid()) gridSeries_.write((fs::path(dir_) / "grid.pvd").string());
 }

@@ -61,8 +61,9 @@ class DataArchiver {
   void loadState(BinaryReader& in);
   // Writes the .pvd files as the state has them: after a restart, outputs the interrupted run
   // wrote after its checkpoint leave the series (the continued run writes them again under the
-  // same names).
-  void writeIndexFiles() const;
+  // same names), and so do outputs whose files are gone (removed by hand, or not carried with
+  // the checkpoint to another machine), with a note of how many.
+  void writeIndexFiles();
   // Removes what an interrupted run wrote beyond its checkpoint at `step`: the particle and grid
   // files of later steps and the history rows after `step` (history.csv is rewritten whole,
   // atomically, once).
