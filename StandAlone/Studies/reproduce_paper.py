@@ -3,6 +3,7 @@
 
   python3 StandAlone/Studies/reproduce_paper.py [--out DIR] [--threads N] [--jobs N] [--only NAME ...]
                                                 [--figures-only] [--quick STEPS] [--report DIR]
+                                                [--carry DIR [--pack]]
 
 1. Runs every scenario of inputs/Paper/ that a figure needs into DIR/runs/NAME (default DIR:
    out/paper), cheapest first, --jobs of them at a time. It is resumable: a finished run (DIR/runs/NAME/complete.json) is
@@ -15,6 +16,9 @@
    (`render_figure`: panels side by side, a shared colour bar, panel letters and times).
 3. Measures the numbers of each figure from the VTU files (paper_numbers.py) into
    DIR/numbers.md; with --report DIR2 the figures and numbers.md are copied there too.
+
+--carry DIR restores, before running, each run this machine has nothing of from DIR/NAME, and
+--carry DIR --pack writes the runs there for a session on another machine (paper_carry.py).
 
 --quick STEPS runs each scenario afresh for STEPS steps only (into DIR, which must not hold full
 runs) and makes every figure from what that gives: the pipeline's test (tests/CMakeLists.txt).
@@ -36,6 +40,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.normpath(os.path.join(HERE, "..", ".."))
 sys.path.insert(0, HERE)
 
+import paper_carry  # noqa: E402
 import paper_figures  # noqa: E402
 
 SIMULATION_STOPPED = 3  # sus's exit code for a run it stopped with a diagnostic
@@ -214,6 +219,21 @@ def run_all(names, args, runs):
             sys.exit("reproduce_paper.py: stopped; run the command again to continue")
 
 
+def pack_runs(names, args, runs):
+    """--pack: the named runs, stopped, into the carry folder (paper_carry.py)."""
+    if not args.carry:
+        sys.exit("reproduce_paper.py: --pack needs --carry DIR")
+    for name in names:
+        run_dir = os.path.join(runs, name)
+        beat = run_dir + ".wall.running"
+        if os.path.exists(beat) and time.time() - os.path.getmtime(beat) < 2 * HEARTBEAT:
+            sys.exit("reproduce_paper.py: %s is running; stop the runner before --pack" % name)
+        record_killed_session(run_dir)
+        packed = paper_carry.pack(name, runs, args.carry)
+        if packed:
+            print("packed " + packed, flush=True)
+
+
 def main():
     signal.signal(signal.SIGTERM, stop_on_sigterm)
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -228,6 +248,10 @@ def main():
     parser.add_argument("--figures-only", action="store_true", help="make figures and numbers, run nothing")
     parser.add_argument("--quick", type=int, default=0, metavar="STEPS")
     parser.add_argument("--report", help="copy the figures and numbers.md into this directory")
+    parser.add_argument("--carry", metavar="DIR",
+                        help="restore runs this machine lacks from DIR (see paper_carry.py) before running")
+    parser.add_argument("--pack", action="store_true",
+                        help="with --carry: write the runs (--only, else all) into DIR for a later session, run nothing")
     args = parser.parse_args()
     for option, value in (("--threads", args.threads), ("--jobs", args.jobs), ("--quick", args.quick + 1)):
         if value < 1:
@@ -236,6 +260,13 @@ def main():
     runs = os.path.join(args.out, "runs")
     os.makedirs(runs, exist_ok=True)
     names = args.only or SCENARIOS
+    if args.pack:
+        pack_runs(names, args, runs)
+        return
+    if args.carry:
+        for name in names:
+            if paper_carry.restore(name, runs, args.carry):
+                print("%-22s restored from %s" % (name, os.path.join(args.carry, name)), flush=True)
     if args.quick:
         refuse_quick_over_full_runs(runs, names)
     ok = args.figures_only or run_all(names, args, runs)

@@ -1,5 +1,7 @@
-"""The runner's wall-time record (reproduce_paper.py): a session killed outright is counted from
-its last heartbeat when the run is continued, and a running run's heartbeat is rewritten."""
+"""The runner (reproduce_paper.py): a session killed outright is counted from its last heartbeat
+when the run is continued, a running run's heartbeat is rewritten, and a run carried to another
+machine (paper_carry.py) comes back with its checkpoint, wall time and the outputs its figures
+show."""
 import os
 import subprocess
 import sys
@@ -8,6 +10,8 @@ import time
 import unittest
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "StandAlone", "Studies"))
+import paper_carry  # noqa: E402
+import paper_numbers  # noqa: E402
 import reproduce_paper  # noqa: E402
 
 
@@ -49,6 +53,61 @@ class WallTime(unittest.TestCase):
             self.assertGreaterEqual(len(beats), 2)
             self.assertEqual(beats, sorted(beats))
             self.assertFalse(os.path.exists(run_dir + ".wall.running"))
+
+
+class Carry(unittest.TestCase):
+    def make_run(self, runs, name, rows):
+        run_dir = os.path.join(runs, name)
+        os.makedirs(os.path.join(run_dir, "particles"))
+        os.makedirs(os.path.join(run_dir, "checkpoints"))
+        with open(os.path.join(run_dir, "input.ups"), "w") as f:
+            f.write("<Uintah_specification/>\n")
+        with open(os.path.join(run_dir, "history.csv"), "w") as f:
+            f.write("step,time,wall_seconds\n" + "".join("%d,%d,0.1\n" % (i, 2000 * i) for i in range(rows)))
+        # Outputs at 0, 4.0001, 8 and 16.2 s: Fig. 4 shows 4, 16 and 28 s of this run.
+        times = [0, 4.0001e6, 8e6, 16.2e6]
+        for i, t in enumerate(times):
+            with open(os.path.join(run_dir, "particles", "step_%06d.vtu" % i), "w") as f:
+                f.write("frame %d\n" % i)
+        paper_carry.write_series(os.path.join(run_dir, "particles.pvd"),
+                                 [(t, os.path.join(run_dir, "particles", "step_%06d.vtu" % i))
+                                  for i, t in enumerate(times)], run_dir)
+        for step in (100, 200):
+            with open(os.path.join(run_dir, "checkpoints", "step_%06d.ckpt" % step), "wb") as f:
+                f.write(os.urandom(1000) + bytes(step))
+        with open(run_dir + ".wall", "w") as f:
+            f.write("2026-11-25T17:09:13 1995.6 exit=-15 interrupted\n")
+        with open(run_dir + ".wall.running", "w") as f:
+            f.write("2026-11-25T18:00:00 150.0\n")
+        return run_dir
+
+    def test_a_packed_run_is_restored_on_another_machine(self):
+        with tempfile.TemporaryDirectory() as d:
+            name = "Density_2.33e18"
+            out, there, carry = (os.path.join(d, x) for x in ("out", "there", "carry"))
+            run_dir = self.make_run(os.path.join(out, "runs"), name, 25000)
+            pack = [sys.executable, reproduce_paper.__file__, "--out", out, "--carry", carry, "--pack", "--only", name]
+            os.utime(run_dir + ".wall.running")  # a fresh heartbeat: the run is going
+            running = subprocess.run(pack, capture_output=True, text=True)
+            self.assertNotEqual(running.returncode, 0)
+            self.assertIn("is running; stop the runner", running.stderr)
+            os.utime(run_dir + ".wall.running", (0, 0))  # an old one: its session was killed
+            packed = subprocess.run(pack, capture_output=True, text=True)
+            self.assertEqual(packed.returncode, 0, packed.stderr)
+            self.assertIn("packed %s: at step_000200.ckpt, 3 outputs" % name, packed.stdout)
+            self.assertTrue(paper_carry.restore(name, there, carry))
+            self.assertFalse(paper_carry.restore(name, there, carry))  # it has the run now
+            back = os.path.join(there, name)
+            with open(os.path.join(run_dir, "checkpoints", "step_000200.ckpt"), "rb") as a, \
+                    open(os.path.join(back, "checkpoints", "step_000200.ckpt"), "rb") as b:
+                self.assertEqual(a.read(), b.read())
+            self.assertEqual(sorted(os.listdir(os.path.join(back, "particles"))),
+                             ["step_000000.vtu", "step_000001.vtu", "step_000003.vtu"])
+            self.assertEqual([t for t, _ in paper_numbers.outputs(back)], [0, 4.0001e6, 16.2e6])
+            with open(os.path.join(back, "history.csv")) as f:
+                steps = [int(r.split(",")[0]) for r in f.read().split("\n")[1:] if r]
+            self.assertEqual(steps, list(range(0, 25000, 1000)) + [24999])
+            self.assertAlmostEqual(reproduce_paper.wall_seconds(back), 2145.6)
 
 
 if __name__ == "__main__":
