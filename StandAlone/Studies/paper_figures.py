@@ -54,7 +54,7 @@ FIGURES = [
     dict(name="fig7", measure="front and shape", view=SMALL_VIEW, columns=2, time_scale=1e-6, time_unit="s",
          title="Fig. 7 (4.4): the end of lithiation, flux 1e-9 m/s (a) and 1e-8 m/s (b)",
          panels=[("Flux_1e-9", FULL, "1e-9 m/s"), ("Flux_1e-8", FULL, "1e-8 m/s")]),
-    dict(name="fig8", measure="shape", view=SMALL_VIEW, columns=2, time_scale=1e-6, time_unit="s",
+    dict(name="fig8", measure="front and shape", view=SMALL_VIEW, columns=2, time_scale=1e-6, time_unit="s",
          title="Fig. 8 (4.5): alpha = 6 with beta = 0 (a, c) and beta = 1 (b, d): half and full lithiation",
          panels=[(run, when, label) for when in (MID, FULL)
                  for run, label in (("Beta_0", "beta = 0"), ("Beta_1", "beta = 1"))]),

@@ -350,8 +350,47 @@ def write_numbers(path, runs, finished, figures, time_of):
         out += ["", "## " + figure["title"], ""]
         missing = sorted({run for run, _, _ in figure["panels"]} - set(finished))
         if missing:
-            out.append("Not measured yet: waiting for " + ", ".join(missing) + ".")
+            out.append(NOT_MEASURED + ", ".join(missing) + ".")
             continue
         out.append(sections[figure["measure"]](figure, figure["time_scale"], figure["time_unit"]))
     with open(path, "w") as f:
         f.write("\n".join(out) + "\n")
+
+
+NOT_MEASURED = "Not measured yet: waiting for "
+
+
+def sections(text):
+    """numbers.md as [(heading, body)], the heading "" for what comes before the first one."""
+    parts, heading, body = [], "", []
+    for line in text.split("\n"):
+        if line.startswith("## "):
+            parts.append((heading, body))
+            heading, body = line, []
+        else:
+            body.append(line)
+    parts.append((heading, body))
+    return parts
+
+
+def merge_numbers(old, new):
+    """numbers.md for a report that already has one: a section this machine could not measure
+    (its runs are not here: an earlier machine's) keeps its earlier numbers, and the runs table
+    keeps the rows of runs not here, in the earlier order, followed by the new ones."""
+    earlier = dict(sections(old))
+    merged = []
+    for heading, body in sections(new):
+        before = earlier.get(heading)
+        if heading == "## Runs" and before:
+            rows = lambda b: [l for l in b if l.startswith("| ") and not l.startswith("| scenario")]
+            name = lambda row: row.split("|")[1].strip()
+            fresh = {name(r): r for r in rows(body)}
+            kept = [fresh.pop(name(r), r) for r in rows(before)]
+            head = [l for l in body if l.startswith("| scenario") or l.startswith("|---")]
+            body = [""] + head + kept + list(fresh.values()) + [""]
+        elif before and any(l.startswith(NOT_MEASURED) for l in body) and \
+                not any(l.startswith(NOT_MEASURED) for l in before):
+            body = before
+        merged.append("\n".join(([heading] if heading else []) + body))
+    return "\n".join(merged)
+

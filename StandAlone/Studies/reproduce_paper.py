@@ -15,7 +15,8 @@
 2. Renders each figure as one PNG (DIR/figures/figN.png) through the project's renderer
    (`render_figure`: panels side by side, a shared colour bar, panel letters and times).
 3. Measures the numbers of each figure from the VTU files (paper_numbers.py) into
-   DIR/numbers.md; with --report DIR2 the figures and numbers.md are copied there too.
+   DIR/numbers.md; with --report DIR2 the figures and numbers.md are copied there too (into a
+   numbers.md already there, keeping the sections and run rows of runs this machine lacks).
 
 --carry DIR restores, before running, each run this machine has nothing of from DIR/NAME, and
 --carry DIR --pack writes the runs there for a session on another machine (paper_carry.py).
@@ -42,6 +43,7 @@ sys.path.insert(0, HERE)
 
 import paper_carry  # noqa: E402
 import paper_figures  # noqa: E402
+import paper_numbers  # noqa: E402
 
 SIMULATION_STOPPED = 3  # sus's exit code for a run it stopped with a diagnostic
 HEARTBEAT = 30  # seconds between rewrites of a running run's wall time so far
@@ -280,7 +282,13 @@ def main():
     if args.report:
         os.makedirs(args.report, exist_ok=True)
         for path in made:
-            shutil.copy(path, args.report)
+            report = os.path.join(args.report, os.path.basename(path))
+            if path.endswith("numbers.md") and os.path.exists(report):
+                with open(report) as before, open(path) as now:
+                    merged = paper_numbers.merge_numbers(before.read(), now.read())
+                write_whole(report, merged)
+            else:
+                shutil.copy(path, args.report)
     if not ok:
         sys.exit(1)
 

@@ -1,5 +1,6 @@
-"""The front of docs/paper/README.md (paper_numbers.front) on ring profiles of known shape, and the
-cycle's c by height (State.height_profile) on particles of known layers."""
+"""The front of docs/paper/README.md (paper_numbers.front) on ring profiles of known shape, the
+cycle's c by height (State.height_profile) on particles of known layers, and a report's numbers.md
+merged with a later machine's (merge_numbers)."""
 import os
 import sys
 import unittest
@@ -38,6 +39,24 @@ class HeightProfile(unittest.TestCase):
         state.silicon = list(range(10))
         state.base = layers[0]
         self.assertEqual(state.height_profile(0.005), [0.5, 2.5, 4.0])
+
+
+class Merge(unittest.TestCase):
+    OLD = "\n".join(["# Numbers", "", "## Runs", "", "| scenario | steps |", "|---|---|", "| A | 10 |", "| B | 20 |",
+                     "", "## Fig. 1", "", "a: 1.5", "", "## Fig. 2", "", "Not measured yet: waiting for C.", ""])
+    NEW = "\n".join(["# Numbers", "", "## Runs", "", "| scenario | steps |", "|---|---|", "| B | 21 |", "| C | 30 |",
+                     "", "## Fig. 1", "", "Not measured yet: waiting for A.", "", "## Fig. 2", "", "c: 3", ""])
+
+    def test_earlier_sections_and_rows_stay_new_ones_come_in(self):
+        merged = paper_numbers.merge_numbers(self.OLD, self.NEW)
+        self.assertIn("| A | 10 |\n| B | 21 |\n| C | 30 |", merged)
+        self.assertNotIn("| B | 20 |", merged)
+        self.assertIn("## Fig. 1\n\na: 1.5", merged)
+        self.assertIn("## Fig. 2\n\nc: 3", merged)
+        self.assertNotIn("Not measured", merged)
+
+    def test_nothing_earlier_the_new_text_whole(self):
+        self.assertEqual(paper_numbers.merge_numbers("", self.NEW), self.NEW)
 
 
 if __name__ == "__main__":
