@@ -235,14 +235,25 @@ def runs_table(runs, finished):
     return table(["scenario", "particles", "steps", "simulated time (us)", "wall (s)", "threads", "ended at"], rows)
 
 
-def density_section(runs, pair, times, unit_scale, unit):
-    rows = []
+def density_section(runs, pair, times, unit_scale, unit, finished):
+    """The pair at each figure time both runs have reached: a run still going (days for
+    Density_2.33e18) is compared up to its last output, and the times after it wait."""
+    reached = {run: outputs(os.path.join(runs, run))[-1][0] for run in pair}
+    rows, waiting = [], []
     for t in times:
+        if any(reached[run] < t for run in pair):
+            waiting.append("%g %s" % (t * unit_scale, unit))
+            continue
         d = pair_difference(os.path.join(runs, pair[0]), os.path.join(runs, pair[1]), t)
         rows.append(["%g %s" % (t * unit_scale, unit), "%.4g / %.4g" % (d["time_a"] * unit_scale, d["time_b"] * unit_scale),
                      num(d["max_dc"]), num(d["mean_dc"]), num(d["max_dx_cells"])])
-    return table(["figure time", "output times (%s)" % unit, "largest abs(c difference)", "mean abs(c difference)",
-                  "largest position difference (cells)"], rows)
+    text = table(["figure time", "output times (%s)" % unit, "largest abs(c difference)", "mean abs(c difference)",
+                  "largest position difference (cells)"], rows) if rows else ""
+    going = ["%s (last output at %.4g %s)" % (run, reached[run] * unit_scale, unit) for run in pair if run not in finished]
+    if going:
+        text += "%sStill running: %s; waiting: %s." % ("\n\n" if rows else "", ", ".join(going),
+                                                     ", ".join(waiting) or "nothing")
+    return text
 
 
 def shape_section(runs, panels, time_of, scale, unit):
@@ -337,7 +348,7 @@ def write_numbers(path, runs, finished, figures, time_of):
            "`docs/paper/README.md`.", "", "## Runs", "", runs_table(runs, finished)]
     sections = {
         "density": lambda f, scale, unit: density_section(runs, f["pair"], sorted({w for _, w, _ in f["panels"]}),
-                                                          scale, unit),
+                                                          scale, unit, finished),
         "shape": lambda f, scale, unit: shape_section(runs, f["panels"], time_of, scale, unit),
         "front": lambda f, scale, unit: front_section(runs, f["panels"], time_of, scale, unit),
         "front and shape": lambda f, scale, unit: front_section(runs, f["panels"], time_of, scale, unit) +
@@ -349,6 +360,8 @@ def write_numbers(path, runs, finished, figures, time_of):
             continue
         out += ["", "## " + figure["title"], ""]
         missing = sorted({run for run, _, _ in figure["panels"]} - set(finished))
+        if figure["measure"] == "density":  # compared as far as both runs have gone
+            missing = [run for run in missing if not os.path.exists(os.path.join(runs, run, "particles.pvd"))]
         if missing:
             out.append(NOT_MEASURED + ", ".join(missing) + ".")
             continue

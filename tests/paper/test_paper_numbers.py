@@ -3,6 +3,7 @@ cycle's c by height (State.height_profile) on particles of known layers, and a r
 merged with a later machine's (merge_numbers)."""
 import os
 import sys
+import tempfile
 import unittest
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "StandAlone", "Studies"))
@@ -57,6 +58,20 @@ class Merge(unittest.TestCase):
 
     def test_nothing_earlier_the_new_text_whole(self):
         self.assertEqual(paper_numbers.merge_numbers("", self.NEW), self.NEW)
+
+
+class DensityPairPartly(unittest.TestCase):
+    def test_a_run_still_going_leaves_the_later_times_waiting(self):
+        sys.path.insert(0, os.path.dirname(paper_numbers.__file__))
+        import paper_carry
+        with tempfile.TemporaryDirectory() as runs:
+            for run, last in (("A", 2e6), ("B", 28e6)):
+                os.makedirs(os.path.join(runs, run))
+                paper_carry.write_series(os.path.join(runs, run, "particles.pvd"),
+                                         [(0.0, os.path.join(runs, run, "p0.vtu")), (last, os.path.join(runs, run, "p1.vtu"))],
+                                         os.path.join(runs, run))
+            text = paper_numbers.density_section(runs, ("A", "B"), [4e6, 16e6], 1e-6, "s", finished=["B"])
+            self.assertEqual(text, "Still running: A (last output at 2 s); waiting: 4 s, 16 s.")
 
 
 if __name__ == "__main__":
