@@ -332,12 +332,18 @@ TEST(Restart, KilledRunsLeaveCompleteFilesAndContinueToTheSameResult) {
   text.insert(text.find("</DataArchiver>"), "<checkpoint cycle=\"3\" timestepInterval=\"3\"/>");
   const fs::path input = s.dir / "input.ups";
   std::ofstream(input) << text;
+  const auto started = std::chrono::steady_clock::now();
   const testing::SusResult whole =
       sus({"--max-timesteps", "120", "-o", (s.dir / "whole").string(), input.string()});
   ASSERT_EQ(whole.exitCode, 0) << whole.output;
+  const auto wholeRun = std::chrono::duration_cast<std::chrono::milliseconds>(
+      std::chrono::steady_clock::now() - started);
   const std::string run = (s.dir / "killed").string();
   std::mt19937 random(1);
-  std::uniform_int_distribution<int> delay(250, 1200);  // ms: from setup to a few outputs in
+  // ms: from setup to a few outputs in (a tenth of the whole run, at least 1200 ms: on a loaded
+  // machine a fixed 1200 ms could end every try before the first checkpoint).
+  std::uniform_int_distribution<int> delay(250,
+                                           std::max(1200, static_cast<int>(wholeRun.count() / 10)));
   const int kills = numberOfKills();
   int duringWrites = 0;
   for (int k = 0; k < kills; ++k) {
