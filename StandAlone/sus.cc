@@ -14,6 +14,7 @@
 #include "Core/Parallel/StopTogether.h"
 #include "Core/Util/InstructionSet.h"
 #include "StandAlone/Driver/Simulation.h"
+#include "StandAlone/Driver/StopRequest.h"
 
 namespace {
 
@@ -76,6 +77,7 @@ int run(anode::RunOptions& options) {
                      "slot:pe=N, srun --cpus-per-task=N)\n",
                      crowded, omp_get_max_threads());
     }
+    anode::catchStopSignals();
     try {
       sim.run();
     } catch (const anode::StoppedOnAnotherRank&) {
@@ -85,6 +87,7 @@ int run(anode::RunOptions& options) {
       return 3;
     }
     sim.printTimings();
+    if (sim.stoppedOnRequest()) return 4;
   } catch (const anode::InputError& e) {
     // Every rank reads the same input and finds the same error: one reports it.
     if (root) std::fprintf(stderr, "%s\n", e.what());

@@ -322,6 +322,54 @@ int temporaryFiles(const fs::path& dir) {
   return n;
 }
 
+// SIGTERM stops the run at the end of its step with a checkpoint there (exit code 4): the
+// restart continues from that very step to the uninterrupted run's files.
+TEST(Restart, SigtermStopsWithACheckpointAtTheLastStep) {
+  Scratch s("sigterm");
+  const std::string input = kSource + "/inputs/Pillar/PillarLithiation.ups";
+  const fs::path run = s.dir / "stopped";
+  const pid_t pid = fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    const std::vector<std::string> args{kSus, "--threads", "1", "-o", run.string(), input};
+    std::vector<char*> argv;
+    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    FILE* out = std::freopen((s.dir / "stopped.log").c_str(), "w", stderr);
+    (void)out;
+    execv(kSus.c_str(), argv.data());
+    _exit(127);
+  }
+  // The first checkpoint is written once setup is done: then the steps run.
+  for (int i = 0; i < 600 && listCheckpoints(run.string()).empty(); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  kill(pid, SIGTERM);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  const std::string log = readFile(s.dir / "stopped.log");
+  ASSERT_TRUE(WIFEXITED(status)) << log;
+  EXPECT_EQ(WEXITSTATUS(status), 4) << log;
+  EXPECT_NE(log.find("stopped on request"), std::string::npos) << log;
+  const std::vector<std::string> checkpoints = listCheckpoints(run.string());
+  ASSERT_FALSE(checkpoints.empty());
+  std::istringstream history(readFile(run / "history.csv"));
+  std::string row, last;
+  while (std::getline(history, row)) last = row;
+  const long stoppedAt = std::stol(last);
+  EXPECT_NE(checkpoints.front().find(std::to_string(stoppedAt) + ".ckpt"), std::string::npos)
+      << checkpoints.front() << " is not at the last step " << stoppedAt;
+  const std::string steps = std::to_string(stoppedAt + 5);
+  ASSERT_EQ(
+      sus({"--threads", "1", "--max-timesteps", steps, "-o", (s.dir / "whole").string(), input})
+          .exitCode,
+      0);
+  const testing::SusResult restart =
+      sus({"--threads", "1", "--max-timesteps", steps, "-restart", run.string()});
+  ASSERT_EQ(restart.exitCode, 0) << restart.output;
+  expectSameOutputs(s.dir / "whole", run);
+}
+
 TEST(Restart, KilledRunsLeaveCompleteFilesAndContinueToTheSameResult) {
   Scratch s("killed");
   // Output every 2 steps and a checkpoint every 3 (and pictures), so that kills often land during

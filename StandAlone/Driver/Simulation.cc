@@ -15,6 +15,7 @@
 #include "Core/Util/AtomicFile.h"
 #include "Core/Util/InstructionSet.h"
 #include "StandAlone/Driver/Progress.h"
+#include "StandAlone/Driver/StopRequest.h"
 
 namespace anode {
 
@@ -207,16 +208,26 @@ void Simulation::run() {
       rebalanced = !done && rebalance();
     }
     scenes_.renderDue(t_, mpm_, archiver_.directory());
+    stoppedOnRequest_ = !done && Communicator::any(stopRequested());
     if (checkpoints_.isDue(step_, t_, lastCheckpointTime_))
       checkpoint(CheckpointKind::Scheduled);
-    else if (rebalanced ||
+    else if (rebalanced || stoppedOnRequest_ ||
              (!done && Communicator::any(wall() - lastAutomaticCheckpoint >= kReplayInterval)))
       checkpoint(CheckpointKind::Automatic);
     if (progressLine)
       progress.update(step_, t_, stepDt, StableTimestep::name(stepLimit), allParticleSteps_, done);
-    if (done) break;
+    if (done || stoppedOnRequest_) break;
   }
   if (progressLine) progress.finish();
+  if (stoppedOnRequest_) {
+    if (Communicator::isRoot())
+      std::fprintf(stderr,
+                   "sus: stopped on request (SIGTERM or SIGINT) after step %ld, t = %.6e: "
+                   "checkpoint %s; continue with sus -restart %s\n",
+                   step_, t_, newestCheckpoint_.c_str(), archiver_.directory().c_str());
+    wallSeconds_ = wall();
+    return;
+  }
   if (Communicator::isRoot()) removeAutomaticCheckpoints(archiver_.directory());
   wallSeconds_ = wall();
 }

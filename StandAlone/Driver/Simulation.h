@@ -35,8 +35,11 @@ class Simulation {
   // Same, from text held in memory (tests, studies); `name` stands for the file in messages.
   Simulation(const std::string& text, const std::string& name, const RunOptions& options);
 
-  // Runs to the end, writing output; throws SimulationError if the state goes bad.
+  // Runs to the end, writing output; throws SimulationError if the state goes bad. Returns early,
+  // after a checkpoint at the end of a step, when SIGTERM or SIGINT asked it to stop
+  // (stoppedOnRequest()).
   void run();
+  bool stoppedOnRequest() const { return stoppedOnRequest_; }
   // One step without output (tests and studies).
   void advance();
 
@@ -95,7 +98,8 @@ class Simulation {
   std::array<long, StableTimestep::kLimits> stepsLimitedBy_{};  // steps of this process's run
   long step_ = 0;
   double particleSteps_ = 0, wallSeconds_ = 0;  // particle-steps of this rank
-  double allParticleSteps_ = 0;                 // of every rank, in this process's run
+  bool stoppedOnRequest_ = false;
+  double allParticleSteps_ = 0;  // of every rank, in this process's run
   double lastCheckpointTime_ = 0;
   double earlierWallSeconds_ = 0;  // of the runs before a restart, for history.csv
   uint64_t inputHash_ = 0;         // of the input file, stored in checkpoints

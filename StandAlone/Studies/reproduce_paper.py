@@ -9,7 +9,7 @@
    out/paper), cheapest first, --jobs of them at a time. It is resumable: a finished run (DIR/runs/NAME/complete.json) is
    skipped, a run with a checkpoint (sus keeps one of its own every 10 minutes) is continued with
    `sus -restart`, so the command can be stopped at any moment (Ctrl-C or SIGTERM stops the run
-   too and records its time) and started again. Each session's wall time is appended to
+   too, which writes a checkpoint at the end of its step, and records its time) and started again. Each session's wall time is appended to
    DIR/runs/NAME.wall; a session killed outright (SIGKILL) is recorded from its last heartbeat
    (DIR/runs/NAME.wall.running, every 30 s) when the run is continued.
 2. Renders each figure as one PNG (DIR/figures/figN.png) through the project's renderer
