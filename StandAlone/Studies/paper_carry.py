@@ -16,6 +16,7 @@ same blobs in git, so each session adds only its checkpoint and history.
 """
 import lzma
 import os
+import re
 import shutil
 import xml.etree.ElementTree as ET
 
@@ -65,9 +66,10 @@ def write_series(path, frames, run_dir):
 
 
 def newest_checkpoint(run_dir):
+    """The checkpoint of the latest step, scheduled (step_N.ckpt) or sus's own (auto_step_N.ckpt)."""
     folder = os.path.join(run_dir, "checkpoints")
-    found = sorted(f for f in os.listdir(folder) if f.endswith(".ckpt")) if os.path.isdir(folder) else []
-    return os.path.join(folder, found[-1]) if found else None
+    found = [f for f in os.listdir(folder) if re.fullmatch(r"(auto_)?step_\d+\.ckpt", f)] if os.path.isdir(folder) else []
+    return os.path.join(folder, max(found, key=lambda f: int(re.search(r"\d+", f).group()))) if found else None
 
 
 def pack(name, runs, carry):

@@ -72,9 +72,9 @@ class Carry(unittest.TestCase):
         paper_carry.write_series(os.path.join(run_dir, "particles.pvd"),
                                  [(t, os.path.join(run_dir, "particles", "step_%06d.vtu" % i))
                                   for i, t in enumerate(times)], run_dir)
-        for step in (100, 200):
-            with open(os.path.join(run_dir, "checkpoints", "step_%06d.ckpt" % step), "wb") as f:
-                f.write(os.urandom(1000) + bytes(step))
+        for name in ("step_000100.ckpt", "auto_step_000200.ckpt"):  # sus's own is the newer here
+            with open(os.path.join(run_dir, "checkpoints", name), "wb") as f:
+                f.write(os.urandom(1000) + name.encode())
         with open(run_dir + ".wall", "w") as f:
             f.write("2026-11-25T17:09:13 1995.6 exit=-15 interrupted\n")
         with open(run_dir + ".wall.running", "w") as f:
@@ -94,12 +94,13 @@ class Carry(unittest.TestCase):
             os.utime(run_dir + ".wall.running", (0, 0))  # an old one: its session was killed
             packed = subprocess.run(pack, capture_output=True, text=True)
             self.assertEqual(packed.returncode, 0, packed.stderr)
-            self.assertIn("packed %s: at step_000200.ckpt, 3 outputs" % name, packed.stdout)
+            self.assertIn("packed %s: at auto_step_000200.ckpt, 3 outputs" % name, packed.stdout)
             self.assertTrue(paper_carry.restore(name, there, carry))
             self.assertFalse(paper_carry.restore(name, there, carry))  # it has the run now
             back = os.path.join(there, name)
-            with open(os.path.join(run_dir, "checkpoints", "step_000200.ckpt"), "rb") as a, \
-                    open(os.path.join(back, "checkpoints", "step_000200.ckpt"), "rb") as b:
+            self.assertEqual(os.listdir(os.path.join(back, "checkpoints")), ["auto_step_000200.ckpt"])
+            with open(os.path.join(run_dir, "checkpoints", "auto_step_000200.ckpt"), "rb") as a, \
+                    open(os.path.join(back, "checkpoints", "auto_step_000200.ckpt"), "rb") as b:
                 self.assertEqual(a.read(), b.read())
             self.assertEqual(sorted(os.listdir(os.path.join(back, "particles"))),
                              ["step_000000.vtu", "step_000001.vtu", "step_000003.vtu"])
