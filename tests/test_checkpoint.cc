@@ -288,11 +288,9 @@ void expectEveryFileComplete(const fs::path& dir, long particles) {
   }
 }
 
-// Starts sus with `args` and kills it with SIGKILL after `delay`.
-void runAndKill(const std::vector<std::string>& args, std::chrono::milliseconds delay,
-                const fs::path& log) {
+// Starts sus with `args` in a child process, its stderr to `log`; returns the child's pid.
+pid_t startSus(const std::vector<std::string>& args, const fs::path& log) {
   const pid_t pid = fork();
-  ASSERT_GE(pid, 0);
   if (pid == 0) {
     std::vector<char*> argv{const_cast<char*>(kSus.c_str())};
     for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
@@ -302,6 +300,14 @@ void runAndKill(const std::vector<std::string>& args, std::chrono::milliseconds 
     execv(kSus.c_str(), argv.data());
     _exit(127);
   }
+  return pid;
+}
+
+// Starts sus with `args` and kills it with SIGKILL after `delay`.
+void runAndKill(const std::vector<std::string>& args, std::chrono::milliseconds delay,
+                const fs::path& log) {
+  const pid_t pid = startSus(args, log);
+  ASSERT_GE(pid, 0);
   std::this_thread::sleep_for(delay);
   kill(pid, SIGKILL);
   int status = 0;
@@ -328,18 +334,8 @@ TEST(Restart, SigtermStopsWithACheckpointAtTheLastStep) {
   Scratch s("sigterm");
   const std::string input = kSource + "/inputs/Pillar/PillarLithiation.ups";
   const fs::path run = s.dir / "stopped";
-  const pid_t pid = fork();
+  const pid_t pid = startSus({"--threads", "1", "-o", run.string(), input}, s.dir / "stopped.log");
   ASSERT_GE(pid, 0);
-  if (pid == 0) {
-    const std::vector<std::string> args{kSus, "--threads", "1", "-o", run.string(), input};
-    std::vector<char*> argv;
-    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-    argv.push_back(nullptr);
-    FILE* out = std::freopen((s.dir / "stopped.log").c_str(), "w", stderr);
-    (void)out;
-    execv(kSus.c_str(), argv.data());
-    _exit(127);
-  }
   // The first checkpoint is written once setup is done: then the steps run.
   for (int i = 0; i < 600 && listCheckpoints(run.string()).empty(); ++i)
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
