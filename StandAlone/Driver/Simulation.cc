@@ -208,11 +208,15 @@ void Simulation::run() {
       rebalanced = !done && rebalance();
     }
     scenes_.renderDue(t_, mpm_, archiver_.directory());
-    stoppedOnRequest_ = !done && Communicator::any(stopRequested());
+    // One exchange a step: has any rank been asked to stop, is any due its own checkpoint?
+    double anyRank[2] = {stopRequested() ? 1.0 : 0.0,
+                         wall() - lastAutomaticCheckpoint >= kReplayInterval ? 1.0 : 0.0};
+    if (!done) Communicator::maximum(anyRank, 2);
+    stoppedOnRequest_ = !done && anyRank[0] > 0;
+    const bool replayCheckpointDue = !done && anyRank[1] > 0;
     if (checkpoints_.isDue(step_, t_, lastCheckpointTime_))
       checkpoint(CheckpointKind::Scheduled);
-    else if (rebalanced || stoppedOnRequest_ ||
-             (!done && Communicator::any(wall() - lastAutomaticCheckpoint >= kReplayInterval)))
+    else if (rebalanced || stoppedOnRequest_ || replayCheckpointDue)
       checkpoint(CheckpointKind::Automatic);
     if (progressLine)
       progress.update(step_, t_, stepDt, StableTimestep::name(stepLimit), allParticleSteps_, done);
