@@ -18,26 +18,15 @@ struct GridFields {
   std::vector<Vec3> velocityStar;   // g.velocity_star: after integration and BCs
   std::vector<Vec3> acceleration;   // g.acceleration = (velocity_star - velocity) / dt
 
-  // The fields a P2G scatter accumulates (all a thread's private buffer needs).
-  void resizeScatter(int nodes) {
-    mass.assign(nodes, 0.0);
-    momentum.assign(nodes, Vec3::Zero());
-    internalForce.assign(nodes, Vec3::Zero());
-  }
   void resize(int nodes) {
-    resizeScatter(nodes);
-    for (auto* f : {&velocity, &velocityStar, &acceleration}) f->assign(nodes, Vec3::Zero());
-  }
-  // Zeroes the scattered fields on nodes [begin, end).
-  void clearScatter(long begin, long end) {
-    std::fill(mass.begin() + begin, mass.begin() + end, 0.0);
-    for (auto* f : {&momentum, &internalForce})
-      std::fill(f->begin() + begin, f->begin() + end, Vec3::Zero());
+    mass.assign(nodes, 0.0);
+    for (auto* f : {&momentum, &internalForce, &velocity, &velocityStar, &acceleration})
+      f->assign(nodes, Vec3::Zero());
   }
   // Zeroes every field on nodes [begin, end).
   void clearAll(long begin, long end) {
-    clearScatter(begin, end);
-    for (auto* f : {&velocity, &velocityStar, &acceleration})
+    std::fill(mass.begin() + begin, mass.begin() + end, 0.0);
+    for (auto* f : {&momentum, &internalForce, &velocity, &velocityStar, &acceleration})
       std::fill(f->begin() + begin, f->begin() + end, Vec3::Zero());
   }
 };

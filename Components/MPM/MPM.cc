@@ -105,11 +105,13 @@ void MPM::layOutGrid() {
   for (GridFields& f : fields_) f.resize(nodes);
   weights_.resize(materials_.size());
   capacity_.resize(materials_.size());
-  threadScatter_.assign(std::max(omp_get_max_threads() - 1, 0), {});
-  for (GridFields& t : threadScatter_) t.resizeScatter(nodes);
-  if (diffusion_)
-    diffusion_->layOutGrid(grid_, static_cast<int>(threadScatter_.size()),
-                           ghosts_.empty() ? nullptr : &ghosts_);
+  const size_t scatterQuads =
+      static_cast<size_t>(nodes) * (diffusion_ ? ScatterTerms<2>::quads : ScatterTerms<1>::quads);
+  scatter_.resize(scatterQuads);
+  threadScatter_.assign(std::max(omp_get_max_threads() - 1, 0),
+                        std::vector<NodeQuad>(scatterQuads));
+  gather_.resize(nodes);
+  if (diffusion_) diffusion_->layOutGrid(grid_, ghosts_.empty() ? nullptr : &ghosts_);
   active_ = {};
   previous_ = {};
 }
@@ -281,43 +283,42 @@ void MPM::withConcentrationGather(size_t m, F&& f) {
 
 template <class Concentration>
 void MPM::scatterMaterial(size_t m, const Concentration& concentration) {
+  constexpr int perNode = ScatterTerms<Concentration::scatterWeightQuads>::quads;
   const ParticleSet& p = materials_[m].particles;
   GridFields& g = fields_[m];
   const long n = static_cast<long>(p.count());
-  // Each thread scatters a contiguous block of particles: the first into the grid, every other
-  // into its own buffer, cleared on the active nodes its particles' range spans only (on a
-  // small problem the active nodes are many times that). The buffers are then added in thread
-  // order, so results do not depend on scheduling, and are the same as when every thread had a
-  // buffer (the grid starts at +0, and adding +0 changes no sum).
+  // Each thread scatters a contiguous block of particles: the first into the step's node quads,
+  // every other into its own, cleared on the active nodes its particles' range spans only (on a
+  // small problem the active nodes are many times that). The threads' quads are then added in
+  // thread order, so results do not depend on scheduling, and spread into the grid's fields.
   const int threads = static_cast<int>(threadScatter_.size()) + 1;
   std::vector<NodeRange> touched(threads);
-  std::vector<NodeRange> buffered;
+  NodeQuad* const sums = scatter_.data();
 #pragma omp parallel num_threads(threads)
   {
     const int t = omp_get_thread_num();
     const long first = n * t / threads, last = n * (t + 1) / threads;
-    if (t == 0) {
-      scatterToGrid(p, weights_[m], first, last, MomentumScatterTarget::of(g), concentration);
-    } else {
+    forEachNodeOfThread(active_.rows, t, threads,
+                        [&](long k) { clearQuads(sums + k * perNode, perNode); });
+    NodeQuad* quads = sums;
+    if (t > 0) {
       touched[t] = nodesTouched(weights_[m], first, last);
-      const std::vector<NodeRange> own = active_.within(touched[t]);
-      GridFields& s = threadScatter_[t - 1];
-      for (const NodeRange& r : own) s.clearScatter(r.begin, r.end);
-      scatterToGrid(p, weights_[m], first, last, MomentumScatterTarget::of(s),
-                    concentration.forThread(t, own));
+      quads = threadScatter_[t - 1].data();
+      for (const NodeRange& r : active_.within(touched[t]))
+        for (long k = r.begin; k < r.end; ++k) clearQuads(quads + k * perNode, perNode);
     }
 #pragma omp barrier
-#pragma omp single
-    buffered = active_.within(spanOf(touched.data() + 1, touched.data() + threads));
-    forEachNodeOfThread(buffered, t, threads, [&](long k) {
-      for (int u = 1; u < threads; ++u) {
-        if (!touched[u].contains(k)) continue;
-        const GridFields& b = threadScatter_[u - 1];
-        g.mass[k] += b.mass[k];
-        g.momentum[k] += b.momentum[k];
-        g.internalForce[k] += b.internalForce[k];
-      }
-      concentration.addThreadBuffers(k, touched);
+    scatterToNodes(p, weights_[m], first, last, quads, concentration);
+#pragma omp barrier
+    forEachNodeOfThread(active_.rows, t, threads, [&](long k) {
+      NodeQuad* sum = sums + k * perNode;
+      for (int u = 1; u < threads; ++u)
+        if (touched[u].contains(k))
+          addQuads(sum, threadScatter_[u - 1].data() + k * perNode, perNode);
+      g.mass[k] = sum[0].value[ScatterLane::mass];
+      g.momentum[k] = Vec3(sum[0].value + ScatterLane::momentum);
+      g.internalForce[k] = Vec3(sum[perNode - 1].value + ScatterLane::internalForce);
+      concentration.spread(k, sum);
     });
   }
 }
@@ -377,7 +378,7 @@ void MPM::interpolateToParticlesAndUpdate(double dt) {
   for (size_t m = 0; m < materials_.size(); ++m) {
     MPMMaterial& mat = materials_[m];
     const ConstitutiveModel& model = *mat.model;
-    const ParticleUpdate update{fields_[m],
+    const ParticleUpdate update{gather_.data(),
                                 weights_[m],
                                 mat.density,
                                 flags_.minimumSubcyclesForF,
@@ -387,6 +388,7 @@ void MPM::interpolateToParticlesAndUpdate(double dt) {
     std::visit(
         [&](const auto* concrete) {
           withConcentrationGather(m, [&](const auto& concentration) {
+            fillGatherQuads(fields_[m], concentration, active_.rows, gather_.data());
             firstInverted = updateParticles(mat.particles, update, *concrete, concentration);
           });
         },

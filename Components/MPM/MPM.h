@@ -13,6 +13,7 @@
 #include "Components/MPM/Interpolator.h"
 #include "Components/MPM/MPMFlags.h"
 #include "Components/MPM/Materials/MPMMaterial.h"
+#include "Components/MPM/NodeQuads.h"
 #include "Components/MPM/ReactiveFlow/ReactiveFlow.h"
 #include "Components/MPM/StableTimestep.h"
 #include "Components/MPM/StepSummary.h"
@@ -160,7 +161,11 @@ class MPM {
   std::vector<GridFields> fields_;              // per material
   std::vector<InterpolationWeights> weights_;   // per material, for the current step
   std::vector<std::vector<uint8_t>> capacity_;  // per material: weight entries per particle
-  std::vector<GridFields> threadScatter_;       // per thread after the first, for P2G without locks
+  // Node quads (NodeQuads.h): what P2G sums per node, the same per thread after the first (P2G
+  // without locks), and what G2P reads per node.
+  std::vector<NodeQuad> scatter_;
+  std::vector<std::vector<NodeQuad>> threadScatter_;
+  std::vector<GatherQuads> gather_;
   TaskTimers timers_;
   struct StepTasks {  // timer indices of the step's tasks
     int interpolationWeights, particlesToGrid, gridIntegration, particleUpdate, splitting,

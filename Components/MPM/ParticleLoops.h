@@ -6,50 +6,69 @@
 
 #include <algorithm>
 
+#include "Components/MPM/ActiveNodes.h"
 #include "Components/MPM/GridFields.h"
 #include "Components/MPM/Interpolator.h"
+#include "Components/MPM/NodeQuads.h"
 #include "Components/MPM/ParticleSet.h"
 #include "Core/Math/Simd.h"
 
 namespace anode {
 
-// Nodal accumulators one scatter writes into (the grid's own, or a thread's private copy).
-struct MomentumScatterTarget {
-  double* mass;
-  Vec3* momentum;
-  Vec3* force;
-
-  static MomentumScatterTarget of(GridFields& g) {
-    return {g.mass.data(), g.momentum.data(), g.internalForce.data()};
-  }
-};
-
-// P2G of particles [begin, end): mass (Eq. 4), momentum, internal force f = -sum V sigma grad S,
-// and the concentration kernel's quantities.
+// P2G of particles [begin, end) into node quads (NodeQuads.h, ScatterTerms), ScatterTerms<
+// Concentration::scatterWeightQuads>::quads per node: mass (Eq. 4), momentum, internal force
+// f = -sum V sigma grad S, and the concentration kernel's sums.
 template <class Concentration>
-void scatterToGrid(const ParticleSet& p, const InterpolationWeights& W, long begin, long end,
-                   const MomentumScatterTarget& g, const Concentration& concentration) {
+void scatterToNodes(const ParticleSet& p, const InterpolationWeights& W, long begin, long end,
+                    NodeQuad* quads, const Concentration& concentration) {
+  using Terms = ScatterTerms<Concentration::scatterWeightQuads>;
+  constexpr int weighted = Concentration::scatterWeightQuads, perNode = Terms::quads;
   for (long i = begin; i < end; ++i) {
+    Terms t;
     const double mp = p.mass[i];
     const Vec3 mv = mp * p.velocity[i];
     const Mat3 Vsigma = p.volume[i] * p.stress[i];
-    const auto c = concentration.particle(i);
+    t.byWeight[0][ScatterLane::mass] = mp;
+    for (int a = 0; a < 3; ++a) {
+      t.byWeight[0][ScatterLane::momentum + a] = mv[a];
+      for (int d = 0; d < 3; ++d) t.byGradient[d][ScatterLane::internalForce + a] = Vsigma(a, d);
+    }
+    concentration.addScatterTerms(i, t);
+    Quad byWeight[weighted], byGradient[3];
+    for (int s = 0; s < weighted; ++s) byWeight[s].copy_from(t.byWeight[s], stdx::vector_aligned);
+    for (int d = 0; d < 3; ++d) byGradient[d].copy_from(t.byGradient[d], stdx::vector_aligned);
     const size_t b = W.offset[i];
     for (int e = 0; e < W.count[i]; ++e) {
-      const int n = W.node[b + e];
+      NodeQuad* node = quads + static_cast<size_t>(W.node[b + e]) * perNode;
       const double w = W.weight[b + e];
       const Vec3& grad = W.gradient[b + e];
-      g.mass[n] += mp * w;
-      g.momentum[n] += mv * w;
-      g.force[n] -= Vsigma * grad;
-      concentration.scatter(c, n, w, grad);
+      for (int s = 0; s < weighted; ++s) store(load(node[s]) + byWeight[s] * w, node[s]);
+      store(load(node[weighted]) -
+                (byGradient[0] * grad[0] + byGradient[1] * grad[1] + byGradient[2] * grad[2]),
+            node[weighted]);
     }
   }
 }
 
+// Writes the node quads G2P reads (NodeQuads.h) on the nodes of `nodes`, from the grid's
+// velocity_star and acceleration and the concentration kernel's nodal values.
+template <class Concentration>
+void fillGatherQuads(const GridFields& g, const Concentration& concentration,
+                     const std::vector<NodeRange>& nodes, GatherQuads* quads) {
+  forEachNode(nodes, [&](long k) {
+    double* v = quads[k].velocity.value;
+    double* a = quads[k].acceleration.value;
+    for (int d = 0; d < 3; ++d) {
+      v[d] = g.velocityStar[k][d];
+      a[d] = g.acceleration[k][d];
+    }
+    concentration.nodeValues(k, v[kConcentrationLane], a[kConcentrationLane]);
+  });
+}
+
 // What the G2P update of one material needs besides its particles and kernels.
 struct ParticleUpdate {
-  const GridFields& grid;
+  const GatherQuads* quads;  // fillGatherQuads on the nodes the particles reach
   const InterpolationWeights& W;
   double density;  // rho0: V = m / rho0 J
   int minimumSubcyclesForF;
@@ -83,7 +102,6 @@ template <class Model, class Concentration>
 long updateParticles(ParticleSet& p, const ParticleUpdate& u, const Model& model,
                      const Concentration& concentration) {
   const InterpolationWeights& W = u.W;
-  const GridFields& g = u.grid;
   const bool yields = model.canYield();
   const double dt = u.dt;
   const long n = static_cast<long>(p.count());
@@ -99,18 +117,34 @@ long updateParticles(ParticleSet& p, const ParticleUpdate& u, const Model& model
         s.setPlaceholder(l);
         continue;
       }
-      Mat3 gradV = Mat3::Zero();
-      Vec3 acc = Vec3::Zero(), vel = Vec3::Zero();
+      // Per node: the sums of [v*, c*] and [a, c-rate] times S and of [v*, c*] times grad S
+      // (Eq. 8 and L = sum v* grad S).
+      Quad velocity(0.0), acceleration(0.0), byX(0.0), byY(0.0), byZ(0.0);
       typename Concentration::Particle c{};
       const size_t b = W.offset[i];
       for (int e = 0; e < W.count[i]; ++e) {
         const int k = W.node[b + e];
         const double w = W.weight[b + e];
-        gradV.noalias() += g.velocityStar[k] * W.gradient[b + e].transpose();
-        acc += g.acceleration[k] * w;
-        vel += g.velocityStar[k] * w;
-        concentration.gather(c, k, w, W.gradient[b + e]);
+        const Vec3& grad = W.gradient[b + e];
+        const Quad v = load(u.quads[k].velocity);
+        velocity += v * w;
+        acceleration += load(u.quads[k].acceleration) * w;
+        byX += v * grad[0];
+        byY += v * grad[1];
+        byZ += v * grad[2];
+        concentration.gather(c, k, w);
       }
+      const Vec3 vel(velocity[0], velocity[1], velocity[2]);
+      const Vec3 acc(acceleration[0], acceleration[1], acceleration[2]);
+      Mat3 gradV;
+      for (int a = 0; a < 3; ++a) {
+        gradV(a, 0) = byX[a];
+        gradV(a, 1) = byY[a];
+        gradV(a, 2) = byZ[a];
+      }
+      const int cl = kConcentrationLane;
+      const GatheredConcentration gathered{Vec3(byX[cl], byY[cl], byZ[cl]), acceleration[cl],
+                                           velocity[cl]};
       // F^{n+1} = (I + L dt/N)^N F^n, subcycled when L dt is large (Uintah's rule).
       const int cycles = std::min(
           std::max(u.minimumSubcyclesForF, 2 * static_cast<int>(gradV.norm() * dt)), 10000);
@@ -122,7 +156,7 @@ long updateParticles(ParticleSet& p, const ParticleUpdate& u, const Model& model
       p.x[i] += vel * dt;
       p.displacement[i] += vel * dt;
       p.volume[i] = p.mass[i] / u.density * J;
-      const double dc = concentration.update(i, c, dt);
+      const double dc = concentration.update(i, c, gathered, dt);
       p.F[i] = F;
       if (!(J > 0)) {  // no stress update for an inverted particle: the caller stops the run
         firstInverted = std::min(firstInverted, i);

@@ -7,7 +7,7 @@
 
 namespace anode {
 
-// What a P2G scatter accumulates (all a thread's private buffer needs).
+// What P2G sums (spread from the node quads, NodeQuads.h).
 struct ConcentrationScatterFields {
   std::vector<double> massConcentration;  // sum m c S (Eq. 5 numerator)
   std::vector<double> diffusionRate;      // R = -sum m (grad S . q) (Eq. 7)

@@ -83,17 +83,13 @@ void ReactiveFlow::initialize(const PSNode& root, const Grid& grid,
   flux_.computeFluxRates(materials, initTime);
 }
 
-void ReactiveFlow::layOutGrid(const Grid& grid, int buffers, const GhostNodes* ghosts) {
+void ReactiveFlow::layOutGrid(const Grid& grid, const GhostNodes* ghosts) {
   grid_ = grid;
   ghosts_ = ghosts;
   dirichletMask_ = dirichletNodeMasks(grid, faceBCs_, receivesFlux_.size());
   const int nodes = grid.numNodes();
   fields_.assign(receivesFlux_.size(), {});
   for (size_t m = 0; m < fields_.size(); ++m) fields_[m].resize(nodes, receivesFlux_[m]);
-  const bool anyFlux =
-      std::find(receivesFlux_.begin(), receivesFlux_.end(), true) != receivesFlux_.end();
-  threadScatter_.assign(buffers, {});
-  for (ConcentrationScatterFields& t : threadScatter_) t.resize(nodes, anyFlux);
 }
 
 void ReactiveFlow::addScatteredArrays(std::vector<NodeArray>& arrays) {

@@ -45,9 +45,9 @@ class ReactiveFlow {
                   std::vector<MPMMaterial>& materials, const std::vector<MaterialSeeds>& seeds,
                   double initTime);
   // Lays out the grid fields on the nodes this rank stores (`grid`: the whole grid, or this
-  // rank's window), with `buffers` scatter buffers (one per thread after the first); `ghosts`
-  // completes the source marks on the nodes shared with other ranks (none: a run of one rank).
-  void layOutGrid(const Grid& grid, int buffers, const GhostNodes* ghosts);
+  // rank's window); `ghosts` completes the source marks on the nodes shared with other ranks
+  // (none: a run of one rank).
+  void layOutGrid(const Grid& grid, const GhostNodes* ghosts);
 
   // --- the step's diffusion tasks, in the order MPM::timeAdvance calls them ---
 
@@ -106,8 +106,6 @@ class ReactiveFlow {
   std::vector<bool> receivesFlux_;               // per material
   double maxDiffusivity_ = 0;                    // over all particles, for Eq. 44
   std::vector<ConcentrationGridFields> fields_;  // per material
-  // One per thread after the first, for P2G without locks.
-  std::vector<ConcentrationScatterFields> threadScatter_;
   std::vector<std::string> setupReport_;
   const GhostNodes* ghosts_ = nullptr;
 };
@@ -120,9 +118,9 @@ void ReactiveFlow::withScatter(size_t m, const ParticleSet& p, const Interpolati
   if (receivesFlux_[m]) {
     markSourceNodes(p, W, g.sourceReached, cleared);
     if (ghosts_) ghosts_->unionOverRanks(g.sourceReached);
-    f(ConcentrationScatter<true>(p, W, g.sourceReached.data(), cmax_[m], g, threadScatter_));
+    f(ConcentrationScatter<true>(p, W, g.sourceReached.data(), cmax_[m], g));
   } else {
-    f(ConcentrationScatter<false>(p, W, nullptr, cmax_[m], g, threadScatter_));
+    f(ConcentrationScatter<false>(p, W, nullptr, cmax_[m], g));
   }
 }
 
