@@ -107,10 +107,9 @@ void MPM::layOutGrid() {
   capacity_.resize(materials_.size());
   const size_t scatterQuads =
       static_cast<size_t>(nodes) * (diffusion_ ? ScatterTerms<2>::quads : ScatterTerms<1>::quads);
-  scatter_.resize(scatterQuads);
+  nodeQuads_.resize(std::max(scatterQuads, static_cast<size_t>(nodes) * kGatherQuads));
   threadScatter_.assign(std::max(omp_get_max_threads() - 1, 0),
                         std::vector<NodeQuad>(scatterQuads));
-  gather_.resize(nodes);
   if (diffusion_) diffusion_->layOutGrid(grid_, ghosts_.empty() ? nullptr : &ghosts_);
   active_ = {};
   previous_ = {};
@@ -293,7 +292,7 @@ void MPM::scatterMaterial(size_t m, const Concentration& concentration) {
   // thread order, so results do not depend on scheduling, and spread into the grid's fields.
   const int threads = static_cast<int>(threadScatter_.size()) + 1;
   std::vector<NodeRange> touched(threads);
-  NodeQuad* const sums = scatter_.data();
+  NodeQuad* const sums = nodeQuads_.data();
 #pragma omp parallel num_threads(threads)
   {
     const int t = omp_get_thread_num();
@@ -378,7 +377,7 @@ void MPM::interpolateToParticlesAndUpdate(double dt) {
   for (size_t m = 0; m < materials_.size(); ++m) {
     MPMMaterial& mat = materials_[m];
     const ConstitutiveModel& model = *mat.model;
-    const ParticleUpdate update{gather_.data(),
+    const ParticleUpdate update{nodeQuads_.data(),
                                 weights_[m],
                                 mat.density,
                                 flags_.minimumSubcyclesForF,
@@ -388,7 +387,7 @@ void MPM::interpolateToParticlesAndUpdate(double dt) {
     std::visit(
         [&](const auto* concrete) {
           withConcentrationGather(m, [&](const auto& concentration) {
-            fillGatherQuads(fields_[m], concentration, active_.rows, gather_.data());
+            fillGatherQuads(fields_[m], concentration, active_.rows, nodeQuads_.data());
             firstInverted = updateParticles(mat.particles, update, *concrete, concentration);
           });
         },

@@ -161,11 +161,10 @@ class MPM {
   std::vector<GridFields> fields_;              // per material
   std::vector<InterpolationWeights> weights_;   // per material, for the current step
   std::vector<std::vector<uint8_t>> capacity_;  // per material: weight entries per particle
-  // Node quads (NodeQuads.h): what P2G sums per node, the same per thread after the first (P2G
-  // without locks), and what G2P reads per node.
-  std::vector<NodeQuad> scatter_;
+  // Node quads (NodeQuads.h): what P2G sums per node, then what G2P reads per node; and P2G's
+  // sums per thread after the first (P2G without locks).
+  std::vector<NodeQuad> nodeQuads_;
   std::vector<std::vector<NodeQuad>> threadScatter_;
-  std::vector<GatherQuads> gather_;
   TaskTimers timers_;
   struct StepTasks {  // timer indices of the step's tasks
     int interpolationWeights, particlesToGrid, gridIntegration, particleUpdate, splitting,

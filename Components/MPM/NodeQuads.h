@@ -1,8 +1,8 @@
 // The nodal values one particle loop reads or adds at a node, side by side in quads of four
 // doubles, so that a particle's gather from a node or scatter to it is a few vector operations
 // instead of a dozen scalar ones on as many arrays (docs/performance.md, "Nodes as quads").
-// G2P's quads are filled from the grid's fields just before it, P2G's are spread into them just
-// after: the grid's fields keep their one meaning for the rest of the step.
+// P2G's quads are spread into the grid's fields just after it, G2P's are filled from them just
+// before it (in the same memory): the grid's fields keep their one meaning for the whole step.
 #pragma once
 
 #include "Core/Math/Simd.h"
@@ -37,13 +37,10 @@ constexpr int massConcentration = 0, fluxSource = 1, receiverWeightIn = 2, recei
 constexpr int internalForce = 0, diffusionRate = 3;
 }  // namespace ScatterLane
 
-// What G2P reads at a node, two quads: [velocity_star, c*] [acceleration, the nodal
+// What G2P reads at a node k, quads 2k and 2k + 1: [velocity_star, c*] [acceleration, the nodal
 // concentration rate] (c* and the rate zero without diffusion). Its velocity and acceleration
 // are sums over nodes of the quads times S, L and grad c the first quad times grad S.
-struct GatherQuads {
-  NodeQuad velocity, acceleration;
-};
-constexpr int kConcentrationLane = 3;
+constexpr int kGatherQuads = 2, kConcentrationLane = 3;
 
 // What G2P sums for a particle from c* and the concentration rate.
 struct GatheredConcentration {

@@ -54,10 +54,10 @@ void scatterToNodes(const ParticleSet& p, const InterpolationWeights& W, long be
 // velocity_star and acceleration and the concentration kernel's nodal values.
 template <class Concentration>
 void fillGatherQuads(const GridFields& g, const Concentration& concentration,
-                     const std::vector<NodeRange>& nodes, GatherQuads* quads) {
+                     const std::vector<NodeRange>& nodes, NodeQuad* quads) {
   forEachNode(nodes, [&](long k) {
-    double* v = quads[k].velocity.value;
-    double* a = quads[k].acceleration.value;
+    double* v = quads[kGatherQuads * k].value;
+    double* a = quads[kGatherQuads * k + 1].value;
     for (int d = 0; d < 3; ++d) {
       v[d] = g.velocityStar[k][d];
       a[d] = g.acceleration[k][d];
@@ -68,7 +68,7 @@ void fillGatherQuads(const GridFields& g, const Concentration& concentration,
 
 // What the G2P update of one material needs besides its particles and kernels.
 struct ParticleUpdate {
-  const GatherQuads* quads;  // fillGatherQuads on the nodes the particles reach
+  const NodeQuad* quads;  // fillGatherQuads on the nodes the particles reach
   const InterpolationWeights& W;
   double density;  // rho0: V = m / rho0 J
   int minimumSubcyclesForF;
@@ -126,9 +126,10 @@ long updateParticles(ParticleSet& p, const ParticleUpdate& u, const Model& model
         const int k = W.node[b + e];
         const double w = W.weight[b + e];
         const Vec3& grad = W.gradient[b + e];
-        const Quad v = load(u.quads[k].velocity);
+        const NodeQuad* node = u.quads + kGatherQuads * static_cast<size_t>(k);
+        const Quad v = load(node[0]);
         velocity += v * w;
-        acceleration += load(u.quads[k].acceleration) * w;
+        acceleration += load(node[1]) * w;
         byX += v * grad[0];
         byY += v * grad[1];
         byZ += v * grad[2];
