@@ -1,8 +1,9 @@
 // The diffusion subcomponent's per-particle work inside the MPM step's fused particle loops
-// (docs/diffusion.md, steps 2 and 5): the P2G scatter calls particle() once per particle and
-// scatter() per node it touches; the G2P gather calls gather() per node and update() once. The
-// step is compiled once per kernel type, so a run without diffusion (NoConcentration) or without
-// flux BCs carries none of the other cases' work.
+// (docs/diffusion.md, steps 2 and 5). P2G asks addScatterTerms() once per particle for its
+// lanes of the node quads (NodeQuads.h) and spread() once per node for the sums; G2P asks
+// nodeValues() once per node, gather() per node a particle touches (flux and Wall only) and
+// update() once per particle. The step is compiled once per kernel type, so a run without
+// diffusion (NoConcentration) or without flux BCs carries none of the other cases' work.
 #pragma once
 
 #include <vector>
