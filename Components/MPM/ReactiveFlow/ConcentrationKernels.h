@@ -6,8 +6,6 @@
 // diffusion (NoConcentration) or without flux BCs carries none of the other cases' work.
 #pragma once
 
-#include <vector>
-
 #include "Components/MPM/Interpolator.h"
 #include "Components/MPM/NodeQuads.h"
 #include "Components/MPM/ParticleSet.h"
