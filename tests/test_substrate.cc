@@ -11,7 +11,10 @@
 namespace anode {
 namespace {
 
-std::string pillarOnSubstrate() {
+// `saves`: <save> tags; `materialsExtra`: tags after the materials (an interface); `faces`: more
+// <Face> blocks.
+std::string pillarOnSubstrate(const std::string& saves = "", const std::string& materialsExtra = "",
+                              const std::string& faces = "") {
   auto material = [](const char* name, double K, double D0, const char* geom) {
     std::ostringstream s;
     s << "<material name=\"" << name << "\"><density>2.33e21</density>"
@@ -31,7 +34,8 @@ std::string pillarOnSubstrate() {
        "delt_max>"
     << "<timestep_multiplier>0.2</timestep_multiplier><max_Timesteps>40</max_Timesteps></Time>"
     << "<DataArchiver><filebase>s.uda</filebase><outputTimestepInterval>1000</"
-       "outputTimestepInterval></DataArchiver>"
+       "outputTimestepInterval>"
+    << saves << "</DataArchiver>"
     << "<MPM><interpolator>cpdi</interpolator><do_scalar_diffusion>true</do_scalar_diffusion>"
     << "<use_load_curves>true</use_load_curves></MPM>"
     << "<MaterialProperties><MPM>"
@@ -40,6 +44,7 @@ std::string pillarOnSubstrate() {
                 "cylinder>")
     << material("substrate", 180e6, 0.0,
                 "<box><min>[-0.08,-0.08,0]</min><max>[0.08,0.08,0.04]</max></box>")
+    << materialsExtra
     << "<contact><type>single_velocity</type><materials>[0,1]</materials></contact></MPM></"
        "MaterialProperties>"
     // A flux on every face at z near 0.04..0.1 and on the whole side: it covers the substrate's
@@ -58,7 +63,7 @@ std::string pillarOnSubstrate() {
     << "<extraCells>[1,1,1]</extraCells></Box></Level><BoundaryConditions>"
     << "<Face side=\"z-\"><BCType id=\"all\" label=\"Velocity\" "
        "var=\"Dirichlet\"><value>[0,0,0]</value></BCType></Face>"
-    << "</BoundaryConditions></Grid></Uintah_specification>";
+    << faces << "</BoundaryConditions></Grid></Uintah_specification>";
   return s.str();
 }
 
@@ -87,6 +92,57 @@ TEST(Substrate, BondedSubstrateReceivesNoLithium) {
       ++shared;
     }
   EXPECT_GT(shared, 0);
+}
+
+// The substrate takes up no lithium: its concentration is not computed (NoConcentration kernels,
+// no nodal concentration fields), and the run is the same, bit for bit, as one whose output
+// saves the nodal concentration and so computes the substrate's too.
+TEST(Substrate, ConcentrationOfSubstrateIsNotComputed) {
+  omp_set_num_threads(2);
+  RunOptions o;
+  o.progress = false;
+  Simulation skipped(pillarOnSubstrate(), "substrate.ups", o);
+  Simulation computed(pillarOnSubstrate("<save label=\"g.concentration\"/>"), "saved.ups", o);
+  const ReactiveFlow& d = *skipped.mpm().diffusion();
+  EXPECT_TRUE(d.computesConcentration(0));
+  EXPECT_FALSE(d.computesConcentration(1));
+  EXPECT_TRUE(d.gridFields()[1].concentration.empty());
+  EXPECT_TRUE(computed.mpm().diffusion()->computesConcentration(1));
+  const size_t nodes = computed.mpm().grid().numNodes();
+  EXPECT_EQ(computed.mpm().diffusion()->gridFields()[1].concentration.size(), nodes);
+  for (int s = 0; s < 10; ++s) {
+    skipped.advance();
+    computed.advance();
+  }
+  for (size_t m = 0; m < 2; ++m) {
+    const ParticleSet& a = skipped.mpm().materials()[m].particles;
+    const ParticleSet& b = computed.mpm().materials()[m].particles;
+    ASSERT_EQ(a.count(), b.count());
+    for (size_t i = 0; i < a.count(); ++i) {
+      ASSERT_EQ(a.x[i], b.x[i]) << "material " << m << " particle " << i;
+      ASSERT_EQ(a.stress[i], b.stress[i]) << "material " << m << " particle " << i;
+      ASSERT_EQ(a.concentration[i], b.concentration[i]) << "material " << m << " particle " << i;
+      ASSERT_EQ(a.diffusivity[i], b.diffusivity[i]) << "material " << m << " particle " << i;
+    }
+  }
+  EXPECT_EQ(skipped.dt(), computed.dt());
+}
+
+// What can change a concentration without diffusivity keeps it computed: a common interface,
+// an SD-Type condition on the material.
+TEST(Substrate, ConcentrationComputedWhereSomethingCanChangeIt) {
+  omp_set_num_threads(1);
+  RunOptions o;
+  o.progress = false;
+  Simulation common(
+      pillarOnSubstrate("", "<diffusion_interface><type>common</type></diffusion_interface>"),
+      "common.ups", o);
+  EXPECT_TRUE(common.mpm().diffusion()->computesConcentration(1));
+  Simulation dirichlet(pillarOnSubstrate("", "",
+                                         "<Face side=\"x-\"><BCType id=\"1\" label=\"SD-Type\" "
+                                         "var=\"Dirichlet\"><value>0.5</value></BCType></Face>"),
+                       "dirichlet.ups", o);
+  EXPECT_TRUE(dirichlet.mpm().diffusion()->computesConcentration(1));
 }
 
 }  // namespace

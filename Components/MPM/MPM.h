@@ -96,6 +96,9 @@ class MPM {
   const std::vector<FaceBC>& faceBCs() const { return faceBCs_; }
   // The diffusion subcomponent; null without <do_scalar_diffusion>true.
   const ReactiveFlow* diffusion() const { return diffusion_.get(); }
+  // For an output that saves them: the concentration fields of every material, also of those
+  // whose concentration cannot change (ReactiveFlow::computesConcentration).
+  void computeConcentrationOfEveryMaterial() { diffusion_->computeEveryMaterial(); }
   size_t numParticles() const;  // on this rank
   TaskTimers& timers() { return timers_; }
   const TaskTimers& timers() const { return timers_; }

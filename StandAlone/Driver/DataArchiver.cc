@@ -60,6 +60,13 @@ DataArchiver DataArchiver::fromInput(const PSNode& a, bool diffusion) {
   return d;
 }
 
+bool DataArchiver::savesConcentrationFields() const {
+  return std::any_of(gridLabels_.begin(), gridLabels_.end(),
+                     [](const std::string& l) { return l.rfind("g.concentration", 0) == 0; }) ||
+         std::find(particleLabels_.begin(), particleLabels_.end(), "p.concentrationGradient") !=
+             particleLabels_.end();
+}
+
 std::string chooseOutputDirectory(const std::string& requested, const std::string& filebase) {
   if (!requested.empty()) return requested;
   if (!fs::exists(filebase)) return filebase;

@@ -54,6 +54,7 @@ void Simulation::setup() {
   mpm_.problemSetup(root, time_.initTime, time_.maxTime);
   archiver_ =
       DataArchiver::fromInput(root.requireChild("DataArchiver"), mpm_.flags().doScalarDiffusion);
+  if (archiver_.savesConcentrationFields()) mpm_.computeConcentrationOfEveryMaterial();
   checkpoints_ = CheckpointSchedule::fromInput(root.requireChild("DataArchiver"));
   scenes_ = SceneOutput::fromInput(root, time_, mpm_);
   spec_->checkAllUsed();

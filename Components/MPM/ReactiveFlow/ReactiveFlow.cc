@@ -79,6 +79,12 @@ void ReactiveFlow::initialize(const PSNode& root, const Grid& grid,
     cmax_.push_back(mat.diffusion->maxConcentration);
     constantRate_.push_back(mat.diffusion->constantRate());
   }
+  for (size_t m = 0; m < materials.size(); ++m) {
+    changes_.push_back(concentrationCanChange(m, *materials[m].diffusion));
+    if (!changes_.back())
+      noUptake_.push_back("material " + std::to_string(m) +
+                          (materials[m].name.empty() ? "" : " (" + materials[m].name + ")"));
+  }
   computeDiffusivity(materials, initTime);
   flux_.computeFluxRates(materials, initTime);
 }
@@ -89,7 +95,35 @@ void ReactiveFlow::layOutGrid(const Grid& grid, const GhostNodes* ghosts) {
   dirichletMask_ = dirichletNodeMasks(grid, faceBCs_, receivesFlux_.size());
   const int nodes = grid.numNodes();
   fields_.assign(receivesFlux_.size(), {});
-  for (size_t m = 0; m < fields_.size(); ++m) fields_[m].resize(nodes, receivesFlux_[m]);
+  for (size_t m = 0; m < fields_.size(); ++m)
+    if (computesConcentration(m)) fields_[m].resize(nodes, receivesFlux_[m]);
+}
+
+void ReactiveFlow::computeEveryMaterial() {
+  everyMaterial_ = true;
+  for (size_t m = 0; m < fields_.size(); ++m)
+    if (!changes_[m]) fields_[m].resize(grid_.numNodes(), receivesFlux_[m]);
+}
+
+bool ReactiveFlow::concentrationCanChange(size_t m, const ScalarDiffusionModel& model) const {
+  if (model.diffuses() || model.constantRate() != 0 || receivesFlux_[m] || interface_.common)
+    return true;
+  return std::any_of(faceBCs_.begin(), faceBCs_.end(), [m](const FaceBC& b) {
+    return (b.kind == FaceBC::Kind::ConcentrationDirichlet ||
+            b.kind == FaceBC::Kind::ConcentrationNeumann) &&
+           b.appliesTo(static_cast<int>(m));
+  });
+}
+
+std::vector<std::string> ReactiveFlow::setupReport() const {
+  std::vector<std::string> lines = setupReport_;
+  for (const std::string& material : noUptake_)
+    lines.push_back(material +
+                    " takes up no lithium (no diffusivity, flux or concentration condition): its "
+                    "concentration stays as given" +
+                    (everyMaterial_ ? "; its nodal concentration is computed for the output"
+                                    : " and is not computed"));
+  return lines;
 }
 
 void ReactiveFlow::addScatteredArrays(std::vector<NodeArray>& arrays) {
@@ -101,6 +135,7 @@ void ReactiveFlow::addScatteredArrays(std::vector<NodeArray>& arrays) {
 
 void ReactiveFlow::computeNodalConcentration(size_t m, const GridFields& mechanics,
                                              const std::vector<NodeRange>& nodes) {
+  if (!computesConcentration(m)) return;
   ConcentrationGridFields& g = fields_[m];
   forEachNode(nodes, [&](long k) {
     const double c =
@@ -126,6 +161,7 @@ void ReactiveFlow::integrateConcentration(const std::vector<GridFields>& mechani
   // an outflow), so a full (or emptied) particle receives nothing from its neighbours' sources
   // and the node delivers all of G (G / W, W = sum m S R).
   for (size_t m = 0; m < fields_.size(); ++m) {
+    if (!computesConcentration(m)) continue;
     ConcentrationGridFields& g = fields_[m];
     const std::vector<double>& mass = mechanics[m].mass;
     const double constantRate = constantRate_[m];
@@ -158,10 +194,13 @@ void ReactiveFlow::updateDiffusionState(std::vector<MPMMaterial>& materials, dou
 }
 
 void ReactiveFlow::computeDiffusivity(std::vector<MPMMaterial>& materials, double t) {
+  // A material whose concentration cannot change has D = 0 everywhere: p.diffusivity keeps its
+  // initial 0.
   maxDiffusivity_ = 0;
-  for (MPMMaterial& mat : materials)
-    maxDiffusivity_ =
-        std::max(maxDiffusivity_, mat.diffusion->computeDiffusivity(mat.particles, t));
+  for (size_t m = 0; m < materials.size(); ++m)
+    if (changes_[m])
+      maxDiffusivity_ = std::max(
+          maxDiffusivity_, materials[m].diffusion->computeDiffusivity(materials[m].particles, t));
 }
 
 void ReactiveFlow::checkConcentrationRange(const std::vector<MPMMaterial>& materials,

@@ -86,14 +86,26 @@ class ReactiveFlow {
   void saveState(const std::vector<MPMMaterial>& materials, BinaryWriter& out) const;
   void loadState(std::vector<MPMMaterial>& materials, BinaryReader& in);
 
+  // False for a material whose concentration no step can change: no diffusivity, no constant
+  // rate, no <scalar_flux>, no SD-Type condition, no common interface (docs/diffusion.md,
+  // "Materials that take up no lithium"). Its P2G and G2P run without concentration, its
+  // diffusivity stays 0 and it has no nodal concentration fields, unless the output saves them.
+  bool computesConcentration(size_t m) const { return changes_[m] || everyMaterial_; }
+  // Computes every material's nodal concentration and p.concentrationGradient, for an output
+  // that saves them (g.concentration*, p.concentrationGradient). Before the first step.
+  void computeEveryMaterial();
+
+  // Per material; empty for one that does not compute its concentration.
   const std::vector<ConcentrationGridFields>& gridFields() const { return fields_; }
-  // Lines for the user at setup: per flux BC and material, the particles flagged and their area.
-  const std::vector<std::string>& setupReport() const { return setupReport_; }
+  // Lines for the user at setup: per flux BC and material, the particles flagged and their area,
+  // and the materials that take up no lithium.
+  std::vector<std::string> setupReport() const;
   const std::vector<ScalarFluxBC>& fluxBCs() const { return flux_.bcs(); }
 
  private:
   void computeDiffusivity(std::vector<MPMMaterial>& materials, double t);
   void checkConcentrationRange(const std::vector<MPMMaterial>& materials, double t) const;
+  bool concentrationCanChange(size_t m, const ScalarDiffusionModel& model) const;
 
   MPMFlags flags_;
   Grid grid_;
@@ -104,15 +116,19 @@ class ReactiveFlow {
   std::vector<double> cmax_;                        // per material: max_concentration
   std::vector<double> constantRate_;             // per material: constant_rate (0 for the others)
   std::vector<bool> receivesFlux_;               // per material
+  std::vector<bool> changes_;                    // per material: concentrationCanChange
+  bool everyMaterial_ = false;                   // computeEveryMaterial was called
   double maxDiffusivity_ = 0;                    // over all particles, for Eq. 44
   std::vector<ConcentrationGridFields> fields_;  // per material
   std::vector<std::string> setupReport_;
+  std::vector<std::string> noUptake_;  // "material m (name)" of those that take up no lithium
   const GhostNodes* ghosts_ = nullptr;
 };
 
 template <class F>
 void ReactiveFlow::withScatter(size_t m, const ParticleSet& p, const InterpolationWeights& W,
                                const std::vector<NodeRange>& cleared, F&& f) {
+  if (!computesConcentration(m)) return f(NoConcentration{});
   ConcentrationGridFields& g = fields_[m];
   for (const NodeRange& r : cleared) g.clearAll(r.begin, r.end);
   if (receivesFlux_[m]) {
@@ -126,6 +142,7 @@ void ReactiveFlow::withScatter(size_t m, const ParticleSet& p, const Interpolati
 
 template <class F>
 void ReactiveFlow::withGather(size_t m, ParticleSet& p, F&& f) {
+  if (!computesConcentration(m)) return f(NoConcentration{});
   // Particle treatment of SD-Type Dirichlet (docs/diffusion.md): a particle touching a boundary
   // node takes the grid solution instead of Uintah's nodal rate.
   const double* wall =
