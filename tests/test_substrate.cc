@@ -128,6 +128,21 @@ TEST(Substrate, ConcentrationOfSubstrateIsNotComputed) {
   EXPECT_EQ(skipped.dt(), computed.dt());
 }
 
+// A scene that colours by p.concentrationGradient needs it of every material.
+TEST(Substrate, SceneOfConcentrationGradientComputesSubstrate) {
+  omp_set_num_threads(1);
+  RunOptions o;
+  o.progress = false;
+  std::string text = pillarOnSubstrate();
+  text.insert(text.find("<MPM>"),
+              "<Visualization><scene name=\"g\"><times>[0]</times>"
+              "<field>p.concentrationGradient:magnitude</field></scene></Visualization>");
+  Simulation sim(text, "scene.ups", o);
+  EXPECT_TRUE(sim.mpm().diffusion()->computesConcentration(1));
+  EXPECT_EQ(sim.mpm().diffusion()->gridFields()[1].concentration.size(),
+            static_cast<size_t>(sim.mpm().grid().numNodes()));
+}
+
 // What can change a concentration without diffusivity keeps it computed: a common interface,
 // an SD-Type condition on the material.
 TEST(Substrate, ConcentrationComputedWhereSomethingCanChangeIt) {

@@ -26,8 +26,9 @@ class DataArchiver {
 
   const std::string& filebase() const { return filebase_; }
   bool wantsGrid() const { return !gridLabels_.empty(); }
-  // Whether it saves what only the materials that take up lithium compute by themselves: a
-  // nodal concentration (g.concentration*) or p.concentrationGradient.
+  // Whether it saves what the materials that take up no lithium do not compute unless asked
+  // (ReactiveFlow::computesConcentration): a nodal concentration (g.concentration*) or
+  // p.concentrationGradient.
   bool savesConcentrationFields() const;
 
   // Creates the output directory and copies the input into it.

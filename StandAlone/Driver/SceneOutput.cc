@@ -43,6 +43,11 @@ SceneOutput SceneOutput::fromInput(const PSNode& root, const TimeControl& time, 
   return out;
 }
 
+bool SceneOutput::draws(const std::string& label) const {
+  return std::any_of(scenes_.begin(), scenes_.end(),
+                     [&label](const Scene& s) { return s.field.label == label; });
+}
+
 namespace {
 
 // A distributed run draws on rank 0 what every rank holds of a scene (its position and the few

@@ -30,6 +30,8 @@ class SceneOutput {
   // Marks every scene time <= t as rendered (a restarted run rendered them before).
   void skipTimesUpTo(double t);
   int imagesWritten() const { return imagesWritten_; }
+  // Whether a scene colours its particles by `label` (a particle array).
+  bool draws(const std::string& label) const;
 
  private:
   std::vector<Scene> scenes_;

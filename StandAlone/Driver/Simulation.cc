@@ -54,9 +54,10 @@ void Simulation::setup() {
   mpm_.problemSetup(root, time_.initTime, time_.maxTime);
   archiver_ =
       DataArchiver::fromInput(root.requireChild("DataArchiver"), mpm_.flags().doScalarDiffusion);
-  if (archiver_.savesConcentrationFields()) mpm_.computeConcentrationOfEveryMaterial();
   checkpoints_ = CheckpointSchedule::fromInput(root.requireChild("DataArchiver"));
   scenes_ = SceneOutput::fromInput(root, time_, mpm_);
+  if (archiver_.savesConcentrationFields() || scenes_.draws("p.concentrationGradient"))
+    mpm_.computeConcentrationOfEveryMaterial();
   spec_->checkAllUsed();
   if (options_.maxTimesteps > 0 &&
       (time_.maxTimesteps == 0 || options_.maxTimesteps < time_.maxTimesteps))
