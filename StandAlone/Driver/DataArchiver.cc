@@ -61,8 +61,7 @@ DataArchiver DataArchiver::fromInput(const PSNode& a, bool diffusion) {
 }
 
 bool DataArchiver::savesConcentrationFields() const {
-  return std::any_of(gridLabels_.begin(), gridLabels_.end(),
-                     [](const std::string& l) { return l.rfind("g.concentration", 0) == 0; }) ||
+  return std::any_of(gridLabels_.begin(), gridLabels_.end(), isNodalConcentrationLabel) ||
          std::find(particleLabels_.begin(), particleLabels_.end(), "p.concentrationGradient") !=
              particleLabels_.end();
 }

@@ -194,6 +194,10 @@ LabelStatus classifyLabel(const std::string& label, bool diffusion) {
   return LabelStatus::Unknown;
 }
 
+bool isNodalConcentrationLabel(const std::string& label) {
+  return label.rfind("g.concentration", 0) == 0;
+}
+
 ParticleData gatherParticles(const MPM& mpm, const std::vector<std::string>& labels) {
   ParticleData out;
   const size_t n = mpm.numParticles();
@@ -267,7 +271,7 @@ GridData gatherGrid(const MPM& mpm, const std::vector<std::string>& labels) {
     for (size_t m = 0; m < nm; ++m) {
       const GridFields& f = mpm.gridFields()[m];
       const std::string name = nm > 1 ? label + "_m" + std::to_string(m) : label;
-      if (label.rfind("g.concentration", 0) == 0) {
+      if (isNodalConcentrationLabel(label)) {
         const ConcentrationGridFields& c = mpm.diffusion()->gridFields()[m];
         const std::vector<double>& v = label == "g.concentration"       ? c.concentration
                                        : label == "g.concentrationRate" ? c.concentrationRate

@@ -14,6 +14,8 @@ enum class LabelStatus { Particle, Grid, NeedsDiffusion, Unsupported, Unknown };
 // Whether `label` names a particle or grid quantity this code writes, a diffusion quantity of a
 // run without diffusion, a known Uintah quantity of a feature this code lacks, or nothing known.
 LabelStatus classifyLabel(const std::string& label, bool diffusion);
+// Whether `label` is one of the nodal concentration fields (g.concentration*).
+bool isNodalConcentrationLabel(const std::string& label);
 
 // Gathers the saved particle labels (plus the material index) over all materials.
 ParticleData gatherParticles(const MPM& mpm, const std::vector<std::string>& labels);

@@ -139,12 +139,13 @@ std::string formatVector(const Vec3& v) {
   return s.str();
 }
 
+std::string describeMaterial(const MPMMaterial& mat, size_t matl) {
+  return "material " + std::to_string(matl) + (mat.name.empty() ? "" : " (" + mat.name + ")");
+}
+
 std::string describeParticle(const MPMMaterial& mat, size_t matl, size_t i) {
-  std::ostringstream s;
-  s << "particle " << mat.particles.id[i] << " of material " << matl;
-  if (!mat.name.empty()) s << " (" << mat.name << ")";
-  s << " at " << formatVector(mat.particles.x[i]);
-  return s.str();
+  return "particle " + std::to_string(mat.particles.id[i]) + " of " + describeMaterial(mat, matl) +
+         " at " + formatVector(mat.particles.x[i]);
 }
 
 MPMMaterial MPMMaterial::fromInput(const PSNode& node, const Grid& grid, const MPMFlags& flags,

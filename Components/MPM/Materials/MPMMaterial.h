@@ -54,6 +54,8 @@ struct MPMMaterial {
 
 // "[x, y, z]", for diagnostics.
 std::string formatVector(const Vec3& v);
+// "material M (name)", the name only if the input gave one, for diagnostics.
+std::string describeMaterial(const MPMMaterial& mat, size_t matl);
 // "particle ID of material M (name) at [x, y, z]", for diagnostics.
 std::string describeParticle(const MPMMaterial& mat, size_t matl, size_t i);
 

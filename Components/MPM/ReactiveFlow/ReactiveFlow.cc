@@ -65,9 +65,8 @@ void ReactiveFlow::initialize(const PSNode& root, const Grid& grid,
   for (const ExternalScalarFlux::Flagged& f : flagged) {
     std::ostringstream s;
     s << "<scalar_flux> " << f.bc + 1 << " (line " << flux_.bcs()[f.bc].line << ") flags "
-      << f.particles << " particles of material " << f.material;
-    if (!materials[f.material].name.empty()) s << " (" << materials[f.material].name << ")";
-    s << ", flux area " << f.area;
+      << f.particles << " particles of " << describeMaterial(materials[f.material], f.material)
+      << ", flux area " << f.area;
     if (f.surfaceArea > 0)
       s << " (its surface " << f.surfaceArea << ", of which on the body " << f.bodyArea << ")";
     else
@@ -81,9 +80,7 @@ void ReactiveFlow::initialize(const PSNode& root, const Grid& grid,
   }
   for (size_t m = 0; m < materials.size(); ++m) {
     changes_.push_back(concentrationCanChange(m, *materials[m].diffusion));
-    if (!changes_.back())
-      noUptake_.push_back("material " + std::to_string(m) +
-                          (materials[m].name.empty() ? "" : " (" + materials[m].name + ")"));
+    if (!changes_.back()) noUptake_.push_back(describeMaterial(materials[m], m));
   }
   computeDiffusivity(materials, initTime);
   flux_.computeFluxRates(materials, initTime);
