@@ -177,6 +177,35 @@ TEST(Restart, SkipsADamagedNewestCheckpoint) {
   expectSameOutputs(s.dir / "whole", s.dir / "parts");
 }
 
+// The end summary of a restarted run gives the particle-steps per second of its own steps (not of
+// every step since step 0 over its own wall time), and the whole run's beside them.
+TEST(Restart, SummaryRateCountsTheStepsOfThisRun) {
+  Scratch s("rate");
+  const std::string run = (s.dir / "run").string();
+  const std::string input = kSource + "/tests/checkpoint/AutoCycleSlab.ups";
+  ASSERT_EQ(sus({"--max-timesteps", "1000", "-o", run, input}).exitCode, 0);
+  const testing::SusResult restart = sus({"-restart", run});  // to the input's 2000 steps
+  ASSERT_EQ(restart.exitCode, 0) << restart.output;
+  std::smatch m;
+  static const std::regex summary(
+      R"rx(sus: 2000 steps, t = \S+, (\d+) particles, wall (\S+) s \(this run after the restart: (\d+) steps, from step (\d+)\))rx");
+  ASSERT_TRUE(std::regex_search(restart.output, m, summary)) << restart.output;
+  const double particles = std::stod(m[1]), wall = std::stod(m[2]);
+  const long steps = std::stol(m[3]);
+  EXPECT_EQ(steps + std::stol(m[4]), 2000);
+  EXPECT_GE(steps, 1000);  // from the newest checkpoint, at or before step 1000
+  static const std::regex rate(R"rx(particle-steps per second: (\S+))rx");
+  ASSERT_TRUE(std::regex_search(restart.output, m, rate)) << restart.output;
+  ASSERT_GT(wall, 0);
+  // The wall time is printed to 1 ms, the rate to 5 digits.
+  EXPECT_NEAR(std::stod(m[1]) * wall / (steps * particles), 1.0, 0.0005 / wall + 1e-4)
+      << restart.output;
+  static const std::regex whole(
+      R"rx(since step 0, with the runs before the restart: (\S+) particle-steps in)rx");
+  ASSERT_TRUE(std::regex_search(restart.output, m, whole)) << restart.output;
+  EXPECT_NEAR(std::stod(m[1]) / (2000 * particles), 1.0, 1e-4) << restart.output;
+}
+
 // Outputs whose files are gone (removed by hand, or not carried with the checkpoint to another
 // machine) leave the series on restart: particles.pvd names no missing file.
 TEST(Restart, LeavesMissingOutputsOutOfTheSeries) {

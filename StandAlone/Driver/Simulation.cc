@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <numeric>
 #include <sstream>
 
 #include "Core/Parallel/Communicator.h"
@@ -499,8 +500,13 @@ void Simulation::printTimings() const {
   if (!Communicator::isRoot()) return;
   double total = 0;
   for (double v : seconds) total += v;
-  std::fprintf(stderr, "sus: %ld steps, t = %.6e, %zu particles, wall %.3f s\n", step_, t_,
-               particles, wallSeconds_);
+  std::fprintf(stderr, "sus: %ld steps, t = %.6e, %zu particles, wall %.3f s", step_, t_, particles,
+               wallSeconds_);
+  const long stepsOfThisRun = std::accumulate(stepsLimitedBy_.begin(), stepsLimitedBy_.end(), 0L);
+  if (!options_.restartDir.empty())
+    std::fprintf(stderr, " (this run after the restart: %ld steps, from step %ld)", stepsOfThisRun,
+                 step_ - stepsOfThisRun);
+  std::fprintf(stderr, "\n");
   std::fprintf(stderr, "  %-34s %10s %7s\n", "task", "seconds", "share");
   for (size_t i = 0; i < timers.names().size(); ++i)
     std::fprintf(stderr, "  %-34s %10.3f %6.1f%%\n", timers.names()[i].c_str(), seconds[i],
@@ -513,8 +519,16 @@ void Simulation::printTimings() const {
                 std::to_string(stepsLimitedBy_[l]);
   if (!limits.empty()) std::fprintf(stderr, "  steps whose dt the limit set: %s\n", limits.c_str());
   std::fprintf(stderr, "  instruction set: %s\n", instructionSet().c_str());
+  // This process's steps over its wall time; a restarted run also gives the whole run's.
   std::fprintf(stderr, "  particle-steps per second: %.4e\n",
-               wallSeconds_ > 0 ? particleSteps / wallSeconds_ : 0.0);
+               wallSeconds_ > 0 ? allParticleSteps_ / wallSeconds_ : 0.0);
+  if (!options_.restartDir.empty()) {
+    const double wholeWall = earlierWallSeconds_ + wallSeconds_;
+    std::fprintf(stderr,
+                 "  since step 0, with the runs before the restart: %.4e particle-steps in "
+                 "%.3f s, %.4e per second\n",
+                 particleSteps, wholeWall, wholeWall > 0 ? particleSteps / wholeWall : 0.0);
+  }
   if (Communicator::size() > 1)
     std::fprintf(stderr,
                  "  %d ranks: particles per rank max/mean %.3f; sent %.4g bytes in all, %.4g per "

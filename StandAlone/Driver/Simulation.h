@@ -97,7 +97,8 @@ class Simulation {
   StableTimestep::Limit dtLimit_ = StableTimestep::Mechanics;   // the limit that set dt_
   std::array<long, StableTimestep::kLimits> stepsLimitedBy_{};  // steps of this process's run
   long step_ = 0;
-  double particleSteps_ = 0, wallSeconds_ = 0;  // particle-steps of this rank
+  double particleSteps_ = 0;  // of this rank since step 0, restarts included (in checkpoints)
+  double wallSeconds_ = 0;    // of this process's run
   bool stoppedOnRequest_ = false;
   double allParticleSteps_ = 0;  // of every rank, in this process's run
   double lastCheckpointTime_ = 0;
