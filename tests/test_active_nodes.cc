@@ -116,5 +116,25 @@ TEST(ActiveNodes, EveryNodeGoesToExactlyOneThread) {
   }
 }
 
+// The pieces forEachNodeRange hands out, on the threads OpenMP gives it, cover every node of the
+// rows exactly once (the clearing of the grid's fields relies on it).
+TEST(ActiveNodes, NodeRangesCoverEveryNodeOnce) {
+  const Grid g = testGrid();
+  const ActiveNodes a = ActiveNodes::of(g, NodeBox{Vec3i(1, 2, 1), Vec3i(5, 6, 3)});
+  const std::vector<long> all = nodesOf(a.rows);
+  const int maxThreads = omp_get_max_threads();
+  for (int threads = 1; threads <= 3; ++threads) {
+    omp_set_num_threads(threads);
+    std::vector<int> visits(g.numNodes(), 0);
+    forEachNodeRange(a.rows, [&](long begin, long end) {
+      for (long k = begin; k < end; ++k) ++visits[k];  // each k on one thread only
+    });
+    for (long k = 0; k < static_cast<long>(visits.size()); ++k)
+      EXPECT_EQ(visits[k], std::binary_search(all.begin(), all.end(), k) ? 1 : 0)
+          << "node " << k << ", " << threads << " threads";
+  }
+  omp_set_num_threads(maxThreads);
+}
+
 }  // namespace
 }  // namespace anode

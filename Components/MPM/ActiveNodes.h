@@ -46,10 +46,10 @@ struct ActiveNodes {
   std::vector<NodeRange> within(const NodeRange& r) const;
 };
 
-// Calls f(k) for thread t of `threads` on its share of the nodes of `rows`: the t-th of equal
-// consecutive parts of them, whatever the rows' lengths.
+// Calls f(begin, end) for thread t of `threads` on the pieces of `rows` that make its share of
+// their nodes: the t-th of equal consecutive parts of them, whatever the rows' lengths.
 template <class F>
-void forEachNodeOfThread(const std::vector<NodeRange>& rows, int t, int threads, F&& f) {
+void forEachRangeOfThread(const std::vector<NodeRange>& rows, int t, int threads, F&& f) {
   long total = 0;
   for (const NodeRange& r : rows) total += r.end - r.begin;
   long skip = total * t / threads, take = total * (t + 1) / threads - skip;
@@ -61,10 +61,18 @@ void forEachNodeOfThread(const std::vector<NodeRange>& rows, int t, int threads,
       continue;
     }
     const long begin = r.begin + skip, end = std::min(r.end, begin + take);
-    for (long k = begin; k < end; ++k) f(k);
+    f(begin, end);
     take -= end - begin;
     skip = 0;
   }
+}
+
+// Calls f(k) for thread t of `threads` on its share of the nodes of `rows` (as above).
+template <class F>
+void forEachNodeOfThread(const std::vector<NodeRange>& rows, int t, int threads, F&& f) {
+  forEachRangeOfThread(rows, t, threads, [&f](long begin, long end) {
+    for (long k = begin; k < end; ++k) f(k);
+  });
 }
 
 // Calls f(k) for every node k of `rows`, shared among the threads.
@@ -72,6 +80,14 @@ template <class F>
 void forEachNode(const std::vector<NodeRange>& rows, F&& f) {
 #pragma omp parallel
   forEachNodeOfThread(rows, omp_get_thread_num(), omp_get_num_threads(), f);
+}
+
+// Calls f(begin, end) on pieces of `rows` covering each node once, shared among the threads:
+// for work done on a range of nodes at once, such as clearing fields.
+template <class F>
+void forEachNodeRange(const std::vector<NodeRange>& rows, F&& f) {
+#pragma omp parallel
+  forEachRangeOfThread(rows, omp_get_thread_num(), omp_get_num_threads(), f);
 }
 
 }  // namespace anode

@@ -326,7 +326,7 @@ void MPM::interpolateParticlesToGrid() {
   const std::vector<NodeRange> cleared =
       ActiveNodes::of(grid_, hullOf(active_.box, previous_)).rows;
   for (size_t m = 0; m < materials_.size(); ++m) {
-    for (const NodeRange& r : cleared) fields_[m].clearAll(r.begin, r.end);
+    forEachNodeRange(cleared, [&](long begin, long end) { fields_[m].clearAll(begin, end); });
     withConcentrationScatter(m, cleared,
                              [&](const auto& concentration) { scatterMaterial(m, concentration); });
   }

@@ -167,8 +167,9 @@ void ExternalScalarFlux::loadState(BinaryReader& in) {
 
 void markSourceNodes(const ParticleSet& p, const InterpolationWeights& W,
                      std::vector<unsigned char>& reached, const std::vector<NodeRange>& cleared) {
-  for (const NodeRange& r : cleared)
-    std::fill(reached.begin() + r.begin, reached.begin() + r.end, 0);
+  forEachNodeRange(cleared, [&reached](long begin, long end) {
+    std::fill(reached.begin() + begin, reached.begin() + end, 0);
+  });
   unsigned char* mark = reached.data();
   const long n = static_cast<long>(p.count());
 #pragma omp parallel for schedule(static)

@@ -130,7 +130,7 @@ void ReactiveFlow::withScatter(size_t m, const ParticleSet& p, const Interpolati
                                const std::vector<NodeRange>& cleared, F&& f) {
   if (!computesConcentration(m)) return f(NoConcentration{});
   ConcentrationGridFields& g = fields_[m];
-  for (const NodeRange& r : cleared) g.clearAll(r.begin, r.end);
+  forEachNodeRange(cleared, [&g](long begin, long end) { g.clearAll(begin, end); });
   if (receivesFlux_[m]) {
     markSourceNodes(p, W, g.sourceReached, cleared);
     if (ghosts_) ghosts_->unionOverRanks(g.sourceReached);
