@@ -245,10 +245,15 @@ def density_section(runs, pair, times, unit_scale, unit, finished):
             waiting.append("%g %s" % (t * unit_scale, unit))
             continue
         d = pair_difference(os.path.join(runs, pair[0]), os.path.join(runs, pair[1]), t)
+        a, b = (shape(os.path.join(runs, run), t) for run in pair)
         rows.append(["%g %s" % (t * unit_scale, unit), "%.4g / %.4g" % (d["time_a"] * unit_scale, d["time_b"] * unit_scale),
-                     num(d["max_dc"]), num(d["mean_dc"]), num(d["max_dx_cells"])])
+                     num(d["max_dc"]), num(d["mean_dc"]), num(d["max_dx_cells"]),
+                     "%s / %s" % (percent(a["height_growth"]), percent(b["height_growth"])),
+                     "%s / %s" % (percent(a["top_growth"]), percent(b["top_growth"])),
+                     "%s / %s" % (num(a["ep_max"]), num(b["ep_max"]))])
     text = table(["figure time", "output times (%s)" % unit, "largest abs(c difference)", "mean abs(c difference)",
-                  "largest position difference (cells)"], rows) if rows else ""
+                  "largest position difference (cells)", "height growth (%s / %s)" % pair,
+                  "top layer's radial growth", "largest plastic strain"], rows) if rows else ""
     going = ["%s (last output at %.4g %s)" % (run, reached[run] * unit_scale, unit) for run in pair if run not in finished]
     if going:
         text += "%sStill running: %s; waiting: %s." % ("\n\n" if rows else "", ", ".join(going),
