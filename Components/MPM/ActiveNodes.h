@@ -75,19 +75,20 @@ void forEachNodeOfThread(const std::vector<NodeRange>& rows, int t, int threads,
   });
 }
 
-// Calls f(k) for every node k of `rows`, shared among the threads.
-template <class F>
-void forEachNode(const std::vector<NodeRange>& rows, F&& f) {
-#pragma omp parallel
-  forEachNodeOfThread(rows, omp_get_thread_num(), omp_get_num_threads(), f);
-}
-
 // Calls f(begin, end) on pieces of `rows` covering each node once, shared among the threads:
 // for work done on a range of nodes at once, such as clearing fields.
 template <class F>
 void forEachNodeRange(const std::vector<NodeRange>& rows, F&& f) {
 #pragma omp parallel
   forEachRangeOfThread(rows, omp_get_thread_num(), omp_get_num_threads(), f);
+}
+
+// Calls f(k) for every node k of `rows`, shared among the threads.
+template <class F>
+void forEachNode(const std::vector<NodeRange>& rows, F&& f) {
+  forEachNodeRange(rows, [&f](long begin, long end) {
+    for (long k = begin; k < end; ++k) f(k);
+  });
 }
 
 }  // namespace anode

@@ -8,7 +8,6 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
-#include <numeric>
 #include <sstream>
 
 #include "Core/Parallel/Communicator.h"
@@ -86,7 +85,6 @@ void Simulation::advance() {
     s << "step " << step_ + 1 << ", t = " << t_ + dt_ << ": " << e.what();
     throw SimulationError(s.str());
   }
-  particleSteps_ += static_cast<double>(mpm_.numParticles());
   ++stepsLimitedBy_[dtLimit_];
   finishStep();
 }
@@ -116,6 +114,7 @@ void Simulation::run() {
     Communicator::barrier();
     restartedFrom = loadNewestCheckpoint();
     newestCheckpoint_ = restartedFrom;
+    firstStepOfThisProcess_ = step_;
     scenes_.skipTimesUpTo(t_);
   } else {
     // Rank 0 picks the directory (the next free version) for all.
@@ -197,7 +196,9 @@ void Simulation::run() {
       writeStateOnStop();
       throw;
     }
-    allParticleSteps_ += static_cast<double>(summaryRow(stepDt));
+    const double particles = static_cast<double>(summaryRow(stepDt));
+    particleSteps_ += particles;
+    particleStepsOfThisProcess_ += particles;
     for (const std::string& warning : symmetryFaces_.afterStep(mpm_, step_, t_)) {
       if (progressLine) progress.finish();
       std::fprintf(stderr, "%s\n", warning.c_str());
@@ -222,7 +223,8 @@ void Simulation::run() {
     else if (rebalanced || stoppedOnRequest_ || replayCheckpointDue)
       checkpoint(CheckpointKind::Automatic);
     if (progressLine)
-      progress.update(step_, t_, stepDt, StableTimestep::name(stepLimit), allParticleSteps_, done);
+      progress.update(step_, t_, stepDt, StableTimestep::name(stepLimit),
+                      particleStepsOfThisProcess_, done);
     if (done || stoppedOnRequest_) break;
   }
   if (progressLine) progress.finish();
@@ -306,7 +308,6 @@ void Simulation::writeCheckpoint(double wallSeconds, CheckpointKind kind) {
   // state, boxes, the parts' hashes) under the checkpoint's name, so it is complete once that name
   // exists.
   std::vector<std::string> partHashes;
-  const double particleSteps = Communicator::sum(particleSteps_);
   if (distributed) {
     const std::string parts = checkpointParts(newestCheckpoint_);
     std::error_code exists;
@@ -334,7 +335,7 @@ void Simulation::writeCheckpoint(double wallSeconds, CheckpointKind kind) {
       out.value(dt_);
       out.value<int32_t>(dtLimit_);
       out.value(step_);
-      out.value(particleSteps);
+      out.value(particleSteps_);
       out.value(wallSeconds);
       out.value(lastCheckpointTime_);
       archiver_.saveState(out);
@@ -412,8 +413,7 @@ Simulation::CheckpointRead Simulation::readCheckpoint(const std::string& path, b
   if (dtLimit_ < 0 || dtLimit_ >= StableTimestep::kLimits)
     throw std::runtime_error(path + ": unknown time-step limit " + std::to_string(dtLimit_));
   step_ = in.value<long>();
-  // Every rank's particle-steps so far, counted once (on rank 0).
-  particleSteps_ = in.value<double>() * (Communicator::isRoot() ? 1 : 0);
+  particleSteps_ = in.value<double>();
   earlierWallSeconds_ = in.value<double>();
   lastCheckpointTime_ = in.value<double>();
   if (outputs) {
@@ -487,7 +487,6 @@ void Simulation::printTimings() const {
   const TaskTimers& timers = mpm_.timers();
   std::vector<double> seconds = timers.seconds();
   Communicator::maximum(seconds.data(), static_cast<int>(seconds.size()));
-  const double particleSteps = Communicator::sum(particleSteps_);
   const size_t particles =
       static_cast<size_t>(Communicator::sum(static_cast<int64_t>(mpm_.numParticles())));
   const double imbalance = mpm_.imbalance();
@@ -502,10 +501,9 @@ void Simulation::printTimings() const {
   for (double v : seconds) total += v;
   std::fprintf(stderr, "sus: %ld steps, t = %.6e, %zu particles, wall %.3f s", step_, t_, particles,
                wallSeconds_);
-  const long stepsOfThisRun = std::accumulate(stepsLimitedBy_.begin(), stepsLimitedBy_.end(), 0L);
   if (!options_.restartDir.empty())
-    std::fprintf(stderr, " (this run after the restart: %ld steps, from step %ld)", stepsOfThisRun,
-                 step_ - stepsOfThisRun);
+    std::fprintf(stderr, " (after the restart: %ld steps, from step %ld)",
+                 step_ - firstStepOfThisProcess_, firstStepOfThisProcess_);
   std::fprintf(stderr, "\n");
   std::fprintf(stderr, "  %-34s %10s %7s\n", "task", "seconds", "share");
   for (size_t i = 0; i < timers.names().size(); ++i)
@@ -519,15 +517,16 @@ void Simulation::printTimings() const {
                 std::to_string(stepsLimitedBy_[l]);
   if (!limits.empty()) std::fprintf(stderr, "  steps whose dt the limit set: %s\n", limits.c_str());
   std::fprintf(stderr, "  instruction set: %s\n", instructionSet().c_str());
-  // This process's steps over its wall time; a restarted run also gives the whole run's.
+  // This process's steps over its wall time; after a restart also the whole run's (the time
+  // of each earlier process up to its last checkpoint, as the steps).
   std::fprintf(stderr, "  particle-steps per second: %.4e\n",
-               wallSeconds_ > 0 ? allParticleSteps_ / wallSeconds_ : 0.0);
+               wallSeconds_ > 0 ? particleStepsOfThisProcess_ / wallSeconds_ : 0.0);
   if (!options_.restartDir.empty()) {
     const double wholeWall = earlierWallSeconds_ + wallSeconds_;
     std::fprintf(stderr,
                  "  since step 0, with the runs before the restart: %.4e particle-steps in "
                  "%.3f s, %.4e per second\n",
-                 particleSteps, wholeWall, wholeWall > 0 ? particleSteps / wholeWall : 0.0);
+                 particleSteps_, wholeWall, wholeWall > 0 ? particleSteps_ / wholeWall : 0.0);
   }
   if (Communicator::size() > 1)
     std::fprintf(stderr,

@@ -97,10 +97,12 @@ class Simulation {
   StableTimestep::Limit dtLimit_ = StableTimestep::Mechanics;   // the limit that set dt_
   std::array<long, StableTimestep::kLimits> stepsLimitedBy_{};  // steps of this process's run
   long step_ = 0;
-  double particleSteps_ = 0;  // of this rank since step 0, restarts included (in checkpoints)
-  double wallSeconds_ = 0;    // of this process's run
+  // Particle-steps of every rank: since step 0, restarts included (as of the state: checkpoints
+  // hold it), and of this process's steps.
+  double particleSteps_ = 0, particleStepsOfThisProcess_ = 0;
+  long firstStepOfThisProcess_ = 0;  // the step it started from (a restart's)
+  double wallSeconds_ = 0;           // of this process's time loop
   bool stoppedOnRequest_ = false;
-  double allParticleSteps_ = 0;  // of every rank, in this process's run
   double lastCheckpointTime_ = 0;
   double earlierWallSeconds_ = 0;  // of the runs before a restart, for history.csv
   uint64_t inputHash_ = 0;         // of the input file, stored in checkpoints

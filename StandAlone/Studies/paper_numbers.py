@@ -175,9 +175,15 @@ def front(profile, threshold=0.1, rise=0.1):
     return first, last - first + 1, profile[last]
 
 
+@functools.lru_cache(maxsize=4)
+def state_of(run_dir, time):
+    """State(run_dir, time), each output read once for the numbers that need it."""
+    return State(run_dir, time)
+
+
 def pair_difference(run_a, run_b, time):
     """Largest and mean |c_a - c_b| and largest |x_a - x_b| in cells, particles matched by ID."""
-    a, b = State(run_a, time), State(run_b, time)
+    a, b = state_of(run_a, time), state_of(run_b, time)
     where = {pid: i for i, pid in enumerate(b.id)}
     dx = cell_size(run_a)
     dc, dxs = [], []
@@ -192,7 +198,7 @@ def pair_difference(run_a, run_b, time):
 
 def shape(run_dir, time):
     """Lithium fraction, radial growth of the base, middle and top layers, height growth, plastic strain."""
-    s = State(run_dir, time)
+    s = state_of(run_dir, time)
     base, top = s.layer(s.base), s.layer(s.top)
     lower, middle = s.layer(s.base + (s.top - s.base) / 4), s.layer((s.base + s.top) / 2)
     ep_base = [s.ep[i] for i in base]
@@ -251,9 +257,10 @@ def density_section(runs, pair, times, unit_scale, unit, finished):
                      "%s / %s" % (percent(a["height_growth"]), percent(b["height_growth"])),
                      "%s / %s" % (percent(a["top_growth"]), percent(b["top_growth"])),
                      "%s / %s" % (num(a["ep_max"]), num(b["ep_max"]))])
-    text = table(["figure time", "output times (%s)" % unit, "largest abs(c difference)", "mean abs(c difference)",
-                  "largest position difference (cells)", "height growth (%s / %s)" % pair,
-                  "top layer's radial growth", "largest plastic strain"], rows) if rows else ""
+    text = ("a = %s, b = %s.\n\n" % pair + table(
+        ["figure time", "output times (%s)" % unit, "largest abs(c difference)", "mean abs(c difference)",
+         "largest position difference (cells)", "height growth a / b", "top layer's radial growth a / b",
+         "largest plastic strain (silicon) a / b"], rows)) if rows else ""
     going = ["%s (last output at %.4g %s)" % (run, reached[run] * unit_scale, unit) for run in pair if run not in finished]
     if going:
         text += "%sStill running: %s; waiting: %s." % ("\n\n" if rows else "", ", ".join(going),
