@@ -67,12 +67,18 @@ void forEachRangeOfThread(const std::vector<NodeRange>& rows, int t, int threads
   }
 }
 
+// f(k) for each node k of a piece [begin, end).
+template <class F>
+auto nodeByNode(F& f) {
+  return [&f](long begin, long end) {
+    for (long k = begin; k < end; ++k) f(k);
+  };
+}
+
 // Calls f(k) for thread t of `threads` on its share of the nodes of `rows` (as above).
 template <class F>
 void forEachNodeOfThread(const std::vector<NodeRange>& rows, int t, int threads, F&& f) {
-  forEachRangeOfThread(rows, t, threads, [&f](long begin, long end) {
-    for (long k = begin; k < end; ++k) f(k);
-  });
+  forEachRangeOfThread(rows, t, threads, nodeByNode(f));
 }
 
 // Calls f(begin, end) on pieces of `rows` covering each node once, shared among the threads:
@@ -86,9 +92,7 @@ void forEachNodeRange(const std::vector<NodeRange>& rows, F&& f) {
 // Calls f(k) for every node k of `rows`, shared among the threads.
 template <class F>
 void forEachNode(const std::vector<NodeRange>& rows, F&& f) {
-  forEachNodeRange(rows, [&f](long begin, long end) {
-    for (long k = begin; k < end; ++k) f(k);
-  });
+  forEachNodeRange(rows, nodeByNode(f));
 }
 
 }  // namespace anode
