@@ -35,7 +35,25 @@ GhostNodes::GhostNodes(const Decomposition& d, const Grid& whole, const Grid& lo
     }
 }
 
-void GhostNodes::sumOverRanks(const std::vector<NodeArray>& arrays, const NodeBox& reach) const {
+NodeBox GhostNodes::setReach(const NodeBox& mine) {
+  // One all-reduce of the lowest corners and the negated highest; a rank reaching no node adds
+  // nothing.
+  constexpr double none = 1e9;
+  double corners[6];
+  for (int d = 0; d < 3; ++d) {
+    corners[d] = mine.empty() ? none : mine.first[d];
+    corners[3 + d] = mine.empty() ? none : -mine.last[d];
+  }
+  Communicator::minimum(corners, 6);
+  reach_ = mine;
+  for (int d = 0; d < 3; ++d) {
+    reachOfAll_.first[d] = static_cast<int>(corners[d]);
+    reachOfAll_.last[d] = static_cast<int>(-corners[3 + d]);
+  }
+  return reachOfAll_;
+}
+
+void GhostNodes::sumOverRanks(const std::vector<NodeArray>& arrays) {
   const std::vector<int>& ranks = neighbours_.ranks();
   if (ranks.empty()) return;
   int width = 0;
@@ -45,20 +63,28 @@ void GhostNodes::sumOverRanks(const std::vector<NodeArray>& arrays, const NodeBo
   std::vector<double> values;
   for (size_t q = 0; q < ranks.size(); ++q) {
     values.clear();
-    forNodes(local_, overlap_[q].intersection(reach), [&](int n) {
+    forNodes(local_, overlap_[q].intersection(reach_), [&](int n) {
       for (const NodeArray& a : arrays)
         for (int c = 0; c < a.width; ++c)
           values.push_back(a.values[static_cast<size_t>(n) * a.width + c]);
     });
-    const int box[6] = {reach.first.x(), reach.first.y(), reach.first.z(),
-                        reach.last.x(),  reach.last.y(),  reach.last.z()};
+    const int box[6] = {reach_.first.x(), reach_.first.y(), reach_.first.z(),
+                        reach_.last.x(),  reach_.last.y(),  reach_.last.z()};
     send[q].assign(reinterpret_cast<const char*>(box), sizeof box);
     send[q].append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(double));
   }
   neighbours_.exchange(send, receive);
   // Every rank storing a shared node adds the parts in the same order (rank order, 0 + ...), so
-  // they all hold the same value.
-  std::vector<double> total(sharedNodes_.size() * width, 0.0);
+  // they all hold the same value. Only the shared nodes some rank reaches take part: every part
+  // of the others is zero, and so is their sum.
+  std::vector<int> summed;
+  forNodes(local_, reachOfAll_.intersection(NodeBox{local_.firstNode(), local_.lastNode()}),
+           [&](int n) {
+             if (slotOfNode_[n] >= 0) summed.push_back(n);
+           });
+  total_.resize(sharedNodes_.size() * width);
+  for (int n : summed)
+    std::fill_n(&total_[static_cast<size_t>(slotOfNode_[n]) * width], width, 0.0);
   auto addReceived = [&](size_t q) {
     int box[6];
     std::memcpy(box, receive[q].data(), sizeof box);
@@ -68,16 +94,15 @@ void GhostNodes::sumOverRanks(const std::vector<NodeArray>& arrays, const NodeBo
       std::memcpy(values.data(), receive[q].data() + sizeof box, values.size() * sizeof(double));
     const double* in = values.data();
     forNodes(local_, overlap_[q].intersection(theirs), [&](int n) {
-      double* t = &total[static_cast<size_t>(slotOfNode_[n]) * width];
+      double* t = &total_[static_cast<size_t>(slotOfNode_[n]) * width];
       for (int c = 0; c < width; ++c) t[c] += *in++;
     });
   };
   auto addOwn = [&] {
-    for (size_t s = 0; s < sharedNodes_.size(); ++s) {
-      double* t = &total[s * width];
+    for (int n : summed) {
+      double* t = &total_[static_cast<size_t>(slotOfNode_[n]) * width];
       for (const NodeArray& a : arrays)
-        for (int c = 0; c < a.width; ++c)
-          *t++ += a.values[static_cast<size_t>(sharedNodes_[s]) * a.width + c];
+        for (int c = 0; c < a.width; ++c) *t++ += a.values[static_cast<size_t>(n) * a.width + c];
     }
   };
   bool ownAdded = false;
@@ -89,11 +114,10 @@ void GhostNodes::sumOverRanks(const std::vector<NodeArray>& arrays, const NodeBo
     addReceived(q);
   }
   if (!ownAdded) addOwn();
-  for (size_t s = 0; s < sharedNodes_.size(); ++s) {
-    const double* t = &total[s * width];
+  for (int n : summed) {
+    const double* t = &total_[static_cast<size_t>(slotOfNode_[n]) * width];
     for (const NodeArray& a : arrays)
-      for (int c = 0; c < a.width; ++c)
-        a.values[static_cast<size_t>(sharedNodes_[s]) * a.width + c] = *t++;
+      for (int c = 0; c < a.width; ++c) a.values[static_cast<size_t>(n) * a.width + c] = *t++;
   }
 }
 
@@ -101,12 +125,14 @@ void GhostNodes::unionOverRanks(std::vector<unsigned char>& marks) const {
   const std::vector<int>& ranks = neighbours_.ranks();
   if (ranks.empty()) return;
   std::vector<std::string> send(ranks.size()), receive;
+  // Both sides list the nodes of the same box: no rank marks a node outside reachOfAll_.
   for (size_t q = 0; q < ranks.size(); ++q)
-    forNodes(local_, overlap_[q], [&](int n) { send[q] += static_cast<char>(marks[n]); });
+    forNodes(local_, overlap_[q].intersection(reachOfAll_),
+             [&](int n) { send[q] += static_cast<char>(marks[n]); });
   neighbours_.exchange(send, receive);
   for (size_t q = 0; q < ranks.size(); ++q) {
     size_t e = 0;
-    forNodes(local_, overlap_[q],
+    forNodes(local_, overlap_[q].intersection(reachOfAll_),
              [&](int n) { marks[n] |= static_cast<unsigned char>(receive[q][e++]); });
   }
 }

@@ -4,7 +4,7 @@
 // the same complete sum, bit for bit, on every rank that stores it and the node-by-node grid
 // tasks (contact, integration, boundary conditions) run on ghost nodes as on owned ones. A rank
 // sends only the shared nodes its particles can reach this step (its reach box): elsewhere its
-// part is zero.
+// part is zero; and only the shared nodes some rank reaches are summed.
 #pragma once
 
 #include <vector>
@@ -37,9 +37,12 @@ class GhostNodes {
   GhostNodes(const Decomposition& d, const Grid& whole, const Grid& local, int rank, int ghost);
 
   bool empty() const { return neighbours_.ranks().empty(); }
-  // Completes the sums of `arrays` on the shared nodes (each rank's part added in rank order);
-  // this rank's particles reach no node outside `reach`. Collective.
-  void sumOverRanks(const std::vector<NodeArray>& arrays, const NodeBox& reach) const;
+  // This step's nodes: this rank's particles reach none outside `mine`. Returns the box holding
+  // every rank's, outside which no rank has a part in any sum. Collective.
+  NodeBox setReach(const NodeBox& mine);
+  // Completes the sums of `arrays` on the shared nodes (each rank's part added in rank order).
+  // Collective.
+  void sumOverRanks(const std::vector<NodeArray>& arrays);
   // The bitwise OR of each rank's marks on the shared nodes. Collective.
   void unionOverRanks(std::vector<unsigned char>& marks) const;
   const std::vector<int>& neighbours() const { return neighbours_.ranks(); }
@@ -52,6 +55,9 @@ class GhostNodes {
   std::vector<NodeBox> overlap_;  // per neighbour: the nodes both windows hold
   std::vector<int> sharedNodes_;  // local indices of every shared node, ascending
   std::vector<int> slotOfNode_;   // per local node: its place in sharedNodes_, or -1
+  NodeBox reach_;                 // this step's, of this rank's particles
+  NodeBox reachOfAll_;            // this step's, of every rank's particles
+  std::vector<double> total_;     // per shared node: the sums being completed
 };
 
 }  // namespace anode

@@ -124,7 +124,7 @@ void MPM::timeAdvance(double t, double dt) {
   // stops them all (stopTogether).
   {
     ScopedTimer s(timers_, tasks_.interpolationWeights);
-    stopTogether([&] { computeInterpolationWeights(); });  // 1: S_ip, grad S_ip (CPDI: F size)
+    computeWeightsAndActiveNodes();  // 1: S_ip, grad S_ip (CPDI: F size)
   }
   {
     ScopedTimer s(timers_, tasks_.particlesToGrid);
@@ -165,8 +165,16 @@ void MPM::timeAdvance(double t, double dt) {
   }
 }
 
-void MPM::computeInterpolationWeights() {
+void MPM::computeWeightsAndActiveNodes() {
+  NodeBox reached;
+  stopTogether([&] { reached = computeInterpolationWeights(); });
+  // The ghost nodes get the other ranks' parts: a stored node takes part in the step where any
+  // rank's particles reach it (outside the ranks' stopTogether, as it is collective).
   previous_ = active_.box;
+  active_ = ActiveNodes::of(grid_, distributed_ ? ghosts_.setReach(reached) : reached);
+}
+
+NodeBox MPM::computeInterpolationWeights() {
   NodeBox reached;
   for (size_t m = 0; m < materials_.size(); ++m) {
     const ParticleSet& p = materials_[m].particles;
@@ -226,13 +234,7 @@ void MPM::computeInterpolationWeights() {
     }
     if (firstOutside < n) throwOutsideWindow(m, firstOutside);
   }
-  // The ghost nodes get the other ranks' parts: every stored node takes part in the step. This
-  // rank's own parts are nonzero only within the box its particles' weights reach.
-  if (distributed_) {
-    reach_ = reached;
-    reached = NodeBox{grid_.firstNode(), grid_.lastNode()};
-  }
-  active_ = ActiveNodes::of(grid_, reached);
+  return reached;
 }
 
 void MPM::throwOutsideWindow(size_t m, long i) const {
@@ -465,7 +467,7 @@ StableTimestep MPM::computeStableTimestep() const {
 }
 
 void MPM::interpolateToGridForOutput() {
-  stopTogether([&] { computeInterpolationWeights(); });
+  computeWeightsAndActiveNodes();
   interpolateParticlesToGrid();
   if (distributed_) sumGhostNodes();
   computeNodalVelocityAndConcentration();

@@ -105,7 +105,10 @@ class MPM {
 
  private:
   // The step's tasks, in order (DESIGN.md §4).
-  void computeInterpolationWeights();
+  // The weights on every rank (a problem on one stops them all), then the step's active nodes.
+  void computeWeightsAndActiveNodes();
+  // This rank's weights; returns the box of nodes they touch.
+  NodeBox computeInterpolationWeights();
   // Particle i's weights on grid g (the count, or -1 beyond its stored nodes).
   int computeWeights(const Grid& g, const ParticleSet& p, long i, int32_t* node, double* w,
                      Vec3* grad) const;
@@ -148,7 +151,6 @@ class MPM {
   int ghostWidth_ = 0;
   bool distributed_ = false;  // more than one rank
   std::vector<Reordering> reordering_;
-  NodeBox reach_;  // of this step's particles
   int layoutGeneration_ = 0;
   std::vector<FaceBC> faceBCs_;
   Contact contact_;

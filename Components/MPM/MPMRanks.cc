@@ -105,7 +105,7 @@ void MPM::sumGhostNodes() {
     sums.push_back({g.internalForce.data()->data(), 3});
   }
   if (diffusion_) diffusion_->addScatteredArrays(sums);
-  ghosts_.sumOverRanks(sums, reach_);
+  ghosts_.sumOverRanks(sums);
 }
 
 void MPM::migrateParticles() {
