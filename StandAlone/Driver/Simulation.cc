@@ -533,7 +533,10 @@ void Simulation::printTimings() const {
                  "  %d ranks: particles per rank max/mean %.3f; sent %.4g bytes in all, %.4g per "
                  "step; communication at most %.3f s on a rank\n",
                  Communicator::size(), imbalance, communication[0],
-                 step_ > 0 ? communication[0] / step_ : 0.0, communication[1]);
+                 step_ > firstStepOfThisProcess_
+                     ? communication[0] / (step_ - firstStepOfThisProcess_)
+                     : 0.0,
+                 communication[1]);
   std::fprintf(stderr, "  peak memory: %.1f MB, %.0f bytes per particle\n", peakBytes / 1e6,
                peakBytes / std::max<size_t>(mpm_.numParticles(), 1));
 }

@@ -82,6 +82,15 @@ case $mode in
     grep "restarting\|shared out" "$work/r.restart.log"
     $compare "$(stepFile "$work/reference" "$steps")" "$(stepFile "$work/r" "$steps")" | tail -3 ||
       fail "$from -> $to ranks differs from 1 rank"
+    # The summary's bytes per step are of the steps this process ran, after the restart.
+    [ "$to" -eq 1 ] || /usr/bin/python3 - "$work/r.restart.log" <<'EOF' || fail "bytes per step not over the steps after the restart"
+import re, sys
+log = open(sys.argv[1]).read()
+steps = int(re.search(r"after the restart: (\d+) steps", log).group(1))
+total, per = map(float, re.search(r"sent (\S+) bytes in all, (\S+) per step", log).groups())
+print("sent %.4g bytes in the %d steps after the restart: %.4g per step; the summary: %.4g" % (total, steps, total / steps, per))
+sys.exit(abs(per - total / steps) > 1e-3 * total / steps)
+EOF
     ;;
   kill)
     input=$1 steps=$2
