@@ -36,6 +36,7 @@ void unpackParticles(const char*& in, ParticleSet& p) {
 }
 
 void keepParticles(ParticleSet& p, const std::vector<long>& keep) {
+  if (keep.size() == p.count()) return;  // ascending: every particle, in place
   p.forEachArray([&](auto& v) {
     if (v.empty()) return;
     size_t to = 0;
