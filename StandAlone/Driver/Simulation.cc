@@ -495,7 +495,8 @@ void Simulation::printTimings() const {
   Communicator::maximum(communication + 1, 1);
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
-  const double peakBytes = Communicator::maximum(usage.ru_maxrss * 1024.0);  // Linux: kilobytes
+  const double ownPeak = usage.ru_maxrss * 1024.0;  // Linux: kilobytes
+  const double peakBytes = Communicator::maximum(ownPeak), allPeaks = Communicator::sum(ownPeak);
   if (!Communicator::isRoot()) return;
   double total = 0;
   for (double v : seconds) total += v;
@@ -537,8 +538,12 @@ void Simulation::printTimings() const {
                      ? communication[0] / (step_ - firstStepOfThisProcess_)
                      : 0.0,
                  communication[1]);
-  std::fprintf(stderr, "  peak memory: %.1f MB, %.0f bytes per particle\n", peakBytes / 1e6,
-               peakBytes / std::max<size_t>(mpm_.numParticles(), 1));
+  std::fprintf(
+      stderr, "  peak memory: %.1f MB, %.0f bytes per particle%s\n", peakBytes / 1e6,
+      allPeaks / std::max<size_t>(particles, 1),
+      Communicator::size() > 1
+          ? " (the largest rank's peak; per particle: every rank's peak over all particles)"
+          : "");
 }
 
 }  // namespace anode
