@@ -65,6 +65,10 @@ TEST(ParticleMigration, KeptParticlesKeepTheirOrder) {
   expectSameParticle(before, 0, p, 0);
   expectSameParticle(before, 2, p, 1);
   expectSameParticle(before, 4, p, 2);
+  ParticleSet all = before;
+  keepParticles(all, {0, 1, 2, 3, 4});
+  ASSERT_EQ(all.count(), 5u);
+  for (size_t i = 0; i < 5; ++i) expectSameParticle(before, i, all, i);
 }
 
 TEST(ParticleMigration, ReorderedParticlesCarryEveryArray) {

@@ -1,7 +1,7 @@
-// The nodes a step's grid tasks visit: the box of stored nodes the particles' weights reach, as
-// rows of contiguous flat indices, so that a small body in a large grid costs its own nodes and
-// not whole layers of the grid. Outside them the nodal fields are zero, except the values face
-// boundary conditions set.
+// The nodes a step's grid tasks visit: the box of stored nodes the particles' weights reach (in a
+// distributed run, every rank's particles), as rows of contiguous flat indices, so that a small
+// body in a large grid costs its own nodes and not whole layers of the grid. Outside them the
+// nodal fields are zero, except the values face boundary conditions set.
 #pragma once
 
 #include <omp.h>

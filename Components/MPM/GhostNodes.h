@@ -40,10 +40,11 @@ class GhostNodes {
   // This step's nodes: this rank's particles reach none outside `mine`. Returns the box holding
   // every rank's, outside which no rank has a part in any sum. Collective.
   NodeBox setReach(const NodeBox& mine);
-  // Completes the sums of `arrays` on the shared nodes (each rank's part added in rank order).
-  // Collective.
+  // Completes the sums of `arrays` on the shared nodes (each rank's part added in rank order),
+  // after this step's setReach. Collective.
   void sumOverRanks(const std::vector<NodeArray>& arrays);
-  // The bitwise OR of each rank's marks on the shared nodes. Collective.
+  // The bitwise OR of each rank's marks on the shared nodes, after this step's setReach.
+  // Collective.
   void unionOverRanks(std::vector<unsigned char>& marks) const;
   const std::vector<int>& neighbours() const { return neighbours_.ranks(); }
   const Neighbourhood& neighbourhood() const { return neighbours_; }

@@ -119,9 +119,9 @@ void MPM::timeAdvance(double t, double dt) {
   // The tasks in order (docs/diffusion.md lists the diffusion part of each). DESIGN.md §4 has the
   // same ones but computes D and the flux rate at the start of a step: here task 10 computes
   // them for the new state, which its output and its time step (Eq. 44) need as well. In a
-  // distributed run the ranks meet where P2G's sums are completed on the shared nodes (2), where
-  // particles move to the rank owning their cell (11), and where a problem found on one rank
-  // stops them all (stopTogether).
+  // distributed run the ranks meet where they agree on the nodes some rank's particles reach (1),
+  // where P2G's sums are completed on the shared nodes (2), where particles move to the rank
+  // owning their cell (11), and where a problem found on one rank stops them all (stopTogether).
   {
     ScopedTimer s(timers_, tasks_.interpolationWeights);
     computeWeightsAndActiveNodes();  // 1: S_ip, grad S_ip (CPDI: F size)
