@@ -83,8 +83,8 @@ void GhostNodes::sumOverRanks(const std::vector<NodeArray>& arrays) {
              if (slotOfNode_[n] >= 0) summed.push_back(n);
            });
   total_.resize(sharedNodes_.size() * width);
-  for (int n : summed)
-    std::fill_n(&total_[static_cast<size_t>(slotOfNode_[n]) * width], width, 0.0);
+  const auto totalOf = [&](int n) { return &total_[static_cast<size_t>(slotOfNode_[n]) * width]; };
+  for (int n : summed) std::fill_n(totalOf(n), width, 0.0);
   auto addReceived = [&](size_t q) {
     int box[6];
     std::memcpy(box, receive[q].data(), sizeof box);
@@ -94,13 +94,13 @@ void GhostNodes::sumOverRanks(const std::vector<NodeArray>& arrays) {
       std::memcpy(values.data(), receive[q].data() + sizeof box, values.size() * sizeof(double));
     const double* in = values.data();
     forNodes(local_, overlap_[q].intersection(theirs), [&](int n) {
-      double* t = &total_[static_cast<size_t>(slotOfNode_[n]) * width];
+      double* t = totalOf(n);
       for (int c = 0; c < width; ++c) t[c] += *in++;
     });
   };
   auto addOwn = [&] {
     for (int n : summed) {
-      double* t = &total_[static_cast<size_t>(slotOfNode_[n]) * width];
+      double* t = totalOf(n);
       for (const NodeArray& a : arrays)
         for (int c = 0; c < a.width; ++c) *t++ += a.values[static_cast<size_t>(n) * a.width + c];
     }
@@ -115,7 +115,7 @@ void GhostNodes::sumOverRanks(const std::vector<NodeArray>& arrays) {
   }
   if (!ownAdded) addOwn();
   for (int n : summed) {
-    const double* t = &total_[static_cast<size_t>(slotOfNode_[n]) * width];
+    const double* t = totalOf(n);
     for (const NodeArray& a : arrays)
       for (int c = 0; c < a.width; ++c) a.values[static_cast<size_t>(n) * a.width + c] = *t++;
   }
