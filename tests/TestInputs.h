@@ -18,6 +18,8 @@ struct BlockInput {
   std::string saves = "<save label=\"p.stress\"/>";
   std::string extraMaterials;  // further <material> elements
   std::string contact;         // <contact> element
+  std::string mpmFlags;        // further <MPM> flags
+  std::string amr;             // an <AMR> element
   double maxTime = 1.0, multiplier = 0.2;
   int maxSteps = 10;
   int outputEvery = 1;
@@ -32,8 +34,9 @@ struct BlockInput {
       << "</timestep_multiplier><max_Timesteps>" << maxSteps << "</max_Timesteps></Time>\n"
       << "<DataArchiver><filebase>test.uda</filebase><outputTimestepInterval>" << outputEvery
       << "</outputTimestepInterval>" << saves << "</DataArchiver>\n"
-      << "<MPM><interpolator>" << interpolator << "</interpolator></MPM>\n"
-      << "<MaterialProperties><MPM><material name=\"block\"><density>" << density << "</density>"
+      << "<MPM><interpolator>" << interpolator << "</interpolator>" << mpmFlags << "</MPM>\n"
+      << amr << "<MaterialProperties><MPM><material name=\"block\"><density>" << density
+      << "</density>"
       << "<constitutive_model type=\"rf_elastic_plastic\"><bulk_modulus>" << bulk
       << "</bulk_modulus><shear_modulus>" << shear << "</shear_modulus>"
       << "<equation_of_state type=\"default_hypo\"/>" << flowModel << "</constitutive_model>"

@@ -2,6 +2,7 @@
 // stretched domain splits along, and a split into four that conserves mass, volume, momentum and
 // lithium, places the children along the edge, numbers them and shares the flux faces.
 #include <gtest/gtest.h>
+#include <omp.h>
 
 #include "Components/MPM/ParticleSplitting.h"
 
@@ -53,7 +54,7 @@ Grid unitGrid() {
 TEST(ParticleSplitting, FourChildrenConserveMassMomentumAndLithium) {
   ParticleSet p = stretchedParticle();
   int64_t nextId = 100;
-  ASSERT_EQ(splitStretchedParticles(p, unitGrid(), 2.0, {}, nextId), 1u);
+  ASSERT_EQ(splitStretchedParticles(p, unitGrid(), 2.0, {}, nextId), std::vector<long>{0});
   ASSERT_EQ(p.count(), 4u);
   EXPECT_EQ(nextId, 103);
   double mass = 0, volume = 0, lithium = 0;
@@ -82,7 +83,38 @@ TEST(ParticleSplitting, FourChildrenConserveMassMomentumAndLithium) {
   for (size_t i = 0; i < 4; ++i) EXPECT_EQ(p.x[i], Vec3(2 + offsets[i], 2, 2));
   // Refined particles do not split again.
   p.F[0] = Vec3(9, 1, 1).asDiagonal();
-  EXPECT_EQ(splitStretchedParticles(p, unitGrid(), 2.0, {}, nextId), 0u);
+  EXPECT_TRUE(splitStretchedParticles(p, unitGrid(), 2.0, {}, nextId).empty());
+}
+
+TEST(ParticleSplitting, ListsTheParentsInIndexOrderWithTheirChildrenAppendedSo) {
+  // Nine particles, the stretched ones at 1, 4, 5 and 8, searched by 1 to 3 threads (each thread
+  // a block of indices): the same parents in index order, each one's 3 children in that order.
+  const int threadsBefore = omp_get_max_threads();
+  for (int threads = 1; threads <= 3; ++threads) {
+    ParticleSet p;
+    p.resize(9);
+    p.enable(Physics::Splitting);
+    for (size_t i = 0; i < 9; ++i) {
+      p.id[i] = static_cast<int64_t>(i);
+      p.x[i] = Vec3(2, 2, 2);
+      p.velocity[i] = Vec3(static_cast<double>(i), 0, 0);
+      p.size[i] = Vec3(0.5, 0.5, 0.5).asDiagonal();
+      p.F[i] = i == 1 || i == 4 || i == 5 || i == 8 ? Mat3(Vec3(3, 1, 1).asDiagonal())
+                                                    : Mat3::Identity();
+    }
+    omp_set_num_threads(threads);
+    int64_t nextId = 100;
+    EXPECT_EQ(splitStretchedParticles(p, unitGrid(), 2.0, {}, nextId),
+              (std::vector<long>{1, 4, 5, 8}))
+        << threads << " thread(s)";
+    ASSERT_EQ(p.count(), 21u);
+    const double parents[4] = {1, 4, 5, 8};
+    for (size_t c = 0; c < 12; ++c) {
+      EXPECT_EQ(p.id[9 + c], static_cast<int64_t>(100 + c));
+      EXPECT_EQ(p.velocity[9 + c].x(), parents[c / 3]) << "child " << c;
+    }
+  }
+  omp_set_num_threads(threadsBefore);
 }
 
 TEST(ParticleSplitting, FluxFacesGoWholeToTheNearestChildOrAreShared) {
@@ -95,7 +127,8 @@ TEST(ParticleSplitting, FluxFacesGoWholeToTheNearestChildOrAreShared) {
   p.loadCurveID[0] = Vec3i(1, 2, 0);
   p.area[0] = Vec3(0.25, 0.75, 0);
   int64_t nextId = 100;
-  ASSERT_EQ(splitStretchedParticles(p, unitGrid(), 2.0, {xFace, yFace}, nextId), 1u);
+  ASSERT_EQ(splitStretchedParticles(p, unitGrid(), 2.0, {xFace, yFace}, nextId),
+            std::vector<long>{0});
   double xArea = 0, yArea = 0;
   for (size_t i = 0; i < 4; ++i)
     for (int s = 0; s < 3; ++s) {

@@ -345,7 +345,8 @@ TEST(BetaBeyondPmax, TheClampHoldsTheDiffusivityWherePressureExceedsPmax) {
 // One elastic block at rest: the StateChecks see what the test does to its particles.
 class StateChecksTest : public ::testing::Test {
  protected:
-  StateChecksTest() : sim(block().text(), "block.ups", quiet()) {}
+  explicit StateChecksTest(const testing::BlockInput& in = block())
+      : sim(in.text(), "block.ups", quiet()) {}
   static testing::BlockInput block() {
     testing::BlockInput in;
     in.velocity = "[1, 0, 0]";
@@ -473,6 +474,49 @@ TEST_F(StateChecksTest, StopsOneParticleWhoseVelocityOscillatesWithGrowingAmplit
           "for 5 steps in a row its increment reversed the previous one and grew by 1.2 or more"),
       std::string::npos)
       << f;
+}
+
+// The same block whose particles split when stretched 2-fold.
+class SplittingStateChecksTest : public StateChecksTest {
+ protected:
+  SplittingStateChecksTest() : StateChecksTest(splittingBlock()) {}
+  static testing::BlockInput splittingBlock() {
+    testing::BlockInput in = block();
+    in.mpmFlags = "<refine_particles>true</refine_particles>";
+    in.amr =
+        "<AMR><MPM><Refinement_Criteria_Thresholds><Variable name=\"stretchRatio\" value=\"2\"/>"
+        "</Refinement_Criteria_Thresholds></MPM></AMR>\n";
+    return in;
+  }
+  // The growing alternation of StopsAnOscillationThatGrowsButNotOneThatDoesNot on every
+  // particle, watched by fresh checks; before its step `splitAt` (none if negative), particle
+  // `splitAt` is stretched 3-fold and a step of the MPM splits it. Returns the step the checks
+  // stopped, or 0.
+  int stepsOfAnAlternationWithASplit(int splitAt) {
+    checks = StateChecks();
+    const Vec3 base = particles().velocity[0];
+    for (int k = 0; k < 30; ++k) {
+      if (k == splitAt) {
+        const size_t before = particles().count();
+        particles().F[splitAt] = Vec3(3, 1, 1).asDiagonal();
+        sim.mpm().timeAdvance(0, sim.dt());
+        EXPECT_EQ(particles().count(), before + 3);
+      }
+      for (Vec3& v : particles().velocity)
+        v = base + (k % 2 ? -1 : 1) * 1e-3 * std::pow(1.5, k) * Vec3::UnitY();
+      if (!failure().empty()) return k + 1;
+    }
+    return 0;
+  }
+};
+
+TEST_F(SplittingStateChecksTest, TheChildrenOfASplitParticleContinueItsHistory) {
+  // Their velocity, concentration and share of its mass are the parent's, so the watch goes on
+  // through a split and stops the alternation at the step it stops it without one.
+  const int unsplit = stepsOfAnAlternationWithASplit(-1);
+  ASSERT_GE(unsplit, 5);
+  for (int splitAt = 1; splitAt < unsplit; ++splitAt)
+    EXPECT_EQ(stepsOfAnAlternationWithASplit(splitAt), unsplit) << "split at step " << splitAt;
 }
 
 TEST_F(StateChecksTest, StopsAKineticEnergyThatDoublesTwentyStepsInARow) {

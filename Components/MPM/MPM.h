@@ -77,12 +77,17 @@ class MPM {
   const Grid& wholeGrid() const { return whole_; }
   const Decomposition& decomposition() const { return decomposition_; }
   int ghostWidth() const { return ghostWidth_; }
-  // How the last step's migration reordered material m's particles on this rank: the earlier
-  // indices of those that stayed, in order; `arrived` others follow them (StateChecks follows its
-  // per-particle history with it). `before` is the count before; none when nothing moved.
+  // How the last step changed material m's particles on this rank, for per-particle histories
+  // kept elsewhere (StateChecks follows its own with it). First splitting: of the
+  // `beforeSplitting` particles, those listed in `split` (in this order) split, and each one's 3
+  // children were appended in that order. Then migration (distributed runs; `migrated` is false
+  // when nothing moved): of the `beforeMigration` particles, those at the indices `kept` stayed,
+  // in that order, and `arrived` others follow them.
   struct Reordering {
-    bool happened = false;
-    size_t before = 0, arrived = 0;
+    size_t beforeSplitting = 0;
+    std::vector<long> split;
+    bool migrated = false;
+    size_t beforeMigration = 0, arrived = 0;
     std::vector<long> kept;
   };
   const std::vector<Reordering>& lastReordering() const { return reordering_; }

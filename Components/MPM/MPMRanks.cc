@@ -149,8 +149,8 @@ void MPM::migrateParticles() {
   for (size_t m = 0; m < materials_.size(); ++m) {
     ParticleSet& p = materials_[m].particles;
     Reordering& r = reordering_[m];
-    r.before = p.count();
-    r.happened = keep[m].size() != p.count();
+    r.beforeMigration = p.count();
+    r.migrated = keep[m].size() != p.count();
     keepParticles(p, keep[m]);
     r.kept = std::move(keep[m]);
   }
@@ -161,7 +161,7 @@ void MPM::migrateParticles() {
   for (size_t m = 0; m < materials_.size(); ++m) {
     Reordering& r = reordering_[m];
     r.arrived = materials_[m].particles.count() - r.kept.size();
-    r.happened = r.happened || r.arrived > 0;
+    r.migrated = r.migrated || r.arrived > 0;
   }
 }
 

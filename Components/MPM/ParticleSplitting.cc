@@ -1,5 +1,7 @@
 #include "Components/MPM/ParticleSplitting.h"
 
+#include <omp.h>
+
 #include <cmath>
 #include <type_traits>
 
@@ -63,8 +65,8 @@ std::vector<int64_t> stretchedParticleIds(const ParticleSet& p, const Grid& grid
   return ids;
 }
 
-size_t splitStretchedParticles(ParticleSet& p, const Grid& grid, double ratio,
-                               const std::vector<ScalarFluxBC>& bcs, int64_t& nextId) {
+std::vector<long> splitStretchedParticles(ParticleSet& p, const Grid& grid, double ratio,
+                                          const std::vector<ScalarFluxBC>& bcs, int64_t& nextId) {
   return splitStretchedParticles(p, grid, ratio, bcs, [&nextId](int64_t) {
     const int64_t first = nextId;
     nextId += 3;
@@ -72,29 +74,33 @@ size_t splitStretchedParticles(ParticleSet& p, const Grid& grid, double ratio,
   });
 }
 
-size_t splitStretchedParticles(ParticleSet& p, const Grid& grid, double ratio,
-                               const std::vector<ScalarFluxBC>& bcs,
-                               const std::function<int64_t(int64_t)>& firstChildId) {
-  const size_t n = p.count();
+std::vector<long> splitStretchedParticles(ParticleSet& p, const Grid& grid, double ratio,
+                                          const std::vector<ScalarFluxBC>& bcs,
+                                          const std::function<int64_t(int64_t)>& firstChildId) {
+  const long n = static_cast<long>(p.count());
   const bool flux = !p.loadCurveID.empty();
-  const auto axisOf = [&](size_t i) { return splitAxisOf(p, i, grid, ratio); };
-  // Most steps split nothing: a parallel count finds out without storing anything.
-  long splitting = 0;
-#pragma omp parallel for schedule(static) reduction(+ : splitting)
-  for (long i = 0; i < static_cast<long>(n); ++i)
-    if (axisOf(i) >= 0) ++splitting;
-  if (splitting == 0) return 0;
-  // The particles that split and along which edge. Each array grows at most once per step, with
-  // 1/16 to spare: splits come a few at a time over many steps, and growing each time to the
-  // exact size would copy every array at each of them.
-  std::vector<std::pair<size_t, int>> splits;
-  splits.reserve(splitting);
-  for (size_t i = 0; i < n; ++i)
-    if (const int axis = axisOf(i); axis >= 0) splits.emplace_back(i, axis);
+  // The particles that split and along which edge. Each thread lists those of its own block of
+  // indices, and the blocks follow in index order. Most steps list none.
+  const int threads = omp_get_max_threads();
+  std::vector<std::vector<std::pair<long, int>>> found(threads);
+#pragma omp parallel num_threads(threads)
+  {
+    const int t = omp_get_thread_num();
+    for (long i = n * t / threads; i < n * (t + 1) / threads; ++i)
+      if (const int axis = splitAxisOf(p, i, grid, ratio); axis >= 0)
+        found[t].emplace_back(i, axis);
+  }
+  std::vector<std::pair<long, int>> splits;
+  for (const auto& f : found) splits.insert(splits.end(), f.begin(), f.end());
+  if (splits.empty()) return {};
+  // Each array grows at most once per step, with 1/16 to spare: splits come a few at a time over
+  // many steps, and growing each time to the exact size would copy every array at each of them.
   const size_t needed = n + 3 * splits.size();
   p.forEachArray([&](auto& v) {
     if (!v.empty() && v.capacity() < needed) v.reserve(needed + needed / 16);
   });
+  std::vector<long> parents;
+  parents.reserve(splits.size());
   for (const auto& [i, axis] : splits) {
     const Vec3 edge = (p.F[i] * p.size[i] * grid.dx.asDiagonal()).col(axis);
     const Vec3 x = p.x[i];
@@ -106,7 +112,7 @@ size_t splitStretchedParticles(ParticleSet& p, const Grid& grid, double ratio,
     p.refined[i] = 1;
     // Children at x -/+ 0.375 and 0.125 of the edge; the parent becomes the first.
     static const double offsets[4] = {-0.375, -0.125, 0.125, 0.375};
-    size_t child[4] = {i, 0, 0, 0};
+    size_t child[4] = {static_cast<size_t>(i), 0, 0, 0};
     Vec3 offset[4];
     const int64_t firstId = firstChildId(p.id[i]);
     for (int c = 1; c < 4; ++c) {
@@ -118,8 +124,9 @@ size_t splitStretchedParticles(ParticleSet& p, const Grid& grid, double ratio,
       p.x[child[c]] = x + offset[c];
     }
     if (flux) splitFluxAreas(p, bcs, child, offset, edge.normalized());
+    parents.push_back(i);
   }
-  return splits.size();
+  return parents;
 }
 
 }  // namespace anode

@@ -42,6 +42,16 @@ std::string problemOf(const MPMMaterial& mat, size_t i) {
 
 }  // namespace
 
+template <class F>
+void StateChecks::forEachHistory(size_t m, const ParticleSet& p, F&& f) {
+  f(velocity_[m], [&](size_t j) { return p.velocity[j]; });
+  f(velocityIncrement_[m], [](size_t) { return Vec3::Zero().eval(); });
+  f(localStreak_[m], [](size_t) { return uint8_t{0}; });
+  if (p.concentration.empty()) return;
+  f(concentration_[m], [&](size_t j) { return p.concentration[j]; });
+  f(concentrationIncrement_[m], [](size_t) { return 0.0; });
+}
+
 bool StateChecks::oscillates(Oscillation& o, double energy, double product, double* growth,
                              double* correlation) {
   const double c =
@@ -90,12 +100,11 @@ void StateChecks::afterStep(const MPM& mpm, double dt) {
     const bool diffusion = !p.concentration.empty();
     followReordering(mpm.lastReordering()[m], m, p);
     if (velocity_[m].size() != p.count()) {
-      // The first step, or particles split: the oscillation watch starts over.
-      velocity_[m] = p.velocity;
-      velocityIncrement_[m].assign(p.count(), Vec3::Zero());
-      localStreak_[m].assign(p.count(), 0);
-      concentration_[m] = p.concentration;
-      concentrationIncrement_[m].assign(p.concentration.size(), 0.0);
+      // The first step (or the particles were shared out anew): the oscillation watch starts.
+      forEachHistory(m, p, [&](auto& history, auto start) {
+        history.resize(p.count());
+        for (size_t j = 0; j < p.count(); ++j) history[j] = start(j);
+      });
       restart = true;
     }
     Vec3* v = velocity_[m].data();
@@ -162,19 +171,20 @@ void StateChecks::afterStep(const MPM& mpm, double dt) {
 }
 
 void StateChecks::followReordering(const MPM::Reordering& r, size_t m, const ParticleSet& p) {
-  if (!r.happened || velocity_[m].size() != r.before) return;
-  // Those that stayed keep their history; those that arrived start theirs.
-  auto follow = [&](auto& v, const auto& fresh) {
-    if (v.empty()) return;
-    for (size_t j = 0; j < r.kept.size(); ++j) v[j] = v[r.kept[j]];
-    v.resize(r.kept.size());
-    for (size_t j = r.kept.size(); j < p.count(); ++j) v.push_back(fresh(j));
-  };
-  follow(velocity_[m], [&](size_t j) { return p.velocity[j]; });
-  follow(velocityIncrement_[m], [](size_t) { return Vec3::Zero().eval(); });
-  follow(localStreak_[m], [](size_t) { return uint8_t{0}; });
-  follow(concentration_[m], [&](size_t j) { return p.concentration[j]; });
-  follow(concentrationIncrement_[m], [](size_t) { return 0.0; });
+  // A split particle's 3 children continue its history: they have its velocity and
+  // concentration, and the 4 share its mass, so the watched sums go on unchanged.
+  if (!r.split.empty() && velocity_[m].size() == r.beforeSplitting)
+    forEachHistory(m, p, [&](auto& history, auto) {
+      for (const long parent : r.split)
+        for (int c = 0; c < 3; ++c) history.push_back(history[parent]);
+    });
+  // Of those that migrated, the ones that stayed keep their history; those that arrived start.
+  if (r.migrated && velocity_[m].size() == r.beforeMigration)
+    forEachHistory(m, p, [&](auto& history, auto start) {
+      for (size_t j = 0; j < r.kept.size(); ++j) history[j] = history[r.kept[j]];
+      history.resize(r.kept.size());
+      for (size_t j = r.kept.size(); j < p.count(); ++j) history.push_back(start(j));
+    });
 }
 
 std::string StateChecks::describeLocalOscillation(const MPMMaterial& mat, size_t m,

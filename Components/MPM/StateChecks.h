@@ -68,7 +68,11 @@ class StateChecks {
                         double concentrationEnergy, double concentrationProduct);
   void checkKineticEnergy(const MPM& mpm, double energy);
   std::string describeLocalOscillation(const MPMMaterial& mat, size_t m, size_t i) const;
-  // Carries material m's per-particle history along with the last migration (distributed runs).
+  // Calls f(history, start) on each per-particle history of material m (those of the
+  // concentration only with diffusion), where start(j) is the value particle j's begins with.
+  template <class F>
+  void forEachHistory(size_t m, const ParticleSet& p, F&& f);
+  // Carries material m's per-particle history along with the last step's splitting and migration.
   void followReordering(const MPM::Reordering& r, size_t m, const ParticleSet& p);
 
   // Per material: last step's velocities and concentrations, and their increments then; per
