@@ -63,6 +63,26 @@ TEST(RadialReturn, PerfectPlasticityJohnsonCookAOnly) {
   checkPlasticUniaxial(RFElasticPlastic(K, G, flow), 0.0);
 }
 
+TEST(FlowModel, JohnsonCookWithoutBOrNIsPerfectlyPlastic) {
+  // sigma_y = A + B eps_p^n is constant when B = 0 or n = 0; its slope is 0 at every eps_p, also
+  // where eps_p^(n - 1) overflows (a subnormal eps_p with n = 0 gave 0 x inf = NaN).
+  FlowModel flow;
+  flow.type = FlowModel::Type::JohnsonCook;
+  flow.A = sigmaY;
+  flow.B = 5;
+  for (const double ep : {0.0, 1e-310, 0.3, 2.0}) {
+    EXPECT_EQ(flow.flowStress(ep), sigmaY + 5) << ep;
+    EXPECT_EQ(flow.hardeningModulus(ep), 0.0) << ep;
+  }
+  flow.B = 0;
+  flow.n = 0.5;
+  EXPECT_EQ(flow.flowStress(0.3), sigmaY);
+  EXPECT_EQ(flow.hardeningModulus(1e-310), 0.0);
+  flow.B = 5;
+  EXPECT_EQ(flow.flowStress(0.25), sigmaY + 5 * 0.5);
+  EXPECT_EQ(flow.hardeningModulus(0.25), 5 * 0.5 / 0.5);
+}
+
 TEST(RadialReturn, LinearHardening) {
   FlowModel flow;
   flow.type = FlowModel::Type::IsotropicHardening;

@@ -17,18 +17,24 @@ struct FlowModel {
 
   static FlowModel fromInput(const PSNode& flowNode);
 
-  // For one particle (S = double) or a pack of them (Core/Math/Simd.h).
+  // For one particle (S = double) or a pack of them (Core/Math/Simd.h). With B = 0 or n = 0,
+  // johnson_cook is perfectly plastic (sigma_y = A + B, as eps_p^0 = 1): no power to take.
   template <class S>
   S flowStress(const S& ep) const {
     if (type == Type::IsotropicHardening) return S(sigmaY) + S(K) * ep;
+    if (perfectlyPlastic()) return S(A + B);
     return S(A) + S(B) * powOf(ep, n);
   }
   // d sigma_y / d eps_p.
   template <class S>
   S hardeningModulus(const S& ep) const {
     if (type == Type::IsotropicHardening) return S(K);
+    if (perfectlyPlastic()) return S(0.0);
     return select(ep > S(0.0), S(B * n) * powOf(ep, n - 1), S(0.0));
   }
+
+ private:
+  bool perfectlyPlastic() const { return B == 0 || n == 0; }
 };
 
 }  // namespace anode
