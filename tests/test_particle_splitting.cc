@@ -107,9 +107,9 @@ TEST(ParticleSplitting, ListsTheParentsInIndexOrderWithTheirChildrenAppendedSo) 
     EXPECT_EQ(splitStretchedParticles(p, unitGrid(), 2.0, {}, nextId),
               (std::vector<long>{1, 4, 5, 8}))
         << threads << " thread(s)";
-    ASSERT_EQ(p.count(), 21u);
+    EXPECT_EQ(p.count(), 21u);
     const double parents[4] = {1, 4, 5, 8};
-    for (size_t c = 0; c < 12; ++c) {
+    for (size_t c = 0; c < 12 && 9 + c < p.count(); ++c) {
       EXPECT_EQ(p.id[9 + c], static_cast<int64_t>(100 + c));
       EXPECT_EQ(p.velocity[9 + c].x(), parents[c / 3]) << "child " << c;
     }

@@ -421,11 +421,11 @@ void MPM::splitParticles() {
     // (its particles stay in ID order), whatever rank holds a parent.
     std::vector<int64_t> parents;
     const std::vector<int64_t> mine = stretchedParticleIds(p, grid_, flags_.stretchRatio);
-    for (const std::string& r : Communicator::allGather(std::string(
+    for (const std::string& ids : Communicator::allGather(std::string(
              reinterpret_cast<const char*>(mine.data()), mine.size() * sizeof(int64_t)))) {
       const size_t at = parents.size();
-      parents.resize(at + r.size() / sizeof(int64_t));
-      if (!r.empty()) std::memcpy(parents.data() + at, r.data(), r.size());
+      parents.resize(at + ids.size() / sizeof(int64_t));
+      if (!ids.empty()) std::memcpy(parents.data() + at, ids.data(), ids.size());
     }
     std::sort(parents.begin(), parents.end());
     const int64_t first = nextParticleId_;

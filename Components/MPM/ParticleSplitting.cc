@@ -81,11 +81,11 @@ std::vector<long> splitStretchedParticles(ParticleSet& p, const Grid& grid, doub
   const bool flux = !p.loadCurveID.empty();
   // The particles that split and along which edge. Each thread lists those of its own block of
   // indices, and the blocks follow in index order. Most steps list none.
-  const int threads = omp_get_max_threads();
-  std::vector<std::vector<std::pair<long, int>>> found(threads);
-#pragma omp parallel num_threads(threads)
+  std::vector<std::vector<std::pair<long, int>>> found(omp_get_max_threads());
+#pragma omp parallel
   {
-    const int t = omp_get_thread_num();
+    // The team may be smaller than asked for (OMP_DYNAMIC, a thread limit): its size splits.
+    const int t = omp_get_thread_num(), threads = omp_get_num_threads();
     for (long i = n * t / threads; i < n * (t + 1) / threads; ++i)
       if (const int axis = splitAxisOf(p, i, grid, ratio); axis >= 0)
         found[t].emplace_back(i, axis);
