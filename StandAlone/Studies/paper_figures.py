@@ -108,18 +108,46 @@ def figure_xml(figure, runs):
     return "\n".join(lines) + "\n"
 
 
+def panels_reached(figure, runs, finished):
+    """The panels of `figure` that can be drawn now, in whole rows, and the runs still going. Once
+    its runs have finished: all of them. Before, for rows at fixed times (Fig. 4 waits days for
+    Density_2.33e18): the rows up to the last time every run has written an output for."""
+    going = sorted({run for run, _, _ in figure["panels"]} - set(finished))
+    if not going:
+        return figure["panels"], going
+
+    def reached(run, when):
+        if run in finished:
+            return True
+        run_dir = os.path.join(runs, run)
+        return isinstance(when, (int, float)) and os.path.exists(os.path.join(run_dir, "particles.pvd")) \
+            and paper_numbers.outputs(run_dir)[-1][0] >= when
+
+    columns, panels = figure["columns"], []
+    for first in range(0, len(figure["panels"]), columns):
+        row = figure["panels"][first:first + columns]
+        if not all(reached(run, when) for run, when, _ in row):
+            break
+        panels += row
+    return panels, going
+
+
 def make_all(args, runs, finished):
-    """Draws every figure whose runs have all finished and writes numbers.md; returns the files."""
+    """Draws every figure whose runs have finished, or the rows its runs still going have reached,
+    and writes numbers.md; returns the files."""
     out = os.path.join(args.out, "figures")
     os.makedirs(out, exist_ok=True)
     made = []
     for figure in FIGURES:
-        needs = sorted({run for run, _, _ in figure["panels"]})
-        missing = [run for run in needs if run not in finished]
         name = figure["name"]
-        if missing:
-            print("%-22s not drawn: waiting for %s" % (name, ", ".join(missing)), flush=True)
+        panels, going = panels_reached(figure, runs, finished)
+        if not panels:
+            print("%-22s not drawn: waiting for %s" % (name, ", ".join(going)), flush=True)
             continue
+        if going:
+            rows, all_rows = len(panels) // figure["columns"], len(figure["panels"]) // figure["columns"]
+            figure = dict(figure, panels=panels, title="%s; so far %d of %d rows (%s still running)" % (
+                figure["title"], rows, all_rows, ", ".join(going)))
         spec = os.path.join(out, name + ".xml")
         with open(spec, "w") as f:
             f.write(figure_xml(figure, runs))

@@ -1,7 +1,8 @@
 """The runner (reproduce_paper.py): a session killed outright is counted from its last heartbeat
 when the run is continued, a running run's heartbeat is rewritten, and a run carried to another
 machine (paper_carry.py) comes back with its checkpoint, wall time and the outputs its figures
-show."""
+show. A figure whose run is still going is drawn as far as that run has reached
+(paper_figures.panels_reached)."""
 import os
 import subprocess
 import sys
@@ -11,6 +12,7 @@ import unittest
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "StandAlone", "Studies"))
 import paper_carry  # noqa: E402
+import paper_figures  # noqa: E402
 import paper_numbers  # noqa: E402
 import reproduce_paper  # noqa: E402
 
@@ -53,6 +55,36 @@ class WallTime(unittest.TestCase):
             self.assertGreaterEqual(len(beats), 2)
             self.assertEqual(beats, sorted(beats))
             self.assertFalse(os.path.exists(run_dir + ".wall.running"))
+
+
+def write_pvd(run_dir, times):
+    os.makedirs(run_dir, exist_ok=True)
+    with open(os.path.join(run_dir, "particles.pvd"), "w") as f:
+        f.write('<VTKFile type="Collection"><Collection>%s</Collection></VTKFile>\n' % "".join(
+            '<DataSet timestep="%.17g" file="particles/step_%06d.vtu"/>' % (t, k) for k, t in enumerate(times)))
+
+
+class PartialFigure(unittest.TestCase):
+    FIGURE = dict(columns=2, panels=[(run, t, run) for t in (4e6, 16e6, 28e6) for run in ("Going", "Done")])
+
+    def panels(self, going_times):
+        with tempfile.TemporaryDirectory() as runs:
+            write_pvd(os.path.join(runs, "Going"), going_times)
+            return paper_figures.panels_reached(self.FIGURE, runs, ["Done"])
+
+    def test_the_rows_a_run_still_going_has_reached_are_drawn_whole(self):
+        self.assertEqual(self.panels([0, 1e6, 2e6]), ([], ["Going"]))
+        self.assertEqual(self.panels([0, 3e6, 3.99999e6]), ([], ["Going"]))
+        self.assertEqual(self.panels([0, 4.0000021e6]), (self.FIGURE["panels"][:2], ["Going"]))
+        self.assertEqual(self.panels([0, 4e6, 8e6, 16e6, 20e6]), (self.FIGURE["panels"][:4], ["Going"]))
+
+    def test_a_figure_of_finished_runs_is_drawn_whole_and_one_of_states_waits(self):
+        with tempfile.TemporaryDirectory() as runs:
+            self.assertEqual(paper_figures.panels_reached(self.FIGURE, runs, ["Going", "Done"]),
+                             (self.FIGURE["panels"], []))
+            at_states = dict(columns=1, panels=[("Going", ("lithium", 0.5), ""), ("Going", ("end",), "")])
+            write_pvd(os.path.join(runs, "Going"), [0, 1e9])
+            self.assertEqual(paper_figures.panels_reached(at_states, runs, []), ([], ["Going"]))
 
 
 class Carry(unittest.TestCase):
