@@ -119,9 +119,8 @@ def panels_reached(figure, runs, finished):
     def reached(run, when):
         if run in finished:
             return True
-        run_dir = os.path.join(runs, run)
-        return isinstance(when, (int, float)) and os.path.exists(os.path.join(run_dir, "particles.pvd")) \
-            and paper_numbers.outputs(run_dir)[-1][0] >= when
+        last = paper_numbers.last_output_time(os.path.join(runs, run))
+        return isinstance(when, (int, float)) and last is not None and last >= when
 
     columns, panels = figure["columns"], []
     for first in range(0, len(figure["panels"]), columns):

@@ -38,6 +38,13 @@ def outputs(run_dir):
     return [(float(e.get("timestep")), os.path.join(run_dir, e.get("file"))) for e in entries]
 
 
+def last_output_time(run_dir):
+    """The time of the run's newest output, or None before its first."""
+    if not os.path.exists(os.path.join(run_dir, "particles.pvd")):
+        return None
+    return outputs(run_dir)[-1][0]
+
+
 def read_output(run_dir, time, arrays):
     """The arrays (and "time", "points") of the output nearest to `time`, as Python lists."""
     from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridReader
@@ -244,7 +251,7 @@ def runs_table(runs, finished):
 def density_section(runs, pair, times, unit_scale, unit, finished):
     """The pair at each figure time both runs have reached: a run still going (days for
     Density_2.33e18) is compared up to its last output, and the times after it wait."""
-    reached = {run: outputs(os.path.join(runs, run))[-1][0] for run in pair}
+    reached = {run: last_output_time(os.path.join(runs, run)) for run in pair}
     rows, waiting = [], []
     for t in times:
         if any(reached[run] < t for run in pair):
