@@ -41,20 +41,32 @@ double ProgressReporter::fractionDone(long step, double time) const {
   return std::min(done, 1.0);
 }
 
+ProgressReporter::Estimate ProgressReporter::estimate(double seconds, double done,
+                                                      double particleSteps) {
+  const Sample now{seconds, done, particleSteps};
+  if (seconds - newer_.seconds >= kWindowSeconds) {
+    older_ = newer_;
+    newer_ = now;
+  }
+  const double span = seconds - older_.seconds;
+  const double progressed = done - older_.done;
+  return {span > 0 ? (particleSteps - older_.particleSteps) / span : 0.0,
+          progressed > 0 ? span * (1 - done) / progressed : -1.0};
+}
+
 void ProgressReporter::update(long step, double time, double dt, const char* limit,
                               double particleSteps, bool force) {
   const auto now = std::chrono::steady_clock::now();
   const double sinceLast = std::chrono::duration<double>(now - last_).count();
   if (!force && sinceLast < (terminal_ ? 0.25 : 10.0)) return;
   last_ = now;
-  const double elapsed = std::chrono::duration<double>(now - start_).count();
-  const double done = fractionDone(step, time);
-  const double eta = done > 0 ? elapsed * (1 - done) / done : -1;
+  const Estimate pace = estimate(std::chrono::duration<double>(now - start_).count(),
+                                 fractionDone(step, time), particleSteps);
   char line[256];
   std::snprintf(line, sizeof line,
                 "step %ld  t = %.4e / %.4e  dt = %.3e (%s)  %.3e particle-steps/s  ETA %s", step,
-                time, maxTime_, dt, limit, elapsed > 0 ? particleSteps / elapsed : 0.0,
-                duration(eta).c_str());
+                time, maxTime_, dt, limit, pace.particleStepsPerSecond,
+                duration(pace.secondsLeft).c_str());
   if (terminal_) {
     std::fprintf(stderr, "\r%-100s", line);
     pending_ = true;

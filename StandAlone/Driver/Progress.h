@@ -19,12 +19,28 @@ class ProgressReporter {
   // The fraction of the run done at (step, time), which the ETA extrapolates.
   double fractionDone(long step, double time) const;
 
+  // The speed of the last one to two minutes (of the whole run in its first minute), so that the
+  // line follows a machine whose load changes: particle-steps per second, and the seconds left
+  // at the pace the fraction done has moved meanwhile (negative: not known yet).
+  struct Estimate {
+    double particleStepsPerSecond, secondsLeft;
+  };
+  // At `seconds` after the start, with the fraction `done` and `particleSteps` of this process.
+  Estimate estimate(double seconds, double done, double particleSteps);
+
  private:
+  struct Sample {
+    double seconds, done, particleSteps;
+  };
+  static constexpr double kWindowSeconds = 60;
+
   double startTime_, maxTime_;
   long startStep_, maxSteps_;
   bool terminal_;
   bool pending_ = false;
   std::chrono::steady_clock::time_point start_, last_;
+  // The window's start (older_) and the sample that becomes it a minute later (newer_).
+  Sample older_{0, 0, 0}, newer_{0, 0, 0};
 };
 
 }  // namespace anode
