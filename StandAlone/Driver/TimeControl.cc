@@ -42,7 +42,10 @@ TimeControl TimeControl::fromInput(const PSNode& time) {
   tc.maxWallTime = time.get<double>("max_wall_time", 0.0);
   if (const PSNode clamp = time.child("clamp_time_to_output"))
     if (clamp.value<bool>()) clamp.unsupported("<clamp_time_to_output>true");
-  time.acceptInert("override_restart_delt");  // no restarts yet
+  // A restart goes on with the checkpoint's dt; 0, Uintah's default, asks for nothing else.
+  if (const PSNode restartDelt = time.child("override_restart_delt"))
+    if (restartDelt.value<double>() != 0)
+      restartDelt.unsupported("<override_restart_delt> other than 0 (a restart keeps its dt)");
   return tc;
 }
 
