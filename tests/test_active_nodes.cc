@@ -45,13 +45,6 @@ TEST(ActiveNodes, NodesTouchedSpanTheParticlesWeights) {
   EXPECT_EQ(none.begin, none.end);
   EXPECT_TRUE(all.contains(7) && all.contains(90));
   EXPECT_FALSE(all.contains(6) || all.contains(91));
-
-  const NodeRange ranges[] = {{20, 30}, {}, {5, 8}, {29, 40}};
-  const NodeRange span = spanOf(ranges, ranges + 4);
-  EXPECT_EQ(span.begin, 5);
-  EXPECT_EQ(span.end, 40);
-  const NodeRange empty = spanOf(ranges + 1, ranges + 2);
-  EXPECT_EQ(empty.begin, empty.end);
 }
 
 TEST(ActiveNodes, RowsHoldExactlyTheBoxNodes) {

@@ -1,5 +1,5 @@
 // The binary section of a VTK XML file: "appended" data, raw (not base64), zlib-compressed in
-// VTK's block layout. Every array is cut into blocks of `blockSize` bytes; the blocks are
+// VTK's block layout. Every array is cut into blocks of `kAppendedBlockSize` bytes; the blocks are
 // compressed a batch at a time on the run's OpenMP threads (output is not one serial zlib stream:
 // docs/performance.md, "Output") and written as each batch is done, so the memory held is one
 // batch, not the file. The bytes do not depend on the thread count.

@@ -17,13 +17,6 @@ NodeRange nodesTouched(const InterpolationWeights& W, long first, long last) {
   return high < 0 ? NodeRange{} : NodeRange{low, high + 1};
 }
 
-NodeRange spanOf(const NodeRange* first, const NodeRange* last) {
-  NodeRange span{std::numeric_limits<long>::max(), 0};
-  for (const NodeRange* r = first; r != last; ++r)
-    if (r->begin < r->end) span = {std::min(span.begin, r->begin), std::max(span.end, r->end)};
-  return span.begin < span.end ? span : NodeRange{};
-}
-
 ActiveNodes ActiveNodes::of(const Grid& g, const NodeBox& box) {
   ActiveNodes a;
   a.box = box.intersection(NodeBox{g.firstNode(), g.lastNode()});

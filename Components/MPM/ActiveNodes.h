@@ -23,8 +23,6 @@ struct NodeRange {
 
 // The nodes the weights of particles [first, last) touch (empty when they touch none).
 NodeRange nodesTouched(const InterpolationWeights& W, long first, long last);
-// The smallest range holding every non-empty one of [first, last).
-NodeRange spanOf(const NodeRange* first, const NodeRange* last);
 
 // The smallest box holding both (either may be empty).
 inline NodeBox hullOf(const NodeBox& a, const NodeBox& b) {

@@ -74,7 +74,6 @@ class MPM {
 
   // The nodes this rank stores (the whole grid on one rank; its window in a distributed run).
   const Grid& grid() const { return grid_; }
-  const Grid& wholeGrid() const { return whole_; }
   const Decomposition& decomposition() const { return decomposition_; }
   int ghostWidth() const { return ghostWidth_; }
   // How the last step changed material m's particles on this rank, for per-particle histories

@@ -6,7 +6,6 @@
 
 #include "Components/MPM/MPM.h"
 #include "Components/MPM/ParticleMigration.h"
-#include "Core/Parallel/Communicator.h"
 
 namespace anode {
 

@@ -75,10 +75,6 @@ void Communicator::stop() {
   started = false;
 }
 
-bool Communicator::active() {
-  return started;
-}
-
 void Communicator::abort(int code) {
   if (started) MPI_Abort(MPI_COMM_WORLD, code);
   std::exit(code);

@@ -17,7 +17,6 @@ class Communicator {
   // by an MPI launcher; otherwise does nothing. `stop` ends MPI if `start` began it.
   static void start(int* argc, char*** argv);
   static void stop();
-  static bool active();
   // Ends every rank of the run with `code` (a rank that cannot reach the others' next collective).
   [[noreturn]] static void abort(int code);
 

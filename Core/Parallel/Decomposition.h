@@ -15,9 +15,6 @@ namespace anode {
 // Cells [lower, upper) in grid index space.
 struct CellBox {
   Vec3i lower = Vec3i::Zero(), upper = Vec3i::Zero();
-  bool contains(const Vec3i& cell) const {
-    return (cell.array() >= lower.array()).all() && (cell.array() < upper.array()).all();
-  }
   long cellCount() const { return static_cast<long>((upper - lower).cast<long>().prod()); }
 };
 

@@ -15,11 +15,7 @@ namespace anode {
 class StoppedOnAnotherRank : public SimulationError {
  public:
   explicit StoppedOnAnotherRank(int rank)
-      : SimulationError("stopped by rank " + std::to_string(rank)), rank_(rank) {}
-  int rank() const { return rank_; }
-
- private:
-  int rank_;
+      : SimulationError("stopped by rank " + std::to_string(rank)) {}
 };
 
 // Runs `phase`; when it throws a SimulationError on any rank, every rank throws after it: the

@@ -45,7 +45,6 @@ class Simulation {
 
   MPM& mpm() { return mpm_; }
   const TimeControl& timeControl() const { return time_; }
-  const DataArchiver& archiver() const { return archiver_; }
   const SceneOutput& scenes() const { return scenes_; }
   double time() const { return t_; }
   long step() const { return step_; }

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "Components/MPM/ReactiveFlow/ScalarFluxBC.h"
+#include "Components/MPM/ReactiveFlow/FluxRestriction.h"
 #include "StandAlone/Studies/StudyInput.h"
 #include "StandAlone/Studies/VerificationRun.h"
 

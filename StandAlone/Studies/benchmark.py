@@ -14,7 +14,6 @@ slope of peak memory against the particle count) to its report.
 import argparse
 import os
 import re
-import statistics
 import subprocess
 import sys
 import tempfile

@@ -141,14 +141,11 @@ void ExternalScalarFlux::updateAutoCycle(const std::vector<MPMMaterial>& materia
     n += mat.particles.count();
   }
   // Over every rank's particles (the identity on one rank).
-  double count = static_cast<double>(n);
-  Communicator::sum(&count, 1);
+  const double count = Communicator::sum(static_cast<double>(n));
   if (count == 0) return;
-  Communicator::sum(&sum, 1);
-  Communicator::minimum(&lo, 1);
-  Communicator::maximum(&hi, 1);
-  n = static_cast<size_t>(count);
-  const double mean = sum / n;
+  const double mean = Communicator::sum(sum) / count;
+  lo = Communicator::minimum(lo);
+  hi = Communicator::maximum(hi);
   if (sign_ > 0 && (flags.autoCycleUseMinMax ? lo : mean) > flags.autoCycleMax) sign_ = -1;
   if (sign_ < 0 && (flags.autoCycleUseMinMax ? hi : mean) < flags.autoCycleMin) sign_ = 1;
 }

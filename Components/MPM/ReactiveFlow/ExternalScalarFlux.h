@@ -20,7 +20,6 @@ class ExternalScalarFlux {
   ExternalScalarFlux() = default;
   explicit ExternalScalarFlux(std::vector<ScalarFluxBC> bcs) : bcs_(std::move(bcs)) {}
 
-  bool empty() const { return bcs_.empty(); }
   const std::vector<ScalarFluxBC>& bcs() const { return bcs_; }
 
   // What one BC flagged in one material (the setup report).

@@ -8,7 +8,6 @@
 #include <memory>
 #include <vector>
 
-#include "Components/MPM/ReactiveFlow/FluxRestriction.h"
 #include "Core/Geometry/GeometryPiece.h"
 #include "Core/Grid/Grid.h"
 #include "Core/Util/LoadCurve.h"
