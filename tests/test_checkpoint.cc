@@ -423,6 +423,9 @@ TEST(Restart, KilledRunsLeaveCompleteFilesAndContinueToTheSameResult) {
                                            std::max(1200, static_cast<int>(wholeRun.count() / 10)));
   const int kills = numberOfKills();
   int duringWrites = 0;
+  // Each kill before the first checkpoint doubles the next delay: under load, the fresh starts
+  // could otherwise all end before step 3 and leave no checkpoint to resume from.
+  int freshStarts = 0;
   for (int k = 0; k < kills; ++k) {
     const bool resume = !listCheckpoints(run).empty();
     const std::vector<std::string> args =
@@ -430,7 +433,8 @@ TEST(Restart, KilledRunsLeaveCompleteFilesAndContinueToTheSameResult) {
             ? std::vector<std::string>{"--threads", "2", "--max-timesteps", "120", "-restart", run}
             : std::vector<std::string>{"--threads", "2", "--max-timesteps", "120",
                                        "-o",        run, input.string()};
-    runAndKill(args, std::chrono::milliseconds(delay(random)), s.dir / "kill.log");
+    const int scale = resume ? 1 : 1 << freshStarts++;
+    runAndKill(args, std::chrono::milliseconds(scale * delay(random)), s.dir / "kill.log");
     if (!fs::exists(run)) continue;  // killed before it made its directory (a loaded machine)
     if (temporaryFiles(run) > 0) ++duringWrites;
     expectEveryFileComplete(run, 12660);
