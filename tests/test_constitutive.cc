@@ -2,10 +2,14 @@
 // (perfect plasticity and linear hardening), and objectivity under rotation.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
+#include <string>
 
 #include "Components/MPM/Materials/ConstitutiveModels/RFElasticPlastic.h"
 #include "Core/Math/PolarDecomposition.h"
+#include "Core/ProblemSpec/ProblemSpec.h"
+#include "Core/Util/Errors.h"
 
 namespace anode {
 namespace {
@@ -81,6 +85,35 @@ TEST(FlowModel, JohnsonCookWithoutBOrNIsPerfectlyPlastic) {
   flow.B = 5;
   EXPECT_EQ(flow.flowStress(0.25), sigmaY + 5 * 0.5);
   EXPECT_EQ(flow.hardeningModulus(0.25), 5 * 0.5 / 0.5);
+}
+
+// Reads <flow_model type="johnson_cook"> with A = 100, B = 50, n = 1, m = 0.5 and `extra` tags.
+FlowModel johnsonCook(const std::string& extra) {
+  const auto spec = ProblemSpec::fromText(
+      "<Uintah_specification><flow_model type=\"johnson_cook\"><A>100</A><B>50</B><C>0</C>"
+      "<n>1</n><m>0.5</m>" +
+          extra + "</flow_model></Uintah_specification>",
+      "flow.ups");
+  return FlowModel::fromInput(spec->root().requireChild("flow_model"));
+}
+
+TEST(FlowModel, JohnsonCookTemperatureFactorAtUintahsFixed298K) {
+  // Defaults T_r = 298, T_m = 1793: T* = 0, factor 1, exactly.
+  EXPECT_EQ(johnsonCook("").flowStress(0.2), 100 + 50 * 0.2);
+  // T_r = 294, T_m = 1794: T* = 4 / 1500, factor 1 - sqrt(T*) (m = 0.5), on A and B alike.
+  const double soft = 1 - std::sqrt(4.0 / 1500.0);
+  const FlowModel cooled = johnsonCook("<T_r>294</T_r><T_m>1794</T_m>");
+  EXPECT_NEAR(cooled.flowStress(0.2), (100 + 50 * 0.2) * soft, 1e-12 * 110);
+  EXPECT_NEAR(cooled.hardeningModulus(0.2), 50 * soft, 1e-12 * 50);
+  // T_r = 300 > 298: T* = -2 / 1494 < 0, factor 1 - T*.
+  EXPECT_NEAR(johnsonCook("<T_r>300</T_r><T_m>1794</T_m>").flowStress(0.0),
+              100 * (1 + 2.0 / 1494.0), 1e-12 * 100);
+  // A nonzero epdot_0 changes nothing (zero strain rate); 0 is Uintah's 0/0.
+  EXPECT_EQ(johnsonCook("<epdot_0>1e-3</epdot_0>").flowStress(0.2), 100 + 50 * 0.2);
+  EXPECT_THROW(johnsonCook("<epdot_0>0</epdot_0>"), InputError);
+  // Melted at 298 K (zero yield stress in Uintah), or T_r not below T_m: errors.
+  EXPECT_THROW(johnsonCook("<T_m>298</T_m>"), InputError);
+  EXPECT_THROW(johnsonCook("<T_r>1800</T_r><T_m>1700</T_m>"), InputError);
 }
 
 TEST(RadialReturn, LinearHardening) {

@@ -5,7 +5,9 @@
 #include <omp.h>
 
 #include <sstream>
+#include <string>
 
+#include "Core/Util/Errors.h"
 #include "StandAlone/Driver/Simulation.h"
 
 namespace anode {
@@ -158,6 +160,30 @@ TEST(Substrate, ConcentrationComputedWhereSomethingCanChangeIt) {
                                          "var=\"Dirichlet\"><value>0.5</value></BCType></Face>"),
                        "dirichlet.ups", o);
   EXPECT_TRUE(dirichlet.mpm().diffusion()->computesConcentration(1));
+}
+
+// Uintah gives the common concentration only to the materials <materials> lists: a list of
+// some of them is unsupported, a list of all is the same as none.
+TEST(Substrate, CommonInterfaceBetweenSomeMaterialsIsUnsupported) {
+  omp_set_num_threads(1);
+  RunOptions o;
+  o.progress = false;
+  const auto common = [](const std::string& list) {
+    return pillarOnSubstrate("", "<diffusion_interface><type>common</type><materials>" + list +
+                                     "</materials></diffusion_interface>");
+  };
+  Simulation all(common("[1, 0]"), "all.ups", o);
+  EXPECT_TRUE(all.mpm().diffusion()->computesConcentration(1));
+  for (const char* some : {"[0]", "[1, 1]"}) {
+    try {
+      Simulation sim(common(some), "some.ups", o);
+      ADD_FAILURE() << some << ": expected an InputError";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("only some of the materials"), std::string::npos)
+          << e.what();
+    }
+  }
+  EXPECT_THROW(Simulation(common("[0, 2]"), "beyond.ups", o), InputError);
 }
 
 }  // namespace

@@ -85,7 +85,8 @@ std::vector<FaceBC> readFaceBCs(const PSNode& gridNode, int numMaterials, bool d
       } else if (label == "Velocity" && var == "Neumann") {
         bc.markSubtreeUsed();  // Uintah's MPM ignores velocity Neumann conditions
       } else if (label == "Temperature") {
-        bc.markSubtreeUsed();  // no heat conduction in this code; Uintah's MPM ignores it too
+        bc.markSubtreeUsed();  // sets only Uintah's nodal temperature, which isothermal MPM never
+                               // reads
       } else {
         bc.fail("unknown boundary condition label=\"" + label + "\" var=\"" + var +
                 "\"; accepted: Symmetric, Velocity (Dirichlet), SD-Type, Temperature (ignored)");

@@ -33,9 +33,9 @@ void addGeomObject(const PSNode& geom, const Grid& grid, const MPMFlags& flags, 
   if ((res.array() < 1).any())
     resNode.fail("<res> needs at least one particle per cell in each direction");
   const Vec3 velocity = geom.require<Vec3>("velocity");
-  // Temperature, colour and volume fraction change nothing in isothermal single-field MPM;
-  // concentration matters only with diffusion.
-  for (const char* inert : {"temperature", "color", "volumeFraction"}) geom.acceptInert(inert);
+  // Temperature and colour change nothing in isothermal single-field MPM; concentration matters
+  // only with diffusion.
+  for (const char* inert : {"temperature", "color"}) geom.acceptInert(inert);
   double c0 = 0;
   if (flags.doScalarDiffusion) {
     c0 = geom.require<double>("concentration");
@@ -65,6 +65,13 @@ void addGeomObject(const PSNode& geom, const Grid& grid, const MPMFlags& flags, 
   const std::string beyond = " particles, beyond " + describeMemoryBudget() + " at about " +
                              std::to_string(static_cast<long>(bytesPerParticle(flags))) +
                              " bytes per particle";
+  // Uintah scales a filled particle's mass by the volume fraction (-1, the default, means 1); a
+  // smooth piece's particles get rho V whatever it says.
+  if (const PSNode fraction = geom.child("volumeFraction")) {
+    const double f = fraction.value<double>();
+    if (!smooth && f != -1 && f != 1)
+      fraction.unsupported("<volumeFraction> other than 1 (Uintah scales the particle mass by it)");
+  }
   if (smooth) {
     const double n = smooth->particleCount(grid, limit);
     if (n > limit)
@@ -155,9 +162,10 @@ MPMMaterial MPMMaterial::fromInput(const PSNode& node, const Grid& grid, const M
   m.name = node.attribute("name").value_or("");
   m.density = node.require<double>("density");
   if (!(m.density > 0)) node.requireChild("density").fail("<density> must be positive");
-  for (const char* inert : {"thermal_conductivity", "specific_heat", "melt_temp", "room_temp",
-                            "C_p", "do_conc_reduction"})
+  for (const char* inert :
+       {"thermal_conductivity", "specific_heat", "melt_temp", "room_temp", "C_p"})
     node.acceptInert(inert);
+  m.reducesConcentration = node.get<bool>("do_conc_reduction", false);
   if (flags.doScalarDiffusion)
     m.diffusion = createDiffusionModel(node.requireChild("diffusion_model"), maxTime);
   else

@@ -41,6 +41,8 @@ struct MaterialSeeds {
 struct MPMMaterial {
   std::string name;
   double density = 0;  // rho0; particle mass = rho0 * V0
+  // <do_conc_reduction>: its particles count in the concentration <do_auto_cycle_bc> watches.
+  bool reducesConcentration = false;
   std::unique_ptr<ConstitutiveModel> model;
   std::unique_ptr<ScalarDiffusionModel> diffusion;  // only with <do_scalar_diffusion>true
   ParticleSet particles;

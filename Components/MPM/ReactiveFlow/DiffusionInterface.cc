@@ -1,5 +1,9 @@
 #include "Components/MPM/ReactiveFlow/DiffusionInterface.h"
 
+#include <algorithm>
+#include <string>
+#include <vector>
+
 #include "Components/MPM/ActiveNodes.h"
 
 namespace anode {
@@ -17,7 +21,24 @@ DiffusionInterface DiffusionInterface::fromInput(const PSNode& mpmMaterials, boo
     iface.requireChild("type").fail("diffusion_interface type \"" + type +
                                     "\" is not supported; accepted: null, common");
   }
-  iface.acceptInert("materials");
+  // Uintah gives the common concentration only to the materials listed (no list: all).
+  const PSNode list = iface.child("materials");
+  if (type != "common" || !list) {
+    iface.acceptInert("materials");
+    return interface;
+  }
+  std::vector<bool> named(materials, false);
+  for (int m : list.value<std::vector<int>>()) {
+    if (m < 0 || static_cast<size_t>(m) >= materials)
+      list.fail("<materials> names material " + std::to_string(m) + ", but there are " +
+                std::to_string(materials) + " material(s)");
+    named[m] = true;
+  }
+  if (std::find(named.begin(), named.end(), false) != named.end())
+    list.unsupported(
+        "a common diffusion interface between only some of the materials (<materials> "
+        "must name all " +
+        std::to_string(materials) + " or be left out)");
   return interface;
 }
 

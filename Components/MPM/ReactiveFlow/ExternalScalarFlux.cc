@@ -127,11 +127,11 @@ double ExternalScalarFlux::stableTimestep(const std::vector<MPMMaterial>& materi
 
 void ExternalScalarFlux::updateAutoCycle(const std::vector<MPMMaterial>& materials,
                                          const MPMFlags& flags) {
-  // Mean (or min and max) normalised concentration of the particles that receive flux.
+  // Mean (or min and max) normalised concentration of the materials with <do_conc_reduction>.
   double sum = 0, lo = std::numeric_limits<double>::infinity(), hi = -lo;
   size_t n = 0;
   for (const MPMMaterial& mat : materials) {
-    if (mat.particles.loadCurveID.empty()) continue;
+    if (!mat.reducesConcentration) continue;
     const double cmax = mat.diffusion->maxConcentration;
     for (double c : mat.particles.concentration) {
       sum += c / cmax;

@@ -44,8 +44,8 @@ class ExternalScalarFlux {
   // the root (the emptiest above the mirrored root for an outflow), as every particle's source
   // is at most R(c) times the largest rate; over all ranks, infinity without flux. Collective.
   double stableTimestep(const std::vector<MPMMaterial>& materials) const;
-  // <do_auto_cycle_bc>: flips the sign of every flux when the concentration of the particles
-  // that receive flux crosses the thresholds.
+  // <do_auto_cycle_bc>: flips the sign of every flux when the concentration of the materials
+  // with <do_conc_reduction> crosses the thresholds.
   void updateAutoCycle(const std::vector<MPMMaterial>& materials, const MPMFlags& flags);
 
   void saveState(BinaryWriter& out) const;

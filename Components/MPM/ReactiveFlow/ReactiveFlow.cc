@@ -73,6 +73,13 @@ void ReactiveFlow::initialize(const PSNode& root, const Grid& grid,
       s << " (their particle faces)";
     setupReport_.push_back(s.str());
   }
+  if (flags_.autoCycle && std::none_of(materials.begin(), materials.end(),
+                                       [](const auto& mat) { return mat.reducesConcentration; }))
+    root.requireChild("MPM")
+        .requireChild("do_auto_cycle_bc")
+        .fail(
+            "<do_auto_cycle_bc>true watches the concentration of the materials with "
+            "<do_conc_reduction>true, and none has it (Uintah then never reverses the flux)");
   for (const MPMMaterial& mat : materials) {
     receivesFlux_.push_back(!mat.particles.externalScalarFlux.empty());
     cmax_.push_back(mat.diffusion->maxConcentration);

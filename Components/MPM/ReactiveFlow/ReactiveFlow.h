@@ -27,10 +27,6 @@
 
 namespace anode {
 
-// A concentration may leave [min, max] by this much (relative to max - min) before the run is
-// stopped: round-off of the explicit update, never a clamp.
-constexpr double kConcentrationTolerance = 1e-6;
-
 class ReactiveFlow {
  public:
   // Reads <diffusion_interface> and <PhysicalBC><MPM><scalar_flux>.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 namespace anode {
 
@@ -192,9 +193,17 @@ std::unique_ptr<ScalarDiffusionModel> createDiffusionModel(const PSNode& node, d
   if (model->minConcentration >= model->maxConcentration)
     node.requireChild("min_concentration")
         .fail("<min_concentration> must be below <max_concentration>");
-  // conc_tolerance only shapes Uintah's clamp, which this code does not apply; the initial
-  // concentration comes from <geom_object><concentration> (Uintah never applies this one).
-  for (const char* inert : {"conc_tolerance", "initial_concentration"}) node.acceptInert(inert);
+  // Uintah clamps c to [min + conc_tolerance, max - conc_tolerance] after every step; this code
+  // never clamps (docs/differences-from-uintah.md), which only a margin within the range
+  // diagnostic's tolerance leaves unchanged.
+  if (const PSNode tol = node.child("conc_tolerance"))
+    if (tol.value<double>() >
+        kConcentrationTolerance * (model->maxConcentration - model->minConcentration))
+      tol.unsupported("<conc_tolerance> above " + std::to_string(kConcentrationTolerance) +
+                      " of the concentration range (Uintah clamps c that far inside it)");
+  // The initial concentration comes from <geom_object><concentration>; Uintah never applies
+  // this one.
+  node.acceptInert("initial_concentration");
   if (const PSNode cond = node.child("conductivity_equation"))
     cond.unsupported("<conductivity_equation> (Gauss solver)");
   return model;

@@ -36,6 +36,10 @@ class ScalarDiffusionModel {
   std::string type;
 };
 
+// A concentration may leave [min, max] by this much (relative to max - min) before the run is
+// stopped: round-off of the explicit update, never a clamp.
+constexpr double kConcentrationTolerance = 1e-6;
+
 // Factory keyed by type=: jg, constant_rate, non_linear1, cubic. `maxTime` bounds diff_curve.
 std::unique_ptr<ScalarDiffusionModel> createDiffusionModel(const PSNode& node, double maxTime);
 

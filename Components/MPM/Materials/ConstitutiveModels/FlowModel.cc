@@ -1,5 +1,8 @@
 #include "Components/MPM/Materials/ConstitutiveModels/FlowModel.h"
 
+#include <cmath>
+#include <string>
+
 namespace anode {
 
 namespace {
@@ -8,6 +11,22 @@ double nonNegative(const PSNode& node, const char* tag) {
   const double v = node.require<double>(tag);
   if (v < 0) node.requireChild(tag).fail("<" + std::string(tag) + "> must be >= 0");
   return v;
+}
+
+// Johnson-Cook's temperature factor at the fixed 298 K of Uintah's rf_elastic_plastic:
+// T* = (298 - T_r) / (T_m - T_r); 1 - T*^m for T* >= 0, 1 - T* below (room temperature T_r
+// above 298 hardens). The defaults T_r = 298, T_m = 1793 give T* = 0 and a factor of 1.
+double temperatureFactor(const PSNode& flow, double m, double roomT, double meltT) {
+  const double T = 298.0;
+  if (!(m > 0))
+    flow.requireChild("m").fail("<m> must be positive (m = 0 gives zero yield stress in Uintah)");
+  if (!(meltT > T))
+    flow.requireChild("T_m").fail(
+        "<T_m> must be above 298 K, the temperature of rf_elastic_plastic (at or below it "
+        "Uintah's material has melted: zero yield stress)");
+  if (!(roomT < meltT)) flow.requireChild("T_r").fail("<T_r> must be below <T_m>");
+  const double Tstar = (T - roomT) / (meltT - roomT);
+  return Tstar < 0 ? 1 - Tstar : 1 - std::pow(Tstar, m);
 }
 
 }  // namespace
@@ -26,14 +45,14 @@ FlowModel FlowModel::fromInput(const PSNode& flow) {
       flow.requireChild("C").unsupported(
           "strain-rate hardening <C> != 0 (Uintah's rf_elastic_plastic also evaluates it at zero "
           "rate, so it changes nothing there)");
-    // The temperature factor 1 - T*^m is 1 at room temperature, which this model keeps, provided
-    // m > 0 (Uintah evaluates 0^0 = 1 and gets a zero yield stress).
-    const double m = flow.require<double>("m");
-    if (!(m > 0))
-      flow.requireChild("m").fail("<m> must be positive (m = 0 gives zero yield stress in Uintah)");
-    flow.acceptInert("epdot_0");
-    flow.acceptInert("T_r");
-    flow.acceptInert("T_m");
+    // Uintah divides the (zero) strain rate by epdot_0; 0 makes the yield stress NaN there.
+    if (const PSNode rate = flow.child("epdot_0"))
+      if (rate.value<double>() == 0) rate.fail("<epdot_0> must not be 0 (Uintah divides by it)");
+    const double theta =
+        temperatureFactor(flow, flow.require<double>("m"), flow.get<double>("T_r", 298.0),
+                          flow.get<double>("T_m", 1793.0));
+    f.A *= theta;
+    f.B *= theta;
   } else if (type == "isotropic_hardening") {
     f.type = Type::IsotropicHardening;
     f.sigmaY = flow.require<double>("sigma_Y");

@@ -10,7 +10,8 @@ namespace anode {
 
 struct FlowModel {
   enum class Type { JohnsonCook, IsotropicHardening } type = Type::IsotropicHardening;
-  // johnson_cook at room temperature and zero rate: sigma_y = A + B*eps_p^n.
+  // johnson_cook at zero rate and 298 K: sigma_y = (A + B*eps_p^n) * (1 - T*^m); A and B hold
+  // the temperature factor (1 with the default T_r = 298 K).
   double A = 0, B = 0, n = 0;
   // isotropic_hardening: sigma_y = sigma_Y + K*eps_p (paper Eq. 35 with K the hardening modulus).
   double sigmaY = 0, K = 0;
