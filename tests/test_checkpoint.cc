@@ -22,6 +22,7 @@
 #include <sstream>
 #include <thread>
 
+#include "Core/ProblemSpec/ProblemSpec.h"
 #include "Core/Util/BinaryStream.h"
 #include "RunSus.h"
 #include "StandAlone/Driver/Checkpoint.h"
@@ -231,6 +232,17 @@ TEST(Restart, LeavesMissingOutputsOutOfTheSeries) {
   static const std::regex file(R"rx(file="([^"]+)")rx");
   for (std::sregex_iterator m(pvd.begin(), pvd.end(), file), end; m != end; ++m)
     EXPECT_TRUE(fs::exists(s.dir / "run" / (*m)[1].str())) << (*m)[1].str();
+}
+
+TEST(CheckpointSchedule, KeepsUintahsTwoWithoutCycle) {
+  const auto spec = ProblemSpec::fromText(
+      "<Uintah_specification><DataArchiver><checkpoint timestepInterval=\"5\"/></DataArchiver>"
+      "</Uintah_specification>",
+      "checkpoint.ups");
+  const CheckpointSchedule s =
+      CheckpointSchedule::fromInput(spec->root().requireChild("DataArchiver"));
+  EXPECT_EQ(s.cycle, 2);
+  EXPECT_EQ(s.stepInterval, 5);
 }
 
 TEST(Restart, WithoutACheckpointIsAnError) {

@@ -61,6 +61,25 @@ TEST(Contact, ExcludedMaterialKeepsItsVelocity) {
   EXPECT_EQ(f[0].velocity[1], Vec3(4, 0, 0));
 }
 
+// With three materials the other two share a velocity only where the excluded one has no mass
+// (Uintah's SingleVelContact), not everywhere.
+TEST(Contact, ExcludedMaterialStopsSharingWhereItHasMass) {
+  std::vector<GridFields> f = twoMaterials();
+  f.resize(3);
+  f[2].resize(3);
+  f[2].mass = {0, 5, 0};
+  f[1].mass = {1, 3, 0};  // material 1 now also at node 0
+  const Contact c = readContact(
+      "<contact><type>single_velocity</type><ExcludeMaterial>2</ExcludeMaterial></contact>", 3);
+  c.exchange(f, &GridFields::velocity, {NodeRange{0, 3}});
+  // Node 0 (no material 2): (2 (1,0,0) + 1 (9,9,9)) / 3 for materials 0 and 1.
+  EXPECT_EQ(f[0].velocity[0], Vec3(11, 9, 9) / 3);
+  EXPECT_EQ(f[1].velocity[0], Vec3(11, 9, 9) / 3);
+  // Node 1 (material 2 present): nothing shared.
+  EXPECT_EQ(f[0].velocity[1], Vec3(4, 0, 0));
+  EXPECT_EQ(f[1].velocity[1], Vec3(0, 8, 0));
+}
+
 TEST(Contact, ReadingChecksTheMaterials) {
   EXPECT_THROW(
       readContact("<contact><type>single_velocity</type><materials>[0,2]</materials></contact>", 2),

@@ -15,6 +15,8 @@
 #include <regex>
 #include <sstream>
 
+#include "Core/ProblemSpec/ProblemSpec.h"
+#include "StandAlone/Driver/DataArchiver.h"
 #include "StandAlone/Driver/OutputLabels.h"
 #include "StandAlone/Driver/Simulation.h"
 #include "TestFiles.h"
@@ -59,6 +61,22 @@ testing::BlockInput allLabels() {
       "<save label=\"p.velocity\"/><save label=\"p.displacement\"/><save "
       "label=\"p.plasticStrain\"/>";
   return in;
+}
+
+// <DataArchiver> intervals: optional, 0 (Uintah's default) or absent means no periodic output.
+TEST(DataArchiver, OutputIntervalsAreOptionalAsInUintah) {
+  const auto outputsAt = [](const std::string& tags, long step, double time) {
+    const auto spec = ProblemSpec::fromText(
+        "<Uintah_specification><DataArchiver>" + tags + "</DataArchiver></Uintah_specification>",
+        "archiver.ups");
+    return DataArchiver::fromInput(spec->root().requireChild("DataArchiver"), false)
+        .isOutputStep(step, time);
+  };
+  EXPECT_FALSE(outputsAt("", 5, 1e9));
+  EXPECT_FALSE(outputsAt("<outputInterval>0</outputInterval>", 5, 1e9));
+  EXPECT_FALSE(outputsAt("<outputTimestepInterval>0</outputTimestepInterval>", 5, 1e9));
+  EXPECT_TRUE(outputsAt("<outputTimestepInterval>5</outputTimestepInterval>", 5, 0));
+  EXPECT_TRUE(outputsAt("<outputInterval>0.5</outputInterval>", 1, 0.5));
 }
 
 TEST(Output, VtuFilesCarryTheSavedLabels) {

@@ -38,6 +38,17 @@ TEST(TimeControl, ClampsInUintahsOrder) {
   EXPECT_EQ(tc.nextTimestep(0.1, 0, 0.99), 1 - 0.99);         // ends at maxTime
 }
 
+TEST(TimeControl, InitialRangeEndsAtAnAbsoluteTimeAndZeroDeltInitCapsNothing) {
+  TimeControl tc = read("<delt_init>0.004</delt_init><initial_delt_range>0.2</initial_delt_range>");
+  tc.initTime = 0.5;  // a run starting after the range: no cap (Uintah: t + dt <= range)
+  EXPECT_EQ(tc.nextTimestep(0.1, 0, 0.6), 0.05);
+  tc.initTime = 0;
+  EXPECT_EQ(tc.nextTimestep(0.1, 0, 0.2), 0.004);
+  EXPECT_EQ(tc.nextTimestep(0.1, 0, 0.21), 0.05);
+  EXPECT_EQ(read("<delt_init>0</delt_init>").nextTimestep(0.02, 0, 0), 0.01);
+  EXPECT_THROW(read("<delt_init>-1</delt_init>"), InputError);
+}
+
 TEST(TimeControl, OverrideRestartDeltOnlyAsZero) {
   EXPECT_NO_THROW(read("<override_restart_delt>0</override_restart_delt>"));
   try {

@@ -355,10 +355,13 @@ void MPM::exchangeMomentumInterpolated() {
 void MPM::integrateGridMomentum(double dt) {
   for (GridFields& g : fields_) {
     forEachNode(active_.rows, [&](long k) {
+      // Below minimum_mass_for_acc only gravity accelerates a node, as in Uintah.
       Vec3 a = Vec3::Zero();
       if (g.mass[k] > flags_.minimumMassForAcc && g.mass[k] > 0)
         a = g.internalForce[k] / g.mass[k] + flags_.gravity -
             flags_.artificialDampingCoeff * g.velocity[k];
+      else if (g.mass[k] > 0)
+        a = flags_.gravity;
       g.velocityStar[k] = g.velocity[k] + a * dt;
     });
   }

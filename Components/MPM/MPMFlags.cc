@@ -1,5 +1,8 @@
 #include "Components/MPM/MPMFlags.h"
 
+#include <optional>
+#include <string>
+
 namespace anode {
 
 namespace {
@@ -51,7 +54,10 @@ void readRefinementCriteria(const PSNode& root, MPMFlags& f) {
       v.fail(std::string("<Variable value=...>: ") + e.what());
     }
     if (!(f.stretchRatio > 1)) v.fail("the stretchRatio must exceed 1");
-    const std::string matl = v.attribute("matl").value_or("all");
+    // Without matl= Uintah reads material 0 (and warns).
+    const std::optional<std::string> given = v.attribute("matl");
+    if (!given) v.warn("<Variable> without matl=: only material 0 splits, as in Uintah");
+    const std::string matl = given.value_or("0");
     if (matl == "all") {
       f.refineMaterial = -1;
     } else {
@@ -80,11 +86,15 @@ MPMFlags MPMFlags::fromInput(const PSNode& root) {
   root.acceptInert("Meta");
 
   MPMFlags f;
+  const PSNode mpm = root.child("MPM");
+  // Uintah reads gravity from <PhysicalConstants>, or without that block from <MPM>.
   if (const PSNode constants = root.child("PhysicalConstants")) {
     f.gravity = constants.require<Vec3>("gravity");
     constants.acceptInert("reference_pressure");
+    if (mpm) mpm.acceptInert("gravity");
+  } else if (mpm) {
+    f.gravity = mpm.get<Vec3>("gravity", Vec3::Zero());
   }
-  const PSNode mpm = root.child("MPM");
   if (!mpm) {
     readRefinementCriteria(root, f);  // no <refine_particles>: the thresholds are inert
     return f;

@@ -221,11 +221,14 @@ void PSNode::fail(const std::string& message) const {
   throw InputError(file(), line(), message);
 }
 
+void PSNode::warn(const std::string& message) const {
+  spec_->warn(file() + ":" + std::to_string(line()) + ": " + message);
+}
+
 void PSNode::unsupported(const std::string& message) const {
   if (!spec_->ignoreUnsupported())
     fail(message + " (not supported; --ignore-unsupported runs without it)");
-  spec_->warn(file() + ":" + std::to_string(line()) + ": " + message +
-              " (not supported; ignored because of --ignore-unsupported)");
+  warn(message + " (not supported; ignored because of --ignore-unsupported)");
 }
 
 template double PSNode::value<double>() const;

@@ -68,6 +68,8 @@ class PSNode {
   // A feature the input asks for but this code does not support: an error, or a warning when the
   // run was started with --ignore-unsupported.
   void unsupported(const std::string& message) const;
+  // A warning naming this element's line, printed before the run starts.
+  void warn(const std::string& message) const;
 
  private:
   const tinyxml2::XMLElement* e_ = nullptr;

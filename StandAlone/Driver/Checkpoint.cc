@@ -41,12 +41,11 @@ CheckpointSchedule CheckpointSchedule::fromInput(const PSNode& archiver) {
     byWallTime = true;
   }
   if (byWallTime && !node.attribute("interval") && !node.attribute("timestepInterval")) return s;
-  const std::optional<int> cycle = numberAttribute<int>(node, "cycle");
+  const int cycle = numberAttribute<int>(node, "cycle").value_or(2);  // Uintah's default
   s.interval = numberAttribute<double>(node, "interval");
   const std::optional<int> steps = numberAttribute<int>(node, "timestepInterval");
-  if (!cycle) node.fail("<checkpoint> needs cycle=\"N\": how many checkpoints to keep");
-  if (*cycle < 1)
-    node.fail("<checkpoint cycle=\"" + std::to_string(*cycle) + "\">: must be at least 1");
+  if (cycle < 1)
+    node.fail("<checkpoint cycle=\"" + std::to_string(cycle) + "\">: must be at least 1");
   if (s.interval && steps) node.fail("<checkpoint>: give interval or timestepInterval, not both");
   if (!s.interval && !steps)
     node.fail("<checkpoint> needs interval=\"T\" (simulation time) or timestepInterval=\"N\"");
@@ -56,7 +55,7 @@ CheckpointSchedule CheckpointSchedule::fromInput(const PSNode& archiver) {
   if (steps && *steps < 1)
     node.fail("<checkpoint timestepInterval=\"" + std::to_string(*steps) +
               "\">: must be at least 1");
-  s.cycle = *cycle;
+  s.cycle = cycle;
   s.stepInterval = steps.value_or(0);
   return s;
 }

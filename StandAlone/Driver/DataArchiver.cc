@@ -24,15 +24,15 @@ DataArchiver DataArchiver::fromInput(const PSNode& a, bool diffusion) {
   if (d.filebase_.empty()) a.requireChild("filebase").fail("<filebase> is empty");
   const PSNode interval = a.child("outputInterval");
   const PSNode steps = a.child("outputTimestepInterval");
+  // Neither (or 0, Uintah's default) asks for no periodic output: only the first and last steps.
   if (interval && steps) steps.fail("give <outputInterval> or <outputTimestepInterval>, not both");
-  if (!interval && !steps)
-    a.fail("<DataArchiver> needs <outputInterval> or <outputTimestepInterval>");
   if (interval) {
-    d.interval_ = interval.value<double>();
-    if (!(*d.interval_ > 0)) interval.fail("<outputInterval> must be positive");
-  } else {
+    const double t = interval.value<double>();
+    if (!(t >= 0)) interval.fail("<outputInterval> must be >= 0");
+    if (t > 0) d.interval_ = t;
+  } else if (steps) {
     d.stepInterval_ = steps.value<int>();
-    if (d.stepInterval_ < 1) steps.fail("<outputTimestepInterval> must be >= 1");
+    if (d.stepInterval_ < 0) steps.fail("<outputTimestepInterval> must be >= 0");
   }
   for (const char* inert :
        {"outputInitTimestep", "outputLastTimestep", "compression", "outputDoubleAsFloat"})
@@ -40,6 +40,14 @@ DataArchiver DataArchiver::fromInput(const PSNode& a, bool diffusion) {
         inert);  // the first and last steps are always written; files are always compressed
   for (const PSNode& save : a.children("save")) {
     const std::string label = save.requireAttribute("label");
+    for (const std::string& a : save.attributeNames()) {
+      if (a == "label") continue;
+      if (a != "material" && a != "levels")
+        save.fail("<save>: unknown attribute " + a + "; accepted: label");
+      save.unsupported("<save " + a +
+                       "=...>: saving a label for some materials or levels only "
+                       "(every material is written)");
+    }
     switch (classifyLabel(label, diffusion)) {
       case LabelStatus::Particle:
         if (label != "p.x") d.particleLabels_.push_back(label);
@@ -173,6 +181,7 @@ std::string DataArchiver::writeGrid(const std::string& base, const GridData& dat
 
 bool DataArchiver::isOutputStep(long step, double time) const {
   if (stepInterval_ > 0) return step % stepInterval_ == 0;
+  if (!interval_) return false;
   // The first step at or after each multiple of the interval (Uintah, UINTAH_UPS.md P21).
   const double next = (std::floor(lastOutputTime_ / *interval_ + 1e-9) + 1) * *interval_;
   return time >= next * (1 - 1e-12);

@@ -33,9 +33,11 @@ TimeControl TimeControl::fromInput(const PSNode& time) {
   tc.maxDeltIncrease = time.get<double>("max_delt_increase", 0.0);
   if (tc.maxDeltIncrease < 0)
     time.requireChild("max_delt_increase").fail("<max_delt_increase> must be >= 0");
+  // delt_init 0 (Uintah's default) caps nothing.
   if (const PSNode init = time.child("delt_init")) {
-    tc.deltInit = init.value<double>();
-    if (!(*tc.deltInit > 0)) init.fail("<delt_init> must be positive");
+    const double cap = init.value<double>();
+    if (cap < 0) init.fail("<delt_init> must be >= 0");
+    if (cap > 0) tc.deltInit = cap;
   }
   tc.initialDeltRange = time.get<double>("initial_delt_range", 0.0);
   tc.endAtMaxTimeExactly = time.get<bool>("end_at_max_time_exactly", false);
@@ -54,7 +56,8 @@ double TimeControl::nextTimestep(double stableDt, double previousDt, double t) c
   if (maxDeltIncrease > 0 && previousDt > 0) dt = std::min(dt, (1 + maxDeltIncrease) * previousDt);
   dt = std::max(dt, deltMin);
   dt = std::min(dt, deltMax);
-  if (deltInit && t <= initTime + initialDeltRange) dt = std::min(dt, *deltInit);
+  // The initial range ends at an absolute time, not initTime + range (Uintah).
+  if (deltInit && t <= initialDeltRange) dt = std::min(dt, *deltInit);
   if (endAtMaxTimeExactly && t + dt > maxTime) dt = maxTime - t;
   return dt;
 }

@@ -39,9 +39,11 @@ Contact Contact::fromInput(const PSNode& mpmMaterials, int numMaterials) {
   if (exclude != -999 && (exclude < 0 || exclude >= numMaterials))
     contact.requireChild("ExcludeMaterial")
         .fail("<ExcludeMaterial> names material " + std::to_string(exclude) + existing);
-  if (exclude != -999)
+  if (exclude != -999) {
+    c.excluded = exclude;
     c.materials.erase(std::remove(c.materials.begin(), c.materials.end(), exclude),
                       c.materials.end());
+  }
   return c;
 }
 
@@ -49,6 +51,7 @@ void Contact::exchange(std::vector<GridFields>& fields, std::vector<Vec3> GridFi
                        const std::vector<NodeRange>& nodes) const {
   if (type == Type::Null || materials.size() < 2) return;
   forEachNode(nodes, [&](long n) {
+    if (excluded >= 0 && fields[excluded].mass[n] >= 1e-99) return;  // Uintah's threshold
     double mass = 0;
     Vec3 momentum = Vec3::Zero();
     for (int m : materials) {

@@ -179,11 +179,11 @@ MPMMaterial MPMMaterial::fromInput(const PSNode& node, const Grid& grid, const M
   const auto geoms = node.children("geom_object");
   if (geoms.empty()) node.fail("<material> needs at least one <geom_object>");
   for (const PSNode& g : geoms) addGeomObject(g, grid, flags, m, pieces, nextId, seeds);
-  if (m.particles.mass.front() <= flags.minimumParticleMass)
-    node.requireChild("density").fail("particle mass " + std::to_string(m.particles.mass.front()) +
-                                      " is at or below <minimum_particle_mass> " +
-                                      std::to_string(flags.minimumParticleMass) +
-                                      " (Uintah deletes such particles)");
+  const double lightest = *std::min_element(m.particles.mass.begin(), m.particles.mass.end());
+  if (lightest <= flags.minimumParticleMass)
+    node.requireChild("density").fail(
+        "particle mass " + std::to_string(lightest) + " is at or below <minimum_particle_mass> " +
+        std::to_string(flags.minimumParticleMass) + " (Uintah deletes such particles)");
   m.model->initializeState(m.particles);
   return m;
 }
