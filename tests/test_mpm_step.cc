@@ -1,6 +1,7 @@
 // Pins the explicit step: rigid translation across cells gives no stress (all interpolators),
-// momentum is conserved, single_velocity contact bonds materials, dt follows Eq. 43, and the
-// run stops after the first step at or past maxTime.
+// momentum is conserved, single_velocity contact bonds materials, dt follows Eq. 43, only gravity
+// acts on nodes below minimum_mass_for_acc, and the run stops after the first step at or past
+// maxTime.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -95,6 +96,22 @@ TEST(MPMStep, StopsAfterTheFirstStepPastMaxTime) {
   const double dt = sim.dt();
   while (sim.time() < in.maxTime) sim.advance();
   EXPECT_EQ(sim.step(), static_cast<long>(std::ceil(in.maxTime / dt - 1e-9)));
+}
+
+TEST(MPMStep, BelowMinimumMassForAccOnlyGravityActs) {
+  // Every node below the threshold: no force acts, but gravity does at every node (as in Uintah),
+  // so each particle falls freely, v = g t.
+  BlockInput in;
+  in.mpmFlags = "<gravity>[0, 0, -10]</gravity><minimum_mass_for_acc>1e30</minimum_mass_for_acc>";
+  in.velocity = "[0, 0, 0]";
+  Simulation sim(in.text(), "light.ups", quiet());
+  for (int s = 0; s < 5; ++s) sim.advance();
+  const ParticleSet& p = sim.mpm().materials()[0].particles;
+  const double v = -10 * sim.time();
+  for (size_t i = 0; i < p.count(); ++i) {
+    EXPECT_NEAR(p.velocity[i].z(), v, 1e-12 * std::abs(v)) << i;
+    EXPECT_NEAR(p.velocity[i].head<2>().norm(), 0.0, 1e-12 * std::abs(v)) << i;
+  }
 }
 
 std::string secondBlock(const std::string& velocity) {

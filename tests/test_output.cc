@@ -77,6 +77,10 @@ TEST(DataArchiver, OutputIntervalsAreOptionalAsInUintah) {
   EXPECT_FALSE(outputsAt("<outputTimestepInterval>0</outputTimestepInterval>", 5, 1e9));
   EXPECT_TRUE(outputsAt("<outputTimestepInterval>5</outputTimestepInterval>", 5, 0));
   EXPECT_TRUE(outputsAt("<outputInterval>0.5</outputInterval>", 1, 0.5));
+  // Uintah rejects the pair only when both are above 0.
+  EXPECT_TRUE(outputsAt(
+      "<outputInterval>0</outputInterval><outputTimestepInterval>5</outputTimestepInterval>", 5,
+      0));
 }
 
 TEST(Output, VtuFilesCarryTheSavedLabels) {

@@ -87,7 +87,8 @@ MPMFlags MPMFlags::fromInput(const PSNode& root) {
 
   MPMFlags f;
   const PSNode mpm = root.child("MPM");
-  // Uintah reads gravity from <PhysicalConstants>, or without that block from <MPM>.
+  // Uintah reads gravity from <PhysicalConstants>, or without that block from <MPM>, where it
+  // requires it; here it defaults to 0 (docs/differences-from-uintah.md).
   if (const PSNode constants = root.child("PhysicalConstants")) {
     f.gravity = constants.require<Vec3>("gravity");
     constants.acceptInert("reference_pressure");

@@ -24,27 +24,26 @@ DataArchiver DataArchiver::fromInput(const PSNode& a, bool diffusion) {
   if (d.filebase_.empty()) a.requireChild("filebase").fail("<filebase> is empty");
   const PSNode interval = a.child("outputInterval");
   const PSNode steps = a.child("outputTimestepInterval");
-  // Neither (or 0, Uintah's default) asks for no periodic output: only the first and last steps.
-  if (interval && steps) steps.fail("give <outputInterval> or <outputTimestepInterval>, not both");
-  if (interval) {
-    const double t = interval.value<double>();
-    if (!(t >= 0)) interval.fail("<outputInterval> must be >= 0");
-    if (t > 0) d.interval_ = t;
-  } else if (steps) {
-    d.stepInterval_ = steps.value<int>();
-    if (d.stepInterval_ < 0) steps.fail("<outputTimestepInterval> must be >= 0");
-  }
+  // Absent or 0 (Uintah's default) asks for no periodic output: only the first and last steps.
+  const double t = interval ? interval.value<double>() : 0.0;
+  if (!(t >= 0)) interval.fail("<outputInterval> must be >= 0");
+  d.stepInterval_ = steps ? steps.value<int>() : 0;
+  if (d.stepInterval_ < 0) steps.fail("<outputTimestepInterval> must be >= 0");
+  if (t > 0 && d.stepInterval_ > 0)
+    steps.fail("give <outputInterval> or <outputTimestepInterval> above 0, not both");
+  if (t > 0) d.interval_ = t;
   for (const char* inert :
        {"outputInitTimestep", "outputLastTimestep", "compression", "outputDoubleAsFloat"})
     a.acceptInert(
         inert);  // the first and last steps are always written; files are always compressed
   for (const PSNode& save : a.children("save")) {
     const std::string label = save.requireAttribute("label");
-    for (const std::string& a : save.attributeNames()) {
-      if (a == "label") continue;
-      if (a != "material" && a != "levels")
-        save.fail("<save>: unknown attribute " + a + "; accepted: label");
-      save.unsupported("<save " + a +
+    for (const std::string& attribute : save.attributeNames()) {
+      if (attribute == "label" || attribute == "compression") continue;  // always compressed
+      if (attribute != "material" && attribute != "levels")
+        save.fail("<save>: unknown attribute " + attribute +
+                  "; accepted: label, compression, material, levels");
+      save.unsupported("<save " + attribute +
                        "=...>: saving a label for some materials or levels only "
                        "(every material is written)");
     }

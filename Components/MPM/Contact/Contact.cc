@@ -7,6 +7,11 @@
 
 namespace anode {
 
+namespace {
+// Uintah's SingleVelContact: the excluded material is present at a node with this much mass.
+constexpr double kExcludedMassPresent = 1e-99;
+}  // namespace
+
 Contact Contact::fromInput(const PSNode& mpmMaterials, int numMaterials) {
   Contact c;
   const auto blocks = mpmMaterials.children("contact");
@@ -51,7 +56,7 @@ void Contact::exchange(std::vector<GridFields>& fields, std::vector<Vec3> GridFi
                        const std::vector<NodeRange>& nodes) const {
   if (type == Type::Null || materials.size() < 2) return;
   forEachNode(nodes, [&](long n) {
-    if (excluded >= 0 && fields[excluded].mass[n] >= 1e-99) return;  // Uintah's threshold
+    if (excluded >= 0 && fields[excluded].mass[n] >= kExcludedMassPresent) return;
     double mass = 0;
     Vec3 momentum = Vec3::Zero();
     for (int m : materials) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -198,9 +199,12 @@ std::unique_ptr<ScalarDiffusionModel> createDiffusionModel(const PSNode& node, d
   // diagnostic's tolerance leaves unchanged.
   if (const PSNode tol = node.child("conc_tolerance"))
     if (tol.value<double>() >
-        kConcentrationTolerance * (model->maxConcentration - model->minConcentration))
-      tol.unsupported("<conc_tolerance> above " + std::to_string(kConcentrationTolerance) +
+        kConcentrationTolerance * (model->maxConcentration - model->minConcentration)) {
+      std::ostringstream limit;
+      limit << kConcentrationTolerance;
+      tol.unsupported("<conc_tolerance> above " + limit.str() +
                       " of the concentration range (Uintah clamps c that far inside it)");
+    }
   // The initial concentration comes from <geom_object><concentration>; Uintah never applies
   // this one.
   node.acceptInert("initial_concentration");
