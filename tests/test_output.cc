@@ -69,7 +69,7 @@ TEST(DataArchiver, OutputIntervalsAreOptionalAsInUintah) {
     const auto spec = ProblemSpec::fromText(
         "<Uintah_specification><DataArchiver>" + tags + "</DataArchiver></Uintah_specification>",
         "archiver.ups");
-    return DataArchiver::fromInput(spec->root().requireChild("DataArchiver"), false)
+    return DataArchiver::fromInput(spec->root().requireChild("DataArchiver"), false, 1)
         .isOutputStep(step, time);
   };
   EXPECT_FALSE(outputsAt("", 5, 1e9));
@@ -81,6 +81,31 @@ TEST(DataArchiver, OutputIntervalsAreOptionalAsInUintah) {
   EXPECT_TRUE(outputsAt(
       "<outputInterval>0</outputInterval><outputTimestepInterval>5</outputTimestepInterval>", 5,
       0));
+}
+
+// <save material= levels=>: Uintah's index sets. A set naming every material of the one level
+// asks for what is written anyway; a set leaving one out is unsupported, not silently widened.
+TEST(DataArchiver, SaveForEveryMaterialOrTheOneLevelIsAccepted) {
+  const auto read = [](const std::string& attributes, int numMaterials) {
+    const auto spec = ProblemSpec::fromText(
+        "<Uintah_specification><DataArchiver><filebase>a.uda</filebase>"
+        "<save label=\"p.x\" " +
+            attributes + "/></DataArchiver></Uintah_specification>",
+        "archiver.ups");
+    DataArchiver::fromInput(spec->root().requireChild("DataArchiver"), false, numMaterials);
+  };
+  EXPECT_NO_THROW(read("material=\"0\"", 1));
+  EXPECT_NO_THROW(read("material=\"0-1\"", 2));
+  EXPECT_NO_THROW(read("material=\"1, 0\"", 2));
+  EXPECT_NO_THROW(read("material=\"0 1\"", 2));
+  EXPECT_NO_THROW(read("material=\"\"", 2));
+  EXPECT_NO_THROW(read("levels=\"0\"", 1));
+  EXPECT_NO_THROW(read("levels=\"-3--1\"", 1));
+  EXPECT_THROW(read("material=\"0\"", 2), InputError);
+  EXPECT_THROW(read("material=\"1-2\"", 2), InputError);
+  EXPECT_THROW(read("levels=\"1\"", 1), InputError);
+  EXPECT_THROW(read("material=\"0-\"", 1), InputError);
+  EXPECT_THROW(read("material=\"0;1\"", 2), InputError);
 }
 
 TEST(Output, VtuFilesCarryTheSavedLabels) {

@@ -67,6 +67,11 @@ std::vector<FaceBC> readFaceBCs(const PSNode& gridNode, int numMaterials, bool d
           f.value = bc.require<double>("value");
         }
         out.push_back(f);
+      } else if (label == "Symmetric" && var != "symmetry") {
+        // Uintah's MPM applies a Symmetric condition only when its var is "symmetry".
+        bc.warn("label=\"Symmetric\" var=\"" + var +
+                "\": Uintah applies symmetry only with var=\"symmetry\"; this face is left "
+                "free for this material, as there");
       } else if (label == "Symmetric") {
         f.kind = FaceBC::Kind::Symmetric;
         out.push_back(f);

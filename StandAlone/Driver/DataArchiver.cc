@@ -18,7 +18,47 @@ namespace fs = std::filesystem;
 
 namespace anode {
 
-DataArchiver DataArchiver::fromInput(const PSNode& a, bool diffusion) {
+namespace {
+
+// A set of indices as Uintah writes one in an attribute: "0", "0-2", "1, 3-5", "-3--1"; empty
+// means every index.
+struct IndexSet {
+  std::vector<std::pair<int, int>> ranges;
+  bool contains(int i) const {
+    if (ranges.empty()) return true;
+    for (const auto& [low, high] : ranges)
+      if (low <= i && i <= high) return true;
+    return false;
+  }
+  bool containsAll(int first, int last) const {
+    for (int i = first; i <= last; ++i)
+      if (!contains(i)) return false;
+    return true;
+  }
+};
+
+IndexSet parseIndexSet(const PSNode& node, const std::string& attribute) {
+  const std::string text = *node.attribute(attribute.c_str());
+  static const std::regex item(R"(\s*(-?\d{1,9})\s*(?:-\s*(-?\d{1,9}))?\s*,?)");
+  IndexSet set;
+  auto at = text.cbegin();
+  std::smatch m;
+  while (at != text.cend() &&
+         std::regex_search(at, text.cend(), m, item, std::regex_constants::match_continuous)) {
+    const int low = std::stoi(m[1]);
+    const int high = m[2].matched ? std::stoi(m[2]) : low;
+    set.ranges.emplace_back(std::min(low, high), std::max(low, high));
+    at = m[0].second;
+  }
+  if (at != text.cend() && text.find_first_not_of(" \t") != std::string::npos)
+    node.fail("<save " + attribute + "=\"" + text +
+              "\">: not a set of indices such as \"0\", \"0-2\" or \"1, 3-5\"");
+  return set;
+}
+
+}  // namespace
+
+DataArchiver DataArchiver::fromInput(const PSNode& a, bool diffusion, int numMaterials) {
   DataArchiver d;
   d.filebase_ = a.get<std::string>("filebase", "output.uda");
   if (d.filebase_.empty()) a.requireChild("filebase").fail("<filebase> is empty");
@@ -43,9 +83,14 @@ DataArchiver DataArchiver::fromInput(const PSNode& a, bool diffusion) {
       if (attribute != "material" && attribute != "levels")
         save.fail("<save>: unknown attribute " + attribute +
                   "; accepted: label, compression, material, levels");
-      save.unsupported("<save " + attribute +
-                       "=...>: saving a label for some materials or levels only "
-                       "(every material is written)");
+      const IndexSet set = parseIndexSet(save, attribute);
+      // Uintah's "levels" counts negative values from the finest level: -1 is the only one here.
+      const bool everything = attribute == "material" ? set.containsAll(0, numMaterials - 1)
+                                                      : set.contains(0) || set.contains(-1);
+      if (!everything)
+        save.unsupported("<save " + attribute + "=\"" + *save.attribute(attribute.c_str()) +
+                         "\">: saving a label for some materials or levels only (every "
+                         "material of the one level is written)");
     }
     switch (classifyLabel(label, diffusion)) {
       case LabelStatus::Particle:

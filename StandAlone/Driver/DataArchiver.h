@@ -22,7 +22,7 @@ struct HistoryRow {
 class DataArchiver {
  public:
   // Reads the block and checks every saved label against what the run computes.
-  static DataArchiver fromInput(const PSNode& archiver, bool diffusion);
+  static DataArchiver fromInput(const PSNode& archiver, bool diffusion, int numMaterials);
 
   const std::string& filebase() const { return filebase_; }
   bool wantsGrid() const { return !gridLabels_.empty(); }

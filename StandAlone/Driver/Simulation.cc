@@ -53,7 +53,8 @@ void Simulation::setup() {
   time_ = TimeControl::fromInput(root.requireChild("Time"));
   mpm_.problemSetup(root, time_.initTime, time_.maxTime);
   archiver_ =
-      DataArchiver::fromInput(root.requireChild("DataArchiver"), mpm_.flags().doScalarDiffusion);
+      DataArchiver::fromInput(root.requireChild("DataArchiver"), mpm_.flags().doScalarDiffusion,
+                              static_cast<int>(mpm_.materials().size()));
   checkpoints_ = CheckpointSchedule::fromInput(root.requireChild("DataArchiver"));
   scenes_ = SceneOutput::fromInput(root, time_, mpm_);
   if (archiver_.savesConcentrationFields() || scenes_.draws("p.concentrationGradient"))
