@@ -99,6 +99,7 @@ TEST(DataArchiver, SaveForEveryMaterialOrTheOneLevelIsAccepted) {
   EXPECT_NO_THROW(read("material=\"1, 0\"", 2));
   EXPECT_NO_THROW(read("material=\"0 1\"", 2));
   EXPECT_NO_THROW(read("material=\"\"", 2));
+  EXPECT_NO_THROW(read("material=\" 0, 1, \"", 2));
   EXPECT_NO_THROW(read("levels=\"0\"", 1));
   EXPECT_NO_THROW(read("levels=\"-3--1\"", 1));
   EXPECT_THROW(read("material=\"0\"", 2), InputError);

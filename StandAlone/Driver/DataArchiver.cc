@@ -50,7 +50,7 @@ IndexSet parseIndexSet(const PSNode& node, const std::string& attribute) {
     set.ranges.emplace_back(std::min(low, high), std::max(low, high));
     at = m[0].second;
   }
-  if (at != text.cend() && text.find_first_not_of(" \t") != std::string::npos)
+  if (std::string(at, text.cend()).find_first_not_of(" \t\n") != std::string::npos)
     node.fail("<save " + attribute + "=\"" + text +
               "\">: not a set of indices such as \"0\", \"0-2\" or \"1, 3-5\"");
   return set;
