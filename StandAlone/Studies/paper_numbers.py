@@ -18,6 +18,8 @@ Definitions (the report repeats them). Lengths in um, times in us as the runs wr
 - c by height (the cycle): the silicon's mean c in slabs 5 nm thick by X0_z from the base layer up;
   its front is found as the rings' (base for axis, top for surface).
 - Height growth: (highest - lowest current z of the silicon's particles) / (the same in X0) - 1.
+- Top layer's mean height growth: (mean current z of the top layer - that of the base layer) /
+  (their X0_z apart) - 1: the surface's rise without the single particles that stand proud of it.
 - Lithium fraction: history's total lithium (sum of m c over every material; only the silicon
   takes lithium in these runs, the substrates have D = 0 and start at c = 0) over rho V0 of the
   silicon (c = 1).
@@ -138,6 +140,11 @@ class State:
         z = [self.x[i][2] for i in self.silicon]
         return (max(z) - min(z)) / (self.top - self.base) - 1
 
+    def top_layer_rise(self):
+        """(mean current z of the top layer - that of the base layer) / (their X0_z apart) - 1."""
+        mean_z = lambda particles: sum(self.x[i][2] for i in particles) / len(particles)
+        return (mean_z(self.layer(self.top)) - mean_z(self.layer(self.base))) / (self.top - self.base) - 1
+
     def ring_profile(self):
         """Mean c per ring of the middle layers, axis first."""
         height = self.top - self.base
@@ -212,7 +219,7 @@ def shape(run_dir, time):
     other = [i for i, m in enumerate(s.material) if m != SILICON]
     return dict(time=s.time, lithium=lithium_fraction_at(run_dir, s.time), base_growth=s.radial_growth(base),
                 lower_growth=s.radial_growth(lower), middle_growth=s.radial_growth(middle), top_growth=s.radial_growth(top),
-                height_growth=s.height_growth(), ep_base_max=max(ep_base), ep_base_mean=sum(ep_base) / len(ep_base),
+                height_growth=s.height_growth(), top_rise=s.top_layer_rise(), ep_base_max=max(ep_base), ep_base_mean=sum(ep_base) / len(ep_base),
                 ep_max=max(s.ep[i] for i in s.silicon),
                 ep_substrate_max=max((s.ep[i] for i in other), default=None))
 
@@ -262,11 +269,13 @@ def density_section(runs, pair, times, unit_scale, unit, finished):
         rows.append(["%g %s" % (t * unit_scale, unit), "%.4g / %.4g" % (d["time_a"] * unit_scale, d["time_b"] * unit_scale),
                      num(d["max_dc"]), num(d["mean_dc"]), num(d["max_dx_cells"]),
                      "%s / %s" % (percent(a["height_growth"]), percent(b["height_growth"])),
+                     "%s / %s" % (percent(a["top_rise"]), percent(b["top_rise"])),
                      "%s / %s" % (percent(a["top_growth"]), percent(b["top_growth"])),
                      "%s / %s" % (num(a["ep_max"]), num(b["ep_max"]))])
     text = ("a = %s, b = %s.\n\n" % pair + table(
         ["figure time", "output times (%s)" % unit, "largest abs(c difference)", "mean abs(c difference)",
-         "largest position difference (cells)", "height growth a / b", "top layer's radial growth a / b",
+         "largest position difference (cells)", "height growth a / b", "top layer's mean height growth a / b",
+         "top layer's radial growth a / b",
          "largest plastic strain (silicon) a / b"], rows)) if rows else ""
     going = ["%s (last output at %.4g %s)" % (run, reached[run] * unit_scale, unit) for run in pair if run not in finished]
     if going:

@@ -41,6 +41,19 @@ class HeightProfile(unittest.TestCase):
         state.base = layers[0]
         self.assertEqual(state.height_profile(0.005), [0.5, 2.5, 4.0])
 
+    def test_top_layer_rise_is_the_mean_not_the_highest_particle(self):
+        # Base layer at X0_z = 0 and top layer at 0.1, both risen: the base by 0.01, the top
+        # layer's three particles to 0.13, 0.13 and 0.16 (one standing proud). Mean rise of the
+        # top over the base: (0.14 - 0.01) / 0.1 - 1 = 0.3; the highest particle's would be 0.5.
+        state = paper_numbers.State.__new__(paper_numbers.State)
+        state.X0 = [(0.0, 0.0, 0.0)] * 2 + [(0.0, 0.0, 0.1)] * 3
+        state.x = [(0.0, 0.0, 0.01)] * 2 + [(0.0, 0.0, 0.13), (0.0, 0.0, 0.13), (0.0, 0.0, 0.16)]
+        state.silicon = list(range(5))
+        state.layers = [0.0, 0.1]
+        state.base, state.top = 0.0, 0.1
+        self.assertAlmostEqual(state.top_layer_rise(), 0.3)
+        self.assertAlmostEqual(state.height_growth(), 0.5)
+
 
 class Merge(unittest.TestCase):
     OLD = "\n".join(["# Numbers", "", "## Runs", "", "| scenario | steps |", "|---|---|", "| A | 10 |", "| B | 20 |",
