@@ -79,9 +79,9 @@ def panel_time(run_dir, when):
     and numbers.md its lithium."""
     if isinstance(when, tuple) and when[0] == "lithium":
         t = paper_numbers.lithium_fraction_time(run_dir, when[1])
-        return t if t is not None else paper_numbers.read_history(run_dir)[-1]["time"]
+        return t if t is not None else paper_numbers.last_history_row(run_dir)["time"]
     if isinstance(when, tuple) and when[0] == "end":
-        return paper_numbers.read_history(run_dir)[-1]["time"]
+        return paper_numbers.last_history_row(run_dir)["time"]
     return when
 
 

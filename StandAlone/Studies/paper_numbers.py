@@ -67,10 +67,53 @@ def read_output(run_dir, time, arrays):
     return data
 
 
-def read_history(run_dir):
+def history_rows(run_dir):
+    """history.csv's rows, one at a time and in time order. Read as a stream: Density_2.33e18's is
+    1 GB (9.5 million steps), too large to hold as a list of rows."""
     with open(os.path.join(run_dir, "history.csv")) as f:
-        rows = [line.strip().split(",") for line in f if line.strip()]
-    return [dict(zip(rows[0], map(float, r))) for r in rows[1:]]
+        header = f.readline().strip().split(",")
+        for line in f:
+            if line.strip():
+                yield dict(zip(header, map(float, line.split(","))))
+
+
+def history_row_near(run_dir, time):
+    """The row whose time is nearest `time` (the earlier of two as near). Reads no further than the
+    first row at or after it, and parses only the time column of the rows before."""
+    with open(os.path.join(run_dir, "history.csv")) as f:
+        header = f.readline().strip().split(",")
+        column = header.index("time")
+        before = None
+        for line in f:
+            if not line.strip():
+                continue
+            t = float(line.split(",", column + 1)[column])
+            if t >= time:
+                if before is not None and time - before[0] <= t - time:
+                    line = before[1]
+                return dict(zip(header, map(float, line.split(","))))
+            before = (t, line)
+    return None if before is None else dict(zip(header, map(float, before[1].split(","))))
+
+
+def last_history_row(run_dir):
+    """history.csv's last row, read from the file's end (None if it holds no step)."""
+    path = os.path.join(run_dir, "history.csv")
+    if not os.path.exists(path):
+        return None
+    with open(path, "rb") as f:
+        header = f.readline().decode().strip().split(",")
+        end = f.seek(0, os.SEEK_END)
+        tail, step = b"", 4096
+        while end > 0 and tail.strip().count(b"\n") < 1:
+            start = max(0, end - step)
+            f.seek(start)
+            tail = f.read(end - start) + tail
+            end = start
+    lines = [line for line in tail.decode().split("\n") if line.strip()]
+    if not lines or lines[-1].strip().split(",") == header:
+        return None
+    return dict(zip(header, map(float, lines[-1].split(","))))
 
 
 def input_of(run_dir):
@@ -94,16 +137,14 @@ def silicon_capacity(run_dir):
 def lithium_fraction_time(run_dir, fraction):
     """The first time the silicon holds `fraction` of its capacity (None if never)."""
     capacity = silicon_capacity(run_dir)
-    for row in read_history(run_dir):
+    for row in history_rows(run_dir):
         if row["total_lithium"] >= fraction * capacity:
             return row["time"]
     return None
 
 
 def lithium_fraction_at(run_dir, time):
-    rows = read_history(run_dir)
-    row = min(rows, key=lambda r: abs(r["time"] - time))
-    return row["total_lithium"] / silicon_capacity(run_dir)
+    return history_row_near(run_dir, time)["total_lithium"] / silicon_capacity(run_dir)
 
 
 class State:
@@ -329,7 +370,7 @@ def cycle_section(runs, scale, unit):
     """Lithium in and out, and the silicon's c, J (its volume over its volume at t = 0, matched by
     particle ID) and plastic strain at the outputs nearest 40 s and 80 s."""
     run_dir = os.path.join(runs, "Cycle_LargePillar")
-    history = read_history(run_dir)
+    history = list(history_rows(run_dir))  # the cycle's 14,815 steps
     capacity = silicon_capacity(run_dir)
     state = functools.lru_cache(maxsize=None)(lambda t: State(run_dir, t))  # each output read once
     start = state(0.0)

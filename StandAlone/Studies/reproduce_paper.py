@@ -55,17 +55,6 @@ SCENARIOS = ["Flux_1e-8", "Flux_1e-9", "Constitutive_elastic", "Constitutive_per
              "Density_2.33e18"]
 
 
-def last_history_row(run_dir):
-    path = os.path.join(run_dir, "history.csv")
-    if not os.path.exists(path):
-        return None
-    with open(path) as f:
-        rows = f.read().split("\n")
-    header = rows[0].split(",")
-    values = [r for r in rows[1:] if r.strip()]
-    return dict(zip(header, values[-1].split(","))) if values else None
-
-
 def has_checkpoint(run_dir):
     folder = os.path.join(run_dir, "checkpoints")
     return os.path.isdir(folder) and any(f.endswith(".ckpt") for f in os.listdir(folder))
@@ -186,7 +175,7 @@ def run_scenario(name, args, runs):
         print("%-22s failed with exit code %d after %.0f s (see %s.log)" % (name, code, seconds, run_dir),
               flush=True)
         return False
-    last = last_history_row(run_dir)
+    last = paper_numbers.last_history_row(run_dir)
     if last is None:
         sys.exit("reproduce_paper.py: %s ended with exit code %d but its history.csv holds no step" % (run_dir, code))
     summary = dict(steps=int(last["step"]), time=float(last["time"]), particles=int(last["particles"]),

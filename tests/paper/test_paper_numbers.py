@@ -1,6 +1,7 @@
 """The front of docs/paper/README.md (paper_numbers.front) on ring profiles of known shape, the
 cycle's c by height (State.height_profile) on particles of known layers, and a report's numbers.md
-merged with a later machine's (merge_numbers)."""
+merged with a later machine's (merge_numbers), and history.csv read as a stream (history_row_near,
+last_history_row)."""
 import os
 import sys
 import tempfile
@@ -85,6 +86,46 @@ class DensityPairPartly(unittest.TestCase):
                                          os.path.join(runs, run))
             text = paper_numbers.density_section(runs, ("A", "B"), [4e6, 16e6], 1e-6, "s", finished=["B"])
             self.assertEqual(text, "Still running: A (last output at 2 s); waiting: 4 s, 16 s.")
+
+
+class History(unittest.TestCase):
+    HEADER = "step,time,dt,total_lithium"
+
+    def history(self, directory, times, trailing="\n"):
+        rows = ["%d,%r,0.5,%d" % (i + 1, t, 10 * (i + 1)) for i, t in enumerate(times)]
+        with open(os.path.join(directory, "history.csv"), "w") as f:
+            f.write("\n".join([self.HEADER] + rows) + trailing)
+
+    def test_row_near_is_the_nearest_of_all_rows(self):
+        times = [0.3 * i + 0.01 * (i % 7) for i in range(5000)]
+        with tempfile.TemporaryDirectory() as run:
+            self.history(run, times)
+            for asked in (-1.0, 0.0, 0.31, 0.45, 0.46, 777.7, 1499.9, 2000.0):
+                nearest = min(range(len(times)), key=lambda i: abs(times[i] - asked))
+                row = paper_numbers.history_row_near(run, asked)
+                self.assertEqual((row["step"], row["time"], row["total_lithium"]),
+                                 (nearest + 1, times[nearest], 10 * (nearest + 1)), asked)
+
+    def test_a_tie_takes_the_earlier_row(self):
+        with tempfile.TemporaryDirectory() as run:
+            self.history(run, [1.0, 2.0, 3.0])
+            self.assertEqual(paper_numbers.history_row_near(run, 2.5)["step"], 2)
+
+    def test_last_row_of_a_long_file_with_or_without_a_final_newline(self):
+        times = [0.5 * i for i in range(20000)]
+        for trailing in ("\n", "", "\n\n"):
+            with tempfile.TemporaryDirectory() as run:
+                self.history(run, times, trailing)
+                row = paper_numbers.last_history_row(run)
+                self.assertEqual((row["step"], row["time"]), (20000, times[-1]), repr(trailing))
+
+    def test_no_step_no_last_row(self):
+        with tempfile.TemporaryDirectory() as run:
+            self.assertIsNone(paper_numbers.last_history_row(run))
+            self.history(run, [])
+            self.assertIsNone(paper_numbers.last_history_row(run))
+            self.history(run, [7.0])
+            self.assertEqual(paper_numbers.last_history_row(run)["time"], 7.0)
 
 
 if __name__ == "__main__":
