@@ -67,6 +67,10 @@ def read_output(run_dir, time, arrays):
     return data
 
 
+def parse_history_row(header, line):
+    return dict(zip(header, map(float, line.split(","))))
+
+
 def history_rows(run_dir):
     """history.csv's rows, one at a time and in time order. Read as a stream: Density_2.33e18's is
     1 GB (9.5 million steps), too large to hold as a list of rows."""
@@ -74,7 +78,7 @@ def history_rows(run_dir):
         header = f.readline().strip().split(",")
         for line in f:
             if line.strip():
-                yield dict(zip(header, map(float, line.split(","))))
+                yield parse_history_row(header, line)
 
 
 def history_row_near(run_dir, time):
@@ -89,31 +93,29 @@ def history_row_near(run_dir, time):
                 continue
             t = float(line.split(",", column + 1)[column])
             if t >= time:
-                if before is not None and time - before[0] <= t - time:
-                    line = before[1]
-                return dict(zip(header, map(float, line.split(","))))
+                nearer = before[1] if before is not None and time - before[0] <= t - time else line
+                return parse_history_row(header, nearer)
             before = (t, line)
-    return None if before is None else dict(zip(header, map(float, before[1].split(","))))
+    return None if before is None else parse_history_row(header, before[1])
 
 
 def last_history_row(run_dir):
-    """history.csv's last row, read from the file's end (None if it holds no step)."""
+    """history.csv's last row, read from the file's end backwards until a whole line is in hand
+    (None if the file holds no step)."""
     path = os.path.join(run_dir, "history.csv")
     if not os.path.exists(path):
         return None
     with open(path, "rb") as f:
         header = f.readline().decode().strip().split(",")
         end = f.seek(0, os.SEEK_END)
-        tail, step = b"", 4096
-        while end > 0 and tail.strip().count(b"\n") < 1:
-            start = max(0, end - step)
+        tail = b""
+        while end > 0 and b"\n" not in tail.strip():
+            start = max(0, end - 4096)
             f.seek(start)
             tail = f.read(end - start) + tail
             end = start
-    lines = [line for line in tail.decode().split("\n") if line.strip()]
-    if not lines or lines[-1].strip().split(",") == header:
-        return None
-    return dict(zip(header, map(float, lines[-1].split(","))))
+    last = tail.decode().strip().split("\n")[-1]
+    return None if last.split(",") == header else parse_history_row(header, last)
 
 
 def input_of(run_dir):
