@@ -20,18 +20,18 @@ struct UniaxialResult {
 
 // Drives uniaxial strain to logarithmic strain e in n increments; D dt sums exactly to e.
 UniaxialResult uniaxialStrain(const RFElasticPlastic& model, double e, int n) {
-  Mat3 stress = Mat3::Zero(), F = Mat3::Identity(), R = Mat3::Identity();
-  double ep = 0, epdot = 0;
+  Mat3 stress = Mat3::Zero(), F = Mat3::Identity();
+  RFElasticPlastic::State<double> state{Mat3::Identity(), 0, 0};
   const double dt = 1e-3;
   for (int i = 0; i < n; ++i) {
     Mat3 Fnew = F;
     Fnew(0, 0) = std::exp(e * (i + 1) / n);
     Mat3 L = Mat3::Zero();
     L(0, 0) = std::log(Fnew(0, 0) / F(0, 0)) / dt;
-    stress = model.updateStress(stress, R, Fnew, L, 0.0, dt, ep, epdot);
+    stress = model.updateStress(stress, Fnew, L, 0.0, dt, state);
     F = Fnew;
   }
-  return {stress(0, 0), stress(1, 1), ep};
+  return {stress(0, 0), stress(1, 1), state.ep};
 }
 
 const double K = 67e3, G = 31e3, sigmaY = 1.4e3, H = 1.15e3;  // the paper's values, MPa
@@ -140,22 +140,22 @@ TEST(Objectivity, RigidRotationRotatesTheStressAndKeepsItsInvariants) {
   const RFElasticPlastic model(K, G, flow);
   Mat3 stress;
   stress << 300, 50, -20, 50, -100, 10, -20, 10, 80;
-  Mat3 F = Mat3::Identity(), R = Mat3::Identity();
+  Mat3 F = Mat3::Identity();
   const Vec3 axis = Vec3(1, 1, 0.3).normalized();
   const double omega = 2.0, dt = 1e-3;
   const Mat3 start = stress;
-  double ep = 0, epdot = 0;
+  RFElasticPlastic::State<double> state{Mat3::Identity(), 0, 0};
   for (int i = 1; i <= 500; ++i) {
     const Mat3 Fnew = Eigen::AngleAxisd(omega * dt * i, axis).toRotationMatrix();
     const Mat3 W = Fnew * F.inverse();              // incremental rotation
     const Mat3 L = (W - W.transpose()) / (2 * dt);  // spin only: no rate of deformation
-    stress = model.updateStress(stress, R, Fnew, L, 0.0, dt, ep, epdot);
+    stress = model.updateStress(stress, Fnew, L, 0.0, dt, state);
     F = Fnew;
   }
   const Mat3 expected = F * start * F.transpose();
   EXPECT_LT((stress - expected).norm(), 1e-10 * start.norm());
   EXPECT_NEAR(stress.trace(), start.trace(), 1e-10 * start.norm());
-  EXPECT_EQ(ep, 0.0);
+  EXPECT_EQ(state.ep, 0.0);
 }
 
 }  // namespace

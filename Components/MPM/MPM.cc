@@ -10,7 +10,7 @@
 #include <sstream>
 
 #include "Components/MPM/GridBoundaryConditions.h"
-#include "Components/MPM/Materials/ConstitutiveModels/RFElasticPlastic.h"
+#include "Components/MPM/Materials/ConstitutiveModels/ConcreteModels.h"
 #include "Components/MPM/ParticleLoops.h"
 #include "Components/MPM/ParticleSplitting.h"
 #include "Components/MPM/ProblemSize.h"
@@ -396,7 +396,7 @@ void MPM::interpolateToParticlesAndUpdate(double dt) {
             firstInverted = updateParticles(mat.particles, update, *concrete, concentration);
           });
         },
-        model.concrete());
+        model.concrete().model);
     if (firstInverted < static_cast<long>(mat.particles.count())) {
       std::ostringstream s;
       s << describeParticle(mat, m, firstInverted)

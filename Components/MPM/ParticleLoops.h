@@ -77,32 +77,35 @@ struct ParticleUpdate {
 };
 
 // The stress update's inputs and outputs for one block of particles, a lane each
-// (Core/Math/Simd.h); lanes without a particle, or with an inverted one, hold an unstrained
-// placeholder and are not written back.
+// (Core/Math/Simd.h), with the model's own state (Model::State); lanes without a particle, or
+// with an inverted one, hold an unstrained placeholder and are not written back.
+template <class Model>
 struct StressBlock {
-  Mat3Pack stress, rotation, F, L;
-  Pack dc, ep, epdot;
+  Mat3Pack stress, F, L;
+  Pack dc;
+  typename Model::template State<Pack> state;
   bool update[Pack::size()];
 
   void setPlaceholder(int l) {
     setLane(stress, l, Mat3::Zero());
-    setLane(rotation, l, Mat3::Identity());
     setLane(F, l, Mat3::Identity());
     setLane(L, l, Mat3::Zero());
-    dc[l] = ep[l] = epdot[l] = 0;
+    dc[l] = 0;
+    Model::StateArrays::loadUnstrained(state, l);
     update[l] = false;
   }
 };
 
 // G2P and the stress update of particles [0, n) (Eqs. 8, 25-39): velocity, position and F from
-// the grid, volume, the concentration kernel's update, then the model's stress, one block of
+// the grid, volume, the concentration kernel's update, then the model's stress and its own
+// state (Model::StateArrays, ConcreteModels.h), one block of
 // Pack::size() particles at a time. Returns the first particle whose det F is not positive (n if
 // none); its stress is not updated.
 template <class Model, class Concentration>
 long updateParticles(ParticleSet& p, const ParticleUpdate& u, const Model& model,
                      const Concentration& concentration) {
   const InterpolationWeights& W = u.W;
-  const bool yields = model.canYield();
+  const auto state = model.stateArrays(p);
   const double dt = u.dt;
   const long n = static_cast<long>(p.count());
   constexpr int lanes = static_cast<int>(Pack::size());
@@ -110,7 +113,7 @@ long updateParticles(ParticleSet& p, const ParticleUpdate& u, const Model& model
   long firstInverted = n;
 #pragma omp parallel for schedule(static) reduction(min : firstInverted)
   for (long block = 0; block < blocks; ++block) {
-    StressBlock s;
+    StressBlock<Model> s;
     for (int l = 0; l < lanes; ++l) {
       const long i = block * lanes + l;
       if (i >= n) {
@@ -165,25 +168,18 @@ long updateParticles(ParticleSet& p, const ParticleUpdate& u, const Model& model
         continue;
       }
       setLane(s.stress, l, p.stress[i]);
-      setLane(s.rotation, l, p.rotation[i]);
       setLane(s.F, l, F);
       setLane(s.L, l, gradV);
       s.dc[l] = u.swells ? dc : 0.0;
-      s.ep[l] = yields ? p.plasticStrain[i] : 0.0;
-      s.epdot[l] = yields ? p.plasticStrainRate[i] : 0.0;
+      state.load(s.state, l, i);
       s.update[l] = true;
     }
-    const Mat3Pack stress =
-        model.updateStress(s.stress, s.rotation, s.F, s.L, s.dc, dt, s.ep, s.epdot);
+    const Mat3Pack stress = model.updateStress(s.stress, s.F, s.L, s.dc, dt, s.state);
     for (int l = 0; l < lanes; ++l) {
       if (!s.update[l]) continue;
       const long i = block * lanes + l;
       p.stress[i] = lane(stress, l);
-      p.rotation[i] = lane(s.rotation, l);
-      if (yields) {
-        p.plasticStrain[i] = s.ep[l];
-        p.plasticStrainRate[i] = s.epdot[l];
-      }
+      state.store(s.state, l, i);
     }
   }
   return firstInverted;

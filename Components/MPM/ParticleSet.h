@@ -1,13 +1,16 @@
 // Particle state of one material, stored as structure-of-arrays. Every array is declared once,
-// in eachArray below (the diffusion subcomponent's in DiffusionParticles.h): its Uintah label (the
-// name it is saved under), the physics it belongs to (it exists only when the material has that
-// physics), its initial value and what particle splitting does to it. Checkpoints, output,
-// splitting and setup all go through that one list, so a new array is one member and one line.
+// in eachArray below (the diffusion subcomponent's in DiffusionParticles.h, the constitutive
+// model's by the model at setup, ConstitutiveState.h): its Uintah label (the name it is saved
+// under), the physics it belongs to (it exists only when the material has that physics), its
+// initial value and what particle splitting does to it. Checkpoints, output, splitting and setup
+// all go through that one list, so a new array is one member and one line.
 #pragma once
 
 #include <cstdint>
+#include <type_traits>
 #include <vector>
 
+#include "Components/MPM/ConstitutiveState.h"
 #include "Components/MPM/ParticleField.h"
 #include "Components/MPM/ReactiveFlow/DiffusionParticles.h"
 #include "Core/Math/Types.h"
@@ -24,10 +27,7 @@ struct ParticleSet : DiffusionParticles {
   std::vector<Mat3> F;             // p.deformationMeasure
   std::vector<Mat3> stress;        // p.stress (Cauchy, lab frame)
   std::vector<Mat3> size;          // p.size: reference domain edge vectors in grid-cell units
-  std::vector<Mat3>
-      rotation;  // R of F = R U: the stress update's frame, kept so a step computes one
-  std::vector<double> plasticStrain;      // p.plasticStrain (yielding materials only)
-  std::vector<double> plasticStrainRate;  // p.plasticStrainRate (yielding materials only)
+  ConstitutiveState modelState;    // the arrays the material's constitutive model declared
   // Particle splitting (only with <refine_particles>true): 1 once a particle or its parent split.
   std::vector<uint8_t> refined;
 
@@ -68,6 +68,24 @@ struct ParticleSet : DiffusionParticles {
     });
   }
 
+  // Creates a constitutive-model array holding field.initial for every particle; returns its
+  // index in modelState's list of its type.
+  template <class T>
+  size_t declareModelArray(const ParticleField<T>& field) {
+    physics_ |= bit(field.physics);
+    auto& list = modelArrays<T>(modelState);
+    list.push_back({std::vector<T>(count(), field.initial), field});
+    return list.size() - 1;
+  }
+  template <class T>
+  std::vector<T>& modelArray(size_t index) {
+    return modelArrays<T>(modelState)[index].values;
+  }
+  template <class T>
+  const std::vector<T>& modelArray(size_t index) const {
+    return modelArrays<T>(modelState)[index].values;
+  }
+
   // Appends a copy of particle i (every array that exists) and returns its index.
   size_t duplicate(size_t i) {
     forEachArray([i](auto& v) {
@@ -77,6 +95,13 @@ struct ParticleSet : DiffusionParticles {
   }
 
  private:
+  template <class T, class State>
+  static auto& modelArrays(State& state) {
+    if constexpr (std::is_same_v<T, Mat3>)
+      return state.tensors;
+    else
+      return state.scalars;
+  }
   static uint8_t bit(Physics physics) {
     return static_cast<uint8_t>(1u << static_cast<int>(physics));
   }
@@ -95,10 +120,7 @@ struct ParticleSet : DiffusionParticles {
     f(s.F, ParticleField<Mat3>{"p.deformationMeasure", P::Mechanics, I, S::Copy});
     f(s.stress, ParticleField<Mat3>{"p.stress", P::Mechanics, zero, S::Copy});
     f(s.size, ParticleField<Mat3>{"p.size", P::Mechanics, I, S::Own});
-    f(s.rotation, ParticleField<Mat3>{nullptr, P::Mechanics, I, S::Copy});
-    f(s.plasticStrain, ParticleField<double>{"p.plasticStrain", P::Plasticity, 0.0, S::Copy});
-    f(s.plasticStrainRate,
-      ParticleField<double>{"p.plasticStrainRate", P::Plasticity, 0.0, S::Copy});
+    ConstitutiveState::eachArray(s.modelState, f);
     eachDiffusionArray(s, f);
     f(s.refined, ParticleField<uint8_t>{"p.refinedMPM", P::Splitting, 0, S::Own});
   }

@@ -66,6 +66,12 @@ inline double powOf(double x, double y) {
 inline Pack powOf(const Pack& x, double y) {
   return stdx::pow(x, Pack(y));
 }
+inline double expOf(double x) {
+  return std::exp(x);
+}
+inline Pack expOf(const Pack& x) {
+  return stdx::exp(x);
+}
 inline double absOf(double x) {
   return std::abs(x);
 }

@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <type_traits>
 
+#include "Components/MPM/Materials/ConstitutiveModels/ConcreteModels.h"
+
 namespace anode {
 
 namespace {
@@ -42,27 +44,36 @@ constexpr int componentsOf() {
   return 1;
 }
 
-// The components of the particle array saved as `label` (ParticleSet's one list), 0 if none.
+// Calls f(field) for every particle array any material may have: ParticleSet's one list and
+// every constitutive model's state.
+template <class F>
+void forEachParticleField(F&& f) {
+  ParticleSet().forEachField([&f](const auto&, const auto& field) { f(field); });
+  forEachModelStateField(f);
+}
+
+template <class T>
+constexpr int componentsOf(const ParticleField<T>&) {
+  return componentsOf<T>();
+}
+
+// The components of the particle array saved as `label`, 0 if none.
 int fieldComponents(const std::string& label) {
   int components = 0;
-  ParticleSet().forEachField([&](const auto& v, const auto& field) {
-    if (field.label && label == field.label)
-      components = componentsOf<typename std::decay_t<decltype(v)>::value_type>();
+  forEachParticleField([&](const auto& field) {
+    if (field.label && label == field.label) components = componentsOf(field);
   });
   return components;
 }
 
-// Writes particle `indices` of the array saved as `label` to out (zeros where the material's
-// physics does not have that array).
+// Writes particle `indices` of the array saved as `label` to out (zeros where the material does
+// not have that array).
 void copyField(const ParticleSet& p, const std::string& label, const std::vector<size_t>& indices,
                double* out) {
+  std::fill(out, out + fieldComponents(label) * indices.size(), 0.0);
   p.forEachField([&](const auto& v, const auto& field) {
-    if (!field.label || label != field.label) return;
+    if (!field.label || label != field.label || v.empty()) return;
     constexpr int n = componentsOf<typename std::decay_t<decltype(v)>::value_type>();
-    if (v.empty()) {
-      std::fill(out, out + n * indices.size(), 0.0);
-      return;
-    }
     for (size_t k = 0; k < indices.size(); ++k) put(v[indices[k]], out + n * k);
   });
 }
@@ -158,7 +169,7 @@ const std::vector<std::string>& gridLabelNames() {
 // the one list of them), the aliases computed from them and its grid fields.
 bool isDiffusionLabel(const std::string& label) {
   bool diffusion = false;
-  ParticleSet().forEachField([&](const auto&, const auto& field) {
+  forEachParticleField([&](const auto& field) {
     if (field.label && label == field.label)
       diffusion = field.physics == Physics::Diffusion || field.physics == Physics::FluxBC;
   });

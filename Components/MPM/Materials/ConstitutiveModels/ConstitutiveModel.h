@@ -1,27 +1,22 @@
 // What the step needs to know of a constitutive model. The stress update itself is called on the
 // concrete model inside the particle loop: the loop is compiled once per model type listed in
-// ConcreteConstitutiveModel and dispatched once per material (std::visit), never per particle.
+// ConcreteModels.h and dispatched once per material (std::visit), never per particle.
 #pragma once
 
 #include <memory>
-#include <variant>
-#include <vector>
 
 #include "Components/MPM/ParticleSet.h"
 #include "Core/ProblemSpec/ProblemSpec.h"
 
 namespace anode {
 
-class RFElasticPlastic;
-// Every model type the particle update is compiled for. A new model: its class (deriving from
-// ConstitutiveModel, with an updateStress of RFElasticPlastic's signature, concrete() returning
-// this), one entry here, one branch in createConstitutiveModel.
-using ConcreteConstitutiveModel = std::variant<const RFElasticPlastic*>;
+struct ConcreteModel;  // ConcreteModels.h: the model as its own type
 
 class ConstitutiveModel {
  public:
   virtual ~ConstitutiveModel() = default;
-  // Creates the per-particle state this model needs (and nothing else).
+  // Declares the per-particle state this model keeps (ParticleSet::declareModelArray) and sets
+  // its initial values; creates nothing else.
   virtual void initializeState(ParticleSet& p) const = 0;
   // True if the stress depends on the concentration (swelling).
   virtual bool swells() const = 0;
@@ -30,9 +25,8 @@ class ConstitutiveModel {
   virtual double swellingCoefficient() const = 0;
   // K + 4G/3: the modulus of the dilatational wave speed (paper Eq. 41).
   virtual double dilatationalModulus() const = 0;
-  virtual bool canYield() const = 0;
   // This model as its own type, for the particle update (dispatched once per material).
-  virtual ConcreteConstitutiveModel concrete() const = 0;
+  virtual ConcreteModel concrete() const = 0;
 };
 
 // Factory keyed by <constitutive_model type="...">; `diffusion` tells whether concentration exists.

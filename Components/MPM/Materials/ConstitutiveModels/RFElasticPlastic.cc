@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "Components/MPM/Materials/ConstitutiveModels/ConcreteModels.h"
 #include "Core/Math/PolarDecomposition.h"
 
 namespace anode {
@@ -65,8 +66,22 @@ std::unique_ptr<RFElasticPlastic> RFElasticPlastic::fromInput(const PSNode& node
 }
 
 void RFElasticPlastic::initializeState(ParticleSet& p) const {
-  for (size_t i = 0; i < p.count(); ++i) p.rotation[i] = rotationOf(p.F[i]);
-  if (canYield()) p.enable(Physics::Plasticity);
+  eachStateField([&](const auto& field) {
+    if (field.physics != Physics::Plasticity || flow_) p.declareModelArray(field);
+  });
+  std::vector<Mat3>& rotation = p.modelArray<Mat3>(0);
+  for (size_t i = 0; i < p.count(); ++i) rotation[i] = rotationOf(p.F[i]);
+}
+
+RFElasticPlastic::StateArrays::StateArrays(ParticleSet& p, bool yields)
+    : rotation_(p.modelArray<Mat3>(0).data()) {
+  if (!yields) return;
+  ep_ = p.modelArray<double>(0).data();
+  epdot_ = p.modelArray<double>(1).data();
+}
+
+ConcreteModel RFElasticPlastic::concrete() const {
+  return {this};
 }
 
 }  // namespace anode

@@ -19,24 +19,61 @@ class RFElasticPlastic : public ConstitutiveModel {
   // `diffusion`: whether concentration exists (then volume_expansion_coeff is required).
   static std::unique_ptr<RFElasticPlastic> fromInput(const PSNode& node, bool diffusion);
 
+  // What the stress update carries from step to step, for one particle (S = double) or a pack of
+  // them (S = Pack): R of F = RU (the frame of the hypoelastic update), the plastic strain and
+  // its rate (0 for an elastic material).
+  template <class S>
+  struct State {
+    Mat3Of<S> rotation;
+    S ep, epdot;
+  };
+  // Every per-particle array the model may declare, in its order: R always, the plastic strain
+  // and its rate with a <flow_model>.
+  template <class F>
+  static void eachStateField(F&& f) {
+    f(ParticleField<Mat3>{nullptr, Physics::Mechanics, Mat3::Identity(), OnSplit::Copy});
+    f(ParticleField<double>{"p.plasticStrain", Physics::Plasticity, 0.0, OnSplit::Copy});
+    f(ParticleField<double>{"p.plasticStrainRate", Physics::Plasticity, 0.0, OnSplit::Copy});
+  }
+  // The arrays of a particle set declared by initializeState, read and written a lane at a time.
+  class StateArrays {
+   public:
+    StateArrays(ParticleSet& p, bool yields);
+    void load(State<Pack>& s, int l, size_t i) const {
+      setLane(s.rotation, l, rotation_[i]);
+      s.ep[l] = ep_ ? ep_[i] : 0.0;
+      s.epdot[l] = epdot_ ? epdot_[i] : 0.0;
+    }
+    static void loadUnstrained(State<Pack>& s, int l) {
+      setLane(s.rotation, l, Mat3::Identity());
+      s.ep[l] = s.epdot[l] = 0;
+    }
+    void store(const State<Pack>& s, int l, size_t i) const {
+      rotation_[i] = lane(s.rotation, l);
+      if (ep_) {
+        ep_[i] = s.ep[l];
+        epdot_[i] = s.epdot[l];
+      }
+    }
+
+   private:
+    Mat3* rotation_;
+    double *ep_ = nullptr, *epdot_ = nullptr;
+  };
+
   void initializeState(ParticleSet& p) const override;
+  StateArrays stateArrays(ParticleSet& p) const { return {p, flow_.has_value()}; }
   bool swells() const override { return eta_ != 0; }
   double swellingCoefficient() const override { return eta_; }
   double dilatationalModulus() const override { return K_ + 4.0 * G_ / 3.0; }
-  bool canYield() const override { return flow_.has_value(); }
-  ConcreteConstitutiveModel concrete() const override { return this; }
+  ConcreteModel concrete() const override;
 
-  // Returns the new lab-frame stress; `rotation` is R of the old F on entry and R of Fnew on
-  // return; ep/epdot are the plastic strain and its rate (untouched for an elastic material); dc
-  // is the concentration change of the step. For one particle (S = double) or a pack of them
-  // (Core/Math/Simd.h: each lane gets the bits of the scalar update).
+  // Returns the new lab-frame stress; state.rotation is R of the old F on entry and R of Fnew on
+  // return; dc is the concentration change of the step. Each lane of a pack gets the bits of the
+  // scalar update (Core/Math/Simd.h).
   template <class S>
-  Mat3Of<S> updateStress(const Mat3Of<S>& stress, Mat3Of<S>& rotation, const Mat3Of<S>& Fnew,
-                         const Mat3Of<S>& L, const S& dc, double dt, S& ep, S& epdot) const;
-  Mat3 updateStress(const Mat3& stress, Mat3& rotation, const Mat3& Fnew, const Mat3& L, double dc,
-                    double dt, double& ep, double& epdot) const {
-    return updateStress<double>(stress, rotation, Fnew, L, dc, dt, ep, epdot);
-  }
+  Mat3Of<S> updateStress(const Mat3Of<S>& stress, const Mat3Of<S>& Fnew, const Mat3Of<S>& L,
+                         const S& dc, double dt, State<S>& state) const;
 
  private:
   double K_, G_, eta_;
@@ -44,13 +81,15 @@ class RFElasticPlastic : public ConstitutiveModel {
 };
 
 template <class S>
-Mat3Of<S> RFElasticPlastic::updateStress(const Mat3Of<S>& stress, Mat3Of<S>& rotation,
-                                         const Mat3Of<S>& Fnew, const Mat3Of<S>& L, const S& dc,
-                                         double dt, S& ep, S& epdot) const {
+Mat3Of<S> RFElasticPlastic::updateStress(const Mat3Of<S>& stress, const Mat3Of<S>& Fnew,
+                                         const Mat3Of<S>& L, const S& dc, double dt,
+                                         State<S>& state) const {
   using M = Mat3Of<S>;
   const M I = M::Identity();
+  S& ep = state.ep;
+  S& epdot = state.epdot;
   // Unrotate the rate of deformation and the stress with R of the old F (Eqs. 26-29).
-  const M Rold = rotation;
+  const M Rold = state.rotation;
   const M D = S(0.5) * (L + L.transpose());
   // Elastic-plus-plastic rate: the swelling rate eta dc/dt on each normal component removed
   // (Eqs. 25, 33, 36); c of this step, not the previous one as in Uintah.
@@ -92,8 +131,8 @@ Mat3Of<S> RFElasticPlastic::updateStress(const Mat3Of<S>& stress, Mat3Of<S>& rot
   // default_hypo equation of state: p_{n+1} = p_n + K tr(D) dt (Eq. 38, volumetric part).
   const M sigmaBarNew = s + (mean + S(K_) * trD * S(dt)) * I;
   // Rotate back with R of the new F (Eq. 39).
-  rotation = rotationOf(Fnew);
-  return rotation * sigmaBarNew * rotation.transpose();
+  state.rotation = rotationOf(Fnew);
+  return state.rotation * sigmaBarNew * state.rotation.transpose();
 }
 
 }  // namespace anode
