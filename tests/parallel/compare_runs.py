@@ -17,7 +17,11 @@ def read(path):
     reader.SetFileName(path)
     reader.Update()
     out = reader.GetOutput()
-    if out is None or reader.GetErrorCode() != 0 or out.GetPointData().GetArray("p.particleID") is None:
+    if (
+        out is None
+        or reader.GetErrorCode() != 0
+        or out.GetPointData().GetArray("p.particleID") is None
+    ):
         sys.exit(f"{path}: not readable as particle output")
     n = out.GetNumberOfPoints()
     arrays = {"p.x": [out.GetPoint(i) for i in range(n)]}
@@ -35,10 +39,12 @@ def main():
     if "--tolerance" in args:
         k = args.index("--tolerance")
         tolerance = float(args[k + 1])
-        del args[k:k + 2]
+        del args[k : k + 2]
     a, b = read(args[0]), read(args[1])
     if a["p.particleID"] != b["p.particleID"]:
-        print(f"particle sets differ: {len(a['p.particleID'])} and {len(b['p.particleID'])} particles")
+        print(
+            f"particle sets differ: {len(a['p.particleID'])} and {len(b['p.particleID'])} particles"
+        )
         return 1
     worst = 0.0
     for name in sorted(a):
@@ -46,7 +52,9 @@ def main():
             print(f"{name}: missing in {args[1]}")
             return 1
         scale = max((abs(v) for t in a[name] for v in t), default=0.0)
-        diff = max((abs(u - v) for s, t in zip(a[name], b[name]) for u, v in zip(s, t)), default=0.0)
+        diff = max(
+            (abs(u - v) for s, t in zip(a[name], b[name]) for u, v in zip(s, t)), default=0.0
+        )
         rel = diff / scale if scale > 0 else diff
         worst = max(worst, rel)
         print(f"{name:28s} max |difference| / scale = {rel:.3e}")
@@ -56,14 +64,21 @@ def main():
         for label, weight in (("mass", None), ("lithium", "p.concentration")):
             if weight is not None and weight not in a:
                 continue
+
             def total(run):
-                return sum(m[0] * (run[weight][i][0] if weight else 1.0) for i, m in enumerate(run["p.mass"]))
+                return sum(
+                    m[0] * (run[weight][i][0] if weight else 1.0)
+                    for i, m in enumerate(run["p.mass"])
+                )
+
             ta, tb = total(a), total(b)
             rel = abs(ta - tb) / abs(ta) if ta else abs(tb)
             totals_ok = totals_ok and rel <= 1e-12
             print(f"total {label:22s} {ta:.17g} and {tb:.17g}: relative difference {rel:.3e}")
-    print(f"{len(a['p.particleID'])} particles, largest relative difference {worst:.3e} "
-          f"(tolerance {tolerance:g})")
+    print(
+        f"{len(a['p.particleID'])} particles, largest relative difference {worst:.3e} "
+        f"(tolerance {tolerance:g})"
+    )
     return 0 if worst <= tolerance and totals_ok else 1
 
 
