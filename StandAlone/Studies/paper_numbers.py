@@ -1,5 +1,5 @@
 """The numbers of docs/paper/README.md, measured from a run's output (history.csv and the particle
-.vtu files, read with VTK's XML readers: /usr/bin/python3 with python3-vtk9).
+.vtu files, read with VTK's XML readers: /usr/bin/python3 with python3-vtk9 and python3-numpy).
 
 Definitions (the report repeats them). Lengths in um, times in us as the runs write them.
 - Reference position X0 = p.x - p.displacement; the silicon is material 0.
@@ -26,9 +26,10 @@ Definitions (the report repeats them). Lengths in um, times in us as the runs wr
 """
 import functools
 import json
-import math
 import os
 import xml.etree.ElementTree as ET
+
+import numpy as np
 
 SILICON = 0
 
@@ -48,7 +49,9 @@ def last_output_time(run_dir):
 
 
 def read_output(run_dir, time, arrays):
-    """The arrays (and "time", "points") of the output nearest to `time`, as Python lists."""
+    """The arrays (and "time", "points") of the output nearest to `time`, as numpy arrays: a value
+    per particle, or a row per particle for an array of several components."""
+    from vtkmodules.util.numpy_support import vtk_to_numpy
     from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridReader
 
     t, path = min(outputs(run_dir), key=lambda e: abs(e[0] - time))
@@ -56,17 +59,12 @@ def read_output(run_dir, time, arrays):
     reader.SetFileName(path)
     reader.Update()
     grid = reader.GetOutput()
-    n = grid.GetNumberOfPoints()
-    points = grid.GetPoints().GetData()
-    data = dict(time=t, points=[points.GetTuple3(i) for i in range(n)])
+    data = dict(time=t, points=vtk_to_numpy(grid.GetPoints().GetData()))
     for name in arrays:
         a = grid.GetPointData().GetArray(name)
         if a is None:
             raise RuntimeError("%s holds no array %s" % (path, name))
-        k = a.GetNumberOfComponents()
-        data[name] = (
-            [a.GetValue(i) for i in range(n)] if k == 1 else [a.GetTuple(i) for i in range(n)]
-        )
+        data[name] = vtk_to_numpy(a)
     return data
 
 
@@ -138,7 +136,7 @@ def silicon_capacity(run_dir):
     """rho V0 of the silicon: the lithium it holds at c = 1 (history's units)."""
     density = float(input_of(run_dir).find("MaterialProperties/MPM/material/density").text)
     data = read_output(run_dir, 0.0, ["p.volume", "material"])
-    return density * sum(v for v, m in zip(data["p.volume"], data["material"]) if m == SILICON)
+    return density * data["p.volume"][data["material"] == SILICON].sum()
 
 
 def lithium_fraction_time(run_dir, fraction):
@@ -172,37 +170,34 @@ class State:
         )
         self.time = d["time"]
         self.x = d["points"]
-        self.X0 = [
-            tuple(x[k] - u[k] for k in range(3)) for x, u in zip(d["points"], d["p.displacement"])
-        ]
+        self.X0 = self.x - d["p.displacement"]
         self.c = d["p.concentration"]
         self.ep = d["p.plasticStrain"]
         self.material = d["material"]
         self.id = d["p.particleID"]
         self.volume = d["p.volume"]
-        self.silicon = [i for i, m in enumerate(self.material) if m == SILICON]
-        zs = sorted({round(self.X0[i][2], 9) for i in self.silicon})
-        self.layers = zs
-        self.base, self.top = zs[0], zs[-1]
+        self.silicon = np.flatnonzero(self.material == SILICON)
+        self.layers = np.unique(np.round(self.X0[self.silicon, 2], 9))
+        self.base, self.top = self.layers[0], self.layers[-1]
 
     def layer(self, z):
         """Silicon particles whose reference z is the layer nearest z."""
-        nearest = min(self.layers, key=lambda q: abs(q - z))
-        return [i for i in self.silicon if abs(self.X0[i][2] - nearest) < 1e-7]
+        nearest = self.layers[np.argmin(np.abs(self.layers - z))]
+        return self.silicon[np.abs(self.X0[self.silicon, 2] - nearest) < 1e-7]
 
     def radial_growth(self, particles):
-        r_now = max(math.hypot(self.x[i][0], self.x[i][1]) for i in particles)
-        r_ref = max(math.hypot(self.X0[i][0], self.X0[i][1]) for i in particles)
+        r_now = np.hypot(self.x[particles, 0], self.x[particles, 1]).max()
+        r_ref = np.hypot(self.X0[particles, 0], self.X0[particles, 1]).max()
         return r_now / r_ref - 1
 
     def height_growth(self):
         """(highest - lowest current z of the silicon) / (its top layer's - base layer's X0_z) - 1."""
-        z = [self.x[i][2] for i in self.silicon]
-        return (max(z) - min(z)) / (self.top - self.base) - 1
+        z = self.x[self.silicon, 2]
+        return (z.max() - z.min()) / (self.top - self.base) - 1
 
     def top_layer_rise(self):
         """(mean current z of the top layer - that of the base layer) / (their X0_z apart) - 1."""
-        mean_z = lambda particles: sum(self.x[i][2] for i in particles) / len(particles)
+        mean_z = lambda particles: self.x[particles, 2].mean()
         return (mean_z(self.layer(self.top)) - mean_z(self.layer(self.base))) / (
             self.top - self.base
         ) - 1
@@ -211,25 +206,22 @@ class State:
         """Mean c per ring of the middle layers, axis first."""
         height = self.top - self.base
         middle = self.base + height / 2
-        radii = sorted({round(math.hypot(self.X0[i][0], self.X0[i][1]), 7) for i in self.silicon})
-        sums, counts = [0.0] * len(radii), [0] * len(radii)
-        index = {r: k for k, r in enumerate(radii)}
-        for i in self.silicon:
-            if abs(self.X0[i][2] - middle) > 0.1 * height:
-                continue
-            k = index[round(math.hypot(self.X0[i][0], self.X0[i][1]), 7)]
-            sums[k] += self.c[i]
-            counts[k] += 1
-        return [s / n for s, n in zip(sums, counts) if n > 0]
+        X0, c = self.X0[self.silicon], self.c[self.silicon]
+        radius = np.round(np.hypot(X0[:, 0], X0[:, 1]), 7)
+        in_middle = np.abs(X0[:, 2] - middle) <= 0.1 * height
+        return group_means(radius[in_middle], c[in_middle])
 
     def height_profile(self, thickness):
         """Mean c of the silicon in slabs `thickness` thick by X0_z, from the base layer up."""
-        sums, counts = {}, {}
-        for i in self.silicon:
-            k = int((self.X0[i][2] - self.base) / thickness + 1e-6)
-            sums[k] = sums.get(k, 0.0) + self.c[i]
-            counts[k] = counts.get(k, 0) + 1
-        return [sums[k] / counts[k] for k in sorted(sums)]
+        slab = ((self.X0[self.silicon, 2] - self.base) / thickness + 1e-6).astype(int)
+        return group_means(slab, self.c[self.silicon])
+
+
+def group_means(keys, values):
+    """The mean of `values` per key, keys in increasing order. Each group's sum is taken in the
+    values' order (np.bincount adds one by one), as a loop over the particles would."""
+    _, group = np.unique(keys, return_inverse=True)
+    return (np.bincount(group, weights=values) / np.bincount(group)).tolist()
 
 
 def front(profile, threshold=0.1, rise=0.1):
@@ -259,25 +251,32 @@ def state_of(run_dir, time):
 def pair_difference(run_a, run_b, time):
     """Largest and mean |c_a - c_b| and largest |x_a - x_b| in cells, particles matched by ID."""
     a, b = state_of(run_a, time), state_of(run_b, time)
-    where = {pid: i for i, pid in enumerate(b.id)}
-    dx = cell_size(run_a)
-    dc, dxs = [], []
-    if set(where) != set(a.id):
+    if not np.array_equal(np.sort(a.id), np.sort(b.id)):
         raise RuntimeError(
             "%s and %s hold different particles at t = %g: no pair to compare"
             % (run_a, run_b, time)
         )
-    for i, pid in enumerate(a.id):
-        j = where[pid]
-        dc.append(abs(a.c[i] - b.c[j]))
-        dxs.append(math.dist(a.x[i], b.x[j]) / dx)
+    j = index_of(a.id, b.id)
+    dc = np.abs(a.c - b.c[j])
+    dxs = np.linalg.norm(a.x - b.x[j], axis=1) / cell_size(run_a)
     return dict(
         time_a=a.time,
         time_b=b.time,
-        max_dc=max(dc),
-        mean_dc=sum(dc) / len(dc),
-        max_dx_cells=max(dxs),
+        max_dc=dc.max(),
+        mean_dc=dc.mean(),
+        max_dx_cells=dxs.max(),
     )
+
+
+def index_of(ids, among):
+    """The index in `among` (IDs each there once) of each particle ID of `ids`; a KeyError for
+    one not there."""
+    order = np.argsort(among)
+    found = order[np.searchsorted(among, ids, sorter=order).clip(max=len(among) - 1)]
+    missing = among[found] != ids
+    if missing.any():
+        raise KeyError("particle %d is not among the particles to match" % ids[missing][0])
+    return found
 
 
 def shape(run_dir, time):
@@ -285,8 +284,8 @@ def shape(run_dir, time):
     s = state_of(run_dir, time)
     base, top = s.layer(s.base), s.layer(s.top)
     lower, middle = s.layer(s.base + (s.top - s.base) / 4), s.layer((s.base + s.top) / 2)
-    ep_base = [s.ep[i] for i in base]
-    other = [i for i, m in enumerate(s.material) if m != SILICON]
+    ep_base = s.ep[base]
+    substrate = s.ep[s.material != SILICON]
     return dict(
         time=s.time,
         lithium=lithium_fraction_at(run_dir, s.time),
@@ -296,10 +295,10 @@ def shape(run_dir, time):
         top_growth=s.radial_growth(top),
         height_growth=s.height_growth(),
         top_rise=s.top_layer_rise(),
-        ep_base_max=max(ep_base),
-        ep_base_mean=sum(ep_base) / len(ep_base),
-        ep_max=max(s.ep[i] for i in s.silicon),
-        ep_substrate_max=max((s.ep[i] for i in other), default=None),
+        ep_base_max=ep_base.max(),
+        ep_base_mean=ep_base.mean(),
+        ep_max=s.ep[s.silicon].max(),
+        ep_substrate_max=substrate.max() if substrate.size else None,
     )
 
 
@@ -517,26 +516,24 @@ def cycle_section(runs, scale, unit):
     capacity = silicon_capacity(run_dir)
     state = functools.lru_cache(maxsize=None)(lambda t: State(run_dir, t))  # each output read once
     start = state(0.0)
-    initial_volume = {start.id[i]: start.volume[i] for i in start.silicon}
+    initial_volume = start.volume[start.silicon]
     rows = []
     for t in (40e6, 80e6):
         s = state(t)
         r = min(history, key=lambda h: abs(h["time"] - s.time))
-        c = [s.c[i] for i in s.silicon]
-        J = [s.volume[i] / initial_volume[s.id[i]] for i in s.silicon]
-        pillar = [s.ep[i] for i in s.silicon]
-        substrate = [s.ep[i] for i, m in enumerate(s.material) if m != SILICON]
+        c = s.c[s.silicon]
+        J = s.volume[s.silicon] / initial_volume[index_of(s.id[s.silicon], start.id[start.silicon])]
+        pillar = s.ep[s.silicon]
+        substrate = s.ep[s.material != SILICON]
         rows.append(
             [
                 "%.4g" % (s.time * scale),
                 int(r["step"]),
                 percent(r["total_lithium"] / capacity),
-                "%.4f - %.4f" % (min(c), max(c)),
-                "%.4f - %.4f" % (min(J), max(J)),
-                "%.3g / %.3g" % (max(pillar), sum(pillar) / len(pillar)),
-                "%.3g / %.3g" % (max(substrate), sum(substrate) / len(substrate))
-                if substrate
-                else "—",
+                "%.4f - %.4f" % (c.min(), c.max()),
+                "%.4f - %.4f" % (J.min(), J.max()),
+                "%.3g / %.3g" % (pillar.max(), pillar.mean()),
+                "%.3g / %.3g" % (substrate.max(), substrate.mean()) if substrate.size else "—",
             ]
         )
     profiles = []

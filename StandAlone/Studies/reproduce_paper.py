@@ -23,7 +23,8 @@
 
 --quick STEPS runs each scenario afresh for STEPS steps only (into DIR, which must not hold full
 runs) and makes every figure from what that gives: the pipeline's test (tests/CMakeLists.txt).
-Needs /usr/bin/python3 with VTK (python3-vtk9, which libvtk9-dev installs) for the numbers.
+Needs /usr/bin/python3 with numpy (python3-numpy) and, for the numbers, VTK (python3-vtk9, which
+libvtk9-dev installs).
 """
 import argparse
 import concurrent.futures

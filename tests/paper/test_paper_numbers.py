@@ -7,6 +7,8 @@ import sys
 import tempfile
 import unittest
 
+import numpy as np
+
 sys.path.insert(
     0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "StandAlone", "Studies")
 )
@@ -38,9 +40,9 @@ class HeightProfile(unittest.TestCase):
         # (material 1) below is left out; slabs 5 nm thick hold layers 0-1, 2-3, 4.
         state = paper_numbers.State.__new__(paper_numbers.State)
         layers = [0.04 + 0.0025 * k for k in range(5)]
-        state.X0 = [(0.0, 0.0, z) for z in layers for _ in range(2)] + [(0.0, 0.0, 0.01)]
-        state.c = [float(k) for k in range(5) for _ in range(2)] + [9.0]
-        state.silicon = list(range(10))
+        state.X0 = np.array([(0.0, 0.0, z) for z in layers for _ in range(2)] + [(0.0, 0.0, 0.01)])
+        state.c = np.array([float(k) for k in range(5) for _ in range(2)] + [9.0])
+        state.silicon = np.arange(10)
         state.base = layers[0]
         self.assertEqual(state.height_profile(0.005), [0.5, 2.5, 4.0])
 
@@ -49,10 +51,12 @@ class HeightProfile(unittest.TestCase):
         # layer's three particles to 0.13, 0.13 and 0.16 (one standing proud). Mean rise of the
         # top over the base: (0.14 - 0.01) / 0.1 - 1 = 0.3; the highest particle's would be 0.5.
         state = paper_numbers.State.__new__(paper_numbers.State)
-        state.X0 = [(0.0, 0.0, 0.0)] * 2 + [(0.0, 0.0, 0.1)] * 3
-        state.x = [(0.0, 0.0, 0.01)] * 2 + [(0.0, 0.0, 0.13), (0.0, 0.0, 0.13), (0.0, 0.0, 0.16)]
-        state.silicon = list(range(5))
-        state.layers = [0.0, 0.1]
+        state.X0 = np.array([(0.0, 0.0, 0.0)] * 2 + [(0.0, 0.0, 0.1)] * 3)
+        state.x = np.array(
+            [(0.0, 0.0, 0.01)] * 2 + [(0.0, 0.0, 0.13), (0.0, 0.0, 0.13), (0.0, 0.0, 0.16)]
+        )
+        state.silicon = np.arange(5)
+        state.layers = np.array([0.0, 0.1])
         state.base, state.top = 0.0, 0.1
         self.assertAlmostEqual(state.top_layer_rise(), 0.3)
         self.assertAlmostEqual(state.height_growth(), 0.5)
