@@ -21,10 +21,18 @@ import tempfile
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 SUS = os.path.join(ROOT, "build", "StandAlone", "sus")
 CASES = [
-    ("uintah_Pillar3D_CPDI_diffusion", os.path.join(ROOT, "..", "shared", "inputs", "benchmarks",
-                                                     "Pillar3D_CPDI_diffusion.ups")),
-    ("L_SmoothNanoPillar3D_FBC", os.path.join(ROOT, "..", "shared", "inputs", "uintah", "L_SmoothNanoPillar3D_FBC.ups")),
-    ("L_SmoothNanoPillar3D_no_diffusion", os.path.join(ROOT, "inputs", "Benchmarks", "LargePillarNoDiffusion.ups")),
+    (
+        "uintah_Pillar3D_CPDI_diffusion",
+        os.path.join(ROOT, "..", "shared", "inputs", "benchmarks", "Pillar3D_CPDI_diffusion.ups"),
+    ),
+    (
+        "L_SmoothNanoPillar3D_FBC",
+        os.path.join(ROOT, "..", "shared", "inputs", "uintah", "L_SmoothNanoPillar3D_FBC.ups"),
+    ),
+    (
+        "L_SmoothNanoPillar3D_no_diffusion",
+        os.path.join(ROOT, "inputs", "Benchmarks", "LargePillarNoDiffusion.ups"),
+    ),
     ("CpdiBox", os.path.join(ROOT, "inputs", "Benchmarks", "CpdiBox.ups")),
     ("LinearBox", os.path.join(ROOT, "inputs", "Benchmarks", "LinearBox.ups")),
 ]
@@ -40,14 +48,18 @@ def run(sus, case, path, threads, steps):
         if p.returncode != 0:
             sys.exit("%s failed (%d):\n%s" % (case, p.returncode, p.stderr[-2000:]))
     text = p.stderr
-    result = {"steps": int(re.search(r"sus: (\d+) steps", text).group(1)),
-              "particles": int(re.search(r"steps, t = \S+, (\d+) particles", text).group(1)),
-              "wall": float(re.search(r"wall ([\d.]+) s", text).group(1)),
-              "rate": float(re.search(r"particle-steps per second: (\S+)", text).group(1)),
-              "peak_MB": float(re.search(r"peak memory: ([\d.]+) MB", text).group(1)),
-              "bytes_per_particle": float(re.search(r"MB, (\d+) bytes per particle", text).group(1)),
-              "tasks": {m.group(1): float(m.group(2))
-                        for m in re.finditer(r"^  (\S+)\s+([\d.]+)\s+[\d.]+%$", text, re.M)}}
+    result = {
+        "steps": int(re.search(r"sus: (\d+) steps", text).group(1)),
+        "particles": int(re.search(r"steps, t = \S+, (\d+) particles", text).group(1)),
+        "wall": float(re.search(r"wall ([\d.]+) s", text).group(1)),
+        "rate": float(re.search(r"particle-steps per second: (\S+)", text).group(1)),
+        "peak_MB": float(re.search(r"peak memory: ([\d.]+) MB", text).group(1)),
+        "bytes_per_particle": float(re.search(r"MB, (\d+) bytes per particle", text).group(1)),
+        "tasks": {
+            m.group(1): float(m.group(2))
+            for m in re.finditer(r"^  (\S+)\s+([\d.]+)\s+[\d.]+%$", text, re.M)
+        },
+    }
     return result
 
 
@@ -70,12 +82,31 @@ def scaling(a):
             runs = [run(a.sus, "res%d" % res, path, threads, a.steps) for _ in range(a.repeats)]
             median = sorted(runs, key=lambda r: r["rate"])[len(runs) // 2]
             step_s = median["wall"] / median["steps"]
-            rows.append(dict(case="res%d" % res, threads=threads, particles=median["particles"],
-                             steps=median["steps"], repeats=a.repeats, rate_median=median["rate"],
-                             seconds_per_step=step_s, peak_MB=median["peak_MB"],
-                             bytes_per_particle=median["bytes_per_particle"]))
-            print("res %d: %7d particles, %.3e particle-steps/s, %.4f s/step, peak %.1f MB (median of %d, %d threads)"
-                  % (res, median["particles"], median["rate"], step_s, median["peak_MB"], a.repeats, threads))
+            rows.append(
+                dict(
+                    case="res%d" % res,
+                    threads=threads,
+                    particles=median["particles"],
+                    steps=median["steps"],
+                    repeats=a.repeats,
+                    rate_median=median["rate"],
+                    seconds_per_step=step_s,
+                    peak_MB=median["peak_MB"],
+                    bytes_per_particle=median["bytes_per_particle"],
+                )
+            )
+            print(
+                "res %d: %7d particles, %.3e particle-steps/s, %.4f s/step, peak %.1f MB (median of %d, %d threads)"
+                % (
+                    res,
+                    median["particles"],
+                    median["rate"],
+                    step_s,
+                    median["peak_MB"],
+                    a.repeats,
+                    threads,
+                )
+            )
             sys.stdout.flush()
     small, large = rows[0], rows[-1]
     slope = (large["peak_MB"] - small["peak_MB"]) * 1e6 / (large["particles"] - small["particles"])
@@ -101,7 +132,9 @@ def main():
     ap.add_argument("--repeats", type=int, default=3)
     # Uintah's L_SmoothNanoPillar3D_FBC.ups has its max_Timesteps commented out: uncapped it runs
     # to maxTime (hours). 200 is the shared timing case's own count.
-    ap.add_argument("--steps", type=int, default=200, help="cap on steps per run (0: as the input says)")
+    ap.add_argument(
+        "--steps", type=int, default=200, help="cap on steps per run (0: as the input says)"
+    )
     ap.add_argument("--threads", default="1,2")
     ap.add_argument("--csv", default="benchmarks.csv")
     ap.add_argument("--quick", action="store_true", help="1 repeat of 5 steps per case")
@@ -121,17 +154,36 @@ def main():
         for threads in [int(t) for t in a.threads.split(",")]:
             runs = [run(a.sus, case, path, threads, a.steps) for _ in range(a.repeats)]
             median = sorted(runs, key=lambda r: r["rate"])[len(runs) // 2]
-            row = dict(case=case, threads=threads, particles=median["particles"], steps=median["steps"],
-                       repeats=a.repeats, rate_median=median["rate"],
-                       rate_min=min(r["rate"] for r in runs), rate_max=max(r["rate"] for r in runs),
-                       wall=median["wall"], peak_MB=median["peak_MB"],
-                       bytes_per_particle=median["bytes_per_particle"])
+            row = dict(
+                case=case,
+                threads=threads,
+                particles=median["particles"],
+                steps=median["steps"],
+                repeats=a.repeats,
+                rate_median=median["rate"],
+                rate_min=min(r["rate"] for r in runs),
+                rate_max=max(r["rate"] for r in runs),
+                wall=median["wall"],
+                peak_MB=median["peak_MB"],
+                bytes_per_particle=median["bytes_per_particle"],
+            )
             for task, seconds in median["tasks"].items():
                 row["s_" + task] = seconds
             rows.append(row)
-            print("%-36s %d thread(s): %.3e particle-steps/s (median of %d; %.3e-%.3e), %d particles, "
-                  "%.0f bytes/particle" % (case, threads, row["rate_median"], a.repeats, row["rate_min"],
-                                           row["rate_max"], row["particles"], row["bytes_per_particle"]))
+            print(
+                "%-36s %d thread(s): %.3e particle-steps/s (median of %d; %.3e-%.3e), %d particles, "
+                "%.0f bytes/particle"
+                % (
+                    case,
+                    threads,
+                    row["rate_median"],
+                    a.repeats,
+                    row["rate_min"],
+                    row["rate_max"],
+                    row["particles"],
+                    row["bytes_per_particle"],
+                )
+            )
             sys.stdout.flush()
     write_csv(rows, a.csv)
 

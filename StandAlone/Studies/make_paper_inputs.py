@@ -7,20 +7,46 @@ paper does not give (chosen here). Units: um, us, pg (1 GPa = 1e6, 1 kg/m^3 = 1e
 """
 import os
 
-from ups_blocks import GPA, SILICON, data_archiver, flow_model, max_timesteps, non_linear1_diffusion, scalar_flux
+from ups_blocks import (
+    GPA,
+    SILICON,
+    data_archiver,
+    flow_model,
+    max_timesteps,
+    non_linear1_diffusion,
+    scalar_flux,
+)
 
 OUT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "inputs", "Paper")
 
-SUBSTRATE = dict(K=180.4, G=76.0, sigmaY=0.7, H=1.15)    # GPa
-SMALL = dict(radius=0.05, height=0.1, dx=0.005, num_radial=10, num_axial=20, num_angular=64,
-             lateral=0.15, top=0.3)
-LARGE = dict(radius=0.25, height=0.05, dx=0.01, num_radial=100, num_axial=20, num_angular=580,
-             lateral=0.5, top=0.2)
+SUBSTRATE = dict(K=180.4, G=76.0, sigmaY=0.7, H=1.15)  # GPa
+SMALL = dict(
+    radius=0.05,
+    height=0.1,
+    dx=0.005,
+    num_radial=10,
+    num_axial=20,
+    num_angular=64,
+    lateral=0.15,
+    top=0.3,
+)
+LARGE = dict(
+    radius=0.25,
+    height=0.05,
+    dx=0.01,
+    num_radial=100,
+    num_axial=20,
+    num_angular=580,
+    lateral=0.5,
+    top=0.2,
+)
 
 
 def time_points(points, value_tag):
-    return "".join("<time_point><time>%g</time><%s>%s</%s></time_point>" % (t, value_tag, v, value_tag)
-                   for t, v in points)
+    return "".join(
+        "<time_point><time>%g</time><%s>%s</%s></time_point>" % (t, value_tag, v, value_tag)
+        for t, v in points
+    )
 
 
 def scenario(s):
@@ -41,9 +67,12 @@ def scenario(s):
         load = [(0, J), (1e12, J)]
     diff_curve = ""
     if lithiation_end:
-        diff_curve = ("\n          <diff_curve>%s</diff_curve>" %
-                      time_points([(0, "in"), (lithiation_end, "out"), (1e12, "out")], "flux_direction"))
-    diffusion = non_linear1_diffusion(s["D0"], s.get("alpha", 6.0), s.get("beta", 0.5), s.get("pmax", 3.0), diff_curve)
+        diff_curve = "\n          <diff_curve>%s</diff_curve>" % time_points(
+            [(0, "in"), (lithiation_end, "out"), (1e12, "out")], "flux_direction"
+        )
+    diffusion = non_linear1_diffusion(
+        s["D0"], s.get("alpha", 6.0), s.get("beta", 0.5), s.get("pmax", 3.0), diff_curve
+    )
     density = s["density"] * 1e-3
     pillar = """      <material name="silicon">
         <density>%g</density>
@@ -69,8 +98,19 @@ def scenario(s):
           <velocity>[0.0, 0.0, 0.0]</velocity>
           <concentration>0</concentration>
         </geom_object>
-      </material>""" % (density, SILICON["K"] * GPA, SILICON["G"] * GPA, flow_model(s["model"], SILICON), diffusion,
-                        base, base + p["height"], p["radius"], p["num_radial"], p["num_axial"], p["num_angular"])
+      </material>""" % (
+        density,
+        SILICON["K"] * GPA,
+        SILICON["G"] * GPA,
+        flow_model(s["model"], SILICON),
+        diffusion,
+        base,
+        base + p["height"],
+        p["radius"],
+        p["num_radial"],
+        p["num_axial"],
+        p["num_angular"],
+    )
     substrate = ""
     contact = "<contact><type>null</type></contact>"
     if base > 0:
@@ -98,23 +138,52 @@ def scenario(s):
           <velocity>[0.0, 0.0, 0.0]</velocity>
           <concentration>0</concentration>
         </geom_object>
-      </material>""" % (density, SUBSTRATE["K"] * GPA, SUBSTRATE["G"] * GPA, flow_model("hardening", SUBSTRATE),
-                        -w / 2, -w / 2, w / 2, w / 2, base)
+      </material>""" % (
+            density,
+            SUBSTRATE["K"] * GPA,
+            SUBSTRATE["G"] * GPA,
+            flow_model("hardening", SUBSTRATE),
+            -w / 2,
+            -w / 2,
+            w / 2,
+            w / 2,
+            base,
+        )
         contact = "<contact><type>single_velocity</type><materials>[0,1]</materials></contact>"
     L = p["lateral"]
     cells = [int(round(2 * L / dx)), int(round(2 * L / dx)), int(round(p["top"] / dx))]
     flux_blocks = ""
-    for i, (name, piece) in enumerate([
-            ("side", "<cylinder label=\"side\"><bottom>[0.0,0.0,%g]</bottom><top>[0.0,0.0,%g]</top>"
-                     "<radius>%g</radius></cylinder>" % (base, base + p["height"], side_radius)),
-            ("top", "<cylinder label=\"top\"><bottom>[0.0,0.0,%g]</bottom><top>[0.0,0.0,%g]</top>"
-                    "<radius>%g</radius><cylinder_end>true</cylinder_end></cylinder>"
-             % (top_bottom, top_bottom + dz, p["radius"]))]):
+    for i, (name, piece) in enumerate(
+        [
+            (
+                "side",
+                '<cylinder label="side"><bottom>[0.0,0.0,%g]</bottom><top>[0.0,0.0,%g]</top>'
+                "<radius>%g</radius></cylinder>" % (base, base + p["height"], side_radius),
+            ),
+            (
+                "top",
+                '<cylinder label="top"><bottom>[0.0,0.0,%g]</bottom><top>[0.0,0.0,%g]</top>'
+                "<radius>%g</radius><cylinder_end>true</cylinder_end></cylinder>"
+                % (top_bottom, top_bottom + dz, p["radius"]),
+            ),
+        ]
+    ):
         flux_blocks += scalar_flux(i + 1, piece, time_points(load, "load"))
-    archiver = data_archiver(s["name"], s.get("output", s["maxTime"] / 50),
-                             ["p.x", "p.particleID", "p.volume", "p.concentration", "p.diffusivity", "p.stress",
-                              "p.plasticStrain", "p.displacement"],
-                             '    <checkpoint cycle="2" interval="%g"/>\n' % (s["maxTime"] / 40))
+    archiver = data_archiver(
+        s["name"],
+        s.get("output", s["maxTime"] / 50),
+        [
+            "p.x",
+            "p.particleID",
+            "p.volume",
+            "p.concentration",
+            "p.diffusivity",
+            "p.stress",
+            "p.plasticStrain",
+            "p.displacement",
+        ],
+        '    <checkpoint cycle="2" interval="%g"/>\n' % (s["maxTime"] / 40),
+    )
     text = """<?xml version='1.0' encoding='ISO-8859-1' ?>
 <!--
   %s (Gritton et al. %s)
@@ -173,8 +242,27 @@ def scenario(s):
     </BoundaryConditions>
   </Grid>
 </Uintah_specification>
-""" % (s["title"], s["section"], s["notes"], s["title"], s["maxTime"], max_timesteps(s.get("max_steps")), archiver,
-       pillar, substrate, contact, flux_blocks, -L, -L, L, L, p["top"], cells[0], cells[1], cells[2])
+""" % (
+        s["title"],
+        s["section"],
+        s["notes"],
+        s["title"],
+        s["maxTime"],
+        max_timesteps(s.get("max_steps")),
+        archiver,
+        pillar,
+        substrate,
+        contact,
+        flux_blocks,
+        -L,
+        -L,
+        L,
+        L,
+        p["top"],
+        cells[0],
+        cells[1],
+        cells[2],
+    )
     with open(os.path.join(OUT, s["name"] + ".ups"), "w") as f:
         f.write(text)
 
@@ -183,81 +271,246 @@ def describe(lines):
     return "\n".join("  " + l for l in lines)
 
 
-COMMON = ["Small pillar: diameter 0.1 um, height 0.1 um, smoothcyl pie slices (dr = dz = 5 nm) on",
-          "a 5 nm grid; base fixed (Velocity Dirichlet on z-); flux on the side and the top.",
-          "Silicon: K = 67 GPa, G = 31 GPa, eta = 0.56; D = D0 exp(alpha c - beta p), p_max = 3 GPa."]
+COMMON = [
+    "Small pillar: diameter 0.1 um, height 0.1 um, smoothcyl pie slices (dr = dz = 5 nm) on",
+    "a 5 nm grid; base fixed (Velocity Dirichlet on z-); flux on the side and the top.",
+    "Silicon: K = 67 GPa, G = 31 GPa, eta = 0.56; D = D0 exp(alpha c - beta p), p_max = 3 GPa.",
+]
 
 SCENARIOS = []
 for rho, D0, J, T, name, sec, extra in [  # T: maxTime in us (the last figure time or just after)
-        (2.33e3, 1e-10, 0.4, 0.05, "Density_2.33e3", "§4.2, Fig. 3",
-         ["Density 2.33e3 kg/m^3 (real silicon), D0 = 1e-10 m^2/s (raised, as in the paper).",
-          "Not in the paper: the flux (0.4 m/s, to lithiate within the 48 ns the paper shows)."]),
-        (2.33e8, 1e-10, 0.4, 0.05, "Density_2.33e8", "§4.2, Fig. 3",
-         ["Density raised to 2.33e8 kg/m^3, otherwise as Density_2.33e3: the paper finds little",
-          "difference; compare the two at 6, 26 and 48 ns (6e-3, 26e-3, 48e-3 us)."]),
-        (2.33e18, 1e-17, 1e-9, 2.8e7, "Density_2.33e18", "§4.2, Fig. 4",
-         ["Density 2.33e18 kg/m^3, D0 = 1e-17 m^2/s, flux 1e-9 m/s; compare with Density_2.33e24 at",
-          "4, 16 and 28 s (4e6, 16e6, 28e6 us)."]),
-        (2.33e24, 1e-17, 1e-9, 2.8e7, "Density_2.33e24", "§4.2, Fig. 4",
-         ["Density 2.33e24 kg/m^3 (diffusion-limited time step), otherwise as Density_2.33e18."])]:
-    SCENARIOS.append(dict(name=name, section=sec, title="Density scaling: " + name.split("_")[1] + " kg/m^3",
-                          notes=describe(COMMON + ["Linear isotropic hardening, yield 1.4 GPa, modulus 1.15 GPa."] + extra),
-                          pillar=SMALL, density=rho, D0=D0, flux=J, maxTime=T, model="hardening",
-                          output=2e-3 if T < 1 else 1e6))
+    (
+        2.33e3,
+        1e-10,
+        0.4,
+        0.05,
+        "Density_2.33e3",
+        "§4.2, Fig. 3",
+        [
+            "Density 2.33e3 kg/m^3 (real silicon), D0 = 1e-10 m^2/s (raised, as in the paper).",
+            "Not in the paper: the flux (0.4 m/s, to lithiate within the 48 ns the paper shows).",
+        ],
+    ),
+    (
+        2.33e8,
+        1e-10,
+        0.4,
+        0.05,
+        "Density_2.33e8",
+        "§4.2, Fig. 3",
+        [
+            "Density raised to 2.33e8 kg/m^3, otherwise as Density_2.33e3: the paper finds little",
+            "difference; compare the two at 6, 26 and 48 ns (6e-3, 26e-3, 48e-3 us).",
+        ],
+    ),
+    (
+        2.33e18,
+        1e-17,
+        1e-9,
+        2.8e7,
+        "Density_2.33e18",
+        "§4.2, Fig. 4",
+        [
+            "Density 2.33e18 kg/m^3, D0 = 1e-17 m^2/s, flux 1e-9 m/s; compare with Density_2.33e24 at",
+            "4, 16 and 28 s (4e6, 16e6, 28e6 us).",
+        ],
+    ),
+    (
+        2.33e24,
+        1e-17,
+        1e-9,
+        2.8e7,
+        "Density_2.33e24",
+        "§4.2, Fig. 4",
+        ["Density 2.33e24 kg/m^3 (diffusion-limited time step), otherwise as Density_2.33e18."],
+    ),
+]:
+    SCENARIOS.append(
+        dict(
+            name=name,
+            section=sec,
+            title="Density scaling: " + name.split("_")[1] + " kg/m^3",
+            notes=describe(
+                COMMON + ["Linear isotropic hardening, yield 1.4 GPa, modulus 1.15 GPa."] + extra
+            ),
+            pillar=SMALL,
+            density=rho,
+            D0=D0,
+            flux=J,
+            maxTime=T,
+            model="hardening",
+            output=2e-3 if T < 1 else 1e6,
+        )
+    )
 
-for model, label in [("elastic", "linear elastic"), ("perfect", "perfect plasticity, yield 1.4 GPa"),
-                     ("hardening", "linear hardening, yield 1.4 GPa, modulus 1.15 GPa")]:
-    SCENARIOS.append(dict(name="Constitutive_" + model, section="§4.3, Fig. 5",
-                          title="Constitutive model: " + label,
-                          notes=describe(COMMON + ["Constitutive model: " + label + ".",
-                                                   "D0 = 1e-17 m^2/s, alpha = 6, beta = 0.5, flux 1e-9 m/s, density 2.33e24 kg/m^3."]),
-                          pillar=SMALL, density=2.33e24, D0=1e-17, flux=1e-9, maxTime=1.0e8, model=model))
+for model, label in [
+    ("elastic", "linear elastic"),
+    ("perfect", "perfect plasticity, yield 1.4 GPa"),
+    ("hardening", "linear hardening, yield 1.4 GPa, modulus 1.15 GPa"),
+]:
+    SCENARIOS.append(
+        dict(
+            name="Constitutive_" + model,
+            section="§4.3, Fig. 5",
+            title="Constitutive model: " + label,
+            notes=describe(
+                COMMON
+                + [
+                    "Constitutive model: " + label + ".",
+                    "D0 = 1e-17 m^2/s, alpha = 6, beta = 0.5, flux 1e-9 m/s, density 2.33e24 kg/m^3.",
+                ]
+            ),
+            pillar=SMALL,
+            density=2.33e24,
+            D0=1e-17,
+            flux=1e-9,
+            maxTime=1.0e8,
+            model=model,
+        )
+    )
 for J, tag in [(1e-9, "1e-9"), (1e-8, "1e-8")]:
-    SCENARIOS.append(dict(name="Flux_" + tag, section="§4.4, Figs. 6-7", title="Flux boundary condition " + tag + " m/s",
-                          notes=describe(COMMON + ["Linear hardening; alpha = 6, beta = 0.5; flux " + tag + " m/s;",
-                                                   "the paper finds c ~ 0.5-0.6 behind the front at 1e-9 and > 0.7 at 1e-8."]),
-                          pillar=SMALL, density=2.33e24, D0=1e-17, flux=J, maxTime=1.0e8 if J < 5e-9 else 3.0e7, model="hardening"))
+    SCENARIOS.append(
+        dict(
+            name="Flux_" + tag,
+            section="§4.4, Figs. 6-7",
+            title="Flux boundary condition " + tag + " m/s",
+            notes=describe(
+                COMMON
+                + [
+                    "Linear hardening; alpha = 6, beta = 0.5; flux " + tag + " m/s;",
+                    "the paper finds c ~ 0.5-0.6 behind the front at 1e-9 and > 0.7 at 1e-8.",
+                ]
+            ),
+            pillar=SMALL,
+            density=2.33e24,
+            D0=1e-17,
+            flux=J,
+            maxTime=1.0e8 if J < 5e-9 else 3.0e7,
+            model="hardening",
+        )
+    )
 # Not in the paper: why is there no sharp front at 1e-9 with D0 = 1e-17 (docs/paper/README.md)?
 # The same run with smaller D0 (the paper does not give D0 for §4.4).
 for D0, tag in [(5e-18, "5e-18"), (2e-18, "2e-18")]:
-    SCENARIOS.append(dict(name="Front_D0_" + tag, section="§4.4, Figs. 6-7 (a study of ours)",
-                          title="Flux 1e-9 m/s with D0 = " + tag + " m^2/s",
-                          notes=describe(COMMON + ["As Flux_1e-9 but D0 = " + tag + " m^2/s: how c behind the front depends on D0",
-                                                   "(not in the paper, which does not give D0 for 4.4)."]),
-                          pillar=SMALL, density=2.33e24, D0=D0, flux=1e-9, maxTime=3.0e7, output=1e6, model="hardening"))
+    SCENARIOS.append(
+        dict(
+            name="Front_D0_" + tag,
+            section="§4.4, Figs. 6-7 (a study of ours)",
+            title="Flux 1e-9 m/s with D0 = " + tag + " m^2/s",
+            notes=describe(
+                COMMON
+                + [
+                    "As Flux_1e-9 but D0 = " + tag + " m^2/s: how c behind the front depends on D0",
+                    "(not in the paper, which does not give D0 for 4.4).",
+                ]
+            ),
+            pillar=SMALL,
+            density=2.33e24,
+            D0=D0,
+            flux=1e-9,
+            maxTime=3.0e7,
+            output=1e6,
+            model="hardening",
+        )
+    )
 for beta in [0.0, 1.0]:
-    SCENARIOS.append(dict(name="Beta_%g" % beta, section="§4.5, Fig. 8", title="Pressure dependence beta = %g" % beta,
-                          notes=describe(COMMON + ["Linear hardening; alpha = 6, beta = %g (1/GPa); flux 1e-9 m/s." % beta]),
-                          pillar=SMALL, density=2.33e24, D0=1e-17, flux=1e-9, maxTime=1.0e8, model="hardening",
-                          beta=beta))
+    SCENARIOS.append(
+        dict(
+            name="Beta_%g" % beta,
+            section="§4.5, Fig. 8",
+            title="Pressure dependence beta = %g" % beta,
+            notes=describe(
+                COMMON + ["Linear hardening; alpha = 6, beta = %g (1/GPa); flux 1e-9 m/s." % beta]
+            ),
+            pillar=SMALL,
+            density=2.33e24,
+            D0=1e-17,
+            flux=1e-9,
+            maxTime=1.0e8,
+            model="hardening",
+            beta=beta,
+        )
+    )
 # §4 (introduction): "The use of a substrate material was then explored using the larger diameter
 # pillar." Lithiation only, to 100 s (the paper gives no duration), on the cycle's substrate.
-LARGE_NOTES = ["Large pillar: diameter 0.5 um, height 0.05 um, smoothcyl (dr = dz = 2.5 nm) on the paper's",
-               "10 nm grid. Silicon: linear hardening (K = 67, G = 31, yield 1.4, modulus 1.15 GPa), eta = 0.56,",
-               "D0 = 1e-17 m^2/s, alpha = 6, beta = 0.5, p_max = 3 GPa; density 2.33e24 kg/m^3; flux 1e-9 m/s in.",
-               "Not in the paper: the duration (100 s)."]
-SCENARIOS.append(dict(name="Substrate_fixed", section="§4.6, Fig. 9", title="Large pillar on a fixed base",
-                      notes=describe(LARGE_NOTES + ["The pillar's base is fixed (Velocity Dirichlet on z-); compare with Substrate_deformable."]),
-                      pillar=LARGE, density=2.33e24, D0=1e-17, flux=1e-9, maxTime=1.0e8, model="hardening"))
-SCENARIOS.append(dict(name="Substrate_deformable", section="§4.6, Fig. 9", title="Large pillar on a deformable substrate",
-                      notes=describe(LARGE_NOTES + ["The pillar sits on a 0.7 x 0.7 x 0.04 um substrate (K = 180.4 GPa, G = 76 GPa,",
-                                                    "yield 0.7 GPa, modulus 1.15 GPa, no lithium: D = 0), bonded by single_velocity",
-                                                    "contact; the substrate's base is fixed."]),
-                      pillar=LARGE, density=2.33e24, D0=1e-17, flux=1e-9, maxTime=1.0e8, model="hardening",
-                      substrate_height=0.04, substrate_width=0.7))
+LARGE_NOTES = [
+    "Large pillar: diameter 0.5 um, height 0.05 um, smoothcyl (dr = dz = 2.5 nm) on the paper's",
+    "10 nm grid. Silicon: linear hardening (K = 67, G = 31, yield 1.4, modulus 1.15 GPa), eta = 0.56,",
+    "D0 = 1e-17 m^2/s, alpha = 6, beta = 0.5, p_max = 3 GPa; density 2.33e24 kg/m^3; flux 1e-9 m/s in.",
+    "Not in the paper: the duration (100 s).",
+]
+SCENARIOS.append(
+    dict(
+        name="Substrate_fixed",
+        section="§4.6, Fig. 9",
+        title="Large pillar on a fixed base",
+        notes=describe(
+            LARGE_NOTES
+            + [
+                "The pillar's base is fixed (Velocity Dirichlet on z-); compare with Substrate_deformable."
+            ]
+        ),
+        pillar=LARGE,
+        density=2.33e24,
+        D0=1e-17,
+        flux=1e-9,
+        maxTime=1.0e8,
+        model="hardening",
+    )
+)
+SCENARIOS.append(
+    dict(
+        name="Substrate_deformable",
+        section="§4.6, Fig. 9",
+        title="Large pillar on a deformable substrate",
+        notes=describe(
+            LARGE_NOTES
+            + [
+                "The pillar sits on a 0.7 x 0.7 x 0.04 um substrate (K = 180.4 GPa, G = 76 GPa,",
+                "yield 0.7 GPa, modulus 1.15 GPa, no lithium: D = 0), bonded by single_velocity",
+                "contact; the substrate's base is fixed.",
+            ]
+        ),
+        pillar=LARGE,
+        density=2.33e24,
+        D0=1e-17,
+        flux=1e-9,
+        maxTime=1.0e8,
+        model="hardening",
+        substrate_height=0.04,
+        substrate_width=0.7,
+    )
+)
 SCENARIOS[-1]["pillar"] = dict(LARGE, top=0.24)
-SCENARIOS.append(dict(name="Cycle_LargePillar", section="§4.7, Fig. 10",
-                      title="Full lithiation/delithiation cycle of the large pillar on a substrate",
-                      notes=describe(["Large pillar: diameter 0.5 um, height 0.05 um, smoothcyl (dr = dz = 2.5 nm) on the paper's",
-                                      "10 nm grid, on a 0.7 x 0.7 x 0.04 um substrate (K = 180.4 GPa, G = 76 GPa, yield 0.7 GPa,",
-                                      "modulus 1.15 GPa, no lithium) bonded by single_velocity contact; base fixed.",
-                                      "Silicon: linear hardening (K = 67, G = 31, yield 1.4, modulus 1.15 GPa), eta = 0.56,",
-                                      "D0 = 1e-17 m^2/s, alpha = 6, beta = 0.5, p_max = 3 GPa; density 2.33e24 kg/m^3.",
-                                      "Flux 1e-9 m/s in for 40 s, then out for 40 s (not in the paper: the durations);",
-                                      "during delithiation each particle's diffusivity stays at its last lithiation value",
-                                      "(diff_curve 'out'). The paper's run: 27,472 steps, 48.57 h on 9 cores."]),
-                      pillar=LARGE, density=2.33e24, D0=1e-17, flux=1e-9, maxTime=8.0e7, lithiation_end=4.0e7, output=4e6,
-                      model="hardening", substrate_height=0.04, substrate_width=0.7))
+SCENARIOS.append(
+    dict(
+        name="Cycle_LargePillar",
+        section="§4.7, Fig. 10",
+        title="Full lithiation/delithiation cycle of the large pillar on a substrate",
+        notes=describe(
+            [
+                "Large pillar: diameter 0.5 um, height 0.05 um, smoothcyl (dr = dz = 2.5 nm) on the paper's",
+                "10 nm grid, on a 0.7 x 0.7 x 0.04 um substrate (K = 180.4 GPa, G = 76 GPa, yield 0.7 GPa,",
+                "modulus 1.15 GPa, no lithium) bonded by single_velocity contact; base fixed.",
+                "Silicon: linear hardening (K = 67, G = 31, yield 1.4, modulus 1.15 GPa), eta = 0.56,",
+                "D0 = 1e-17 m^2/s, alpha = 6, beta = 0.5, p_max = 3 GPa; density 2.33e24 kg/m^3.",
+                "Flux 1e-9 m/s in for 40 s, then out for 40 s (not in the paper: the durations);",
+                "during delithiation each particle's diffusivity stays at its last lithiation value",
+                "(diff_curve 'out'). The paper's run: 27,472 steps, 48.57 h on 9 cores.",
+            ]
+        ),
+        pillar=LARGE,
+        density=2.33e24,
+        D0=1e-17,
+        flux=1e-9,
+        maxTime=8.0e7,
+        lithiation_end=4.0e7,
+        output=4e6,
+        model="hardening",
+        substrate_height=0.04,
+        substrate_width=0.7,
+    )
+)
 SCENARIOS[-1]["pillar"] = dict(LARGE, top=0.24)
 
 if __name__ == "__main__":

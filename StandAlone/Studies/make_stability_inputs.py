@@ -11,53 +11,98 @@ Run: python3 StandAlone/Studies/make_stability_inputs.py; tests/test_stability.c
 """
 import os
 
-from ups_blocks import GPA, SILICON, data_archiver, flow_model, max_timesteps, non_linear1_diffusion, scalar_flux
+from ups_blocks import (
+    GPA,
+    SILICON,
+    data_archiver,
+    flow_model,
+    max_timesteps,
+    non_linear1_diffusion,
+    scalar_flux,
+)
 
 OUT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "inputs", "Stability")
 
-BASE = dict(density=2.33e3, K=SILICON["K"], G=SILICON["G"], eta=0.56, model="hardening", D0=1e-10, alpha=6.0, beta=0.5,
-            pmax=3.0, flux=0.4, c0=0.0, velocity=0.0, multiplier=0.4, maxTime=1.0, diffusion="non_linear1",
-            rate=0.0, confined=False, grid=(0.2, 0.25), steps=0)
+BASE = dict(
+    density=2.33e3,
+    K=SILICON["K"],
+    G=SILICON["G"],
+    eta=0.56,
+    model="hardening",
+    D0=1e-10,
+    alpha=6.0,
+    beta=0.5,
+    pmax=3.0,
+    flux=0.4,
+    c0=0.0,
+    velocity=0.0,
+    multiplier=0.4,
+    maxTime=1.0,
+    diffusion="non_linear1",
+    rate=0.0,
+    confined=False,
+    grid=(0.2, 0.25),
+    steps=0,
+)
 
 
 def diffusion_model(s):
     if not s["diffusion"]:
         return ""
     if s["diffusion"] == "constant_rate":
-        return """<diffusion_model type="constant_rate">
+        return (
+            """<diffusion_model type="constant_rate">
           <diffusivity>0.0</diffusivity>
           <max_concentration>1.0</max_concentration>
           <constant_rate>%g</constant_rate>
-        </diffusion_model>""" % s["rate"]
+        </diffusion_model>"""
+            % s["rate"]
+        )
     return non_linear1_diffusion(s["D0"], s["alpha"], s["beta"], s["pmax"])
 
 
 def flux_bcs(s):
     if not s["diffusion"] or s["diffusion"] == "constant_rate" or s["flux"] == 0:
         return ""
-    load = "<time_point><time>0</time><load>%g</load></time_point><time_point><time>1e12</time><load>%g</load></time_point>" % (
-        s["flux"], s["flux"])
+    load = (
+        "<time_point><time>0</time><load>%g</load></time_point><time_point><time>1e12</time><load>%g</load></time_point>"
+        % (s["flux"], s["flux"])
+    )
     # Zero-thickness boxes on the top and right faces: Uintah's rule (the box enlarged by the
     # particle spacing) selects exactly the top row and the right column.
-    return ("\n  <PhysicalBC>\n    <MPM>" +
-            scalar_flux(1, '<box label="top"><min>[0.0, 0.15, 0.0]</min><max>[0.1, 0.15, 0.01]</max></box>', load) +
-            scalar_flux(2, '<box label="side"><min>[0.1, 0.0, 0.0]</min><max>[0.1, 0.15, 0.01]</max></box>', load) +
-            "\n    </MPM>\n  </PhysicalBC>")
+    return (
+        "\n  <PhysicalBC>\n    <MPM>"
+        + scalar_flux(
+            1,
+            '<box label="top"><min>[0.0, 0.15, 0.0]</min><max>[0.1, 0.15, 0.01]</max></box>',
+            load,
+        )
+        + scalar_flux(
+            2,
+            '<box label="side"><min>[0.1, 0.0, 0.0]</min><max>[0.1, 0.15, 0.01]</max></box>',
+            load,
+        )
+        + "\n    </MPM>\n  </PhysicalBC>"
+    )
 
 
 def write(name, notes, quick, **changes):
     s = dict(BASE)
     s.update(changes)
     diffusion = bool(s["diffusion"])
-    fixed = '<BCType id="all" label="Velocity" var="Dirichlet"><value>[0.0, 0.0, 0.0]</value></BCType>'
+    fixed = (
+        '<BCType id="all" label="Velocity" var="Dirichlet"><value>[0.0, 0.0, 0.0]</value></BCType>'
+    )
     # Confined: the block fills the grid's x extent and top, every face holds it.
     width, top = (0.1, 0.15) if s["confined"] else s["grid"]
-    faces = {"x-": '<BCType id="all" label="Symmetric" var="symmetry"/>',
-             "x+": fixed if s["confined"] else '<BCType id="all" label="Symmetric" var="symmetry"/>',
-             "y-": fixed,
-             "y+": fixed if s["confined"] else '<BCType id="all" label="Symmetric" var="symmetry"/>',
-             "z-": '<BCType id="all" label="Symmetric" var="symmetry"/>',
-             "z+": '<BCType id="all" label="Symmetric" var="symmetry"/>'}
+    faces = {
+        "x-": '<BCType id="all" label="Symmetric" var="symmetry"/>',
+        "x+": fixed if s["confined"] else '<BCType id="all" label="Symmetric" var="symmetry"/>',
+        "y-": fixed,
+        "y+": fixed if s["confined"] else '<BCType id="all" label="Symmetric" var="symmetry"/>',
+        "z-": '<BCType id="all" label="Symmetric" var="symmetry"/>',
+        "z+": '<BCType id="all" label="Symmetric" var="symmetry"/>',
+    }
     text = """<?xml version='1.0' encoding='ISO-8859-1' ?>
 <!--
 %s
@@ -115,17 +160,42 @@ def write(name, notes, quick, **changes):
     </BoundaryConditions>
   </Grid>
 </Uintah_specification>
-""" % ("\n".join("  " + l for l in notes), quick, name, s["maxTime"], s["multiplier"], max_timesteps(s["steps"]),
-       data_archiver(name, s["maxTime"] / 10, ["p.x", "p.particleID", "p.volume", "p.velocity", "p.stress"] +
-                     (["p.concentration", "p.diffusivity"] if diffusion else [])),
-       ("\n    <do_scalar_diffusion>true</do_scalar_diffusion>" +
-        ("\n    <use_load_curves>true</use_load_curves>" if flux_bcs(s) else "")) if diffusion else "",
-       s["density"] * 1e-3, s["K"] * GPA, s["G"] * GPA,
-       "\n          <volume_expansion_coeff>%g</volume_expansion_coeff>" % s["eta"] if diffusion else "",
-       flow_model(s["model"], SILICON), diffusion_model(s), s["velocity"],
-       "\n          <concentration>%g</concentration>" % s["c0"] if diffusion else "",
-       flux_bcs(s), width, top, round(width / 0.01), round(top / 0.01),
-       "\n".join('      <Face side="%s">%s</Face>' % (f, b) for f, b in faces.items()))
+""" % (
+        "\n".join("  " + l for l in notes),
+        quick,
+        name,
+        s["maxTime"],
+        s["multiplier"],
+        max_timesteps(s["steps"]),
+        data_archiver(
+            name,
+            s["maxTime"] / 10,
+            ["p.x", "p.particleID", "p.volume", "p.velocity", "p.stress"]
+            + (["p.concentration", "p.diffusivity"] if diffusion else []),
+        ),
+        (
+            "\n    <do_scalar_diffusion>true</do_scalar_diffusion>"
+            + ("\n    <use_load_curves>true</use_load_curves>" if flux_bcs(s) else "")
+        )
+        if diffusion
+        else "",
+        s["density"] * 1e-3,
+        s["K"] * GPA,
+        s["G"] * GPA,
+        "\n          <volume_expansion_coeff>%g</volume_expansion_coeff>" % s["eta"]
+        if diffusion
+        else "",
+        flow_model(s["model"], SILICON),
+        diffusion_model(s),
+        s["velocity"],
+        "\n          <concentration>%g</concentration>" % s["c0"] if diffusion else "",
+        flux_bcs(s),
+        width,
+        top,
+        round(width / 0.01),
+        round(top / 0.01),
+        "\n".join('      <Face side="%s">%s</Face>' % (f, b) for f, b in faces.items()),
+    )
     with open(os.path.join(OUT, name + ".ups"), "w") as f:
         f.write(text)
 
@@ -142,88 +212,233 @@ SLOW = dict(density=2.33e24, maxTime=1e8)
 FLUX = dict(SLOW, alpha=0.0, beta=0.0, D0=1e-14)
 IMPACT = dict(diffusion="", velocity=-10.0, maxTime=1e-3)
 
-case("Density_2.33e3", ["Density 2.33e3 kg/m^3 (real silicon): the time step is mechanics-limited,",
-                        "dt = multiplier dx / c with c = sqrt((K + 4G/3) / rho) (Eq. 43), 5.9e-7 us.",
-                        "D0 = 1e-10 m^2/s, alpha = 6, beta = 0.5, flux 1e-4 m/s."],
-     "300 steps complete; the first dt is 0.4 dx / c; c in [0, 1].", flux=1e-4, maxTime=1e-2, steps=300)
-case("Density_2.33e24", ["Density 2.33e24 kg/m^3, otherwise as Density_2.33e3: the time step is",
-                         "diffusion-limited, dt = multiplier dx^2 / (2 D_max) (Eq. 44), 0.2 us at first, and",
-                         "falls as D = D0 exp(alpha c - beta p) grows with c."],
-     "300 steps complete; the first dt is 0.4 dx^2 / (2 D0); c in [0, 1].", flux=1e-4, steps=300, **SLOW)
-case("Alpha_0", ["Diffusivity contrast: alpha = 0 (D independent of c), beta = 0.5, D0 = 1e-10 m^2/s,",
-                 "flux 1e-3 m/s, density 2.33e24 kg/m^3."],
-     "600 steps complete; c in [0, 1].", flux=1e-3, alpha=0.0, steps=600, **SLOW)
-case("Alpha_10", ["Diffusivity contrast: alpha = 10, D = D0 e^(10 c): up to e^10 = 22026 times D0 where the",
-                  "block is full; the diffusion-limited dt falls with the largest D. Otherwise as Alpha_0."],
-     "600 steps complete; c in [0, 1]; dt falls as c_max grows.", flux=1e-3, alpha=10.0, steps=600, **SLOW)
-case("Beta_0.5_confined", ["Pressure beyond p_max: the block is held on every side, so swelling builds a pressure",
-                           "of tens of GPa, far beyond p_max = 3 GPa; beta = 0.5 1/GPa. D = D0 exp(alpha c - beta",
-                           "min(p, p_max)) stays above D0 e^(-1.5). Flux 1e-3 m/s, density 2.33e24 kg/m^3."],
-     "600 steps complete; p exceeds p_max; D >= D0 exp(-beta p_max); c in [0, 1].",
-     flux=1e-3, beta=0.5, confined=True, steps=600, **SLOW)
-case("Beta_2_confined", ["As Beta_0.5_confined with beta = 2 1/GPa: D varies 400-fold (e^(2 p_max)) between",
-                         "neighbouring particles where the pressure crosses p_max. The particle flux of",
-                         "Eqs. 6-7 is not monotone under such contrast: a particle between high- and",
-                         "low-D neighbours undershoots below c = 0, independently of the time step (0.4 and",
-                         "0.2 stop at the same time), and the run stops with the range diagnostic."],
-     "stops at step 55 (exit 3): concentration below 0 (the range diagnostic).",
-     flux=1e-3, beta=2.0, confined=True, steps=600, **SLOW)
-case("Flux_1e-10", ["Flux 1e-10 m/s into the top and the right side; D0 = 1e-14 m^2/s, alpha = beta = 0,",
-                    "density 2.33e24 kg/m^3: the flux restriction never acts (c stays ~1e-3)."],
-     "300 steps complete; c in [0, 1].", flux=1e-10, steps=300, **FLUX)
-case("Flux_1e-6", ["Flux 1e-6 m/s, otherwise as Flux_1e-10: the surface fills and the restriction",
-                   "(Eq. 17) shuts the flux off as c -> 1 - e^-4 = 0.9817. Each particle receives the",
-                   "source restricted by its own c, so a full particle takes nothing from its still-filling",
-                   "neighbours and the surface stays below the root. The block swells 8-fold (J up to 8.5);",
-                   "there the diffusion update pushes one particle past 1 and the range diagnostic stops",
-                   "the run (no clamp)."],
-     "stops at step 1761 (exit 3): concentration 1.0005 above 1 (the range diagnostic); max c stays below "
-     "0.9817 until then.", flux=1e-6, steps=3000, **FLUX)
-case("Flux_out_1e-6", ["Delithiation: initial concentration 0.9, flux 1e-6 m/s out of the top and the right side,",
-                       "otherwise as Flux_1e-6. The outflow restriction R(1 - c) shuts the flux off as",
-                       "c -> e^-4 = 0.0183; an emptied particle receives none of its neighbours' sinks, so c",
-                       "stays above 0."],
-     "2000 steps complete; c in [0, 1]; the surface empties to the root.", flux=-1e-6, c0=0.9, steps=2000, **FLUX)
-case("Concentration_0.999", ["Initial concentration 0.999 (above the restriction's root 1 - e^-4 = 0.9817), flux",
-                             "1e-6 m/s: the restriction admits no lithium and nothing changes."],
-     "300 steps complete; c stays 0.999.", flux=1e-6, c0=0.999, steps=300, **FLUX)
+case(
+    "Density_2.33e3",
+    [
+        "Density 2.33e3 kg/m^3 (real silicon): the time step is mechanics-limited,",
+        "dt = multiplier dx / c with c = sqrt((K + 4G/3) / rho) (Eq. 43), 5.9e-7 us.",
+        "D0 = 1e-10 m^2/s, alpha = 6, beta = 0.5, flux 1e-4 m/s.",
+    ],
+    "300 steps complete; the first dt is 0.4 dx / c; c in [0, 1].",
+    flux=1e-4,
+    maxTime=1e-2,
+    steps=300,
+)
+case(
+    "Density_2.33e24",
+    [
+        "Density 2.33e24 kg/m^3, otherwise as Density_2.33e3: the time step is",
+        "diffusion-limited, dt = multiplier dx^2 / (2 D_max) (Eq. 44), 0.2 us at first, and",
+        "falls as D = D0 exp(alpha c - beta p) grows with c.",
+    ],
+    "300 steps complete; the first dt is 0.4 dx^2 / (2 D0); c in [0, 1].",
+    flux=1e-4,
+    steps=300,
+    **SLOW
+)
+case(
+    "Alpha_0",
+    [
+        "Diffusivity contrast: alpha = 0 (D independent of c), beta = 0.5, D0 = 1e-10 m^2/s,",
+        "flux 1e-3 m/s, density 2.33e24 kg/m^3.",
+    ],
+    "600 steps complete; c in [0, 1].",
+    flux=1e-3,
+    alpha=0.0,
+    steps=600,
+    **SLOW
+)
+case(
+    "Alpha_10",
+    [
+        "Diffusivity contrast: alpha = 10, D = D0 e^(10 c): up to e^10 = 22026 times D0 where the",
+        "block is full; the diffusion-limited dt falls with the largest D. Otherwise as Alpha_0.",
+    ],
+    "600 steps complete; c in [0, 1]; dt falls as c_max grows.",
+    flux=1e-3,
+    alpha=10.0,
+    steps=600,
+    **SLOW
+)
+case(
+    "Beta_0.5_confined",
+    [
+        "Pressure beyond p_max: the block is held on every side, so swelling builds a pressure",
+        "of tens of GPa, far beyond p_max = 3 GPa; beta = 0.5 1/GPa. D = D0 exp(alpha c - beta",
+        "min(p, p_max)) stays above D0 e^(-1.5). Flux 1e-3 m/s, density 2.33e24 kg/m^3.",
+    ],
+    "600 steps complete; p exceeds p_max; D >= D0 exp(-beta p_max); c in [0, 1].",
+    flux=1e-3,
+    beta=0.5,
+    confined=True,
+    steps=600,
+    **SLOW
+)
+case(
+    "Beta_2_confined",
+    [
+        "As Beta_0.5_confined with beta = 2 1/GPa: D varies 400-fold (e^(2 p_max)) between",
+        "neighbouring particles where the pressure crosses p_max. The particle flux of",
+        "Eqs. 6-7 is not monotone under such contrast: a particle between high- and",
+        "low-D neighbours undershoots below c = 0, independently of the time step (0.4 and",
+        "0.2 stop at the same time), and the run stops with the range diagnostic.",
+    ],
+    "stops at step 55 (exit 3): concentration below 0 (the range diagnostic).",
+    flux=1e-3,
+    beta=2.0,
+    confined=True,
+    steps=600,
+    **SLOW
+)
+case(
+    "Flux_1e-10",
+    [
+        "Flux 1e-10 m/s into the top and the right side; D0 = 1e-14 m^2/s, alpha = beta = 0,",
+        "density 2.33e24 kg/m^3: the flux restriction never acts (c stays ~1e-3).",
+    ],
+    "300 steps complete; c in [0, 1].",
+    flux=1e-10,
+    steps=300,
+    **FLUX
+)
+case(
+    "Flux_1e-6",
+    [
+        "Flux 1e-6 m/s, otherwise as Flux_1e-10: the surface fills and the restriction",
+        "(Eq. 17) shuts the flux off as c -> 1 - e^-4 = 0.9817. Each particle receives the",
+        "source restricted by its own c, so a full particle takes nothing from its still-filling",
+        "neighbours and the surface stays below the root. The block swells 8-fold (J up to 8.5);",
+        "there the diffusion update pushes one particle past 1 and the range diagnostic stops",
+        "the run (no clamp).",
+    ],
+    "stops at step 1761 (exit 3): concentration 1.0005 above 1 (the range diagnostic); max c stays below "
+    "0.9817 until then.",
+    flux=1e-6,
+    steps=3000,
+    **FLUX
+)
+case(
+    "Flux_out_1e-6",
+    [
+        "Delithiation: initial concentration 0.9, flux 1e-6 m/s out of the top and the right side,",
+        "otherwise as Flux_1e-6. The outflow restriction R(1 - c) shuts the flux off as",
+        "c -> e^-4 = 0.0183; an emptied particle receives none of its neighbours' sinks, so c",
+        "stays above 0.",
+    ],
+    "2000 steps complete; c in [0, 1]; the surface empties to the root.",
+    flux=-1e-6,
+    c0=0.9,
+    steps=2000,
+    **FLUX
+)
+case(
+    "Concentration_0.999",
+    [
+        "Initial concentration 0.999 (above the restriction's root 1 - e^-4 = 0.9817), flux",
+        "1e-6 m/s: the restriction admits no lithium and nothing changes.",
+    ],
+    "300 steps complete; c stays 0.999.",
+    flux=1e-6,
+    c0=0.999,
+    steps=300,
+    **FLUX
+)
 for m, steps, outcome in [
-        (0.1, 1500, "1500 steps complete; KE never exceeds the initial KE; J in [0.99, 1.01]."),
-        (0.75, 1500, "runs to maxTime (911 steps); KE never exceeds the initial KE; J in [0.99, 1.01]."),
-        (0.8, 1500, "stops at step 33 (exit 3): the velocities oscillate with growing amplitude."),
-        (1.5, 1500, "refused at setup (exit 2, nothing written): <timestep_multiplier> must be in (0, 1]; a dt"
-                    " beyond the stable one is unstable.")]:
-    case("Multiplier_%g" % m, ["timestep_multiplier %g on a mechanics-limited run: the block moves down at 10 m/s" % m,
-                               "onto its fixed base (no diffusion), density 2.33e3 kg/m^3. In 2-D the explicit",
-                               "update is stable up to a multiplier between 0.75 and 0.8 of Eq. 43 (about",
-                               "1/sqrt(2) for lumped-mass bilinear elements); beyond it the highest mode flips",
-                               "sign and grows every step."] +
-         (["A multiplier above 1 asks for a dt beyond the stable one by definition: setup refuses it",
-           "(it ran to step 5 before, where the oscillation diagnostic stopped it)."] if m > 1 else []),
-         outcome, multiplier=m, steps=steps, **IMPACT)
-for m, outcome in [(0.5, "1000 steps complete; c in [0.5, 0.6]."),
-                   (0.6, "stops at step 136 (exit 3): the concentrations oscillate (intermittently; left to run,"
-                         " the oscillation bursts and the smallest c falls, which inflow alone cannot do)."),
-                   (1.0, "stops at step 11 (exit 3): the concentrations oscillate with growing amplitude.")]:
-    case("Multiplier_diffusion_%.1f" % m, ["timestep_multiplier %g on a diffusion-limited run (Eq. 44): c starts at 0.5" % m,
-                                         "everywhere, flux 1e-4 m/s, D0 = 1e-10 m^2/s, alpha = 6, density 2.33e24",
-                                         "kg/m^3. The explicit diffusion update is stable up to a multiplier of",
-                                         "about 1/2 of Eq. 44 in 2-D (1/d for lumped-mass elements in d dimensions);",
-                                         "beyond it the concentrations oscillate inside [0, 1], where the range",
-                                         "diagnostic cannot see them."],
-         outcome, multiplier=m, flux=1e-4, c0=0.5, steps=1000, **SLOW)
-case("Swelling_eta_1", ["Very large swelling: eta = 1 and c rising uniformly from 0 to 0.99 (constant_rate",
-                        "3.3e-3 per us to 300 us), eta dc ~ 1: the free block would grow e^2 = 7.4-fold in area;",
-                        "held in z (plane strain) it reaches J ~ 16. Density 2.33e18 kg/m^3 (quasi-static),",
-                        "a grid 0.35 x 0.5 um to hold the grown block."],
-     "runs to maxTime (56 steps); J reaches 15-17; c in [0, 0.99].",
-     diffusion="constant_rate", rate=0.0033, eta=1.0, density=2.33e18, maxTime=300, grid=(0.35, 0.5))
-for v, outcome in [(5, "runs to maxTime (357 steps); J falls to ~0.19; KE never exceeds the initial KE."),
-                   (12, "stops at step 66 (exit 3): J below 1e-5 at the impact face (a collapsing particle).")]:
-    case("Elastic_compression_%dkm_s" % v, ["An elastic block (no yield) hitting its fixed base at %d km/s (the dilatational" % v,
-                                           "wave speed is 6.8 km/s) and rebounding: very large compression without",
-                                           "plasticity. Density 2.33e3 kg/m^3, no diffusion."], outcome,
-         diffusion="", model="elastic", velocity=-1000.0 * v, maxTime=1e-4)
+    (0.1, 1500, "1500 steps complete; KE never exceeds the initial KE; J in [0.99, 1.01]."),
+    (
+        0.75,
+        1500,
+        "runs to maxTime (911 steps); KE never exceeds the initial KE; J in [0.99, 1.01].",
+    ),
+    (0.8, 1500, "stops at step 33 (exit 3): the velocities oscillate with growing amplitude."),
+    (
+        1.5,
+        1500,
+        "refused at setup (exit 2, nothing written): <timestep_multiplier> must be in (0, 1]; a dt"
+        " beyond the stable one is unstable.",
+    ),
+]:
+    case(
+        "Multiplier_%g" % m,
+        [
+            "timestep_multiplier %g on a mechanics-limited run: the block moves down at 10 m/s" % m,
+            "onto its fixed base (no diffusion), density 2.33e3 kg/m^3. In 2-D the explicit",
+            "update is stable up to a multiplier between 0.75 and 0.8 of Eq. 43 (about",
+            "1/sqrt(2) for lumped-mass bilinear elements); beyond it the highest mode flips",
+            "sign and grows every step.",
+        ]
+        + (
+            [
+                "A multiplier above 1 asks for a dt beyond the stable one by definition: setup refuses it",
+                "(it ran to step 5 before, where the oscillation diagnostic stopped it).",
+            ]
+            if m > 1
+            else []
+        ),
+        outcome,
+        multiplier=m,
+        steps=steps,
+        **IMPACT
+    )
+for m, outcome in [
+    (0.5, "1000 steps complete; c in [0.5, 0.6]."),
+    (
+        0.6,
+        "stops at step 136 (exit 3): the concentrations oscillate (intermittently; left to run,"
+        " the oscillation bursts and the smallest c falls, which inflow alone cannot do).",
+    ),
+    (1.0, "stops at step 11 (exit 3): the concentrations oscillate with growing amplitude."),
+]:
+    case(
+        "Multiplier_diffusion_%.1f" % m,
+        [
+            "timestep_multiplier %g on a diffusion-limited run (Eq. 44): c starts at 0.5" % m,
+            "everywhere, flux 1e-4 m/s, D0 = 1e-10 m^2/s, alpha = 6, density 2.33e24",
+            "kg/m^3. The explicit diffusion update is stable up to a multiplier of",
+            "about 1/2 of Eq. 44 in 2-D (1/d for lumped-mass elements in d dimensions);",
+            "beyond it the concentrations oscillate inside [0, 1], where the range",
+            "diagnostic cannot see them.",
+        ],
+        outcome,
+        multiplier=m,
+        flux=1e-4,
+        c0=0.5,
+        steps=1000,
+        **SLOW
+    )
+case(
+    "Swelling_eta_1",
+    [
+        "Very large swelling: eta = 1 and c rising uniformly from 0 to 0.99 (constant_rate",
+        "3.3e-3 per us to 300 us), eta dc ~ 1: the free block would grow e^2 = 7.4-fold in area;",
+        "held in z (plane strain) it reaches J ~ 16. Density 2.33e18 kg/m^3 (quasi-static),",
+        "a grid 0.35 x 0.5 um to hold the grown block.",
+    ],
+    "runs to maxTime (56 steps); J reaches 15-17; c in [0, 0.99].",
+    diffusion="constant_rate",
+    rate=0.0033,
+    eta=1.0,
+    density=2.33e18,
+    maxTime=300,
+    grid=(0.35, 0.5),
+)
+for v, outcome in [
+    (5, "runs to maxTime (357 steps); J falls to ~0.19; KE never exceeds the initial KE."),
+    (12, "stops at step 66 (exit 3): J below 1e-5 at the impact face (a collapsing particle)."),
+]:
+    case(
+        "Elastic_compression_%dkm_s" % v,
+        [
+            "An elastic block (no yield) hitting its fixed base at %d km/s (the dilatational" % v,
+            "wave speed is 6.8 km/s) and rebounding: very large compression without",
+            "plasticity. Density 2.33e3 kg/m^3, no diffusion.",
+        ],
+        outcome,
+        diffusion="",
+        model="elastic",
+        velocity=-1000.0 * v,
+        maxTime=1e-4,
+    )
 
 
 if __name__ == "__main__":

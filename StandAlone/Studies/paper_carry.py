@@ -29,8 +29,14 @@ THIN = 1000
 
 def figure_times(name, run_dir):
     """The times the figures show of run `name`."""
-    return sorted({paper_figures.panel_time(run_dir, when)
-                   for figure in paper_figures.FIGURES for run, when, _ in figure["panels"] if run == name})
+    return sorted(
+        {
+            paper_figures.panel_time(run_dir, when)
+            for figure in paper_figures.FIGURES
+            for run, when, _ in figure["panels"]
+            if run == name
+        }
+    )
 
 
 def frames_to_carry(name, run_dir):
@@ -60,16 +66,30 @@ def write_series(path, frames, run_dir):
     root = ET.Element("VTKFile", type="Collection", version="0.1", byte_order="LittleEndian")
     collection = ET.SubElement(root, "Collection")
     for t, file in frames:
-        ET.SubElement(collection, "DataSet", timestep=repr(t), group="", part="0",
-                      file=os.path.relpath(file, run_dir))
+        ET.SubElement(
+            collection,
+            "DataSet",
+            timestep=repr(t),
+            group="",
+            part="0",
+            file=os.path.relpath(file, run_dir),
+        )
     ET.ElementTree(root).write(path, xml_declaration=True)
 
 
 def newest_checkpoint(run_dir):
     """The checkpoint of the latest step, scheduled (step_N.ckpt) or sus's own (auto_step_N.ckpt)."""
     folder = os.path.join(run_dir, "checkpoints")
-    found = [f for f in os.listdir(folder) if re.fullmatch(r"(auto_)?step_\d+\.ckpt", f)] if os.path.isdir(folder) else []
-    return os.path.join(folder, max(found, key=lambda f: int(re.search(r"\d+", f).group()))) if found else None
+    found = (
+        [f for f in os.listdir(folder) if re.fullmatch(r"(auto_)?step_\d+\.ckpt", f)]
+        if os.path.isdir(folder)
+        else []
+    )
+    return (
+        os.path.join(folder, max(found, key=lambda f: int(re.search(r"\d+", f).group())))
+        if found
+        else None
+    )
 
 
 def pack(name, runs, carry):
@@ -96,7 +116,10 @@ def pack(name, runs, carry):
     if checkpoint:
         os.makedirs(os.path.join(target, "checkpoints"))
         with open(checkpoint, "rb") as src, lzma.open(
-                os.path.join(target, "checkpoints", os.path.basename(checkpoint) + ".xz"), "wb", preset=6) as dst:
+            os.path.join(target, "checkpoints", os.path.basename(checkpoint) + ".xz"),
+            "wb",
+            preset=6,
+        ) as dst:
             shutil.copyfileobj(src, dst)
     size = sum(os.path.getsize(os.path.join(d, f)) for d, _, fs in os.walk(target) for f in fs)
     state = "finished" if finished else "at " + os.path.basename(checkpoint)
@@ -119,6 +142,8 @@ def restore(name, runs, carry):
             if file.endswith(".xz"):
                 relative = os.path.relpath(os.path.join(folder, file), source)[:-3]
                 os.makedirs(os.path.dirname(os.path.join(run_dir, relative)), exist_ok=True)
-                with lzma.open(os.path.join(folder, file), "rb") as src, open(os.path.join(run_dir, relative), "wb") as dst:
+                with lzma.open(os.path.join(folder, file), "rb") as src, open(
+                    os.path.join(run_dir, relative), "wb"
+                ) as dst:
                     shutil.copyfileobj(src, dst)
     return True

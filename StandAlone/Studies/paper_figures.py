@@ -17,59 +17,190 @@ LARGE_VIEW = dict(position="[0.68, -0.85, 0.62]", focal_point="[0, 0, 0.03]", si
 MID, FULL = ("lithium", 0.5), ("end",)
 
 # What colours the particles: scene tags (docs/input-reference.md); a figure's "colour" replaces some.
-CONCENTRATION = dict(field="p.concentration", scale=None, range="[0, 1]", colormap=None, units="c / c_max")
+CONCENTRATION = dict(
+    field="p.concentration", scale=None, range="[0, 1]", colormap=None, units="c / c_max"
+)
 # The code's stress is in kPa (um, us, pg): drawn in GPa.
-VON_MISES = dict(field="p.stress:von_mises", scale="1e-6", range="data", colormap="blue_red", units="GPa")
+VON_MISES = dict(
+    field="p.stress:von_mises", scale="1e-6", range="data", colormap="blue_red", units="GPa"
+)
 PLASTIC_STRAIN = dict(field="p.plasticStrain", range="data", colormap="blue_red", units=None)
 
 FIGURES = [
-    dict(name="fig3", measure="density", pair=("Density_2.33e3", "Density_2.33e8"), view=SMALL_VIEW, columns=2, time_scale=1e3, time_unit="ns",
-         title="Fig. 3 (4.2): density 2.33e3 (a, c, e) and 2.33e8 kg/m^3 (b, d, f), D0 = 1e-10 m^2/s",
-         panels=[(run, t, label) for t in (6e-3, 26e-3, 48e-3)
-                 for run, label in (("Density_2.33e3", "2.33e3 kg/m^3"), ("Density_2.33e8", "2.33e8 kg/m^3"))]),
-    dict(name="fig4", measure="density", pair=("Density_2.33e18", "Density_2.33e24"), view=SMALL_VIEW, columns=2, time_scale=1e-6, time_unit="s",
-         title="Fig. 4 (4.2): density 2.33e18 (a, c, e) and 2.33e24 kg/m^3 (b, d, f), D0 = 1e-17 m^2/s",
-         panels=[(run, t, label) for t in (4e6, 16e6, 28e6)
-                 for run, label in (("Density_2.33e18", "2.33e18 kg/m^3"), ("Density_2.33e24", "2.33e24 kg/m^3"))]),
-    dict(name="fig5", measure="shape", view=SMALL_VIEW, columns=3, time_scale=1e-6, time_unit="s",
-         title="Fig. 5 (4.3): half (a-c) and full lithiation (d-f); elastic, perfectly plastic, linear hardening",
-         panels=[(run, when, label) for when in (MID, FULL)
-                 for run, label in (("Constitutive_elastic", "elastic"), ("Constitutive_perfect", "perfect plasticity"),
-                                    ("Constitutive_hardening", "linear hardening"))]),
-    dict(name="fig5_plastic_strain", measure=None, view=SMALL_VIEW, columns=3, time_scale=1e-6, time_unit="s",
-         colour=PLASTIC_STRAIN,
-         title="Fig. 5 as plastic strain: where each model yields at half (a-c) and full lithiation (d-f)",
-         panels=[(run, when, label) for when in (MID, FULL)
-                 for run, label in (("Constitutive_elastic", "elastic"), ("Constitutive_perfect", "perfect plasticity"),
-                                    ("Constitutive_hardening", "linear hardening"))]),
-    dict(name="fig6", measure="front", view=SMALL_VIEW, columns=4, time_scale=1e-6, time_unit="s",
-         title="Fig. 6 (4.4): lithiation under a flux of 1e-9 m/s (a-d) and 1e-8 m/s (e-h)",
-         panels=[(run, ("lithium", f), label) for run, label in (("Flux_1e-9", "1e-9 m/s"), ("Flux_1e-8", "1e-8 m/s"))
-                 for f in (0.15, 0.3, 0.45, 0.6)]),
-    dict(name="fig6_D0", measure="front", view=SMALL_VIEW, columns=3, time_scale=1e-6, time_unit="s",
-         title="Ours, not the paper's: flux 1e-9 m/s with D0 = 1e-17, 5e-18 and 2e-18 m^2/s at 15% and 30% lithium",
-         panels=[(run, ("lithium", f), label) for f in (0.15, 0.3)
-                 for run, label in (("Flux_1e-9", "D0 = 1e-17"), ("Front_D0_5e-18", "D0 = 5e-18"),
-                                    ("Front_D0_2e-18", "D0 = 2e-18"))]),
-    dict(name="fig7", measure="front and shape", view=SMALL_VIEW, columns=2, time_scale=1e-6, time_unit="s",
-         title="Fig. 7 (4.4): the end of lithiation, flux 1e-9 m/s (a) and 1e-8 m/s (b)",
-         panels=[("Flux_1e-9", FULL, "1e-9 m/s"), ("Flux_1e-8", FULL, "1e-8 m/s")]),
-    dict(name="fig8", measure="front and shape", view=SMALL_VIEW, columns=2, time_scale=1e-6, time_unit="s",
-         title="Fig. 8 (4.5): alpha = 6 with beta = 0 (a, c) and beta = 1 (b, d): half and full lithiation",
-         panels=[(run, when, label) for when in (MID, FULL)
-                 for run, label in (("Beta_0", "beta = 0"), ("Beta_1", "beta = 1"))]),
-    dict(name="fig9", measure="shape", view=LARGE_VIEW, columns=2, time_scale=1e-6, time_unit="s",
-         title="Fig. 9 (4.6): fixed base (a, c) and deformable substrate (b, d): half and full lithiation",
-         panels=[(run, when, label) for when in (MID, FULL)
-                 for run, label in (("Substrate_fixed", "fixed base"), ("Substrate_deformable", "substrate"))]),
-    dict(name="fig9_von_mises", measure=None, view=LARGE_VIEW, columns=2, time_scale=1e-6, time_unit="s",
-         colour=VON_MISES,
-         title="Fig. 9 as von Mises stress: fixed base (a, c) and deformable substrate (b, d)",
-         panels=[(run, when, label) for when in (MID, FULL)
-                 for run, label in (("Substrate_fixed", "fixed base"), ("Substrate_deformable", "substrate"))]),
-    dict(name="fig10", measure="cycle", view=LARGE_VIEW, columns=5, time_scale=1e-6, time_unit="s",
-         title="Fig. 10 (4.7): the large pillar's lithiation (to 40 s) and delithiation (to 80 s)",
-         panels=[("Cycle_LargePillar", t * 1e6, "") for t in (0, 8, 16, 24, 32, 40, 48, 60, 72, 80)]),
+    dict(
+        name="fig3",
+        measure="density",
+        pair=("Density_2.33e3", "Density_2.33e8"),
+        view=SMALL_VIEW,
+        columns=2,
+        time_scale=1e3,
+        time_unit="ns",
+        title="Fig. 3 (4.2): density 2.33e3 (a, c, e) and 2.33e8 kg/m^3 (b, d, f), D0 = 1e-10 m^2/s",
+        panels=[
+            (run, t, label)
+            for t in (6e-3, 26e-3, 48e-3)
+            for run, label in (
+                ("Density_2.33e3", "2.33e3 kg/m^3"),
+                ("Density_2.33e8", "2.33e8 kg/m^3"),
+            )
+        ],
+    ),
+    dict(
+        name="fig4",
+        measure="density",
+        pair=("Density_2.33e18", "Density_2.33e24"),
+        view=SMALL_VIEW,
+        columns=2,
+        time_scale=1e-6,
+        time_unit="s",
+        title="Fig. 4 (4.2): density 2.33e18 (a, c, e) and 2.33e24 kg/m^3 (b, d, f), D0 = 1e-17 m^2/s",
+        panels=[
+            (run, t, label)
+            for t in (4e6, 16e6, 28e6)
+            for run, label in (
+                ("Density_2.33e18", "2.33e18 kg/m^3"),
+                ("Density_2.33e24", "2.33e24 kg/m^3"),
+            )
+        ],
+    ),
+    dict(
+        name="fig5",
+        measure="shape",
+        view=SMALL_VIEW,
+        columns=3,
+        time_scale=1e-6,
+        time_unit="s",
+        title="Fig. 5 (4.3): half (a-c) and full lithiation (d-f); elastic, perfectly plastic, linear hardening",
+        panels=[
+            (run, when, label)
+            for when in (MID, FULL)
+            for run, label in (
+                ("Constitutive_elastic", "elastic"),
+                ("Constitutive_perfect", "perfect plasticity"),
+                ("Constitutive_hardening", "linear hardening"),
+            )
+        ],
+    ),
+    dict(
+        name="fig5_plastic_strain",
+        measure=None,
+        view=SMALL_VIEW,
+        columns=3,
+        time_scale=1e-6,
+        time_unit="s",
+        colour=PLASTIC_STRAIN,
+        title="Fig. 5 as plastic strain: where each model yields at half (a-c) and full lithiation (d-f)",
+        panels=[
+            (run, when, label)
+            for when in (MID, FULL)
+            for run, label in (
+                ("Constitutive_elastic", "elastic"),
+                ("Constitutive_perfect", "perfect plasticity"),
+                ("Constitutive_hardening", "linear hardening"),
+            )
+        ],
+    ),
+    dict(
+        name="fig6",
+        measure="front",
+        view=SMALL_VIEW,
+        columns=4,
+        time_scale=1e-6,
+        time_unit="s",
+        title="Fig. 6 (4.4): lithiation under a flux of 1e-9 m/s (a-d) and 1e-8 m/s (e-h)",
+        panels=[
+            (run, ("lithium", f), label)
+            for run, label in (("Flux_1e-9", "1e-9 m/s"), ("Flux_1e-8", "1e-8 m/s"))
+            for f in (0.15, 0.3, 0.45, 0.6)
+        ],
+    ),
+    dict(
+        name="fig6_D0",
+        measure="front",
+        view=SMALL_VIEW,
+        columns=3,
+        time_scale=1e-6,
+        time_unit="s",
+        title="Ours, not the paper's: flux 1e-9 m/s with D0 = 1e-17, 5e-18 and 2e-18 m^2/s at 15% and 30% lithium",
+        panels=[
+            (run, ("lithium", f), label)
+            for f in (0.15, 0.3)
+            for run, label in (
+                ("Flux_1e-9", "D0 = 1e-17"),
+                ("Front_D0_5e-18", "D0 = 5e-18"),
+                ("Front_D0_2e-18", "D0 = 2e-18"),
+            )
+        ],
+    ),
+    dict(
+        name="fig7",
+        measure="front and shape",
+        view=SMALL_VIEW,
+        columns=2,
+        time_scale=1e-6,
+        time_unit="s",
+        title="Fig. 7 (4.4): the end of lithiation, flux 1e-9 m/s (a) and 1e-8 m/s (b)",
+        panels=[("Flux_1e-9", FULL, "1e-9 m/s"), ("Flux_1e-8", FULL, "1e-8 m/s")],
+    ),
+    dict(
+        name="fig8",
+        measure="front and shape",
+        view=SMALL_VIEW,
+        columns=2,
+        time_scale=1e-6,
+        time_unit="s",
+        title="Fig. 8 (4.5): alpha = 6 with beta = 0 (a, c) and beta = 1 (b, d): half and full lithiation",
+        panels=[
+            (run, when, label)
+            for when in (MID, FULL)
+            for run, label in (("Beta_0", "beta = 0"), ("Beta_1", "beta = 1"))
+        ],
+    ),
+    dict(
+        name="fig9",
+        measure="shape",
+        view=LARGE_VIEW,
+        columns=2,
+        time_scale=1e-6,
+        time_unit="s",
+        title="Fig. 9 (4.6): fixed base (a, c) and deformable substrate (b, d): half and full lithiation",
+        panels=[
+            (run, when, label)
+            for when in (MID, FULL)
+            for run, label in (
+                ("Substrate_fixed", "fixed base"),
+                ("Substrate_deformable", "substrate"),
+            )
+        ],
+    ),
+    dict(
+        name="fig9_von_mises",
+        measure=None,
+        view=LARGE_VIEW,
+        columns=2,
+        time_scale=1e-6,
+        time_unit="s",
+        colour=VON_MISES,
+        title="Fig. 9 as von Mises stress: fixed base (a, c) and deformable substrate (b, d)",
+        panels=[
+            (run, when, label)
+            for when in (MID, FULL)
+            for run, label in (
+                ("Substrate_fixed", "fixed base"),
+                ("Substrate_deformable", "substrate"),
+            )
+        ],
+    ),
+    dict(
+        name="fig10",
+        measure="cycle",
+        view=LARGE_VIEW,
+        columns=5,
+        time_scale=1e-6,
+        time_unit="s",
+        title="Fig. 10 (4.7): the large pillar's lithiation (to 40 s) and delithiation (to 80 s)",
+        panels=[("Cycle_LargePillar", t * 1e6, "") for t in (0, 8, 16, 24, 32, 40, 48, 60, 72, 80)],
+    ),
 ]
 
 
@@ -87,23 +218,31 @@ def panel_time(run_dir, when):
 
 def figure_xml(figure, runs):
     v = figure["view"]
-    lines = ["<figure>",
-             "  <title>%s</title>" % figure["title"],
-             "  <columns>%d</columns>" % figure["columns"],
-             "  <time_scale>%g</time_scale>" % figure["time_scale"],
-             "  <time_unit>%s</time_unit>" % figure["time_unit"],
-             "  <scene>"]
+    lines = [
+        "<figure>",
+        "  <title>%s</title>" % figure["title"],
+        "  <columns>%d</columns>" % figure["columns"],
+        "  <time_scale>%g</time_scale>" % figure["time_scale"],
+        "  <time_unit>%s</time_unit>" % figure["time_unit"],
+        "  <scene>",
+    ]
     colour = dict(CONCENTRATION, **figure.get("colour", {}))
-    lines += ["    <%s>%s</%s>" % (tag, value, tag) for tag, value in colour.items() if value is not None]
-    lines += ["    <clip><point>[0, 0, 0]</point><normal>[0, -1, 0]</normal></clip>",
-              "    <camera><position>%s</position><focal_point>%s</focal_point></camera>" % (
-                  v["position"], v["focal_point"]),
-              "    <size>%s</size>" % v["size"],
-              "  </scene>"]
+    lines += [
+        "    <%s>%s</%s>" % (tag, value, tag) for tag, value in colour.items() if value is not None
+    ]
+    lines += [
+        "    <clip><point>[0, 0, 0]</point><normal>[0, -1, 0]</normal></clip>",
+        "    <camera><position>%s</position><focal_point>%s</focal_point></camera>"
+        % (v["position"], v["focal_point"]),
+        "    <size>%s</size>" % v["size"],
+        "  </scene>",
+    ]
     for run, when, label in figure["panels"]:
         run_dir = os.path.join(runs, run)
-        lines.append("  <panel><data>%s</data><time>%.9g</time><label>%s</label></panel>" % (
-            os.path.join(run_dir, "particles.pvd"), panel_time(run_dir, when), label))
+        lines.append(
+            "  <panel><data>%s</data><time>%.9g</time><label>%s</label></panel>"
+            % (os.path.join(run_dir, "particles.pvd"), panel_time(run_dir, when), label)
+        )
     lines.append("</figure>")
     return "\n".join(lines) + "\n"
 
@@ -124,7 +263,7 @@ def panels_reached(figure, runs, finished):
 
     columns, panels = figure["columns"], []
     for first in range(0, len(figure["panels"]), columns):
-        row = figure["panels"][first:first + columns]
+        row = figure["panels"][first : first + columns]
         if not all(reached(run, when) for run, when, _ in row):
             break
         panels += row
@@ -144,9 +283,16 @@ def make_all(args, runs, finished):
             print("%-22s not drawn: waiting for %s" % (name, ", ".join(going)), flush=True)
             continue
         if going:
-            rows, all_rows = len(panels) // figure["columns"], len(figure["panels"]) // figure["columns"]
-            figure = dict(figure, panels=panels, title="%s; so far %d of %d rows (%s still running)" % (
-                figure["title"], rows, all_rows, ", ".join(going)))
+            rows, all_rows = (
+                len(panels) // figure["columns"],
+                len(figure["panels"]) // figure["columns"],
+            )
+            figure = dict(
+                figure,
+                panels=panels,
+                title="%s; so far %d of %d rows (%s still running)"
+                % (figure["title"], rows, all_rows, ", ".join(going)),
+            )
         spec = os.path.join(out, name + ".xml")
         with open(spec, "w") as f:
             f.write(figure_xml(figure, runs))
@@ -155,7 +301,12 @@ def make_all(args, runs, finished):
         print("%-22s %s" % (name, png), flush=True)
         made.append(png)
     numbers = os.path.join(args.out, "numbers.md")
-    paper_numbers.write_numbers(numbers, runs, finished, FIGURES,
-                                lambda run, when: panel_time(os.path.join(runs, run), when))
+    paper_numbers.write_numbers(
+        numbers,
+        runs,
+        finished,
+        FIGURES,
+        lambda run, when: panel_time(os.path.join(runs, run), when),
+    )
     print("%-22s %s" % ("numbers", numbers), flush=True)
     return made + [numbers]

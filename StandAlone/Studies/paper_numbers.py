@@ -1,5 +1,5 @@
 """The numbers of docs/paper/README.md, measured from a run's output (history.csv and the particle
-.vtu files, read with VTK's XML readers: /usr/bin/python3 with python3-vtk9).
+.vtu files, read with VTK's XML readers: /usr/bin/python3 with python3-vtk9 and python3-numpy).
 
 Definitions (the report repeats them). Lengths in um, times in us as the runs write them.
 - Reference position X0 = p.x - p.displacement; the silicon is material 0.
@@ -26,9 +26,10 @@ Definitions (the report repeats them). Lengths in um, times in us as the runs wr
 """
 import functools
 import json
-import math
 import os
 import xml.etree.ElementTree as ET
+
+import numpy as np
 
 SILICON = 0
 
@@ -48,22 +49,22 @@ def last_output_time(run_dir):
 
 
 def read_output(run_dir, time, arrays):
-    """The arrays (and "time", "points") of the output nearest to `time`, as Python lists."""
+    """The arrays (and "time", "points") of the output nearest to `time`, as numpy arrays: a value
+    per particle, or a row per particle for an array of several components."""
+    from vtkmodules.util.numpy_support import vtk_to_numpy
     from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridReader
+
     t, path = min(outputs(run_dir), key=lambda e: abs(e[0] - time))
     reader = vtkXMLUnstructuredGridReader()
     reader.SetFileName(path)
     reader.Update()
     grid = reader.GetOutput()
-    n = grid.GetNumberOfPoints()
-    points = grid.GetPoints().GetData()
-    data = dict(time=t, points=[points.GetTuple3(i) for i in range(n)])
+    data = dict(time=t, points=vtk_to_numpy(grid.GetPoints().GetData()))
     for name in arrays:
         a = grid.GetPointData().GetArray(name)
         if a is None:
             raise RuntimeError("%s holds no array %s" % (path, name))
-        k = a.GetNumberOfComponents()
-        data[name] = [a.GetValue(i) for i in range(n)] if k == 1 else [a.GetTuple(i) for i in range(n)]
+        data[name] = vtk_to_numpy(a)
     return data
 
 
@@ -124,8 +125,10 @@ def input_of(run_dir):
 
 def cell_size(run_dir):
     box = input_of(run_dir).find("Grid/Level/Box")
-    lower, upper, cells = (list(map(float, box.find(tag).text.strip(" []").split(",")))
-                           for tag in ("lower", "upper", "resolution"))
+    lower, upper, cells = (
+        list(map(float, box.find(tag).text.strip(" []").split(",")))
+        for tag in ("lower", "upper", "resolution")
+    )
     return (upper[0] - lower[0]) / cells[0]
 
 
@@ -133,7 +136,7 @@ def silicon_capacity(run_dir):
     """rho V0 of the silicon: the lithium it holds at c = 1 (history's units)."""
     density = float(input_of(run_dir).find("MaterialProperties/MPM/material/density").text)
     data = read_output(run_dir, 0.0, ["p.volume", "material"])
-    return density * sum(v for v, m in zip(data["p.volume"], data["material"]) if m == SILICON)
+    return density * data["p.volume"][data["material"] == SILICON].sum()
 
 
 def lithium_fraction_time(run_dir, fraction):
@@ -153,65 +156,72 @@ class State:
     """The silicon (and other materials') particles of one output, with reference positions."""
 
     def __init__(self, run_dir, time):
-        d = read_output(run_dir, time, ["p.concentration", "p.displacement", "p.plasticStrain", "material",
-                                        "p.particleID", "p.volume"])
+        d = read_output(
+            run_dir,
+            time,
+            [
+                "p.concentration",
+                "p.displacement",
+                "p.plasticStrain",
+                "material",
+                "p.particleID",
+                "p.volume",
+            ],
+        )
         self.time = d["time"]
         self.x = d["points"]
-        self.X0 = [tuple(x[k] - u[k] for k in range(3)) for x, u in zip(d["points"], d["p.displacement"])]
+        self.X0 = self.x - d["p.displacement"]
         self.c = d["p.concentration"]
         self.ep = d["p.plasticStrain"]
         self.material = d["material"]
         self.id = d["p.particleID"]
         self.volume = d["p.volume"]
-        self.silicon = [i for i, m in enumerate(self.material) if m == SILICON]
-        zs = sorted({round(self.X0[i][2], 9) for i in self.silicon})
-        self.layers = zs
-        self.base, self.top = zs[0], zs[-1]
+        self.silicon = np.flatnonzero(self.material == SILICON)
+        self.layers = np.unique(np.round(self.X0[self.silicon, 2], 9))
+        self.base, self.top = self.layers[0], self.layers[-1]
 
     def layer(self, z):
         """Silicon particles whose reference z is the layer nearest z."""
-        nearest = min(self.layers, key=lambda q: abs(q - z))
-        return [i for i in self.silicon if abs(self.X0[i][2] - nearest) < 1e-7]
+        nearest = self.layers[np.argmin(np.abs(self.layers - z))]
+        return self.silicon[np.abs(self.X0[self.silicon, 2] - nearest) < 1e-7]
 
     def radial_growth(self, particles):
-        r_now = max(math.hypot(self.x[i][0], self.x[i][1]) for i in particles)
-        r_ref = max(math.hypot(self.X0[i][0], self.X0[i][1]) for i in particles)
+        r_now = np.hypot(self.x[particles, 0], self.x[particles, 1]).max()
+        r_ref = np.hypot(self.X0[particles, 0], self.X0[particles, 1]).max()
         return r_now / r_ref - 1
 
     def height_growth(self):
         """(highest - lowest current z of the silicon) / (its top layer's - base layer's X0_z) - 1."""
-        z = [self.x[i][2] for i in self.silicon]
-        return (max(z) - min(z)) / (self.top - self.base) - 1
+        z = self.x[self.silicon, 2]
+        return (z.max() - z.min()) / (self.top - self.base) - 1
 
     def top_layer_rise(self):
         """(mean current z of the top layer - that of the base layer) / (their X0_z apart) - 1."""
-        mean_z = lambda particles: sum(self.x[i][2] for i in particles) / len(particles)
-        return (mean_z(self.layer(self.top)) - mean_z(self.layer(self.base))) / (self.top - self.base) - 1
+        mean_z = lambda particles: self.x[particles, 2].mean()
+        return (mean_z(self.layer(self.top)) - mean_z(self.layer(self.base))) / (
+            self.top - self.base
+        ) - 1
 
     def ring_profile(self):
         """Mean c per ring of the middle layers, axis first."""
         height = self.top - self.base
         middle = self.base + height / 2
-        radii = sorted({round(math.hypot(self.X0[i][0], self.X0[i][1]), 7) for i in self.silicon})
-        sums, counts = [0.0] * len(radii), [0] * len(radii)
-        index = {r: k for k, r in enumerate(radii)}
-        for i in self.silicon:
-            if abs(self.X0[i][2] - middle) > 0.1 * height:
-                continue
-            k = index[round(math.hypot(self.X0[i][0], self.X0[i][1]), 7)]
-            sums[k] += self.c[i]
-            counts[k] += 1
-        return [s / n for s, n in zip(sums, counts) if n > 0]
-
+        X0, c = self.X0[self.silicon], self.c[self.silicon]
+        radius = np.round(np.hypot(X0[:, 0], X0[:, 1]), 7)
+        in_middle = np.abs(X0[:, 2] - middle) <= 0.1 * height
+        return group_means(radius[in_middle], c[in_middle])
 
     def height_profile(self, thickness):
         """Mean c of the silicon in slabs `thickness` thick by X0_z, from the base layer up."""
-        sums, counts = {}, {}
-        for i in self.silicon:
-            k = int((self.X0[i][2] - self.base) / thickness + 1e-6)
-            sums[k] = sums.get(k, 0.0) + self.c[i]
-            counts[k] = counts.get(k, 0) + 1
-        return [sums[k] / counts[k] for k in sorted(sums)]
+        slab = ((self.X0[self.silicon, 2] - self.base) / thickness + 1e-6).astype(int)
+        return group_means(slab, self.c[self.silicon])
+
+
+def group_means(keys, values):
+    """The mean of `values` per key, keys in increasing order. Each group's sum is taken in the
+    values' order (np.bincount adds one by one), as a loop over the particles would."""
+    _, group = np.unique(keys, return_inverse=True)
+    return (np.bincount(group, weights=values) / np.bincount(group)).tolist()
 
 
 def front(profile, threshold=0.1, rise=0.1):
@@ -241,16 +251,32 @@ def state_of(run_dir, time):
 def pair_difference(run_a, run_b, time):
     """Largest and mean |c_a - c_b| and largest |x_a - x_b| in cells, particles matched by ID."""
     a, b = state_of(run_a, time), state_of(run_b, time)
-    where = {pid: i for i, pid in enumerate(b.id)}
-    dx = cell_size(run_a)
-    dc, dxs = [], []
-    if set(where) != set(a.id):
-        raise RuntimeError("%s and %s hold different particles at t = %g: no pair to compare" % (run_a, run_b, time))
-    for i, pid in enumerate(a.id):
-        j = where[pid]
-        dc.append(abs(a.c[i] - b.c[j]))
-        dxs.append(math.dist(a.x[i], b.x[j]) / dx)
-    return dict(time_a=a.time, time_b=b.time, max_dc=max(dc), mean_dc=sum(dc) / len(dc), max_dx_cells=max(dxs))
+    if not np.array_equal(np.sort(a.id), np.sort(b.id)):
+        raise RuntimeError(
+            "%s and %s hold different particles at t = %g: no pair to compare"
+            % (run_a, run_b, time)
+        )
+    j = index_of(a.id, b.id)
+    dc = np.abs(a.c - b.c[j])
+    dxs = np.linalg.norm(a.x - b.x[j], axis=1) / cell_size(run_a)
+    return dict(
+        time_a=a.time,
+        time_b=b.time,
+        max_dc=dc.max(),
+        mean_dc=dc.mean(),
+        max_dx_cells=dxs.max(),
+    )
+
+
+def index_of(ids, among):
+    """The index in `among` (IDs each there once) of each particle ID of `ids`; a KeyError for
+    one not there."""
+    order = np.argsort(among)
+    found = order[np.searchsorted(among, ids, sorter=order).clip(max=len(among) - 1)]
+    missing = among[found] != ids
+    if missing.any():
+        raise KeyError("particle %d is not among the particles to match" % ids[missing][0])
+    return found
 
 
 def shape(run_dir, time):
@@ -258,19 +284,32 @@ def shape(run_dir, time):
     s = state_of(run_dir, time)
     base, top = s.layer(s.base), s.layer(s.top)
     lower, middle = s.layer(s.base + (s.top - s.base) / 4), s.layer((s.base + s.top) / 2)
-    ep_base = [s.ep[i] for i in base]
-    other = [i for i, m in enumerate(s.material) if m != SILICON]
-    return dict(time=s.time, lithium=lithium_fraction_at(run_dir, s.time), base_growth=s.radial_growth(base),
-                lower_growth=s.radial_growth(lower), middle_growth=s.radial_growth(middle), top_growth=s.radial_growth(top),
-                height_growth=s.height_growth(), top_rise=s.top_layer_rise(), ep_base_max=max(ep_base), ep_base_mean=sum(ep_base) / len(ep_base),
-                ep_max=max(s.ep[i] for i in s.silicon),
-                ep_substrate_max=max((s.ep[i] for i in other), default=None))
+    ep_base = s.ep[base]
+    substrate = s.ep[s.material != SILICON]
+    return dict(
+        time=s.time,
+        lithium=lithium_fraction_at(run_dir, s.time),
+        base_growth=s.radial_growth(base),
+        lower_growth=s.radial_growth(lower),
+        middle_growth=s.radial_growth(middle),
+        top_growth=s.radial_growth(top),
+        height_growth=s.height_growth(),
+        top_rise=s.top_layer_rise(),
+        ep_base_max=ep_base.max(),
+        ep_base_mean=ep_base.mean(),
+        ep_max=s.ep[s.silicon].max(),
+        ep_substrate_max=substrate.max() if substrate.size else None,
+    )
 
 
 # ---- The tables of numbers.md, one section per figure ----
 
-CYCLE_SLAB = 0.005  # um: two particle layers of the large pillar (dz = 2.5 nm), as the small pillar's rings
-CYCLE_PROFILE_TIMES = [t * 1e6 for t in (8, 16, 24, 32, 40, 48, 60, 72, 80)]  # us: Fig. 10's panels after t = 0
+CYCLE_SLAB = (
+    0.005  # um: two particle layers of the large pillar (dz = 2.5 nm), as the small pillar's rings
+)
+CYCLE_PROFILE_TIMES = [
+    t * 1e6 for t in (8, 16, 24, 32, 40, 48, 60, 72, 80)
+]  # us: Fig. 10's panels after t = 0
 PAPER_CYCLE = "27,472 steps, 48.57 h on 9 cores (Intel Xeon E5-2667, 2.9 GHz)"
 
 
@@ -293,9 +332,29 @@ def runs_table(runs, finished):
     for name in finished:
         with open(os.path.join(runs, name, "complete.json")) as f:
             s = json.load(f)
-        rows.append([name, s["particles"], s["steps"], "%.4g" % s["time"], "%.0f" % s["wall_seconds"], s["threads"],
-                     s.get("stopped") or "its maxTime"])
-    return table(["scenario", "particles", "steps", "simulated time (us)", "wall (s)", "threads", "ended at"], rows)
+        rows.append(
+            [
+                name,
+                s["particles"],
+                s["steps"],
+                "%.4g" % s["time"],
+                "%.0f" % s["wall_seconds"],
+                s["threads"],
+                s.get("stopped") or "its maxTime",
+            ]
+        )
+    return table(
+        [
+            "scenario",
+            "particles",
+            "steps",
+            "simulated time (us)",
+            "wall (s)",
+            "threads",
+            "ended at",
+        ],
+        rows,
+    )
 
 
 def density_section(runs, pair, times, unit_scale, unit, finished):
@@ -309,21 +368,51 @@ def density_section(runs, pair, times, unit_scale, unit, finished):
             continue
         d = pair_difference(os.path.join(runs, pair[0]), os.path.join(runs, pair[1]), t)
         a, b = (shape(os.path.join(runs, run), t) for run in pair)
-        rows.append(["%g %s" % (t * unit_scale, unit), "%.4g / %.4g" % (d["time_a"] * unit_scale, d["time_b"] * unit_scale),
-                     num(d["max_dc"]), num(d["mean_dc"]), num(d["max_dx_cells"]),
-                     "%s / %s" % (percent(a["height_growth"]), percent(b["height_growth"])),
-                     "%s / %s" % (percent(a["top_rise"]), percent(b["top_rise"])),
-                     "%s / %s" % (percent(a["top_growth"]), percent(b["top_growth"])),
-                     "%s / %s" % (num(a["ep_max"]), num(b["ep_max"]))])
-    text = ("a = %s, b = %s.\n\n" % pair + table(
-        ["figure time", "output times (%s)" % unit, "largest abs(c difference)", "mean abs(c difference)",
-         "largest position difference (cells)", "height growth a / b", "top layer's mean height growth a / b",
-         "top layer's radial growth a / b",
-         "largest plastic strain (silicon) a / b"], rows)) if rows else ""
-    going = ["%s (last output at %.4g %s)" % (run, reached[run] * unit_scale, unit) for run in pair if run not in finished]
+        rows.append(
+            [
+                "%g %s" % (t * unit_scale, unit),
+                "%.4g / %.4g" % (d["time_a"] * unit_scale, d["time_b"] * unit_scale),
+                num(d["max_dc"]),
+                num(d["mean_dc"]),
+                num(d["max_dx_cells"]),
+                "%s / %s" % (percent(a["height_growth"]), percent(b["height_growth"])),
+                "%s / %s" % (percent(a["top_rise"]), percent(b["top_rise"])),
+                "%s / %s" % (percent(a["top_growth"]), percent(b["top_growth"])),
+                "%s / %s" % (num(a["ep_max"]), num(b["ep_max"])),
+            ]
+        )
+    text = (
+        (
+            "a = %s, b = %s.\n\n" % pair
+            + table(
+                [
+                    "figure time",
+                    "output times (%s)" % unit,
+                    "largest abs(c difference)",
+                    "mean abs(c difference)",
+                    "largest position difference (cells)",
+                    "height growth a / b",
+                    "top layer's mean height growth a / b",
+                    "top layer's radial growth a / b",
+                    "largest plastic strain (silicon) a / b",
+                ],
+                rows,
+            )
+        )
+        if rows
+        else ""
+    )
+    going = [
+        "%s (last output at %.4g %s)" % (run, reached[run] * unit_scale, unit)
+        for run in pair
+        if run not in finished
+    ]
     if going:
-        text += "%sStill running: %s; waiting: %s." % ("\n\n" if rows else "", ", ".join(going),
-                                                     ", ".join(waiting) or "nothing")
+        text += "%sStill running: %s; waiting: %s." % (
+            "\n\n" if rows else "",
+            ", ".join(going),
+            ", ".join(waiting) or "nothing",
+        )
     return text
 
 
@@ -331,13 +420,39 @@ def shape_section(runs, panels, time_of, scale, unit):
     rows = []
     for run, when, label in panels:
         s = shape(os.path.join(runs, run), time_of(run, when))
-        rows.append([label, "%.3g" % (s["time"] * scale), percent(s["lithium"]), percent(s["base_growth"]),
-                     percent(s["lower_growth"]), percent(s["middle_growth"]), percent(s["top_growth"]), percent(s["height_growth"]),
-                     num(s["ep_base_max"]), num(s["ep_base_mean"]), num(s["ep_max"]), num(s["ep_substrate_max"])])
-    return table(["run", "t (%s)" % unit, "lithium", "base radial growth", "quarter-height radial growth",
-                  "middle radial growth", "top radial growth",
-                  "height growth", "max plastic strain, base layer", "mean, base layer", "max, silicon",
-                  "max, substrate"], rows)
+        rows.append(
+            [
+                label,
+                "%.3g" % (s["time"] * scale),
+                percent(s["lithium"]),
+                percent(s["base_growth"]),
+                percent(s["lower_growth"]),
+                percent(s["middle_growth"]),
+                percent(s["top_growth"]),
+                percent(s["height_growth"]),
+                num(s["ep_base_max"]),
+                num(s["ep_base_mean"]),
+                num(s["ep_max"]),
+                num(s["ep_substrate_max"]),
+            ]
+        )
+    return table(
+        [
+            "run",
+            "t (%s)" % unit,
+            "lithium",
+            "base radial growth",
+            "quarter-height radial growth",
+            "middle radial growth",
+            "top radial growth",
+            "height growth",
+            "max plastic strain, base layer",
+            "mean, base layer",
+            "max, silicon",
+            "max, substrate",
+        ],
+        rows,
+    )
 
 
 # §4.4: "c behind the sharp front is 0.5-0.6 at a flux of 1e-9 m/s and above 0.7 at 1e-8".
@@ -355,17 +470,42 @@ def front_section(runs, panels, time_of, scale, unit):
             behind.setdefault((run, label), []).append(f[2])
         else:
             behind.setdefault((run, label), [])
-        rows.append([label, "%.3g" % (s.time * scale), percent(lithium_fraction_at(run_dir, s.time)),
-                     " ".join("%.2f" % c for c in profile),
-                     "none" if f is None else "rings %d-%d" % (f[0], f[0] + f[1] - 1),
-                     "—" if f is None else "%.3f" % f[2]])
-    summary = [[label, "none" if not values else "%.2f-%.2f" % (min(values), max(values)),
-                "%d of %d" % (len(values), sum(1 for p in panels if p[0] == run)),
-                PAPER_BEHIND_FRONT.get(run, "—")] for (run, label), values in behind.items()]
-    return table(["run", "t (%s)" % unit, "lithium", "ring c, axis to surface (middle layers)", "front",
-                  "c behind the front"],
-                 rows) + "\n\n" + table(["run", "c behind the front (ours)", "panels with a front",
-                                          "the paper (4.4)"], summary)
+        rows.append(
+            [
+                label,
+                "%.3g" % (s.time * scale),
+                percent(lithium_fraction_at(run_dir, s.time)),
+                " ".join("%.2f" % c for c in profile),
+                "none" if f is None else "rings %d-%d" % (f[0], f[0] + f[1] - 1),
+                "—" if f is None else "%.3f" % f[2],
+            ]
+        )
+    summary = [
+        [
+            label,
+            "none" if not values else "%.2f-%.2f" % (min(values), max(values)),
+            "%d of %d" % (len(values), sum(1 for p in panels if p[0] == run)),
+            PAPER_BEHIND_FRONT.get(run, "—"),
+        ]
+        for (run, label), values in behind.items()
+    ]
+    return (
+        table(
+            [
+                "run",
+                "t (%s)" % unit,
+                "lithium",
+                "ring c, axis to surface (middle layers)",
+                "front",
+                "c behind the front",
+            ],
+            rows,
+        )
+        + "\n\n"
+        + table(
+            ["run", "c behind the front (ours)", "panels with a front", "the paper (4.4)"], summary
+        )
+    )
 
 
 def cycle_section(runs, scale, unit):
@@ -376,54 +516,115 @@ def cycle_section(runs, scale, unit):
     capacity = silicon_capacity(run_dir)
     state = functools.lru_cache(maxsize=None)(lambda t: State(run_dir, t))  # each output read once
     start = state(0.0)
-    initial_volume = {start.id[i]: start.volume[i] for i in start.silicon}
+    initial_volume = start.volume[start.silicon]
     rows = []
     for t in (40e6, 80e6):
         s = state(t)
         r = min(history, key=lambda h: abs(h["time"] - s.time))
-        c = [s.c[i] for i in s.silicon]
-        J = [s.volume[i] / initial_volume[s.id[i]] for i in s.silicon]
-        pillar = [s.ep[i] for i in s.silicon]
-        substrate = [s.ep[i] for i, m in enumerate(s.material) if m != SILICON]
-        rows.append(["%.4g" % (s.time * scale), int(r["step"]), percent(r["total_lithium"] / capacity),
-                     "%.4f - %.4f" % (min(c), max(c)), "%.4f - %.4f" % (min(J), max(J)),
-                     "%.3g / %.3g" % (max(pillar), sum(pillar) / len(pillar)),
-                     "%.3g / %.3g" % (max(substrate), sum(substrate) / len(substrate)) if substrate else "—"])
+        c = s.c[s.silicon]
+        J = s.volume[s.silicon] / initial_volume[index_of(s.id[s.silicon], start.id[start.silicon])]
+        pillar = s.ep[s.silicon]
+        substrate = s.ep[s.material != SILICON]
+        rows.append(
+            [
+                "%.4g" % (s.time * scale),
+                int(r["step"]),
+                percent(r["total_lithium"] / capacity),
+                "%.4f - %.4f" % (c.min(), c.max()),
+                "%.4f - %.4f" % (J.min(), J.max()),
+                "%.3g / %.3g" % (pillar.max(), pillar.mean()),
+                "%.3g / %.3g" % (substrate.max(), substrate.mean()) if substrate.size else "—",
+            ]
+        )
     profiles = []
     for t in CYCLE_PROFILE_TIMES:
         s = state(t)
         profile = s.height_profile(CYCLE_SLAB)
         f = front(profile)
-        profiles.append(["%.4g" % (s.time * scale), percent(lithium_fraction_at(run_dir, s.time)),
-                         " ".join("%.2f" % c for c in profile),
-                         "none" if f is None else "slabs %d-%d" % (f[0], f[0] + f[1] - 1),
-                         "—" if f is None else "%.3f" % f[2], "%.2f" % (max(profile) - min(profile))])
+        profiles.append(
+            [
+                "%.4g" % (s.time * scale),
+                percent(lithium_fraction_at(run_dir, s.time)),
+                " ".join("%.2f" % c for c in profile),
+                "none" if f is None else "slabs %d-%d" % (f[0], f[0] + f[1] - 1),
+                "—" if f is None else "%.3f" % f[2],
+                "%.2f" % (max(profile) - min(profile)),
+            ]
+        )
     peak, end = max(history, key=lambda h: h["total_lithium"]), history[-1]
-    held, out = peak["total_lithium"] / capacity, (peak["total_lithium"] - end["total_lithium"]) / capacity
-    return table(["t (%s)" % unit, "step", "lithium", "silicon c range", "silicon J range",
-                  "plastic strain max / mean, pillar", "max / mean, substrate"], rows) + (
-        "\n\nLithium in: %s of the capacity by t = %.4g %s (the most the run holds). Out: %s of the capacity "
-        "by t = %.4g %s, %s of what went in. The paper's run: %s." %
-        (percent(held), peak["time"] * scale, unit, percent(out), end["time"] * scale, unit,
-         percent(out / held) if held > 0 else "—", PAPER_CYCLE)) + (
-        "\n\nc by height: the mean c of the silicon in slabs %g nm thick by X0_z, base to top (the flux enters "
-        "through the top and the side), with the front found as for Figs. 6-7 and the spread (largest - smallest "
-        "slab c):\n\n" % (CYCLE_SLAB * 1e3)) + table(
-        ["t (%s)" % unit, "lithium", "slab c, base to top", "front", "c behind the front", "spread"], profiles)
+    held, out = (
+        peak["total_lithium"] / capacity,
+        (peak["total_lithium"] - end["total_lithium"]) / capacity,
+    )
+    return (
+        table(
+            [
+                "t (%s)" % unit,
+                "step",
+                "lithium",
+                "silicon c range",
+                "silicon J range",
+                "plastic strain max / mean, pillar",
+                "max / mean, substrate",
+            ],
+            rows,
+        )
+        + (
+            "\n\nLithium in: %s of the capacity by t = %.4g %s (the most the run holds). Out: %s of the capacity "
+            "by t = %.4g %s, %s of what went in. The paper's run: %s."
+            % (
+                percent(held),
+                peak["time"] * scale,
+                unit,
+                percent(out),
+                end["time"] * scale,
+                unit,
+                percent(out / held) if held > 0 else "—",
+                PAPER_CYCLE,
+            )
+        )
+        + (
+            "\n\nc by height: the mean c of the silicon in slabs %g nm thick by X0_z, base to top (the flux enters "
+            "through the top and the side), with the front found as for Figs. 6-7 and the spread (largest - smallest "
+            "slab c):\n\n" % (CYCLE_SLAB * 1e3)
+        )
+        + table(
+            [
+                "t (%s)" % unit,
+                "lithium",
+                "slab c, base to top",
+                "front",
+                "c behind the front",
+                "spread",
+            ],
+            profiles,
+        )
+    )
 
 
 def write_numbers(path, runs, finished, figures, time_of):
     """numbers.md: the runs, then each figure's numbers (sections whose runs are not done say so)."""
-    out = ["# Numbers of the paper's figures, measured from the runs",
-           "", "Written by `StandAlone/Studies/reproduce_paper.py`; definitions in `paper_numbers.py` and "
-           "`docs/paper/README.md`.", "", "## Runs", "", runs_table(runs, finished)]
+    out = [
+        "# Numbers of the paper's figures, measured from the runs",
+        "",
+        "Written by `StandAlone/Studies/reproduce_paper.py`; definitions in `paper_numbers.py` and "
+        "`docs/paper/README.md`.",
+        "",
+        "## Runs",
+        "",
+        runs_table(runs, finished),
+    ]
     sections = {
-        "density": lambda f, scale, unit: density_section(runs, f["pair"], sorted({w for _, w, _ in f["panels"]}),
-                                                          scale, unit, finished),
+        "density": lambda f, scale, unit: density_section(
+            runs, f["pair"], sorted({w for _, w, _ in f["panels"]}), scale, unit, finished
+        ),
         "shape": lambda f, scale, unit: shape_section(runs, f["panels"], time_of, scale, unit),
         "front": lambda f, scale, unit: front_section(runs, f["panels"], time_of, scale, unit),
-        "front and shape": lambda f, scale, unit: front_section(runs, f["panels"], time_of, scale, unit) +
-        "\n\n" + shape_section(runs, f["panels"], time_of, scale, unit),
+        "front and shape": lambda f, scale, unit: front_section(
+            runs, f["panels"], time_of, scale, unit
+        )
+        + "\n\n"
+        + shape_section(runs, f["panels"], time_of, scale, unit),
         "cycle": lambda f, scale, unit: cycle_section(runs, scale, unit),
     }
     for figure in figures:
@@ -432,7 +633,11 @@ def write_numbers(path, runs, finished, figures, time_of):
         out += ["", "## " + figure["title"], ""]
         missing = sorted({run for run, _, _ in figure["panels"]} - set(finished))
         if figure["measure"] == "density":  # compared as far as both runs have gone
-            missing = [run for run in missing if not os.path.exists(os.path.join(runs, run, "particles.pvd"))]
+            missing = [
+                run
+                for run in missing
+                if not os.path.exists(os.path.join(runs, run, "particles.pvd"))
+            ]
         if missing:
             out.append(NOT_MEASURED + ", ".join(missing) + ".")
             continue
@@ -472,9 +677,11 @@ def merge_numbers(old, new):
             kept = [fresh.pop(name(r), r) for r in rows(before)]
             head = [l for l in body if l.startswith("| scenario") or l.startswith("|---")]
             body = [""] + head + kept + list(fresh.values()) + [""]
-        elif before and any(l.startswith(NOT_MEASURED) for l in body) and \
-                not any(l.startswith(NOT_MEASURED) for l in before):
+        elif (
+            before
+            and any(l.startswith(NOT_MEASURED) for l in body)
+            and not any(l.startswith(NOT_MEASURED) for l in before)
+        ):
             body = before
         merged.append("\n".join(([heading] if heading else []) + body))
     return "\n".join(merged)
-

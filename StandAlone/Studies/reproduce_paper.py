@@ -23,7 +23,8 @@
 
 --quick STEPS runs each scenario afresh for STEPS steps only (into DIR, which must not hold full
 runs) and makes every figure from what that gives: the pipeline's test (tests/CMakeLists.txt).
-Needs /usr/bin/python3 with VTK (python3-vtk9, which libvtk9-dev installs) for the numbers.
+Needs /usr/bin/python3 with numpy (python3-numpy) and, for the numbers, VTK (python3-vtk9, which
+libvtk9-dev installs).
 """
 import argparse
 import concurrent.futures
@@ -49,10 +50,24 @@ SIMULATION_STOPPED = 3  # sus's exit code for a run it stopped with a diagnostic
 HEARTBEAT = 30  # seconds between rewrites of a running run's wall time so far
 
 # Cheapest first (measured here on 2 cores; docs/paper/README.md has the wall times).
-SCENARIOS = ["Flux_1e-8", "Flux_1e-9", "Constitutive_elastic", "Constitutive_perfect",
-             "Constitutive_hardening", "Beta_0", "Beta_1", "Front_D0_5e-18", "Front_D0_2e-18",
-             "Density_2.33e24", "Density_2.33e8", "Substrate_fixed", "Substrate_deformable", "Cycle_LargePillar", "Density_2.33e3",
-             "Density_2.33e18"]
+SCENARIOS = [
+    "Flux_1e-8",
+    "Flux_1e-9",
+    "Constitutive_elastic",
+    "Constitutive_perfect",
+    "Constitutive_hardening",
+    "Beta_0",
+    "Beta_1",
+    "Front_D0_5e-18",
+    "Front_D0_2e-18",
+    "Density_2.33e24",
+    "Density_2.33e8",
+    "Substrate_fixed",
+    "Substrate_deformable",
+    "Cycle_LargePillar",
+    "Density_2.33e3",
+    "Density_2.33e18",
+]
 
 
 def has_checkpoint(run_dir):
@@ -86,7 +101,10 @@ def record_killed_session(run_dir):
     with open(beat) as f:
         started, seconds = f.read().split()[:2]
     with open(run_dir + ".wall", "a") as f:
-        f.write("%s %s exit=killed killed (the last heartbeat of the session started then)\n" % (started, seconds))
+        f.write(
+            "%s %s exit=killed killed (the last heartbeat of the session started then)\n"
+            % (started, seconds)
+        )
     os.remove(beat)
 
 
@@ -120,7 +138,9 @@ def refuse_quick_over_full_runs(runs, names):
         run_dir = os.path.join(runs, name)
         done = finished_run(run_dir)
         if (done and not done["quick"]) or (not done and has_checkpoint(run_dir)):
-            sys.exit("reproduce_paper.py: %s holds a full run; give --quick another --out" % run_dir)
+            sys.exit(
+                "reproduce_paper.py: %s holds a full run; give --quick another --out" % run_dir
+            )
 
 
 def run_scenario(name, args, runs):
@@ -149,8 +169,12 @@ def run_scenario(name, args, runs):
         print("%-22s %s: %s" % (name, how, " ".join(command)), flush=True)
         start = time.time()
         log = open(run_dir + ".log", "a")
-        child = subprocess.Popen(command, stdout=log, stderr=subprocess.STDOUT,
-                                 env=dict(os.environ, OMP_WAIT_POLICY="passive"))
+        child = subprocess.Popen(
+            command,
+            stdout=log,
+            stderr=subprocess.STDOUT,
+            env=dict(os.environ, OMP_WAIT_POLICY="passive"),
+        )
         RUNNING.add(child)
     code = wait_with_heartbeat(child, run_dir, start)
     log.close()
@@ -160,10 +184,22 @@ def run_scenario(name, args, runs):
     seconds = time.time() - start
     with open(run_dir + ".wall", "a") as f:
         # The load average says whether the machine was shared while the run went.
-        f.write("%s %.1f exit=%d load=%.2f%s\n" % (datetime.datetime.now().isoformat(timespec="seconds"), seconds,
-                                                   code, os.getloadavg()[1], " interrupted" if interrupted else ""))
+        f.write(
+            "%s %.1f exit=%d load=%.2f%s\n"
+            % (
+                datetime.datetime.now().isoformat(timespec="seconds"),
+                seconds,
+                code,
+                os.getloadavg()[1],
+                " interrupted" if interrupted else "",
+            )
+        )
     if interrupted:
-        print("%-22s interrupted after %.0f s; run the command again to continue it" % (name, seconds), flush=True)
+        print(
+            "%-22s interrupted after %.0f s; run the command again to continue it"
+            % (name, seconds),
+            flush=True,
+        )
         return False
     # Exit code 3: sus stopped the run with a diagnostic (docs/stability.md), the same on every
     # try; its last good state ends the .pvd and is what the figures show. Anything else failed.
@@ -172,18 +208,39 @@ def run_scenario(name, args, runs):
         with open(run_dir + ".log") as log:
             stopped = [line.strip() for line in log if "simulation stopped" in line][-1]
     elif code != 0:
-        print("%-22s failed with exit code %d after %.0f s (see %s.log)" % (name, code, seconds, run_dir),
-              flush=True)
+        print(
+            "%-22s failed with exit code %d after %.0f s (see %s.log)"
+            % (name, code, seconds, run_dir),
+            flush=True,
+        )
         return False
     last = paper_numbers.last_history_row(run_dir)
     if last is None:
-        sys.exit("reproduce_paper.py: %s ended with exit code %d but its history.csv holds no step" % (run_dir, code))
-    summary = dict(steps=int(last["step"]), time=float(last["time"]), particles=int(last["particles"]),
-                   wall_seconds=wall_seconds(run_dir), threads=args.threads, quick=args.quick, stopped=stopped)
+        sys.exit(
+            "reproduce_paper.py: %s ended with exit code %d but its history.csv holds no step"
+            % (run_dir, code)
+        )
+    summary = dict(
+        steps=int(last["step"]),
+        time=float(last["time"]),
+        particles=int(last["particles"]),
+        wall_seconds=wall_seconds(run_dir),
+        threads=args.threads,
+        quick=args.quick,
+        stopped=stopped,
+    )
     write_whole(os.path.join(run_dir, "complete.json"), json.dumps(summary, indent=1))
-    print("%-22s %s: %d steps to t = %g in %.0f s of wall time" %
-          (name, "stopped by sus (" + stopped + ")" if stopped else "finished", summary["steps"], summary["time"],
-           summary["wall_seconds"]), flush=True)
+    print(
+        "%-22s %s: %d steps to t = %g in %.0f s of wall time"
+        % (
+            name,
+            "stopped by sus (" + stopped + ")" if stopped else "finished",
+            summary["steps"],
+            summary["time"],
+            summary["wall_seconds"],
+        ),
+        flush=True,
+    )
     return True
 
 
@@ -227,24 +284,44 @@ def pack_runs(names, args, runs):
 
 def main():
     signal.signal(signal.SIGTERM, stop_on_sigterm)
-    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser = argparse.ArgumentParser(
+        description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
+    )
     parser.add_argument("--out", default=os.path.join(ROOT, "out", "paper"))
     parser.add_argument("--sus", default=os.path.join(ROOT, "build", "StandAlone", "sus"))
-    parser.add_argument("--render", default=os.path.join(ROOT, "build", "StandAlone", "render_figure"))
+    parser.add_argument(
+        "--render", default=os.path.join(ROOT, "build", "StandAlone", "render_figure")
+    )
     parser.add_argument("--threads", type=int, default=os.cpu_count(), help="threads of each run")
-    parser.add_argument("--jobs", type=int, default=1,
-                        help="runs at a time (--jobs 2 --threads 1 makes two small-pillar runs at once on "
-                             "2 cores, faster than one after the other with 2 threads each)")
+    parser.add_argument(
+        "--jobs",
+        type=int,
+        default=1,
+        help="runs at a time (--jobs 2 --threads 1 makes two small-pillar runs at once on "
+        "2 cores, faster than one after the other with 2 threads each)",
+    )
     parser.add_argument("--only", nargs="+", choices=SCENARIOS, help="run only these scenarios")
-    parser.add_argument("--figures-only", action="store_true", help="make figures and numbers, run nothing")
+    parser.add_argument(
+        "--figures-only", action="store_true", help="make figures and numbers, run nothing"
+    )
     parser.add_argument("--quick", type=int, default=0, metavar="STEPS")
     parser.add_argument("--report", help="copy the figures and numbers.md into this directory")
-    parser.add_argument("--carry", metavar="DIR",
-                        help="restore runs this machine lacks from DIR (see paper_carry.py) before running")
-    parser.add_argument("--pack", action="store_true",
-                        help="with --carry: write the runs (--only, else all) into DIR for a later session, run nothing")
+    parser.add_argument(
+        "--carry",
+        metavar="DIR",
+        help="restore runs this machine lacks from DIR (see paper_carry.py) before running",
+    )
+    parser.add_argument(
+        "--pack",
+        action="store_true",
+        help="with --carry: write the runs (--only, else all) into DIR for a later session, run nothing",
+    )
     args = parser.parse_args()
-    for option, value in (("--threads", args.threads), ("--jobs", args.jobs), ("--quick", args.quick + 1)):
+    for option, value in (
+        ("--threads", args.threads),
+        ("--jobs", args.jobs),
+        ("--quick", args.quick + 1),
+    ):
         if value < 1:
             parser.error("%s must be at least %d" % (option, 0 if option == "--quick" else 1))
     args.out = os.path.abspath(args.out)  # the figure files name the runs' output from elsewhere
@@ -262,12 +339,18 @@ def main():
         refuse_quick_over_full_runs(runs, names)
     ok = args.figures_only or run_all(names, args, runs)
     # Figures of full runs from full runs only, and of the quick test from quick ones.
-    finished = [n for n in SCENARIOS
-                if (done := finished_run(os.path.join(runs, n))) and done["quick"] == args.quick]
+    finished = [
+        n
+        for n in SCENARIOS
+        if (done := finished_run(os.path.join(runs, n))) and done["quick"] == args.quick
+    ]
     made = paper_figures.make_all(args, runs, finished)
     figures = [path for path in made if path.endswith(".png")]
     if args.quick and len(figures) != len(paper_figures.FIGURES):
-        sys.exit("reproduce_paper.py: only %d of %d figures were drawn" % (len(figures), len(paper_figures.FIGURES)))
+        sys.exit(
+            "reproduce_paper.py: only %d of %d figures were drawn"
+            % (len(figures), len(paper_figures.FIGURES))
+        )
     if args.report:
         os.makedirs(args.report, exist_ok=True)
         for path in made:

@@ -14,10 +14,14 @@ def flow_model(kind, m):
     if kind == "elastic":
         return ""
     if kind == "perfect":
-        return ('<flow_model type="johnson_cook"><A>%g</A><B>0</B><C>0</C><n>0</n><m>1</m></flow_model>\n'
-                '          <yield_condition type="vonMises"/>' % (m["sigmaY"] * GPA))
-    return ('<flow_model type="isotropic_hardening"><sigma_Y>%g</sigma_Y><K>%g</K></flow_model>\n'
-            '          <yield_condition type="vonMises"/>' % (m["sigmaY"] * GPA, m["H"] * GPA))
+        return (
+            '<flow_model type="johnson_cook"><A>%g</A><B>0</B><C>0</C><n>0</n><m>1</m></flow_model>\n'
+            '          <yield_condition type="vonMises"/>' % (m["sigmaY"] * GPA)
+        )
+    return (
+        '<flow_model type="isotropic_hardening"><sigma_Y>%g</sigma_Y><K>%g</K></flow_model>\n'
+        '          <yield_condition type="vonMises"/>' % (m["sigmaY"] * GPA, m["H"] * GPA)
+    )
 
 
 def non_linear1_diffusion(D0, alpha, beta, pmax, more=""):
@@ -31,7 +35,13 @@ def non_linear1_diffusion(D0, alpha, beta, pmax, more=""):
           <tuning3>0.0</tuning3>
           <tuning4>%g</tuning4>
           <tuning5>1e-6</tuning5>%s
-        </diffusion_model>""" % (D0 * 1e6, alpha, beta, pmax, more)
+        </diffusion_model>""" % (
+        D0 * 1e6,
+        alpha,
+        beta,
+        pmax,
+        more,
+    )
 
 
 def max_timesteps(steps):
@@ -41,11 +51,16 @@ def max_timesteps(steps):
 
 def data_archiver(name, interval, saves, more=""):
     """<DataArchiver> writing the labels `saves` to NAME.uda every `interval`; `more` (lines) follows them."""
-    return ("""  <DataArchiver>
+    return (
+        """  <DataArchiver>
     <filebase>%s.uda</filebase>
     <outputInterval>%g</outputInterval>
-""" % (name, interval) + "".join('    <save label="%s"/>\n' % label for label in saves) + more +
-            "  </DataArchiver>")
+"""
+        % (name, interval)
+        + "".join('    <save label="%s"/>\n' % label for label in saves)
+        + more
+        + "  </DataArchiver>"
+    )
 
 
 def scalar_flux(curve_id, geometry, time_points):
@@ -54,5 +69,8 @@ def scalar_flux(curve_id, geometry, time_points):
       <scalar_flux>
         <geom_object>%s</geom_object>
         <load_curve><id>%d</id>%s</load_curve>
-      </scalar_flux>""" % (geometry, curve_id, time_points)
-
+      </scalar_flux>""" % (
+        geometry,
+        curve_id,
+        time_points,
+    )

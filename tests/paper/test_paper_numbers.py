@@ -7,7 +7,11 @@ import sys
 import tempfile
 import unittest
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "StandAlone", "Studies"))
+import numpy as np
+
+sys.path.insert(
+    0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "StandAlone", "Studies")
+)
 import paper_numbers  # noqa: E402
 
 
@@ -36,9 +40,9 @@ class HeightProfile(unittest.TestCase):
         # (material 1) below is left out; slabs 5 nm thick hold layers 0-1, 2-3, 4.
         state = paper_numbers.State.__new__(paper_numbers.State)
         layers = [0.04 + 0.0025 * k for k in range(5)]
-        state.X0 = [(0.0, 0.0, z) for z in layers for _ in range(2)] + [(0.0, 0.0, 0.01)]
-        state.c = [float(k) for k in range(5) for _ in range(2)] + [9.0]
-        state.silicon = list(range(10))
+        state.X0 = np.array([(0.0, 0.0, z) for z in layers for _ in range(2)] + [(0.0, 0.0, 0.01)])
+        state.c = np.array([float(k) for k in range(5) for _ in range(2)] + [9.0])
+        state.silicon = np.arange(10)
         state.base = layers[0]
         self.assertEqual(state.height_profile(0.005), [0.5, 2.5, 4.0])
 
@@ -47,20 +51,60 @@ class HeightProfile(unittest.TestCase):
         # layer's three particles to 0.13, 0.13 and 0.16 (one standing proud). Mean rise of the
         # top over the base: (0.14 - 0.01) / 0.1 - 1 = 0.3; the highest particle's would be 0.5.
         state = paper_numbers.State.__new__(paper_numbers.State)
-        state.X0 = [(0.0, 0.0, 0.0)] * 2 + [(0.0, 0.0, 0.1)] * 3
-        state.x = [(0.0, 0.0, 0.01)] * 2 + [(0.0, 0.0, 0.13), (0.0, 0.0, 0.13), (0.0, 0.0, 0.16)]
-        state.silicon = list(range(5))
-        state.layers = [0.0, 0.1]
+        state.X0 = np.array([(0.0, 0.0, 0.0)] * 2 + [(0.0, 0.0, 0.1)] * 3)
+        state.x = np.array(
+            [(0.0, 0.0, 0.01)] * 2 + [(0.0, 0.0, 0.13), (0.0, 0.0, 0.13), (0.0, 0.0, 0.16)]
+        )
+        state.silicon = np.arange(5)
+        state.layers = np.array([0.0, 0.1])
         state.base, state.top = 0.0, 0.1
         self.assertAlmostEqual(state.top_layer_rise(), 0.3)
         self.assertAlmostEqual(state.height_growth(), 0.5)
 
 
 class Merge(unittest.TestCase):
-    OLD = "\n".join(["# Numbers", "", "## Runs", "", "| scenario | steps |", "|---|---|", "| A | 10 |", "| B | 20 |",
-                     "", "## Fig. 1", "", "a: 1.5", "", "## Fig. 2", "", "Not measured yet: waiting for C.", ""])
-    NEW = "\n".join(["# Numbers", "", "## Runs", "", "| scenario | steps |", "|---|---|", "| B | 21 |", "| C | 30 |",
-                     "", "## Fig. 1", "", "Not measured yet: waiting for A.", "", "## Fig. 2", "", "c: 3", ""])
+    OLD = "\n".join(
+        [
+            "# Numbers",
+            "",
+            "## Runs",
+            "",
+            "| scenario | steps |",
+            "|---|---|",
+            "| A | 10 |",
+            "| B | 20 |",
+            "",
+            "## Fig. 1",
+            "",
+            "a: 1.5",
+            "",
+            "## Fig. 2",
+            "",
+            "Not measured yet: waiting for C.",
+            "",
+        ]
+    )
+    NEW = "\n".join(
+        [
+            "# Numbers",
+            "",
+            "## Runs",
+            "",
+            "| scenario | steps |",
+            "|---|---|",
+            "| B | 21 |",
+            "| C | 30 |",
+            "",
+            "## Fig. 1",
+            "",
+            "Not measured yet: waiting for A.",
+            "",
+            "## Fig. 2",
+            "",
+            "c: 3",
+            "",
+        ]
+    )
 
     def test_earlier_sections_and_rows_stay_new_ones_come_in(self):
         merged = paper_numbers.merge_numbers(self.OLD, self.NEW)
@@ -78,13 +122,21 @@ class DensityPairPartly(unittest.TestCase):
     def test_a_run_still_going_leaves_the_later_times_waiting(self):
         sys.path.insert(0, os.path.dirname(paper_numbers.__file__))
         import paper_carry
+
         with tempfile.TemporaryDirectory() as runs:
             for run, last in (("A", 2e6), ("B", 28e6)):
                 os.makedirs(os.path.join(runs, run))
-                paper_carry.write_series(os.path.join(runs, run, "particles.pvd"),
-                                         [(0.0, os.path.join(runs, run, "p0.vtu")), (last, os.path.join(runs, run, "p1.vtu"))],
-                                         os.path.join(runs, run))
-            text = paper_numbers.density_section(runs, ("A", "B"), [4e6, 16e6], 1e-6, "s", finished=["B"])
+                paper_carry.write_series(
+                    os.path.join(runs, run, "particles.pvd"),
+                    [
+                        (0.0, os.path.join(runs, run, "p0.vtu")),
+                        (last, os.path.join(runs, run, "p1.vtu")),
+                    ],
+                    os.path.join(runs, run),
+                )
+            text = paper_numbers.density_section(
+                runs, ("A", "B"), [4e6, 16e6], 1e-6, "s", finished=["B"]
+            )
             self.assertEqual(text, "Still running: A (last output at 2 s); waiting: 4 s, 16 s.")
 
 
@@ -103,8 +155,11 @@ class History(unittest.TestCase):
             for asked in (-1.0, 0.0, 0.31, 0.45, 0.46, 777.7, 1499.9, 2000.0):
                 nearest = min(range(len(times)), key=lambda i: abs(times[i] - asked))
                 row = paper_numbers.history_row_near(run, asked)
-                self.assertEqual((row["step"], row["time"], row["total_lithium"]),
-                                 (nearest + 1, times[nearest], 10 * (nearest + 1)), asked)
+                self.assertEqual(
+                    (row["step"], row["time"], row["total_lithium"]),
+                    (nearest + 1, times[nearest], 10 * (nearest + 1)),
+                    asked,
+                )
 
     def test_a_tie_takes_the_earlier_row(self):
         with tempfile.TemporaryDirectory() as run:

@@ -10,7 +10,9 @@ import tempfile
 import time
 import unittest
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "StandAlone", "Studies"))
+sys.path.insert(
+    0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "StandAlone", "Studies")
+)
 import paper_carry  # noqa: E402
 import paper_figures  # noqa: E402
 import paper_numbers  # noqa: E402
@@ -60,12 +62,19 @@ class WallTime(unittest.TestCase):
 def write_pvd(run_dir, times):
     os.makedirs(run_dir, exist_ok=True)
     with open(os.path.join(run_dir, "particles.pvd"), "w") as f:
-        f.write('<VTKFile type="Collection"><Collection>%s</Collection></VTKFile>\n' % "".join(
-            '<DataSet timestep="%.17g" file="particles/step_%06d.vtu"/>' % (t, k) for k, t in enumerate(times)))
+        f.write(
+            '<VTKFile type="Collection"><Collection>%s</Collection></VTKFile>\n'
+            % "".join(
+                '<DataSet timestep="%.17g" file="particles/step_%06d.vtu"/>' % (t, k)
+                for k, t in enumerate(times)
+            )
+        )
 
 
 class PartialFigure(unittest.TestCase):
-    FIGURE = dict(columns=2, panels=[(run, t, run) for t in (4e6, 16e6, 28e6) for run in ("Going", "Done")])
+    FIGURE = dict(
+        columns=2, panels=[(run, t, run) for t in (4e6, 16e6, 28e6) for run in ("Going", "Done")]
+    )
 
     def panels(self, going_times):
         with tempfile.TemporaryDirectory() as runs:
@@ -76,13 +85,19 @@ class PartialFigure(unittest.TestCase):
         self.assertEqual(self.panels([0, 1e6, 2e6]), ([], ["Going"]))
         self.assertEqual(self.panels([0, 3e6, 3.99999e6]), ([], ["Going"]))
         self.assertEqual(self.panels([0, 4.0000021e6]), (self.FIGURE["panels"][:2], ["Going"]))
-        self.assertEqual(self.panels([0, 4e6, 8e6, 16e6, 20e6]), (self.FIGURE["panels"][:4], ["Going"]))
+        self.assertEqual(
+            self.panels([0, 4e6, 8e6, 16e6, 20e6]), (self.FIGURE["panels"][:4], ["Going"])
+        )
 
     def test_a_figure_of_finished_runs_is_drawn_whole_and_one_of_states_waits(self):
         with tempfile.TemporaryDirectory() as runs:
-            self.assertEqual(paper_figures.panels_reached(self.FIGURE, runs, ["Going", "Done"]),
-                             (self.FIGURE["panels"], []))
-            at_states = dict(columns=1, panels=[("Going", ("lithium", 0.5), ""), ("Going", ("end",), "")])
+            self.assertEqual(
+                paper_figures.panels_reached(self.FIGURE, runs, ["Going", "Done"]),
+                (self.FIGURE["panels"], []),
+            )
+            at_states = dict(
+                columns=1, panels=[("Going", ("lithium", 0.5), ""), ("Going", ("end",), "")]
+            )
             write_pvd(os.path.join(runs, "Going"), [0, 1e9])
             self.assertEqual(paper_figures.panels_reached(at_states, runs, []), ([], ["Going"]))
 
@@ -95,15 +110,23 @@ class Carry(unittest.TestCase):
         with open(os.path.join(run_dir, "input.ups"), "w") as f:
             f.write("<Uintah_specification/>\n")
         with open(os.path.join(run_dir, "history.csv"), "w") as f:
-            f.write("step,time,wall_seconds\n" + "".join("%d,%d,0.1\n" % (i, 2000 * i) for i in range(rows)))
+            f.write(
+                "step,time,wall_seconds\n"
+                + "".join("%d,%d,0.1\n" % (i, 2000 * i) for i in range(rows))
+            )
         # Outputs at 0, 4.0001, 8 and 16.2 s: Fig. 4 shows 4, 16 and 28 s of this run.
         times = [0, 4.0001e6, 8e6, 16.2e6]
         for i, t in enumerate(times):
             with open(os.path.join(run_dir, "particles", "step_%06d.vtu" % i), "w") as f:
                 f.write("frame %d\n" % i)
-        paper_carry.write_series(os.path.join(run_dir, "particles.pvd"),
-                                 [(t, os.path.join(run_dir, "particles", "step_%06d.vtu" % i))
-                                  for i, t in enumerate(times)], run_dir)
+        paper_carry.write_series(
+            os.path.join(run_dir, "particles.pvd"),
+            [
+                (t, os.path.join(run_dir, "particles", "step_%06d.vtu" % i))
+                for i, t in enumerate(times)
+            ],
+            run_dir,
+        )
         for name in ("step_000100.ckpt", "auto_step_000200.ckpt"):  # sus's own is the newer here
             with open(os.path.join(run_dir, "checkpoints", name), "wb") as f:
                 f.write(os.urandom(1000) + name.encode())
@@ -118,7 +141,17 @@ class Carry(unittest.TestCase):
             name = "Density_2.33e18"
             out, there, carry = (os.path.join(d, x) for x in ("out", "there", "carry"))
             run_dir = self.make_run(os.path.join(out, "runs"), name, 25000)
-            pack = [sys.executable, reproduce_paper.__file__, "--out", out, "--carry", carry, "--pack", "--only", name]
+            pack = [
+                sys.executable,
+                reproduce_paper.__file__,
+                "--out",
+                out,
+                "--carry",
+                carry,
+                "--pack",
+                "--only",
+                name,
+            ]
             os.utime(run_dir + ".wall.running")  # a fresh heartbeat: the run is going
             running = subprocess.run(pack, capture_output=True, text=True)
             self.assertNotEqual(running.returncode, 0)
@@ -130,12 +163,17 @@ class Carry(unittest.TestCase):
             self.assertTrue(paper_carry.restore(name, there, carry))
             self.assertFalse(paper_carry.restore(name, there, carry))  # it has the run now
             back = os.path.join(there, name)
-            self.assertEqual(os.listdir(os.path.join(back, "checkpoints")), ["auto_step_000200.ckpt"])
-            with open(os.path.join(run_dir, "checkpoints", "auto_step_000200.ckpt"), "rb") as a, \
-                    open(os.path.join(back, "checkpoints", "auto_step_000200.ckpt"), "rb") as b:
+            self.assertEqual(
+                os.listdir(os.path.join(back, "checkpoints")), ["auto_step_000200.ckpt"]
+            )
+            with open(
+                os.path.join(run_dir, "checkpoints", "auto_step_000200.ckpt"), "rb"
+            ) as a, open(os.path.join(back, "checkpoints", "auto_step_000200.ckpt"), "rb") as b:
                 self.assertEqual(a.read(), b.read())
-            self.assertEqual(sorted(os.listdir(os.path.join(back, "particles"))),
-                             ["step_000000.vtu", "step_000001.vtu", "step_000003.vtu"])
+            self.assertEqual(
+                sorted(os.listdir(os.path.join(back, "particles"))),
+                ["step_000000.vtu", "step_000001.vtu", "step_000003.vtu"],
+            )
             self.assertEqual([t for t, _ in paper_numbers.outputs(back)], [0, 4.0001e6, 16.2e6])
             with open(os.path.join(back, "history.csv")) as f:
                 steps = [int(r.split(",")[0]) for r in f.read().split("\n")[1:] if r]

@@ -29,8 +29,10 @@ def series(path):
         for k in range(point_data.GetNumberOfArrays()):
             a = point_data.GetArray(k)
             if a.GetNumberOfTuples() != data.GetNumberOfPoints():
-                sys.exit(f"{path}: t = {t}: {a.GetName()} has {a.GetNumberOfTuples()} values for "
-                         f"{data.GetNumberOfPoints()} particles")
+                sys.exit(
+                    f"{path}: t = {t}: {a.GetName()} has {a.GetNumberOfTuples()} values for "
+                    f"{data.GetNumberOfPoints()} particles"
+                )
             arrays[a.GetName()] = a.GetNumberOfComponents()
         times.append((t, data.GetNumberOfPoints(), arrays))
     return times
@@ -48,7 +50,8 @@ def main():
         # particle velocities) may differ in its last bits.
         same = len(a) == len(b) and all(
             abs(ta - tb) <= 1e-12 * max(abs(ta), abs(tb)) and (na, xa) == (nb, xb)
-            for (ta, na, xa), (tb, nb, xb) in zip(a, b))
+            for (ta, na, xa), (tb, nb, xb) in zip(a, b)
+        )
         if not same:
             sys.exit("the series differ in times, particle counts or arrays")
         print(f"{len(a)} times, the same particles and arrays as the other series")
