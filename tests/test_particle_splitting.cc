@@ -1,13 +1,21 @@
 // Pins particle splitting (Components/MPM/ParticleSplitting.h, UINTAH_UPS.md §9): which edge a
 // stretched domain splits along, and a split into four that conserves mass, volume, momentum and
-// lithium, places the children along the edge, numbers them and shares the flux faces.
+// lithium, places the children along the edge and numbers them; the flux faces shared on the
+// diffusion side (ExternalScalarFlux::shareFacesOnSplit).
 #include <gtest/gtest.h>
 #include <omp.h>
 
 #include "Components/MPM/ParticleSplitting.h"
+#include "Components/MPM/ReactiveFlow/ExternalScalarFlux.h"
 
 namespace anode {
 namespace {
+
+std::vector<long> parentsOf(const std::vector<SplitParticle>& splits) {
+  std::vector<long> parents;
+  for (const SplitParticle& s : splits) parents.push_back(static_cast<long>(s.child[0]));
+  return parents;
+}
 
 TEST(ParticleSplitting, SplitAxisComparesSquaredEdgeLengths) {
   const auto domain = [](double a, double b, double c) {
@@ -54,7 +62,7 @@ Grid unitGrid() {
 TEST(ParticleSplitting, FourChildrenConserveMassMomentumAndLithium) {
   ParticleSet p = stretchedParticle();
   int64_t nextId = 100;
-  ASSERT_EQ(splitStretchedParticles(p, unitGrid(), 2.0, {}, nextId), std::vector<long>{0});
+  ASSERT_EQ(parentsOf(splitStretchedParticles(p, unitGrid(), 2.0, nextId)), std::vector<long>{0});
   ASSERT_EQ(p.count(), 4u);
   EXPECT_EQ(nextId, 103);
   double mass = 0, volume = 0, lithium = 0;
@@ -83,7 +91,7 @@ TEST(ParticleSplitting, FourChildrenConserveMassMomentumAndLithium) {
   for (size_t i = 0; i < 4; ++i) EXPECT_EQ(p.x[i], Vec3(2 + offsets[i], 2, 2));
   // Refined particles do not split again.
   p.F[0] = Vec3(9, 1, 1).asDiagonal();
-  EXPECT_TRUE(splitStretchedParticles(p, unitGrid(), 2.0, {}, nextId).empty());
+  EXPECT_TRUE(splitStretchedParticles(p, unitGrid(), 2.0, nextId).empty());
 }
 
 TEST(ParticleSplitting, ListsTheParentsInIndexOrderWithTheirChildrenAppendedSo) {
@@ -104,7 +112,7 @@ TEST(ParticleSplitting, ListsTheParentsInIndexOrderWithTheirChildrenAppendedSo) 
     }
     omp_set_num_threads(threads);
     int64_t nextId = 100;
-    EXPECT_EQ(splitStretchedParticles(p, unitGrid(), 2.0, {}, nextId),
+    EXPECT_EQ(parentsOf(splitStretchedParticles(p, unitGrid(), 2.0, nextId)),
               (std::vector<long>{1, 4, 5, 8}))
         << threads << " thread(s)";
     EXPECT_EQ(p.count(), 21u);
@@ -127,8 +135,9 @@ TEST(ParticleSplitting, FluxFacesGoWholeToTheNearestChildOrAreShared) {
   p.loadCurveID[0] = Vec3i(1, 2, 0);
   p.area[0] = Vec3(0.25, 0.75, 0);
   int64_t nextId = 100;
-  ASSERT_EQ(splitStretchedParticles(p, unitGrid(), 2.0, {xFace, yFace}, nextId),
-            std::vector<long>{0});
+  const std::vector<SplitParticle> splits = splitStretchedParticles(p, unitGrid(), 2.0, nextId);
+  ASSERT_EQ(parentsOf(splits), std::vector<long>{0});
+  ExternalScalarFlux({xFace, yFace}).shareFacesOnSplit(p, splits);
   double xArea = 0, yArea = 0;
   for (size_t i = 0; i < 4; ++i)
     for (int s = 0; s < 3; ++s) {

@@ -409,15 +409,14 @@ void MPM::interpolateToParticlesAndUpdate(double dt) {
 
 void MPM::splitParticles() {
   // The weights of the next step are laid out for the new particle count.
-  static const std::vector<ScalarFluxBC> noFluxBCs;
-  const std::vector<ScalarFluxBC>& bcs = diffusion_ ? diffusion_->fluxBCs() : noFluxBCs;
   for (size_t m = 0; m < materials_.size(); ++m) {
     ParticleSet& p = materials_[m].particles;
     if (!p.has(Physics::Splitting)) continue;
     Reordering& r = reordering_[m];
     r.beforeSplitting = p.count();
     if (!distributed_) {
-      r.split = splitStretchedParticles(p, grid_, flags_.stretchRatio, bcs, nextParticleId_);
+      r.split = splitStretchedParticles(p, grid_, flags_.stretchRatio, nextParticleId_);
+      if (diffusion_) diffusion_->shareFluxFaces(p, r.split);
       continue;
     }
     // New IDs in the order of the parents' IDs over all ranks, as one rank would give them
@@ -432,10 +431,11 @@ void MPM::splitParticles() {
     }
     std::sort(parents.begin(), parents.end());
     const int64_t first = nextParticleId_;
-    r.split = splitStretchedParticles(p, grid_, flags_.stretchRatio, bcs, [&](int64_t parent) {
+    r.split = splitStretchedParticles(p, grid_, flags_.stretchRatio, [&](int64_t parent) {
       const auto at = std::lower_bound(parents.begin(), parents.end(), parent) - parents.begin();
       return first + 3 * static_cast<int64_t>(at);
     });
+    if (diffusion_) diffusion_->shareFluxFaces(p, r.split);
     nextParticleId_ += 3 * static_cast<int64_t>(parents.size());
   }
 }

@@ -15,6 +15,7 @@
 #include "Components/MPM/Materials/MPMMaterial.h"
 #include "Components/MPM/NodeQuads.h"
 #include "Components/MPM/ReactiveFlow/ReactiveFlow.h"
+#include "Components/MPM/SplitParticle.h"
 #include "Components/MPM/StableTimestep.h"
 #include "Components/MPM/StepSummary.h"
 #include "Core/Grid/BoundaryConditions.h"
@@ -84,7 +85,7 @@ class MPM {
   // in that order, and `arrived` others follow them.
   struct Reordering {
     size_t beforeSplitting = 0;
-    std::vector<long> split;
+    std::vector<SplitParticle> split;
     bool migrated = false;
     size_t beforeMigration = 0, arrived = 0;
     std::vector<long> kept;

@@ -28,34 +28,6 @@ int splitAxisOf(const ParticleSet& p, size_t i, const Grid& grid, double ratio) 
                       : splitAxis(p.F[i] * p.size[i] * grid.dx.asDiagonal(), ratio, grid.ndim());
 }
 
-// Shares the parent's flux faces among its 4 children (indices in `child`, offsets along the
-// split in `offset`).
-void splitFluxAreas(ParticleSet& p, const std::vector<ScalarFluxBC>& bcs, const size_t child[4],
-                    const Vec3 offset[4], const Vec3& splitDirection) {
-  const size_t parent = child[0];
-  const Vec3 parentX = p.x[parent] - offset[0];
-  const Vec3i ids = p.loadCurveID[parent];
-  const Vec3 areas = p.area[parent];
-  for (int c = 0; c < 4; ++c) {
-    p.loadCurveID[child[c]].setZero();
-    p.area[child[c]].setZero();
-  }
-  int slots[4] = {0, 0, 0, 0};
-  for (int s = 0; s < 3 && ids[s] > 0; ++s) {
-    const ScalarFluxBC& bc = bcs[ids[s] - 1];
-    const bool acrossFace = std::abs(splitDirection.dot(bc.normalAt(parentX))) > M_SQRT1_2;
-    int nearest = 0;
-    for (int c = 1; c < 4; ++c)
-      if (bc.distanceToFace(p.x[child[c]]) < bc.distanceToFace(p.x[child[nearest]])) nearest = c;
-    for (int c = 0; c < 4; ++c) {
-      if (acrossFace && c != nearest) continue;
-      p.loadCurveID[child[c]][slots[c]] = ids[s];
-      p.area[child[c]][slots[c]] = acrossFace ? areas[s] : 0.25 * areas[s];
-      ++slots[c];
-    }
-  }
-}
-
 }  // namespace
 
 std::vector<int64_t> stretchedParticleIds(const ParticleSet& p, const Grid& grid, double ratio) {
@@ -65,20 +37,19 @@ std::vector<int64_t> stretchedParticleIds(const ParticleSet& p, const Grid& grid
   return ids;
 }
 
-std::vector<long> splitStretchedParticles(ParticleSet& p, const Grid& grid, double ratio,
-                                          const std::vector<ScalarFluxBC>& bcs, int64_t& nextId) {
-  return splitStretchedParticles(p, grid, ratio, bcs, [&nextId](int64_t) {
+std::vector<SplitParticle> splitStretchedParticles(ParticleSet& p, const Grid& grid, double ratio,
+                                                   int64_t& nextId) {
+  return splitStretchedParticles(p, grid, ratio, [&nextId](int64_t) {
     const int64_t first = nextId;
     nextId += 3;
     return first;
   });
 }
 
-std::vector<long> splitStretchedParticles(ParticleSet& p, const Grid& grid, double ratio,
-                                          const std::vector<ScalarFluxBC>& bcs,
-                                          const std::function<int64_t(int64_t)>& firstChildId) {
+std::vector<SplitParticle> splitStretchedParticles(
+    ParticleSet& p, const Grid& grid, double ratio,
+    const std::function<int64_t(int64_t)>& firstChildId) {
   const long n = static_cast<long>(p.count());
-  const bool flux = !p.loadCurveID.empty();
   // The particles that split and along which edge. Each thread lists those of its own block of
   // indices, and the blocks follow in index order. Most steps list none.
   std::vector<std::vector<std::pair<long, int>>> found(omp_get_max_threads());
@@ -99,9 +70,9 @@ std::vector<long> splitStretchedParticles(ParticleSet& p, const Grid& grid, doub
   p.forEachArray([&](auto& v) {
     if (!v.empty() && v.capacity() < needed) v.reserve(needed + needed / 16);
   });
-  std::vector<long> parents;
-  parents.reserve(splits.size());
-  for (const auto& [i, axis] : splits) {
+  std::vector<SplitParticle> done(splits.size());
+  for (size_t k = 0; k < splits.size(); ++k) {
+    const auto [i, axis] = splits[k];
     const Vec3 edge = (p.F[i] * p.size[i] * grid.dx.asDiagonal()).col(axis);
     const Vec3 x = p.x[i];
     p.forEachField([i](auto& v, const auto& field) {
@@ -112,8 +83,9 @@ std::vector<long> splitStretchedParticles(ParticleSet& p, const Grid& grid, doub
     p.refined[i] = 1;
     // Children at x -/+ 0.375 and 0.125 of the edge; the parent becomes the first.
     static const double offsets[4] = {-0.375, -0.125, 0.125, 0.375};
-    size_t child[4] = {static_cast<size_t>(i), 0, 0, 0};
-    Vec3 offset[4];
+    size_t* child = done[k].child;
+    Vec3* offset = done[k].offset;
+    child[0] = static_cast<size_t>(i);
     const int64_t firstId = firstChildId(p.id[i]);
     for (int c = 1; c < 4; ++c) {
       child[c] = p.duplicate(i);
@@ -123,10 +95,9 @@ std::vector<long> splitStretchedParticles(ParticleSet& p, const Grid& grid, doub
       offset[c] = offsets[c] * edge;
       p.x[child[c]] = x + offset[c];
     }
-    if (flux) splitFluxAreas(p, bcs, child, offset, edge.normalized());
-    parents.push_back(i);
+    done[k].direction = edge.normalized();
   }
-  return parents;
+  return done;
 }
 
 }  // namespace anode

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "Components/MPM/ParticleSet.h"
-#include "Components/MPM/ReactiveFlow/ScalarFluxBC.h"
+#include "Components/MPM/SplitParticle.h"
 #include "Core/Grid/Grid.h"
 
 namespace anode {
@@ -16,16 +16,15 @@ namespace anode {
 // squared length ratios against ratio^2 in Uintah's order (edge 3 tested only when ndim = 3).
 int splitAxis(const Mat3& domain, double ratio, int ndim);
 
-// Splits every stretched particle not yet refined, in index order; returns the indices of those
-// that split, in order: each one's 3 children are appended in that order, and get the IDs
-// firstChildId(parent's ID) + 0, 1, 2. A flux face (of `bcs`) normal to the split goes to the
-// child nearest it whole; a face along the split is shared by the 4 children.
-std::vector<long> splitStretchedParticles(ParticleSet& p, const Grid& grid, double ratio,
-                                          const std::vector<ScalarFluxBC>& bcs,
-                                          const std::function<int64_t(int64_t)>& firstChildId);
+// Splits every stretched particle not yet refined, in index order; returns those that split, in
+// order: each one's 3 children are appended in that order, and get the IDs
+// firstChildId(parent's ID) + 0, 1, 2.
+std::vector<SplitParticle> splitStretchedParticles(
+    ParticleSet& p, const Grid& grid, double ratio,
+    const std::function<int64_t(int64_t)>& firstChildId);
 // The same with IDs handed out from nextId on, in index order.
-std::vector<long> splitStretchedParticles(ParticleSet& p, const Grid& grid, double ratio,
-                                          const std::vector<ScalarFluxBC>& bcs, int64_t& nextId);
+std::vector<SplitParticle> splitStretchedParticles(ParticleSet& p, const Grid& grid, double ratio,
+                                                   int64_t& nextId);
 // The IDs of the particles splitStretchedParticles would split now, in index order.
 std::vector<int64_t> stretchedParticleIds(const ParticleSet& p, const Grid& grid, double ratio);
 

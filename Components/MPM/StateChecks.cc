@@ -175,8 +175,8 @@ void StateChecks::followReordering(const MPM::Reordering& r, size_t m, const Par
   // concentration, and the 4 share its mass, so the watched sums go on unchanged.
   if (!r.split.empty() && velocity_[m].size() == r.beforeSplitting)
     forEachHistory(m, p, [&](auto& history, auto) {
-      for (const long parent : r.split)
-        for (int c = 0; c < 3; ++c) history.push_back(history[parent]);
+      for (const SplitParticle& s : r.split)
+        for (int c = 0; c < 3; ++c) history.push_back(history[s.child[0]]);
     });
   // Of those that migrated, the ones that stayed keep their history; those that arrived start.
   if (r.migrated && velocity_[m].size() == r.beforeMigration)

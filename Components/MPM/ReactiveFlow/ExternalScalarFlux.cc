@@ -10,6 +10,39 @@
 
 namespace anode {
 
+namespace {
+
+// Shares the parent's flux faces among its 4 children: a face normal to the split goes whole to
+// the child nearest it, a face along the split is shared by the 4.
+void shareFluxFaces(ParticleSet& p, const std::vector<ScalarFluxBC>& bcs,
+                    const SplitParticle& split) {
+  const size_t* child = split.child;
+  const size_t parent = child[0];
+  const Vec3 parentX = p.x[parent] - split.offset[0];
+  const Vec3i ids = p.loadCurveID[parent];
+  const Vec3 areas = p.area[parent];
+  for (int c = 0; c < 4; ++c) {
+    p.loadCurveID[child[c]].setZero();
+    p.area[child[c]].setZero();
+  }
+  int slots[4] = {0, 0, 0, 0};
+  for (int s = 0; s < 3 && ids[s] > 0; ++s) {
+    const ScalarFluxBC& bc = bcs[ids[s] - 1];
+    const bool acrossFace = std::abs(split.direction.dot(bc.normalAt(parentX))) > M_SQRT1_2;
+    int nearest = 0;
+    for (int c = 1; c < 4; ++c)
+      if (bc.distanceToFace(p.x[child[c]]) < bc.distanceToFace(p.x[child[nearest]])) nearest = c;
+    for (int c = 0; c < 4; ++c) {
+      if (acrossFace && c != nearest) continue;
+      p.loadCurveID[child[c]][slots[c]] = ids[s];
+      p.area[child[c]][slots[c]] = acrossFace ? areas[s] : 0.25 * areas[s];
+      ++slots[c];
+    }
+  }
+}
+
+}  // namespace
+
 std::vector<ExternalScalarFlux::Flagged> ExternalScalarFlux::assignToParticles(
     std::vector<MPMMaterial>& materials, const std::vector<MaterialSeeds>& seeds,
     const Grid& grid) const {
@@ -148,6 +181,12 @@ void ExternalScalarFlux::updateAutoCycle(const std::vector<MPMMaterial>& materia
   hi = Communicator::maximum(hi);
   if (sign_ > 0 && (flags.autoCycleUseMinMax ? lo : mean) > flags.autoCycleMax) sign_ = -1;
   if (sign_ < 0 && (flags.autoCycleUseMinMax ? hi : mean) < flags.autoCycleMin) sign_ = 1;
+}
+
+void ExternalScalarFlux::shareFacesOnSplit(ParticleSet& p,
+                                           const std::vector<SplitParticle>& splits) const {
+  if (p.loadCurveID.empty()) return;
+  for (const SplitParticle& s : splits) shareFluxFaces(p, bcs_, s);
 }
 
 void ExternalScalarFlux::saveState(BinaryWriter& out) const {

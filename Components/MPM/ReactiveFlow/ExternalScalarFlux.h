@@ -10,6 +10,7 @@
 #include "Components/MPM/MPMFlags.h"
 #include "Components/MPM/Materials/MPMMaterial.h"
 #include "Components/MPM/ReactiveFlow/ScalarFluxBC.h"
+#include "Components/MPM/SplitParticle.h"
 #include "Core/Grid/Grid.h"
 #include "Core/Util/BinaryStream.h"
 
@@ -47,6 +48,10 @@ class ExternalScalarFlux {
   // <do_auto_cycle_bc>: flips the sign of every flux when the concentration of the materials
   // with <do_conc_reduction> crosses the thresholds.
   void updateAutoCycle(const std::vector<MPMMaterial>& materials, const MPMFlags& flags);
+  // Particle splitting: each split particle's flux faces shared among its children (a face
+  // normal to the split goes whole to the child nearest it, one along it to all 4, a quarter
+  // of its area each).
+  void shareFacesOnSplit(ParticleSet& p, const std::vector<SplitParticle>& splits) const;
 
   void saveState(BinaryWriter& out) const;
   void loadState(BinaryReader& in);

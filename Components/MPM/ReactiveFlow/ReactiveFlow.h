@@ -96,7 +96,10 @@ class ReactiveFlow {
   // Lines for the user at setup: per flux BC and material, the particles flagged and their area,
   // and the materials that take up no lithium.
   std::vector<std::string> setupReport() const;
-  const std::vector<ScalarFluxBC>& fluxBCs() const { return flux_.bcs(); }
+  // After particle splitting: the flux faces of the split particles shared among their children.
+  void shareFluxFaces(ParticleSet& p, const std::vector<SplitParticle>& splits) const {
+    flux_.shareFacesOnSplit(p, splits);
+  }
 
  private:
   void computeDiffusivity(std::vector<MPMMaterial>& materials, double t);
