@@ -5,37 +5,15 @@
 
 #include <chrono>
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <sstream>
 
 #include "Core/Parallel/Communicator.h"
 #include "Core/Parallel/StopTogether.h"
-#include "Core/Util/AtomicFile.h"
 #include "Core/Util/InstructionSet.h"
 #include "StandAlone/Driver/Progress.h"
 #include "StandAlone/Driver/StopRequest.h"
 
 namespace anode {
-
-namespace {
-
-constexpr char kCheckpointMagic[] = "anode-mpm checkpoint";
-// A distributed run's checkpoint: the manifest under the checkpoint's name, one part per rank.
-constexpr char kDistributedCheckpointMagic[] = "anode-mpm distributed checkpoint";
-constexpr char kCheckpointPartMagic[] = "anode-mpm checkpoint part";
-constexpr uint32_t kCheckpointVersion = 4;
-
-uint64_t fileHash(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  StreamHash h;
-  h.add(text.data(), text.size());
-  return h.value();
-}
-
-}  // namespace
 
 Simulation::Simulation(const RunOptions& options)
     : options_(options),
@@ -304,51 +282,11 @@ void Simulation::writeCheckpoint(double wallSeconds, CheckpointKind kind) {
   const std::string dir = archiver_.directory();
   if (kind == CheckpointKind::Scheduled) lastCheckpointTime_ = t_;
   newestCheckpoint_ = checkpointPath(dir, step_, kind);
-  const bool distributed = Communicator::size() > 1;
-  // A distributed checkpoint: every rank's part first, then rank 0's manifest (header, output
-  // state, boxes, the parts' hashes) under the checkpoint's name, so it is complete once that name
-  // exists.
-  std::vector<std::string> partHashes;
-  if (distributed) {
-    const std::string parts = checkpointParts(newestCheckpoint_);
-    std::error_code exists;
-    std::filesystem::create_directories(parts, exists);
-    uint64_t hash = 0;
-    writeAtomically(checkpointPart(newestCheckpoint_, Communicator::rank()),
-                    [&](const std::string& tmp) {
-                      BinaryWriter out(tmp);
-                      out.string(kCheckpointPartMagic);
-                      mpm_.saveState(out);
-                      hash = out.finish();
-                    });
-    partHashes = Communicator::allGather(std::string(reinterpret_cast<const char*>(&hash), 8));
-  } else {
-    std::filesystem::create_directories(std::filesystem::path(dir) / "checkpoints");
-  }
+  anode::writeCheckpoint(newestCheckpoint_,
+                         {omp_get_max_threads(), Communicator::size(), inputHash_, t_, dt_,
+                          dtLimit_, step_, particleSteps_, wallSeconds, lastCheckpointTime_},
+                         archiver_, mpm_);
   if (Communicator::isRoot()) {
-    writeAtomically(newestCheckpoint_, [&](const std::string& tmp) {
-      BinaryWriter out(tmp);
-      out.string(distributed ? kDistributedCheckpointMagic : kCheckpointMagic);
-      out.value(kCheckpointVersion);
-      out.value<int32_t>(omp_get_max_threads());
-      out.value(inputHash_);
-      out.value(t_);
-      out.value(dt_);
-      out.value<int32_t>(dtLimit_);
-      out.value(step_);
-      out.value(particleSteps_);
-      out.value(wallSeconds);
-      out.value(lastCheckpointTime_);
-      archiver_.saveState(out);
-      if (distributed) {
-        out.value<int32_t>(Communicator::size());
-        mpm_.saveLayout(out);
-        for (const std::string& h : partHashes) out.bytes(h.data(), h.size());
-      } else {
-        mpm_.saveState(out);
-      }
-      out.finish();
-    });
     if (kind == CheckpointKind::Scheduled) {
       removeOldCheckpoints(dir, kind, checkpoints_.cycle);
       removeOldCheckpoints(dir, CheckpointKind::Automatic, 0);  // the scheduled one is newer
@@ -360,23 +298,14 @@ void Simulation::writeCheckpoint(double wallSeconds, CheckpointKind kind) {
 }
 
 void Simulation::loadCheckpoint(const std::string& path, bool outputs) {
-  // Read on every rank, then agreed on, before any collective step of laying the particles out.
-  CheckpointRead read;
-  std::string error;
-  try {
-    read = readCheckpoint(path, outputs);
-  } catch (const std::runtime_error& e) {
-    error = e.what();
-  }
-  const int failed = Communicator::firstRankWith(!error.empty());
-  if (failed >= 0)
-    throw std::runtime_error(failed == Communicator::rank()
-                                 ? error
-                                 : path + ": unreadable on rank " + std::to_string(failed));
-  if (read.ranks != Communicator::size())
-    mpm_.keepOwnShare();
-  else if (read.ranks > 1)
-    mpm_.adoptLayout(read.layout);
+  const CheckpointHeader read = anode::loadCheckpoint(path, outputs ? &archiver_ : nullptr, mpm_);
+  t_ = read.t;
+  dt_ = read.dt;
+  dtLimit_ = read.dtLimit;
+  step_ = read.step;
+  particleSteps_ = read.particleSteps;
+  earlierWallSeconds_ = read.wallSeconds;
+  lastCheckpointTime_ = read.lastScheduledTime;
   if (!Communicator::isRoot()) return;
   if (read.inputHash != inputHash_)
     std::fprintf(
@@ -393,67 +322,6 @@ void Simulation::loadCheckpoint(const std::string& path, bool outputs) {
                  "sus: %s was written by %d rank(s), this run has %d: its particles are shared out "
                  "anew; the continued run matches an uninterrupted one to round-off\n",
                  path.c_str(), read.ranks, Communicator::size());
-}
-
-Simulation::CheckpointRead Simulation::readCheckpoint(const std::string& path, bool outputs) {
-  CheckpointRead read;
-  BinaryReader in(path);
-  const std::string magic = in.string();
-  const bool distributed = magic == kDistributedCheckpointMagic;
-  if (magic != kCheckpointMagic && !distributed)
-    throw std::runtime_error(path + ": not a checkpoint of this code");
-  const auto version = in.value<uint32_t>();
-  if (version != kCheckpointVersion)
-    throw std::runtime_error(path + ": checkpoint format " + std::to_string(version) +
-                             ", this code reads " + std::to_string(kCheckpointVersion));
-  read.threads = in.value<int32_t>();
-  read.inputHash = in.value<uint64_t>();
-  t_ = in.value<double>();
-  dt_ = in.value<double>();
-  dtLimit_ = static_cast<StableTimestep::Limit>(in.value<int32_t>());
-  if (dtLimit_ < 0 || dtLimit_ >= StableTimestep::kLimits)
-    throw std::runtime_error(path + ": unknown time-step limit " + std::to_string(dtLimit_));
-  step_ = in.value<long>();
-  particleSteps_ = in.value<double>();
-  earlierWallSeconds_ = in.value<double>();
-  lastCheckpointTime_ = in.value<double>();
-  if (outputs) {
-    archiver_.loadState(in);
-  } else {
-    DataArchiver unused;
-    unused.loadState(in);
-  }
-  if (!distributed) {
-    mpm_.loadState(in);
-    in.finish();
-    return read;
-  }
-  read.ranks = in.value<int32_t>();
-  if (read.ranks < 1) throw std::runtime_error(path + ": a checkpoint of no rank");
-  read.layout = MPM::readLayout(in);
-  std::vector<uint64_t> hashes(read.ranks);
-  for (uint64_t& h : hashes) h = in.value<uint64_t>();
-  in.finish();
-  // The same rank count continues with the same boxes, each rank from its own part; another
-  // reads every part and shares the particles out anew.
-  std::vector<int> parts;
-  if (read.ranks == Communicator::size())
-    parts.push_back(Communicator::rank());
-  else
-    for (int r = 0; r < read.ranks; ++r) parts.push_back(r);
-  for (int r : parts) {
-    const std::string partPath = checkpointPart(path, r);
-    BinaryReader part(partPath);
-    if (part.string() != kCheckpointPartMagic)
-      throw std::runtime_error(partPath + ": not a part of a checkpoint of this code");
-    if (r == parts.front())
-      mpm_.loadState(part);
-    else
-      mpm_.appendState(part);
-    if (part.finish() != hashes[r])
-      throw std::runtime_error(partPath + ": not the part " + path + " names (another hash)");
-  }
-  return read;
 }
 
 std::string Simulation::loadNewestCheckpoint() {

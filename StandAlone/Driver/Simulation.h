@@ -68,19 +68,14 @@ class Simulation {
   // checkpoint and taking the same steps again (they are deterministic).
   void replayToLastGoodState();
   // Writes the state after step_ to a checkpoint (Checkpoint.h) and drops the oldest of its kind.
+  // Collective.
   void writeCheckpoint(double wallSeconds, CheckpointKind kind);
   // Loads the newest complete checkpoint of the restart directory; returns its path.
   std::string loadNewestCheckpoint();
-  // Reads one checkpoint (everything writeCheckpoint wrote; the output series and history only
-  // if `outputs`); throws std::runtime_error, on every rank together. Collective.
+  // Loads one checkpoint (Checkpoint.h; the output series and history only if `outputs`) and
+  // warns of what differs from this run; throws std::runtime_error, on every rank together.
+  // Collective.
   void loadCheckpoint(const std::string& path, bool outputs);
-  // What loadCheckpoint needs besides the state it read (this rank only).
-  struct CheckpointRead {
-    int threads = 0, ranks = 1;
-    uint64_t inputHash = 0;
-    MPM::Layout layout;
-  };
-  CheckpointRead readCheckpoint(const std::string& path, bool outputs);
 
   RunOptions options_;
   std::unique_ptr<ProblemSpec> spec_;
