@@ -3,10 +3,18 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <iomanip>
+#include <iterator>
 #include <regex>
 #include <sstream>
 #include <stdexcept>
+
+#include "Components/MPM/MPM.h"
+#include "Core/Parallel/Communicator.h"
+#include "Core/Util/AtomicFile.h"
+#include "Core/Util/BinaryStream.h"
+#include "StandAlone/Driver/DataArchiver.h"
 
 namespace fs = std::filesystem;
 
@@ -156,6 +164,159 @@ int removeTemporaryFiles(const std::string& dir) {
       leftovers.push_back(e.path());
   for (const fs::path& p : leftovers) fs::remove(p);
   return static_cast<int>(leftovers.size());
+}
+
+namespace {
+
+constexpr char kCheckpointMagic[] = "anode-mpm checkpoint";
+// A distributed run's checkpoint: the manifest under the checkpoint's name, one part per rank.
+constexpr char kDistributedCheckpointMagic[] = "anode-mpm distributed checkpoint";
+constexpr char kCheckpointPartMagic[] = "anode-mpm checkpoint part";
+constexpr uint32_t kCheckpointVersion = 4;
+
+// This rank's part of a distributed checkpoint; returns its hash.
+uint64_t writePart(const std::string& checkpoint, const MPM& mpm) {
+  std::error_code exists;
+  fs::create_directories(checkpointParts(checkpoint), exists);
+  uint64_t hash = 0;
+  writeAtomically(checkpointPart(checkpoint, Communicator::rank()), [&](const std::string& tmp) {
+    BinaryWriter out(tmp);
+    out.string(kCheckpointPartMagic);
+    mpm.saveState(out);
+    hash = out.finish();
+  });
+  return hash;
+}
+
+// Reads the checkpoint on this rank only; `layout` receives a distributed one's boxes.
+CheckpointHeader readCheckpoint(const std::string& path, DataArchiver* outputs, MPM& mpm,
+                                MPM::Layout& layout) {
+  CheckpointHeader header;
+  BinaryReader in(path);
+  const std::string magic = in.string();
+  const bool distributed = magic == kDistributedCheckpointMagic;
+  if (magic != kCheckpointMagic && !distributed)
+    throw std::runtime_error(path + ": not a checkpoint of this code");
+  const auto version = in.value<uint32_t>();
+  if (version != kCheckpointVersion)
+    throw std::runtime_error(path + ": checkpoint format " + std::to_string(version) +
+                             ", this code reads " + std::to_string(kCheckpointVersion));
+  header.threads = in.value<int32_t>();
+  header.inputHash = in.value<uint64_t>();
+  header.t = in.value<double>();
+  header.dt = in.value<double>();
+  header.dtLimit = static_cast<StableTimestep::Limit>(in.value<int32_t>());
+  if (header.dtLimit < 0 || header.dtLimit >= StableTimestep::kLimits)
+    throw std::runtime_error(path + ": unknown time-step limit " + std::to_string(header.dtLimit));
+  header.step = in.value<long>();
+  header.particleSteps = in.value<double>();
+  header.wallSeconds = in.value<double>();
+  header.lastScheduledTime = in.value<double>();
+  if (outputs) {
+    outputs->loadState(in);
+  } else {
+    DataArchiver unused;
+    unused.loadState(in);
+  }
+  if (!distributed) {
+    mpm.loadState(in);
+    in.finish();
+    return header;
+  }
+  header.ranks = in.value<int32_t>();
+  if (header.ranks < 1) throw std::runtime_error(path + ": a checkpoint of no rank");
+  layout = MPM::readLayout(in);
+  std::vector<uint64_t> hashes(header.ranks);
+  for (uint64_t& h : hashes) h = in.value<uint64_t>();
+  in.finish();
+  // The same rank count continues with the same boxes, each rank from its own part; another
+  // reads every part and shares the particles out anew.
+  std::vector<int> parts;
+  if (header.ranks == Communicator::size())
+    parts.push_back(Communicator::rank());
+  else
+    for (int r = 0; r < header.ranks; ++r) parts.push_back(r);
+  for (int r : parts) {
+    const std::string partPath = checkpointPart(path, r);
+    BinaryReader part(partPath);
+    if (part.string() != kCheckpointPartMagic)
+      throw std::runtime_error(partPath + ": not a part of a checkpoint of this code");
+    if (r == parts.front())
+      mpm.loadState(part);
+    else
+      mpm.appendState(part);
+    if (part.finish() != hashes[r])
+      throw std::runtime_error(partPath + ": not the part " + path + " names (another hash)");
+  }
+  return header;
+}
+
+}  // namespace
+
+uint64_t fileHash(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  StreamHash h;
+  h.add(text.data(), text.size());
+  return h.value();
+}
+
+void writeCheckpoint(const std::string& path, const CheckpointHeader& header,
+                     const DataArchiver& archiver, const MPM& mpm) {
+  const bool distributed = header.ranks > 1;
+  std::vector<std::string> partHashes;
+  if (distributed) {
+    const uint64_t hash = writePart(path, mpm);
+    partHashes = Communicator::allGather(std::string(reinterpret_cast<const char*>(&hash), 8));
+  } else {
+    fs::create_directories(fs::path(path).parent_path());
+  }
+  if (!Communicator::isRoot()) return;
+  writeAtomically(path, [&](const std::string& tmp) {
+    BinaryWriter out(tmp);
+    out.string(distributed ? kDistributedCheckpointMagic : kCheckpointMagic);
+    out.value(kCheckpointVersion);
+    out.value<int32_t>(header.threads);
+    out.value(header.inputHash);
+    out.value(header.t);
+    out.value(header.dt);
+    out.value<int32_t>(header.dtLimit);
+    out.value(header.step);
+    out.value(header.particleSteps);
+    out.value(header.wallSeconds);
+    out.value(header.lastScheduledTime);
+    archiver.saveState(out);
+    if (distributed) {
+      out.value<int32_t>(header.ranks);
+      mpm.saveLayout(out);
+      for (const std::string& h : partHashes) out.bytes(h.data(), h.size());
+    } else {
+      mpm.saveState(out);
+    }
+    out.finish();
+  });
+}
+
+CheckpointHeader loadCheckpoint(const std::string& path, DataArchiver* outputs, MPM& mpm) {
+  // Read on every rank, then agreed on, before any collective step of laying the particles out.
+  CheckpointHeader header;
+  MPM::Layout layout;
+  std::string error;
+  try {
+    header = readCheckpoint(path, outputs, mpm, layout);
+  } catch (const std::runtime_error& e) {
+    error = e.what();
+  }
+  const int failed = Communicator::firstRankWith(!error.empty());
+  if (failed >= 0)
+    throw std::runtime_error(failed == Communicator::rank()
+                                 ? error
+                                 : path + ": unreadable on rank " + std::to_string(failed));
+  if (header.ranks != Communicator::size())
+    mpm.keepOwnShare();
+  else if (header.ranks > 1)
+    mpm.adoptLayout(layout);
+  return header;
 }
 
 }  // namespace anode

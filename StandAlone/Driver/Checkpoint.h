@@ -3,16 +3,21 @@
 // at the first step whose time reaches each multiple of T (or every S steps), keeping the newest
 // N. Each file is written under a temporary name, ends with a hash of its bytes and is renamed
 // into place; older ones are removed only after that. `sus -restart DIR` continues from the
-// newest complete one (DESIGN.md §6).
+// newest complete one (DESIGN.md §6). The files' format is here too (writeCheckpoint).
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "Components/MPM/StableTimestep.h"
 #include "Core/ProblemSpec/ProblemSpec.h"
 
 namespace anode {
+
+class DataArchiver;
+class MPM;
 
 struct CheckpointSchedule {
   int cycle = 0;                   // checkpoints kept; 0: none written
@@ -51,5 +56,32 @@ void removeUnfinishedCheckpointParts(const std::string& dir);
 // Removes the temporary files a killed run left in DIR (names ending in .tmp<pid>); returns
 // how many.
 int removeTemporaryFiles(const std::string& dir);
+
+// What a checkpoint holds besides the output state and the particles: the run that wrote it and
+// its clock and counters at the end of `step`.
+struct CheckpointHeader {
+  int threads = 0;         // OpenMP threads of the run that wrote it
+  int ranks = 1;           // its ranks (writing: Communicator::size())
+  uint64_t inputHash = 0;  // fileHash of its input
+  double t = 0, dt = 0;    // the state's time and the next step's dt
+  StableTimestep::Limit dtLimit = StableTimestep::Mechanics;  // the limit that set dt
+  long step = 0;
+  double particleSteps = 0;      // of every rank since step 0
+  double wallSeconds = 0;        // of the runs up to the checkpoint
+  double lastScheduledTime = 0;  // of the newest scheduled checkpoint (before any: the start)
+};
+
+// The hash of a file's bytes (the input's, kept in the header).
+uint64_t fileHash(const std::string& path);
+
+// Writes the checkpoint `path`: on one rank one file (header, output state, particles); on
+// several, every rank's part, then rank 0's manifest (header, output state, boxes, the parts'
+// hashes) under the checkpoint's name, so that it is complete once that name exists. Collective.
+void writeCheckpoint(const std::string& path, const CheckpointHeader& header,
+                     const DataArchiver& archiver, const MPM& mpm);
+// Reads the checkpoint `path` into `mpm` on every rank, its particles shared out among this run's
+// ranks, and into `outputs` (the output series and the last history row) unless null; returns its
+// header. Throws std::runtime_error, on every rank together. Collective.
+CheckpointHeader loadCheckpoint(const std::string& path, DataArchiver* outputs, MPM& mpm);
 
 }  // namespace anode

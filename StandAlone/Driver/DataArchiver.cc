@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -304,7 +306,13 @@ void DataArchiver::saveState(BinaryWriter& out) const {
   out.value(lastOutputStep_);
   saveSeries(out, particleSeries_);
   saveSeries(out, gridSeries_);
-  out.value(lastRow_);
+  // The row's bytes with its padding (after `diffusion`) zero: a row built on the stack carries
+  // there whatever the stack held, and a checkpoint's bytes are to depend on the state only.
+  HistoryRow row = lastRow_;
+  const size_t padding = offsetof(HistoryRow, diffusion) + sizeof row.diffusion;
+  std::memset(reinterpret_cast<unsigned char*>(&row) + padding, 0,
+              offsetof(HistoryRow, totalLithium) - padding);
+  out.value(row);
 }
 
 void DataArchiver::loadState(BinaryReader& in) {

@@ -5,37 +5,14 @@
 
 #include <chrono>
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <sstream>
 
 #include "Core/Parallel/Communicator.h"
 #include "Core/Parallel/StopTogether.h"
-#include "Core/Util/AtomicFile.h"
 #include "Core/Util/InstructionSet.h"
-#include "StandAlone/Driver/Progress.h"
 #include "StandAlone/Driver/StopRequest.h"
 
 namespace anode {
-
-namespace {
-
-constexpr char kCheckpointMagic[] = "anode-mpm checkpoint";
-// A distributed run's checkpoint: the manifest under the checkpoint's name, one part per rank.
-constexpr char kDistributedCheckpointMagic[] = "anode-mpm distributed checkpoint";
-constexpr char kCheckpointPartMagic[] = "anode-mpm checkpoint part";
-constexpr uint32_t kCheckpointVersion = 4;
-
-uint64_t fileHash(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  StreamHash h;
-  h.add(text.data(), text.size());
-  return h.value();
-}
-
-}  // namespace
 
 Simulation::Simulation(const RunOptions& options)
     : options_(options),
@@ -97,62 +74,115 @@ void Simulation::finishStep() {
 }
 
 void Simulation::run() {
-  const auto start = std::chrono::steady_clock::now();
-  auto wall = [&] {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  };
-  const bool restart = !options_.restartDir.empty();
-  const bool root = Communicator::isRoot();
-  const bool progressLine = options_.progress && root;
+  runStart_ = std::chrono::steady_clock::now();
   inputHash_ = fileHash(options_.input);
+  const bool restart = !options_.restartDir.empty();
+  start(restart);
+  if (options_.progress && Communicator::isRoot())
+    progress_.emplace(t_, time_.maxTime, step_, time_.maxTimesteps);
+  // A checkpoint at the end of the run (killed before it wrote its last output) has no step left.
+  const bool nothingLeft = restart && finished();
+  if (nothingLeft && archiver_.lastOutputStep() != step_) writeOutput(false);
+  while (!nothingLeft) {
+    const double stepDt = dt_;
+    const StableTimestep::Limit stepLimit = dtLimit_;
+    try {
+      advance();
+    } catch (const SimulationError&) {
+      writeStateOnStop();
+      throw;
+    }
+    const double particles = static_cast<double>(recordHistoryRow(stepDt));
+    particleSteps_ += particles;
+    particleStepsOfThisProcess_ += particles;
+    reportSymmetryFaces();
+    const bool done = finished();
+    // A rebalance is followed by a checkpoint, so a replay to the last good state never
+    // crosses one (it takes the same steps with the same boxes).
+    bool rebalanced = false;
+    if (done || archiver_.isOutputStep(step_, t_)) {
+      writeOutput(true);
+      rebalanced = !done && rebalance();
+    }
+    scenes_.renderDue(t_, mpm_, archiver_.directory());
+    const Requests anyRank = requestsOfAnyRank(done);
+    stoppedOnRequest_ = anyRank.stop;
+    if (checkpoints_.isDue(step_, t_, lastCheckpointTime_))
+      writeCheckpoint(CheckpointKind::Scheduled);
+    else if (rebalanced || anyRank.stop || anyRank.replayCheckpoint)
+      writeCheckpoint(CheckpointKind::Automatic);
+    if (progress_)
+      progress_->update(step_, t_, stepDt, StableTimestep::name(stepLimit),
+                        particleStepsOfThisProcess_, done);
+    if (done || stoppedOnRequest_) break;
+  }
+  if (progress_) progress_->finish();
+  if (stoppedOnRequest_) {
+    if (Communicator::isRoot())
+      std::fprintf(stderr,
+                   "sus: stopped on request (SIGTERM or SIGINT) after step %ld, t = %.6e: "
+                   "checkpoint %s; continue with sus -restart %s\n",
+                   step_, t_, newestCheckpoint_.c_str(), archiver_.directory().c_str());
+  } else if (Communicator::isRoot()) {
+    removeAutomaticCheckpoints(archiver_.directory());
+  }
+  wallSeconds_ = wallTime();
+}
+
+void Simulation::start(bool restart) {
   std::string restartedFrom;
   if (restart) {
-    archiver_.reopen(options_.restartDir);
-    if (root) {
-      removeTemporaryFiles(options_.restartDir);
-      removeUnfinishedCheckpointParts(options_.restartDir);
-    }
-    Communicator::barrier();
-    restartedFrom = loadNewestCheckpoint();
-    newestCheckpoint_ = restartedFrom;
-    firstStepOfThisProcess_ = step_;
-    scenes_.skipTimesUpTo(t_);
+    restartedFrom = restartFromNewestCheckpoint();
   } else {
     // Rank 0 picks the directory (the next free version) for all.
     archiver_.open(
         Communicator::broadcast(
-            root ? chooseOutputDirectory(options_.outputDir, archiver_.filebase()) : "", 0),
+            Communicator::isRoot() ? chooseOutputDirectory(options_.outputDir, archiver_.filebase())
+                                   : "",
+            0),
         options_.input);
   }
-  const int outputTask = mpm_.timers().task("output");
-  const int checkpointTask = mpm_.timers().task("checkpoint");
-  double lastAutomaticCheckpoint = 0;
-  auto checkpoint = [&](CheckpointKind kind) {
-    ScopedTimer timer(mpm_.timers(), checkpointTask);
-    writeCheckpoint(earlierWallSeconds_ + wall(), kind);
-    lastAutomaticCheckpoint = wall();
-  };
-  auto summaryRow = [&](double stepDt) {
-    const StepSummary s = mpm_.summarize();
-    archiver_.recordHistory({step_, s.particles, t_, stepDt, s.kineticEnergy, s.minJ, s.maxJ,
-                             earlierWallSeconds_ + wall(), s.diffusion, s.totalLithium,
-                             s.minConcentration, s.maxConcentration});
-    return s.particles;
-  };
-  // Grid labels hold the last step's nodal values; before any step of this process (the start,
-  // or a restart with no step left) they are interpolated from the particles.
-  auto output = [&](bool afterStep) {
-    ScopedTimer timer(mpm_.timers(), outputTask);
-    if (archiver_.wantsGrid() && !afterStep) mpm_.interpolateToGridForOutput();
-    // Between steps the weights are not needed: the output's copy of the particles takes their
-    // memory instead of adding to the peak.
-    mpm_.releaseInterpolationWeights();
-    archiver_.writeOutput(step_, t_, mpm_);
-  };
+  outputTask_ = mpm_.timers().task("output");
+  checkpointTask_ = mpm_.timers().task("checkpoint");
+  reportSetup();
+  if (restart) {
+    if (Communicator::isRoot())
+      std::fprintf(stderr, "sus: restarting from %s (step %ld, t = %.6e)\n", restartedFrom.c_str(),
+                   step_, t_);
+  } else {
+    recordHistoryRow(0.0);
+    writeOutput(false);
+    scenes_.renderDue(t_, mpm_, archiver_.directory());
+    writeCheckpoint(CheckpointKind::Automatic);
+  }
+}
+
+double Simulation::wallTime() const {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - runStart_).count();
+}
+
+bool Simulation::finished() const {
+  return t_ >= time_.maxTime || (time_.maxTimesteps > 0 && step_ >= time_.maxTimesteps) ||
+         (time_.maxWallTime > 0 && Communicator::any(wallTime() >= time_.maxWallTime));
+}
+
+std::string Simulation::restartFromNewestCheckpoint() {
+  archiver_.reopen(options_.restartDir);
+  if (Communicator::isRoot()) {
+    removeTemporaryFiles(options_.restartDir);
+    removeUnfinishedCheckpointParts(options_.restartDir);
+  }
+  Communicator::barrier();
+  newestCheckpoint_ = loadNewestCheckpoint();
+  firstStepOfThisProcess_ = step_;
+  scenes_.skipTimesUpTo(t_);
+  return newestCheckpoint_;
+}
+
+void Simulation::reportSetup() {
   const size_t particles = mpm_.summarize().particles;
-  const double imbalance = mpm_.imbalance();
-  layoutImbalance_ = imbalance;
-  if (root) {
+  layoutImbalance_ = mpm_.imbalance();
+  if (Communicator::isRoot()) {
     std::fprintf(stderr,
                  "sus: %zu particles in %zu material(s), grid %dx%dx%d cells, output in %s\n",
                  particles, mpm_.materials().size(), mpm_.grid().cells.x(), mpm_.grid().cells.y(),
@@ -161,85 +191,46 @@ void Simulation::run() {
       std::fprintf(stderr,
                    "sus: %d ranks: %s, ghost layers %d cells; particles per rank max/mean %.3f\n",
                    Communicator::size(), mpm_.decomposition().describe().c_str(), mpm_.ghostWidth(),
-                   imbalance);
+                   layoutImbalance_);
     if (mpm_.diffusion())
       for (const std::string& line : mpm_.diffusion()->setupReport())
         std::fprintf(stderr, "sus: %s\n", line.c_str());
   }
   for (const std::string& note : symmetryFaces_.start(mpm_))
-    if (root) std::fprintf(stderr, "%s\n", note.c_str());
-  if (restart) {
-    if (root)
-      std::fprintf(stderr, "sus: restarting from %s (step %ld, t = %.6e)\n", restartedFrom.c_str(),
-                   step_, t_);
-  } else {
-    summaryRow(0.0);
-    output(false);
-    scenes_.renderDue(t_, mpm_, archiver_.directory());
-    checkpoint(CheckpointKind::Automatic);
+    if (Communicator::isRoot()) std::fprintf(stderr, "%s\n", note.c_str());
+}
+
+size_t Simulation::recordHistoryRow(double stepDt) {
+  const StepSummary s = mpm_.summarize();
+  archiver_.recordHistory({step_, s.particles, t_, stepDt, s.kineticEnergy, s.minJ, s.maxJ,
+                           earlierWallSeconds_ + wallTime(), s.diffusion, s.totalLithium,
+                           s.minConcentration, s.maxConcentration});
+  return s.particles;
+}
+
+void Simulation::writeOutput(bool afterStep) {
+  ScopedTimer timer(mpm_.timers(), outputTask_);
+  // Before any step of this process (the start, or a restart with no step left) the grid labels
+  // are interpolated from the particles.
+  if (archiver_.wantsGrid() && !afterStep) mpm_.interpolateToGridForOutput();
+  // Between steps the weights are not needed: the output's copy of the particles takes their
+  // memory instead of adding to the peak.
+  mpm_.releaseInterpolationWeights();
+  archiver_.writeOutput(step_, t_, mpm_);
+}
+
+void Simulation::reportSymmetryFaces() {
+  for (const std::string& warning : symmetryFaces_.afterStep(mpm_, step_, t_)) {
+    if (progress_) progress_->finish();
+    std::fprintf(stderr, "%s\n", warning.c_str());
   }
-  ProgressReporter progress(t_, time_.maxTime, step_, time_.maxTimesteps);
-  const auto finished = [&] {
-    return t_ >= time_.maxTime || (time_.maxTimesteps > 0 && step_ >= time_.maxTimesteps) ||
-           (time_.maxWallTime > 0 && Communicator::any(wall() >= time_.maxWallTime));
-  };
-  // A checkpoint at the end of the run (killed before it wrote its last output) has no step left.
-  const bool nothingLeft = restart && finished();
-  if (nothingLeft && archiver_.lastOutputStep() != step_) output(false);
-  while (!nothingLeft) {
-    const double stepDt = dt_;
-    const StableTimestep::Limit stepLimit = dtLimit_;
-    try {
-      advance();
-    } catch (const SimulationError&) {
-      archiver_.writeHistory();
-      if (progressLine) progress.finish();
-      writeStateOnStop();
-      throw;
-    }
-    const double particles = static_cast<double>(summaryRow(stepDt));
-    particleSteps_ += particles;
-    particleStepsOfThisProcess_ += particles;
-    for (const std::string& warning : symmetryFaces_.afterStep(mpm_, step_, t_)) {
-      if (progressLine) progress.finish();
-      std::fprintf(stderr, "%s\n", warning.c_str());
-    }
-    const bool done = finished();
-    // A rebalance is followed by a checkpoint, so a replay to the last good state never
-    // crosses one (it takes the same steps with the same boxes).
-    bool rebalanced = false;
-    if (done || archiver_.isOutputStep(step_, t_)) {
-      output(true);
-      rebalanced = !done && rebalance();
-    }
-    scenes_.renderDue(t_, mpm_, archiver_.directory());
-    // One exchange a step: has any rank been asked to stop, is any due its own checkpoint?
-    double anyRank[2] = {stopRequested() ? 1.0 : 0.0,
-                         wall() - lastAutomaticCheckpoint >= kReplayInterval ? 1.0 : 0.0};
-    if (!done) Communicator::maximum(anyRank, 2);
-    stoppedOnRequest_ = !done && anyRank[0] > 0;
-    const bool replayCheckpointDue = !done && anyRank[1] > 0;
-    if (checkpoints_.isDue(step_, t_, lastCheckpointTime_))
-      checkpoint(CheckpointKind::Scheduled);
-    else if (rebalanced || stoppedOnRequest_ || replayCheckpointDue)
-      checkpoint(CheckpointKind::Automatic);
-    if (progressLine)
-      progress.update(step_, t_, stepDt, StableTimestep::name(stepLimit),
-                      particleStepsOfThisProcess_, done);
-    if (done || stoppedOnRequest_) break;
-  }
-  if (progressLine) progress.finish();
-  if (stoppedOnRequest_) {
-    if (Communicator::isRoot())
-      std::fprintf(stderr,
-                   "sus: stopped on request (SIGTERM or SIGINT) after step %ld, t = %.6e: "
-                   "checkpoint %s; continue with sus -restart %s\n",
-                   step_, t_, newestCheckpoint_.c_str(), archiver_.directory().c_str());
-    wallSeconds_ = wall();
-    return;
-  }
-  if (Communicator::isRoot()) removeAutomaticCheckpoints(archiver_.directory());
-  wallSeconds_ = wall();
+}
+
+Simulation::Requests Simulation::requestsOfAnyRank(bool done) const {
+  double anyRank[2] = {stopRequested() ? 1.0 : 0.0,
+                       wallTime() - newestCheckpointWallTime_ >= kReplayInterval ? 1.0 : 0.0};
+  if (!done) Communicator::maximum(anyRank, 2);
+  return {!done && anyRank[0] > 0, !done && anyRank[1] > 0};
 }
 
 bool Simulation::rebalance() {
@@ -260,6 +251,8 @@ bool Simulation::rebalance() {
 }
 
 void Simulation::writeStateOnStop() {
+  archiver_.writeHistory();
+  if (progress_) progress_->finish();
   // The failing step's particles outside the .pvd series, then the last good state (the end of
   // step_) as the series' last entry.
   const std::string failed = archiver_.writeFailedState(step_ + 1, mpm_);
@@ -299,56 +292,18 @@ void Simulation::replayToLastGoodState() {
         step_, s.kineticEnergy, row.kineticEnergy);
 }
 
-void Simulation::writeCheckpoint(double wallSeconds, CheckpointKind kind) {
+void Simulation::writeCheckpoint(CheckpointKind kind) {
+  ScopedTimer timer(mpm_.timers(), checkpointTask_);
+  const double wallSeconds = earlierWallSeconds_ + wallTime();
   archiver_.writeHistory();  // history.csv holds every row up to the checkpoint's step
   const std::string dir = archiver_.directory();
   if (kind == CheckpointKind::Scheduled) lastCheckpointTime_ = t_;
   newestCheckpoint_ = checkpointPath(dir, step_, kind);
-  const bool distributed = Communicator::size() > 1;
-  // A distributed checkpoint: every rank's part first, then rank 0's manifest (header, output
-  // state, boxes, the parts' hashes) under the checkpoint's name, so it is complete once that name
-  // exists.
-  std::vector<std::string> partHashes;
-  if (distributed) {
-    const std::string parts = checkpointParts(newestCheckpoint_);
-    std::error_code exists;
-    std::filesystem::create_directories(parts, exists);
-    uint64_t hash = 0;
-    writeAtomically(checkpointPart(newestCheckpoint_, Communicator::rank()),
-                    [&](const std::string& tmp) {
-                      BinaryWriter out(tmp);
-                      out.string(kCheckpointPartMagic);
-                      mpm_.saveState(out);
-                      hash = out.finish();
-                    });
-    partHashes = Communicator::allGather(std::string(reinterpret_cast<const char*>(&hash), 8));
-  } else {
-    std::filesystem::create_directories(std::filesystem::path(dir) / "checkpoints");
-  }
+  anode::writeCheckpoint(newestCheckpoint_,
+                         {omp_get_max_threads(), Communicator::size(), inputHash_, t_, dt_,
+                          dtLimit_, step_, particleSteps_, wallSeconds, lastCheckpointTime_},
+                         archiver_, mpm_);
   if (Communicator::isRoot()) {
-    writeAtomically(newestCheckpoint_, [&](const std::string& tmp) {
-      BinaryWriter out(tmp);
-      out.string(distributed ? kDistributedCheckpointMagic : kCheckpointMagic);
-      out.value(kCheckpointVersion);
-      out.value<int32_t>(omp_get_max_threads());
-      out.value(inputHash_);
-      out.value(t_);
-      out.value(dt_);
-      out.value<int32_t>(dtLimit_);
-      out.value(step_);
-      out.value(particleSteps_);
-      out.value(wallSeconds);
-      out.value(lastCheckpointTime_);
-      archiver_.saveState(out);
-      if (distributed) {
-        out.value<int32_t>(Communicator::size());
-        mpm_.saveLayout(out);
-        for (const std::string& h : partHashes) out.bytes(h.data(), h.size());
-      } else {
-        mpm_.saveState(out);
-      }
-      out.finish();
-    });
     if (kind == CheckpointKind::Scheduled) {
       removeOldCheckpoints(dir, kind, checkpoints_.cycle);
       removeOldCheckpoints(dir, CheckpointKind::Automatic, 0);  // the scheduled one is newer
@@ -357,26 +312,18 @@ void Simulation::writeCheckpoint(double wallSeconds, CheckpointKind kind) {
     }
   }
   Communicator::barrier();
+  newestCheckpointWallTime_ = wallTime();
 }
 
 void Simulation::loadCheckpoint(const std::string& path, bool outputs) {
-  // Read on every rank, then agreed on, before any collective step of laying the particles out.
-  CheckpointRead read;
-  std::string error;
-  try {
-    read = readCheckpoint(path, outputs);
-  } catch (const std::runtime_error& e) {
-    error = e.what();
-  }
-  const int failed = Communicator::firstRankWith(!error.empty());
-  if (failed >= 0)
-    throw std::runtime_error(failed == Communicator::rank()
-                                 ? error
-                                 : path + ": unreadable on rank " + std::to_string(failed));
-  if (read.ranks != Communicator::size())
-    mpm_.keepOwnShare();
-  else if (read.ranks > 1)
-    mpm_.adoptLayout(read.layout);
+  const CheckpointHeader read = anode::loadCheckpoint(path, outputs ? &archiver_ : nullptr, mpm_);
+  t_ = read.t;
+  dt_ = read.dt;
+  dtLimit_ = read.dtLimit;
+  step_ = read.step;
+  particleSteps_ = read.particleSteps;
+  earlierWallSeconds_ = read.wallSeconds;
+  lastCheckpointTime_ = read.lastScheduledTime;
   if (!Communicator::isRoot()) return;
   if (read.inputHash != inputHash_)
     std::fprintf(
@@ -393,67 +340,6 @@ void Simulation::loadCheckpoint(const std::string& path, bool outputs) {
                  "sus: %s was written by %d rank(s), this run has %d: its particles are shared out "
                  "anew; the continued run matches an uninterrupted one to round-off\n",
                  path.c_str(), read.ranks, Communicator::size());
-}
-
-Simulation::CheckpointRead Simulation::readCheckpoint(const std::string& path, bool outputs) {
-  CheckpointRead read;
-  BinaryReader in(path);
-  const std::string magic = in.string();
-  const bool distributed = magic == kDistributedCheckpointMagic;
-  if (magic != kCheckpointMagic && !distributed)
-    throw std::runtime_error(path + ": not a checkpoint of this code");
-  const auto version = in.value<uint32_t>();
-  if (version != kCheckpointVersion)
-    throw std::runtime_error(path + ": checkpoint format " + std::to_string(version) +
-                             ", this code reads " + std::to_string(kCheckpointVersion));
-  read.threads = in.value<int32_t>();
-  read.inputHash = in.value<uint64_t>();
-  t_ = in.value<double>();
-  dt_ = in.value<double>();
-  dtLimit_ = static_cast<StableTimestep::Limit>(in.value<int32_t>());
-  if (dtLimit_ < 0 || dtLimit_ >= StableTimestep::kLimits)
-    throw std::runtime_error(path + ": unknown time-step limit " + std::to_string(dtLimit_));
-  step_ = in.value<long>();
-  particleSteps_ = in.value<double>();
-  earlierWallSeconds_ = in.value<double>();
-  lastCheckpointTime_ = in.value<double>();
-  if (outputs) {
-    archiver_.loadState(in);
-  } else {
-    DataArchiver unused;
-    unused.loadState(in);
-  }
-  if (!distributed) {
-    mpm_.loadState(in);
-    in.finish();
-    return read;
-  }
-  read.ranks = in.value<int32_t>();
-  if (read.ranks < 1) throw std::runtime_error(path + ": a checkpoint of no rank");
-  read.layout = MPM::readLayout(in);
-  std::vector<uint64_t> hashes(read.ranks);
-  for (uint64_t& h : hashes) h = in.value<uint64_t>();
-  in.finish();
-  // The same rank count continues with the same boxes, each rank from its own part; another
-  // reads every part and shares the particles out anew.
-  std::vector<int> parts;
-  if (read.ranks == Communicator::size())
-    parts.push_back(Communicator::rank());
-  else
-    for (int r = 0; r < read.ranks; ++r) parts.push_back(r);
-  for (int r : parts) {
-    const std::string partPath = checkpointPart(path, r);
-    BinaryReader part(partPath);
-    if (part.string() != kCheckpointPartMagic)
-      throw std::runtime_error(partPath + ": not a part of a checkpoint of this code");
-    if (r == parts.front())
-      mpm_.loadState(part);
-    else
-      mpm_.appendState(part);
-    if (part.finish() != hashes[r])
-      throw std::runtime_error(partPath + ": not the part " + path + " names (another hash)");
-  }
-  return read;
 }
 
 std::string Simulation::loadNewestCheckpoint() {

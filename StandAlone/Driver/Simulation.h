@@ -2,7 +2,9 @@
 #pragma once
 
 #include <array>
+#include <chrono>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "Components/MPM/MPM.h"
@@ -10,6 +12,7 @@
 #include "Components/MPM/SymmetryFaceWatch.h"
 #include "StandAlone/Driver/Checkpoint.h"
 #include "StandAlone/Driver/DataArchiver.h"
+#include "StandAlone/Driver/Progress.h"
 #include "StandAlone/Driver/SceneOutput.h"
 #include "StandAlone/Driver/TimeControl.h"
 
@@ -58,29 +61,50 @@ class Simulation {
   void finishStep();
   // dt_ for the step from t_: the multiplier times the state's stable dt, then <Time>'s clamps.
   void takeStableTimestep(double previousDt);
+  // The run's start: opens its directory (a new one, or the restart directory at its newest
+  // checkpoint), reports the setup and, unless a restart, records and writes the initial state
+  // with a checkpoint. Collective.
+  void start(bool restart);
+  // Seconds since run() began.
+  double wallTime() const;
+  // Whether the run has reached the end <Time> sets (time, steps or wall time). Collective
+  // when a wall time is set.
+  bool finished() const;
+  // Continues the run of the restart directory from its newest complete checkpoint; returns its
+  // path. Collective.
+  std::string restartFromNewestCheckpoint();
+  // The lines on the run's setup: particles, grid, ranks, diffusion, symmetry faces. Collective.
+  void reportSetup();
+  // Appends the state's row (after a step of `stepDt`) to the history; returns the particle count.
+  size_t recordHistoryRow(double stepDt);
+  // Writes the output of step_; `afterStep`: the grid labels hold the last step's nodal values.
+  void writeOutput(bool afterStep);
+  // Prints the symmetry-face warnings of the step just taken.
+  void reportSymmetryFaces();
   // At an output step of a distributed run: draws the boxes anew from the particle counts when
   // the particles per rank (max/mean) grew by kRebalanceImbalance since they were drawn; true
   // if it did. Collective.
   bool rebalance();
+  // What any rank asks for at the end of a step (none after the last): to stop, and its own
+  // checkpoint (kReplayInterval of wall time since the last one). One exchange. Collective.
+  struct Requests {
+    bool stop = false, replayCheckpoint = false;
+  };
+  Requests requestsOfAnyRank(bool done) const;
   // After a failed step: writes its particles and the last good state (DESIGN.md §8).
   void writeStateOnStop();
   // Brings the state back to the end of step_ (the last good one) by loading the newest
   // checkpoint and taking the same steps again (they are deterministic).
   void replayToLastGoodState();
   // Writes the state after step_ to a checkpoint (Checkpoint.h) and drops the oldest of its kind.
-  void writeCheckpoint(double wallSeconds, CheckpointKind kind);
+  // Collective.
+  void writeCheckpoint(CheckpointKind kind);
   // Loads the newest complete checkpoint of the restart directory; returns its path.
   std::string loadNewestCheckpoint();
-  // Reads one checkpoint (everything writeCheckpoint wrote; the output series and history only
-  // if `outputs`); throws std::runtime_error, on every rank together. Collective.
+  // Loads one checkpoint (Checkpoint.h; the output series and history only if `outputs`) and
+  // warns of what differs from this run; throws std::runtime_error, on every rank together.
+  // Collective.
   void loadCheckpoint(const std::string& path, bool outputs);
-  // What loadCheckpoint needs besides the state it read (this rank only).
-  struct CheckpointRead {
-    int threads = 0, ranks = 1;
-    uint64_t inputHash = 0;
-    MPM::Layout layout;
-  };
-  CheckpointRead readCheckpoint(const std::string& path, bool outputs);
 
   RunOptions options_;
   std::unique_ptr<ProblemSpec> spec_;
@@ -106,6 +130,10 @@ class Simulation {
   double earlierWallSeconds_ = 0;  // of the runs before a restart, for history.csv
   uint64_t inputHash_ = 0;         // of the input file, stored in checkpoints
   double layoutImbalance_ = 1;     // particles per rank, max/mean, when the boxes were drawn
+  std::chrono::steady_clock::time_point runStart_;
+  double newestCheckpointWallTime_ = 0;  // wallTime() when this process last wrote one
+  int outputTask_ = 0, checkpointTask_ = 0;
+  std::optional<ProgressReporter> progress_;  // on rank 0 unless RunOptions::progress is false
 };
 
 }  // namespace anode
