@@ -45,11 +45,13 @@ void ReactiveFlow::rejectWithoutDiffusion(const PSNode& root, const MPMFlags& fl
   readFluxBCs(root, flags);
 }
 
+void ReactiveFlow::rejectConcentrationBC(const BCType& bc) {
+  bc.node.fail("label=\"SD-Type\" (concentration) needs <MPM><do_scalar_diffusion>true");
+}
+
 void ReactiveFlow::initialize(const PSNode& root, const Grid& grid,
-                              const std::vector<FaceBC>& faceBCs,
                               std::vector<MPMMaterial>& materials,
                               const std::vector<MaterialSeeds>& seeds, double initTime) {
-  faceBCs_ = faceBCs;
   const std::vector<ExternalScalarFlux::Flagged> flagged =
       flux_.assignToParticles(materials, seeds, grid);
   for (size_t b = 0; b < flux_.bcs().size(); ++b)
@@ -96,7 +98,7 @@ void ReactiveFlow::initialize(const PSNode& root, const Grid& grid,
 void ReactiveFlow::layOutGrid(const Grid& grid, const GhostNodes* ghosts) {
   grid_ = grid;
   ghosts_ = ghosts;
-  dirichletMask_ = dirichletNodeMasks(grid, faceBCs_, receivesFlux_.size());
+  dirichletMask_ = dirichletNodeMasks(grid, concentrationBCs_, receivesFlux_.size());
   const int nodes = grid.numNodes();
   fields_.assign(receivesFlux_.size(), {});
   for (size_t m = 0; m < fields_.size(); ++m)
@@ -112,11 +114,9 @@ void ReactiveFlow::computeEveryMaterial() {
 bool ReactiveFlow::concentrationCanChange(size_t m, const ScalarDiffusionModel& model) const {
   if (model.diffuses() || model.constantRate() != 0 || receivesFlux_[m] || interface_.common)
     return true;
-  return std::any_of(faceBCs_.begin(), faceBCs_.end(), [m](const FaceBC& b) {
-    return (b.kind == FaceBC::Kind::ConcentrationDirichlet ||
-            b.kind == FaceBC::Kind::ConcentrationNeumann) &&
-           b.appliesTo(static_cast<int>(m));
-  });
+  return std::any_of(
+      concentrationBCs_.begin(), concentrationBCs_.end(),
+      [m](const ConcentrationBC& b) { return b.face.appliesTo(static_cast<int>(m)); });
 }
 
 std::vector<std::string> ReactiveFlow::setupReport() const {
@@ -147,7 +147,7 @@ void ReactiveFlow::computeNodalConcentration(size_t m, const GridFields& mechani
     g.concentrationNoBC[k] = c;
     g.concentration[k] = c;
   });
-  applyConcentrationBCs(grid_, faceBCs_, static_cast<int>(m), g.concentration);
+  applyConcentrationBCs(grid_, concentrationBCs_, static_cast<int>(m), g.concentration);
 }
 
 void ReactiveFlow::applyDiffusionInterface(const std::vector<GridFields>& mechanics,
@@ -181,9 +181,9 @@ void ReactiveFlow::integrateConcentration(const std::vector<GridFields>& mechani
       const double receivers = G >= 0 ? g.receiverWeightIn[k] : g.receiverWeightOut[k];
       g.sourcePerWeight[k] = receivers > 0 ? G / receivers : 0.0;
     });
-    applyConcentrationBCs(grid_, faceBCs_, static_cast<int>(m), g.concentrationStar);
+    applyConcentrationBCs(grid_, concentrationBCs_, static_cast<int>(m), g.concentrationStar);
     if (source)
-      applyConcentrationBCs(grid_, faceBCs_, static_cast<int>(m), g.concentrationNoSource);
+      applyConcentrationBCs(grid_, concentrationBCs_, static_cast<int>(m), g.concentrationNoSource);
     forEachNode(nodes, [&](long k) {
       g.concentrationRate[k] = mass[k] > 0 ? (noSource[k] - g.concentrationNoBC[k]) / dt : 0.0;
     });
