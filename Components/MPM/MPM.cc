@@ -11,31 +11,12 @@
 #include "Components/MPM/Materials/ConstitutiveModels/ConcreteModels.h"
 #include "Components/MPM/ParticleLoops.h"
 #include "Components/MPM/ParticleSplitting.h"
+#include "Components/MPM/PhysicalBCs.h"
 #include "Components/MPM/ProblemSize.h"
 #include "Core/Parallel/StopTogether.h"
 #include "Core/Util/Errors.h"
 
 namespace anode {
-
-namespace {
-
-void readOtherPhysicalBCs(const PSNode& root) {
-  const PSNode physical = root.child("PhysicalBC");
-  if (!physical) return;
-  const PSNode mpm = physical.child("MPM");
-  if (!mpm) return;
-  for (const PSNode& bc : mpm.children()) {
-    if (bc.name() == "scalar_flux") continue;
-    if (bc.name() == "pressure" || bc.name() == "force" || bc.name() == "heat_flux" ||
-        bc.name() == "arches_heat_flux")
-      bc.unsupported("<" + bc.name() + "> boundary condition");
-    else
-      bc.fail("unknown physical boundary condition <" + bc.name() + ">");
-    bc.markSubtreeUsed();
-  }
-}
-
-}  // namespace
 
 void MPM::problemSetup(const PSNode& root, double initTime, double maxTime) {
   flags_ = MPMFlags::fromInput(root);
@@ -67,10 +48,11 @@ void MPM::problemSetup(const PSNode& root, double initTime, double maxTime) {
         (flags_.refineMaterial < 0 || flags_.refineMaterial == static_cast<int>(m)))
       materials_[m].particles.enable(Physics::Splitting);
   contact_ = Contact::fromInput(mpmMats, static_cast<int>(materials_.size()));
+  const PhysicalBCs physical = readPhysicalBCs(root);
   if (flags_.doScalarDiffusion)
-    diffusion_ = std::make_unique<ReactiveFlow>(root, flags_, materials_.size());
+    diffusion_ = std::make_unique<ReactiveFlow>(root, flags_, materials_.size(), physical);
   else
-    ReactiveFlow::rejectWithoutDiffusion(root, flags_);
+    ReactiveFlow::rejectWithoutDiffusion(root, flags_, physical);
   gridBCs_ = readGridBoundaryConditions(gridNode, static_cast<int>(materials_.size()),
                                         [this](const BCType& bc) {
                                           if (diffusion_)
@@ -80,7 +62,6 @@ void MPM::problemSetup(const PSNode& root, double initTime, double maxTime) {
                                         });
   for (size_t m = 0; m < materials_.size(); ++m)
     seeds[m].checkPiecesInsideGrid(grid_, gridBCs_.symmetryPlanes(static_cast<int>(m)));
-  readOtherPhysicalBCs(root);
 
   checkProblemSize(gridNode, grid_, flags_, materials_.size(), numParticles(),
                    omp_get_max_threads());

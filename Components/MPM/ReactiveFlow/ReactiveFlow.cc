@@ -14,35 +14,37 @@ namespace anode {
 
 namespace {
 
-// <PhysicalBC><MPM><scalar_flux> with the checks that do not depend on the materials.
-std::vector<ScalarFluxBC> readFluxBCs(const PSNode& root, const MPMFlags& flags) {
-  const PSNode physical = root.child("PhysicalBC");
-  if (!physical) return {};
-  std::vector<ScalarFluxBC> bcs = ScalarFluxBC::fromInput(physical);
+// The <scalar_flux> blocks with the checks that do not depend on the materials.
+std::vector<ScalarFluxBC> readFluxBCs(const PSNode& root, const MPMFlags& flags,
+                                      const PhysicalBCs& physical) {
+  if (!physical.node) return {};
+  std::vector<ScalarFluxBC> bcs = ScalarFluxBC::fromInput(physical.scalarFlux);
   if (!bcs.empty() && !flags.doScalarDiffusion)
-    physical.fail("<scalar_flux> needs <MPM><do_scalar_diffusion>true");
+    physical.node.fail("<scalar_flux> needs <MPM><do_scalar_diffusion>true");
   if (flags.autoCycle && bcs.empty())
     root.requireChild("MPM")
         .requireChild("do_auto_cycle_bc")
         .fail("<do_auto_cycle_bc>true needs <scalar_flux> boundary conditions");
   if (!bcs.empty() && !flags.useLoadCurves)
-    physical.fail(
+    physical.node.fail(
         "<scalar_flux> needs <MPM><use_load_curves>true (without it Uintah applies no flux)");
   return bcs;
 }
 
 }  // namespace
 
-ReactiveFlow::ReactiveFlow(const PSNode& root, const MPMFlags& flags, size_t materials)
+ReactiveFlow::ReactiveFlow(const PSNode& root, const MPMFlags& flags, size_t materials,
+                           const PhysicalBCs& physical)
     : flags_(flags),
       interface_(DiffusionInterface::fromInput(
           root.requireChild("MaterialProperties").requireChild("MPM"), true, materials)),
-      flux_(readFluxBCs(root, flags)) {}
+      flux_(readFluxBCs(root, flags, physical)) {}
 
-void ReactiveFlow::rejectWithoutDiffusion(const PSNode& root, const MPMFlags& flags) {
+void ReactiveFlow::rejectWithoutDiffusion(const PSNode& root, const MPMFlags& flags,
+                                          const PhysicalBCs& physical) {
   DiffusionInterface::fromInput(root.requireChild("MaterialProperties").requireChild("MPM"), false,
                                 0);
-  readFluxBCs(root, flags);
+  readFluxBCs(root, flags, physical);
 }
 
 void ReactiveFlow::rejectConcentrationBC(const BCType& bc) {
@@ -56,14 +58,11 @@ void ReactiveFlow::initialize(const PSNode& root, const Grid& grid,
       flux_.assignToParticles(materials, seeds, grid);
   for (size_t b = 0; b < flux_.bcs().size(); ++b)
     if (std::none_of(flagged.begin(), flagged.end(), [b](const auto& f) { return f.bc == b; }))
-      root.child("PhysicalBC")
-          .child("MPM")
-          .children("scalar_flux")[b]
-          .requireChild("geom_object")
-          .fail(
-              "this <scalar_flux> flags no particle: its geometry selects no surface particle of a "
-              "material that diffuses (selection rules in docs/diffusion.md), so its flux would go "
-              "nowhere");
+      throw InputError(
+          root.file(), flux_.bcs()[b].geomLine,
+          "this <scalar_flux> flags no particle: its geometry selects no surface particle of a "
+          "material that diffuses (selection rules in docs/diffusion.md), so its flux would go "
+          "nowhere");
   for (const ExternalScalarFlux::Flagged& f : flagged) {
     std::ostringstream s;
     s << "<scalar_flux> " << f.bc + 1 << " (line " << flux_.bcs()[f.bc].line << ") flags "

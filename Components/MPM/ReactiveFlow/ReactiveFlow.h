@@ -17,6 +17,7 @@
 #include "Components/MPM/Interpolator.h"
 #include "Components/MPM/MPMFlags.h"
 #include "Components/MPM/Materials/MPMMaterial.h"
+#include "Components/MPM/PhysicalBCs.h"
 #include "Components/MPM/ReactiveFlow/ConcentrationBCs.h"
 #include "Components/MPM/ReactiveFlow/ConcentrationKernels.h"
 #include "Components/MPM/ReactiveFlow/DiffusionGridFields.h"
@@ -29,10 +30,12 @@ namespace anode {
 
 class ReactiveFlow {
  public:
-  // Reads <diffusion_interface> and <PhysicalBC><MPM><scalar_flux>.
-  ReactiveFlow(const PSNode& root, const MPMFlags& flags, size_t materials);
+  // Reads <diffusion_interface> and the <scalar_flux> blocks of `physical`.
+  ReactiveFlow(const PSNode& root, const MPMFlags& flags, size_t materials,
+               const PhysicalBCs& physical);
   // A run without diffusion: the tags that would need it are errors, not silently dropped.
-  static void rejectWithoutDiffusion(const PSNode& root, const MPMFlags& flags);
+  static void rejectWithoutDiffusion(const PSNode& root, const MPMFlags& flags,
+                                     const PhysicalBCs& physical);
   // An SD-Type <BCType>, which MPM's reader of <Grid><BoundaryConditions> hands over; in a run
   // without diffusion it is an error (rejectConcentrationBC).
   void readConcentrationBC(const BCType& bc) {
