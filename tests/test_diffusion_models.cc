@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "Components/MPM/PhysicalBCs.h"
 #include "Components/MPM/ReactiveFlow/FluxRestriction.h"
 #include "Components/MPM/ReactiveFlow/ScalarDiffusionModel.h"
 #include "Components/MPM/ReactiveFlow/ScalarFluxBC.h"
@@ -570,7 +571,7 @@ TEST(ScalarFluxBCArea, ReadFromInput) {
       "<load_curve><id>2</id><time_point><time>0</time><load>-1</load></time_point></load_curve>"
       "</scalar_flux>\n</MPM></PhysicalBC></Uintah_specification>",
       "flux.ups");
-  const auto bcs = ScalarFluxBC::fromInput(spec->root().requireChild("PhysicalBC"));
+  const auto bcs = ScalarFluxBC::fromInput(readPhysicalBCs(spec->root()).scalarFlux);
   ASSERT_EQ(bcs.size(), 2u);
   EXPECT_EQ(bcs[0].face, ScalarFluxBC::Face::Box);
   EXPECT_EQ(bcs[0].line, 2);
@@ -585,7 +586,7 @@ TEST(ScalarFluxBCArea, ReadFromInput) {
       "</scalar_flux>\n</MPM></PhysicalBC></Uintah_specification>",
       "flux.ups");
   try {
-    ScalarFluxBC::fromInput(bad->root().requireChild("PhysicalBC"));
+    ScalarFluxBC::fromInput(readPhysicalBCs(bad->root()).scalarFlux);
     ADD_FAILURE() << "no InputError for load curve id 2 on the first block";
   } catch (const InputError& e) {
     EXPECT_EQ(e.line(), 3) << e.what();

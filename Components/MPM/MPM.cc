@@ -3,41 +3,20 @@
 #include <omp.h>
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstring>
 #include <limits>
 #include <sstream>
 
-#include "Components/MPM/GridBoundaryConditions.h"
 #include "Components/MPM/Materials/ConstitutiveModels/ConcreteModels.h"
 #include "Components/MPM/ParticleLoops.h"
 #include "Components/MPM/ParticleSplitting.h"
+#include "Components/MPM/PhysicalBCs.h"
 #include "Components/MPM/ProblemSize.h"
 #include "Core/Parallel/StopTogether.h"
 #include "Core/Util/Errors.h"
 
 namespace anode {
-
-namespace {
-
-void readOtherPhysicalBCs(const PSNode& root) {
-  const PSNode physical = root.child("PhysicalBC");
-  if (!physical) return;
-  const PSNode mpm = physical.child("MPM");
-  if (!mpm) return;
-  for (const PSNode& bc : mpm.children()) {
-    if (bc.name() == "scalar_flux") continue;
-    if (bc.name() == "pressure" || bc.name() == "force" || bc.name() == "heat_flux" ||
-        bc.name() == "arches_heat_flux")
-      bc.unsupported("<" + bc.name() + "> boundary condition");
-    else
-      bc.fail("unknown physical boundary condition <" + bc.name() + ">");
-    bc.markSubtreeUsed();
-  }
-}
-
-}  // namespace
 
 void MPM::problemSetup(const PSNode& root, double initTime, double maxTime) {
   flags_ = MPMFlags::fromInput(root);
@@ -69,23 +48,24 @@ void MPM::problemSetup(const PSNode& root, double initTime, double maxTime) {
         (flags_.refineMaterial < 0 || flags_.refineMaterial == static_cast<int>(m)))
       materials_[m].particles.enable(Physics::Splitting);
   contact_ = Contact::fromInput(mpmMats, static_cast<int>(materials_.size()));
+  const PhysicalBCs physical = readPhysicalBCs(root);
   if (flags_.doScalarDiffusion)
-    diffusion_ = std::make_unique<ReactiveFlow>(root, flags_, materials_.size());
+    diffusion_ = std::make_unique<ReactiveFlow>(root, flags_, materials_.size(), physical);
   else
-    ReactiveFlow::rejectWithoutDiffusion(root, flags_);
-  faceBCs_ = readFaceBCs(gridNode, static_cast<int>(materials_.size()), flags_.doScalarDiffusion);
-  for (size_t m = 0; m < materials_.size(); ++m) {
-    std::array<bool, 6> mirror{};
-    for (const FaceBC& b : faceBCs_)
-      if (b.kind == FaceBC::Kind::Symmetric && b.appliesTo(static_cast<int>(m)))
-        mirror[2 * b.axis + b.side] = true;
-    seeds[m].checkPiecesInsideGrid(grid_, mirror);
-  }
-  readOtherPhysicalBCs(root);
+    ReactiveFlow::rejectWithoutDiffusion(root, flags_, physical);
+  gridBCs_ = readGridBoundaryConditions(gridNode, static_cast<int>(materials_.size()),
+                                        [this](const BCType& bc) {
+                                          if (diffusion_)
+                                            diffusion_->readConcentrationBC(bc);
+                                          else
+                                            ReactiveFlow::rejectConcentrationBC(bc);
+                                        });
+  for (size_t m = 0; m < materials_.size(); ++m)
+    seeds[m].checkPiecesInsideGrid(grid_, gridBCs_.symmetryPlanes(static_cast<int>(m)));
 
   checkProblemSize(gridNode, grid_, flags_, materials_.size(), numParticles(),
                    omp_get_max_threads());
-  if (diffusion_) diffusion_->initialize(root, grid_, faceBCs_, materials_, seeds, initTime);
+  if (diffusion_) diffusion_->initialize(root, grid_, materials_, seeds, initTime);
   whole_ = grid_;
   distributed_ = Communicator::size() > 1;
   reordering_.resize(materials_.size());
@@ -239,8 +219,8 @@ void MPM::computeNodalVelocityAndConcentration() {
     forEachNode(active_.rows, [&g](long k) {
       g.velocity[k] = g.mass[k] > 0 ? Vec3(g.momentum[k] / g.mass[k]) : Vec3::Zero();
     });
-    applySymmetry(grid_, faceBCs_, static_cast<int>(m), active_.box, g.velocity);
-    applySymmetry(grid_, faceBCs_, static_cast<int>(m), active_.box, g.internalForce);
+    applySymmetry(grid_, gridBCs_.symmetric, static_cast<int>(m), active_.box, g.velocity);
+    applySymmetry(grid_, gridBCs_.symmetric, static_cast<int>(m), active_.box, g.internalForce);
     if (diffusion_) diffusion_->computeNodalConcentration(m, g, active_.rows);  // Eq. 5
   }
   if (diffusion_) diffusion_->applyDiffusionInterface(fields_, active_.rows);
@@ -270,8 +250,8 @@ void MPM::setGridBoundaryConditions(double dt) {
   contact_.exchange(fields_, &GridFields::velocityStar, active_.rows);
   for (size_t m = 0; m < fields_.size(); ++m) {
     GridFields& g = fields_[m];
-    applyVelocityDirichlet(grid_, faceBCs_, static_cast<int>(m), g.velocityStar);
-    applySymmetry(grid_, faceBCs_, static_cast<int>(m), active_.box, g.velocityStar);
+    applyVelocityDirichlet(grid_, gridBCs_.velocity, static_cast<int>(m), g.velocityStar);
+    applySymmetry(grid_, gridBCs_.symmetric, static_cast<int>(m), active_.box, g.velocityStar);
     forEachNode(active_.rows,
                 [&g, dt](long k) { g.acceleration[k] = (g.velocityStar[k] - g.velocity[k]) / dt; });
   }

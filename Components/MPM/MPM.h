@@ -9,6 +9,7 @@
 #include "Components/MPM/ActiveNodes.h"
 #include "Components/MPM/Contact/Contact.h"
 #include "Components/MPM/GhostNodes.h"
+#include "Components/MPM/GridBoundaryConditions.h"
 #include "Components/MPM/GridFields.h"
 #include "Components/MPM/Interpolator.h"
 #include "Components/MPM/MPMFlags.h"
@@ -18,7 +19,6 @@
 #include "Components/MPM/SplitParticle.h"
 #include "Components/MPM/StableTimestep.h"
 #include "Components/MPM/StepSummary.h"
-#include "Core/Grid/BoundaryConditions.h"
 #include "Core/Grid/Grid.h"
 #include "Core/Parallel/Decomposition.h"
 #include "Core/Util/BinaryStream.h"
@@ -98,7 +98,7 @@ class MPM {
   const std::vector<MPMMaterial>& materials() const { return materials_; }
   std::vector<MPMMaterial>& materials() { return materials_; }
   const std::vector<GridFields>& gridFields() const { return fields_; }
-  const std::vector<FaceBC>& faceBCs() const { return faceBCs_; }
+  const GridBoundaryConditions& gridBCs() const { return gridBCs_; }
   // The diffusion subcomponent; null without <do_scalar_diffusion>true.
   const ReactiveFlow* diffusion() const { return diffusion_.get(); }
   // For an output that saves them: the concentration fields of every material, also of those
@@ -157,7 +157,7 @@ class MPM {
   bool distributed_ = false;  // more than one rank
   std::vector<Reordering> reordering_;
   int layoutGeneration_ = 0;
-  std::vector<FaceBC> faceBCs_;
+  GridBoundaryConditions gridBCs_;
   Contact contact_;
   std::vector<MPMMaterial> materials_;
   std::unique_ptr<ReactiveFlow> diffusion_;  // only with <do_scalar_diffusion>true

@@ -41,17 +41,15 @@ std::vector<std::string> SymmetryFaceWatch::start(const MPM& mpm) {
     Communicator::minimum(lo.data(), 3);
     Communicator::maximum(hi.data(), 3);
     bool startsOn[3][2] = {};
-    for (const FaceBC& bc : mpm.faceBCs())
-      if (bc.kind == FaceBC::Kind::Symmetric && bc.appliesTo(static_cast<int>(m)))
+    for (const BCFace& bc : mpm.gridBCs().symmetric)
+      if (bc.appliesTo(static_cast<int>(m)))
         startsOn[bc.axis][bc.side] =
             distanceToFace(g, bc.side == 0 ? lo : hi, bc.axis, bc.side) < g.dx[bc.axis];
     const double eta = mat.model->swellingCoefficient(),
                  growth = std::exp(eta);  // per axis, c 0 -> 1
     std::string reached;
-    for (const FaceBC& bc : mpm.faceBCs()) {
-      if (bc.kind != FaceBC::Kind::Symmetric || !bc.appliesTo(static_cast<int>(m)) ||
-          startsOn[bc.axis][bc.side])
-        continue;
+    for (const BCFace& bc : mpm.gridBCs().symmetric) {
+      if (!bc.appliesTo(static_cast<int>(m)) || startsOn[bc.axis][bc.side]) continue;
       watched_.push_back({m, bc.axis, bc.side});
       // Only a material that can take up lithium swells.
       if (!mpm.diffusion() || growth <= 1 ||

@@ -23,10 +23,24 @@ int materialId(const PSNode& bc, int numMaterials) {
 
 }  // namespace
 
-std::vector<FaceBC> readFaceBCs(const PSNode& gridNode, int numMaterials, bool diffusion) {
-  std::vector<FaceBC> out;
+template <class T>
+T BCType::value() const {
+  const auto attr = node.attribute("value");
+  if (!attr) return node.require<T>("value");
+  try {
+    return parseValue<T>(*attr);
+  } catch (const std::invalid_argument& e) {
+    node.fail(std::string("<BCType value=...>: ") + e.what());
+  }
+}
+
+template double BCType::value<double>() const;
+template Vec3 BCType::value<Vec3>() const;
+
+void forEachBCType(const PSNode& gridNode, int numMaterials,
+                   const std::function<void(const BCType&)>& read) {
   const PSNode bcs = gridNode.child("BoundaryConditions");
-  if (!bcs) return out;
+  if (!bcs) return;
   for (const PSNode& face : bcs.children()) {
     if (face.name() != "Face") face.fail("<BoundaryConditions> holds only <Face> tags");
     const auto side = face.attribute("side");
@@ -42,63 +56,18 @@ std::vector<FaceBC> readFaceBCs(const PSNode& gridNode, int numMaterials, bool d
     if (s.size() != 2 || (s[0] != 'x' && s[0] != 'y' && s[0] != 'z') ||
         (s[1] != '-' && s[1] != '+'))
       face.fail("unknown face side \"" + s + "\"; accepted: x-, x+, y-, y+, z-, z+");
-    for (const PSNode& bc : face.children()) {
-      if (bc.name() != "BCType") bc.fail("<Face> holds only <BCType> tags");
-      FaceBC f;
-      f.axis = s[0] - 'x';
-      f.side = s[1] == '+' ? 1 : 0;
-      f.material = materialId(bc, numMaterials);
-      const std::string label = bc.requireAttribute("label");
-      const std::string var = bc.requireAttribute("var");
-      if (label == "SD-Type") {
-        if (!diffusion)
-          bc.fail("label=\"SD-Type\" (concentration) needs <MPM><do_scalar_diffusion>true");
-        if (var != "Dirichlet" && var != "Neumann")
-          bc.fail("SD-Type var=\"" + var + "\": accepted Dirichlet, Neumann");
-        f.kind = var == "Dirichlet" ? FaceBC::Kind::ConcentrationDirichlet
-                                    : FaceBC::Kind::ConcentrationNeumann;
-        if (auto attr = bc.attribute("value")) {
-          try {
-            f.value = parseValue<double>(*attr);
-          } catch (const std::invalid_argument& e) {
-            bc.fail(std::string("<BCType value=...>: ") + e.what());
-          }
-        } else {
-          f.value = bc.require<double>("value");
-        }
-        out.push_back(f);
-      } else if (label == "Symmetric" && var != "symmetry") {
-        // Uintah's MPM applies a Symmetric condition only when its var is "symmetry".
-        bc.warn("label=\"Symmetric\" var=\"" + var +
-                "\": Uintah applies symmetry only with var=\"symmetry\"; this face is left "
-                "free for this material, as there");
-      } else if (label == "Symmetric") {
-        f.kind = FaceBC::Kind::Symmetric;
-        out.push_back(f);
-      } else if (label == "Velocity" && var == "Dirichlet") {
-        f.kind = FaceBC::Kind::VelocityDirichlet;
-        if (auto attr = bc.attribute("value")) {
-          try {
-            f.velocity = parseValue<Vec3>(*attr);
-          } catch (const std::invalid_argument& e) {
-            bc.fail(std::string("<BCType value=...>: ") + e.what());
-          }
-        } else {
-          f.velocity = bc.require<Vec3>("value");
-        }
-        out.push_back(f);
-      } else if (label == "Velocity" && var == "Neumann") {
-        bc.markSubtreeUsed();  // Uintah's MPM ignores velocity Neumann conditions
-      } else if (label == "Temperature") {
-        bc.markSubtreeUsed();  // sets only Uintah's nodal temperature, which isothermal MPM never
-                               // reads
-      } else {
-        bc.fail("unknown boundary condition label=\"" + label + "\" var=\"" + var +
-                "\"; accepted: Symmetric, Velocity (Dirichlet), SD-Type, Temperature (ignored)");
-      }
+    for (const PSNode& node : face.children()) {
+      if (node.name() != "BCType") node.fail("<Face> holds only <BCType> tags");
+      BCType bc;
+      bc.node = node;
+      bc.face.axis = s[0] - 'x';
+      bc.face.side = s[1] == '+' ? 1 : 0;
+      bc.face.material = materialId(node, numMaterials);
+      bc.label = node.requireAttribute("label");
+      bc.var = node.requireAttribute("var");
+      read(bc);
     }
   }
-  return out;
 }
 
 }  // namespace anode

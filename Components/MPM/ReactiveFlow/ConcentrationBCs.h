@@ -10,12 +10,22 @@
 
 namespace anode {
 
-void applyConcentrationBCs(const Grid& g, const std::vector<FaceBC>& bcs, int matl,
+struct ConcentrationBC {
+  BCFace face;
+  enum class Kind { Dirichlet, Neumann } kind = Kind::Dirichlet;
+  double value = 0;  // the concentration (Dirichlet) or its gradient (Neumann)
+
+  // An SD-Type <BCType>, which MPM's reader of <Grid><BoundaryConditions> hands over.
+  static ConcentrationBC fromInput(const BCType& bc);
+};
+
+void applyConcentrationBCs(const Grid& g, const std::vector<ConcentrationBC>& bcs, int matl,
                            std::vector<double>& field);
 
 // Per material, per node: 1 on the nodes an SD-Type Dirichlet condition sets, 0 elsewhere (for
 // the particle treatment of Dirichlet walls); empty when there is no such condition.
-std::vector<std::vector<double>> dirichletNodeMasks(const Grid& g, const std::vector<FaceBC>& bcs,
+std::vector<std::vector<double>> dirichletNodeMasks(const Grid& g,
+                                                    const std::vector<ConcentrationBC>& bcs,
                                                     size_t materials);
 
 }  // namespace anode

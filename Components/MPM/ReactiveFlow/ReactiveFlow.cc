@@ -14,54 +14,55 @@ namespace anode {
 
 namespace {
 
-// <PhysicalBC><MPM><scalar_flux> with the checks that do not depend on the materials.
-std::vector<ScalarFluxBC> readFluxBCs(const PSNode& root, const MPMFlags& flags) {
-  const PSNode physical = root.child("PhysicalBC");
-  if (!physical) return {};
-  std::vector<ScalarFluxBC> bcs = ScalarFluxBC::fromInput(physical);
+// The <scalar_flux> blocks with the checks that do not depend on the materials.
+std::vector<ScalarFluxBC> readFluxBCs(const PSNode& root, const MPMFlags& flags,
+                                      const PhysicalBCs& physical) {
+  if (!physical.node) return {};
+  std::vector<ScalarFluxBC> bcs = ScalarFluxBC::fromInput(physical.scalarFlux);
   if (!bcs.empty() && !flags.doScalarDiffusion)
-    physical.fail("<scalar_flux> needs <MPM><do_scalar_diffusion>true");
+    physical.node.fail("<scalar_flux> needs <MPM><do_scalar_diffusion>true");
   if (flags.autoCycle && bcs.empty())
     root.requireChild("MPM")
         .requireChild("do_auto_cycle_bc")
         .fail("<do_auto_cycle_bc>true needs <scalar_flux> boundary conditions");
   if (!bcs.empty() && !flags.useLoadCurves)
-    physical.fail(
+    physical.node.fail(
         "<scalar_flux> needs <MPM><use_load_curves>true (without it Uintah applies no flux)");
   return bcs;
 }
 
 }  // namespace
 
-ReactiveFlow::ReactiveFlow(const PSNode& root, const MPMFlags& flags, size_t materials)
+ReactiveFlow::ReactiveFlow(const PSNode& root, const MPMFlags& flags, size_t materials,
+                           const PhysicalBCs& physical)
     : flags_(flags),
       interface_(DiffusionInterface::fromInput(
           root.requireChild("MaterialProperties").requireChild("MPM"), true, materials)),
-      flux_(readFluxBCs(root, flags)) {}
+      flux_(readFluxBCs(root, flags, physical)) {}
 
-void ReactiveFlow::rejectWithoutDiffusion(const PSNode& root, const MPMFlags& flags) {
+void ReactiveFlow::rejectWithoutDiffusion(const PSNode& root, const MPMFlags& flags,
+                                          const PhysicalBCs& physical) {
   DiffusionInterface::fromInput(root.requireChild("MaterialProperties").requireChild("MPM"), false,
                                 0);
-  readFluxBCs(root, flags);
+  readFluxBCs(root, flags, physical);
+}
+
+void ReactiveFlow::rejectConcentrationBC(const BCType& bc) {
+  bc.node.fail("label=\"SD-Type\" (concentration) needs <MPM><do_scalar_diffusion>true");
 }
 
 void ReactiveFlow::initialize(const PSNode& root, const Grid& grid,
-                              const std::vector<FaceBC>& faceBCs,
                               std::vector<MPMMaterial>& materials,
                               const std::vector<MaterialSeeds>& seeds, double initTime) {
-  faceBCs_ = faceBCs;
   const std::vector<ExternalScalarFlux::Flagged> flagged =
       flux_.assignToParticles(materials, seeds, grid);
   for (size_t b = 0; b < flux_.bcs().size(); ++b)
     if (std::none_of(flagged.begin(), flagged.end(), [b](const auto& f) { return f.bc == b; }))
-      root.child("PhysicalBC")
-          .child("MPM")
-          .children("scalar_flux")[b]
-          .requireChild("geom_object")
-          .fail(
-              "this <scalar_flux> flags no particle: its geometry selects no surface particle of a "
-              "material that diffuses (selection rules in docs/diffusion.md), so its flux would go "
-              "nowhere");
+      throw InputError(
+          root.file(), flux_.bcs()[b].geomLine,
+          "this <scalar_flux> flags no particle: its geometry selects no surface particle of a "
+          "material that diffuses (selection rules in docs/diffusion.md), so its flux would go "
+          "nowhere");
   for (const ExternalScalarFlux::Flagged& f : flagged) {
     std::ostringstream s;
     s << "<scalar_flux> " << f.bc + 1 << " (line " << flux_.bcs()[f.bc].line << ") flags "
@@ -96,7 +97,7 @@ void ReactiveFlow::initialize(const PSNode& root, const Grid& grid,
 void ReactiveFlow::layOutGrid(const Grid& grid, const GhostNodes* ghosts) {
   grid_ = grid;
   ghosts_ = ghosts;
-  dirichletMask_ = dirichletNodeMasks(grid, faceBCs_, receivesFlux_.size());
+  dirichletMask_ = dirichletNodeMasks(grid, concentrationBCs_, receivesFlux_.size());
   const int nodes = grid.numNodes();
   fields_.assign(receivesFlux_.size(), {});
   for (size_t m = 0; m < fields_.size(); ++m)
@@ -112,11 +113,9 @@ void ReactiveFlow::computeEveryMaterial() {
 bool ReactiveFlow::concentrationCanChange(size_t m, const ScalarDiffusionModel& model) const {
   if (model.diffuses() || model.constantRate() != 0 || receivesFlux_[m] || interface_.common)
     return true;
-  return std::any_of(faceBCs_.begin(), faceBCs_.end(), [m](const FaceBC& b) {
-    return (b.kind == FaceBC::Kind::ConcentrationDirichlet ||
-            b.kind == FaceBC::Kind::ConcentrationNeumann) &&
-           b.appliesTo(static_cast<int>(m));
-  });
+  return std::any_of(
+      concentrationBCs_.begin(), concentrationBCs_.end(),
+      [m](const ConcentrationBC& b) { return b.face.appliesTo(static_cast<int>(m)); });
 }
 
 std::vector<std::string> ReactiveFlow::setupReport() const {
@@ -147,7 +146,7 @@ void ReactiveFlow::computeNodalConcentration(size_t m, const GridFields& mechani
     g.concentrationNoBC[k] = c;
     g.concentration[k] = c;
   });
-  applyConcentrationBCs(grid_, faceBCs_, static_cast<int>(m), g.concentration);
+  applyConcentrationBCs(grid_, concentrationBCs_, static_cast<int>(m), g.concentration);
 }
 
 void ReactiveFlow::applyDiffusionInterface(const std::vector<GridFields>& mechanics,
@@ -181,9 +180,9 @@ void ReactiveFlow::integrateConcentration(const std::vector<GridFields>& mechani
       const double receivers = G >= 0 ? g.receiverWeightIn[k] : g.receiverWeightOut[k];
       g.sourcePerWeight[k] = receivers > 0 ? G / receivers : 0.0;
     });
-    applyConcentrationBCs(grid_, faceBCs_, static_cast<int>(m), g.concentrationStar);
+    applyConcentrationBCs(grid_, concentrationBCs_, static_cast<int>(m), g.concentrationStar);
     if (source)
-      applyConcentrationBCs(grid_, faceBCs_, static_cast<int>(m), g.concentrationNoSource);
+      applyConcentrationBCs(grid_, concentrationBCs_, static_cast<int>(m), g.concentrationNoSource);
     forEachNode(nodes, [&](long k) {
       g.concentrationRate[k] = mass[k] > 0 ? (noSource[k] - g.concentrationNoBC[k]) / dt : 0.0;
     });

@@ -17,29 +17,36 @@
 #include "Components/MPM/Interpolator.h"
 #include "Components/MPM/MPMFlags.h"
 #include "Components/MPM/Materials/MPMMaterial.h"
+#include "Components/MPM/PhysicalBCs.h"
+#include "Components/MPM/ReactiveFlow/ConcentrationBCs.h"
 #include "Components/MPM/ReactiveFlow/ConcentrationKernels.h"
 #include "Components/MPM/ReactiveFlow/DiffusionGridFields.h"
 #include "Components/MPM/ReactiveFlow/DiffusionInterface.h"
 #include "Components/MPM/ReactiveFlow/ExternalScalarFlux.h"
 #include "Components/MPM/StepSummary.h"
-#include "Core/Grid/BoundaryConditions.h"
 #include "Core/Util/BinaryStream.h"
 
 namespace anode {
 
 class ReactiveFlow {
  public:
-  // Reads <diffusion_interface> and <PhysicalBC><MPM><scalar_flux>.
-  ReactiveFlow(const PSNode& root, const MPMFlags& flags, size_t materials);
+  // Reads <diffusion_interface> and the <scalar_flux> blocks of `physical`.
+  ReactiveFlow(const PSNode& root, const MPMFlags& flags, size_t materials,
+               const PhysicalBCs& physical);
   // A run without diffusion: the tags that would need it are errors, not silently dropped.
-  static void rejectWithoutDiffusion(const PSNode& root, const MPMFlags& flags);
+  static void rejectWithoutDiffusion(const PSNode& root, const MPMFlags& flags,
+                                     const PhysicalBCs& physical);
+  // An SD-Type <BCType>, which MPM's reader of <Grid><BoundaryConditions> hands over; in a run
+  // without diffusion it is an error (rejectConcentrationBC).
+  void readConcentrationBC(const BCType& bc) {
+    concentrationBCs_.push_back(ConcentrationBC::fromInput(bc));
+  }
+  [[noreturn]] static void rejectConcentrationBC(const BCType& bc);
 
   // Flags the flux particles and computes the initial state's diffusivity and flux rates, for
-  // every particle of the input (`grid` whole). `faceBCs` holds the SD-Type conditions, `seeds`
-  // the surface particles.
-  void initialize(const PSNode& root, const Grid& grid, const std::vector<FaceBC>& faceBCs,
-                  std::vector<MPMMaterial>& materials, const std::vector<MaterialSeeds>& seeds,
-                  double initTime);
+  // every particle of the input (`grid` whole); `seeds` holds the surface particles.
+  void initialize(const PSNode& root, const Grid& grid, std::vector<MPMMaterial>& materials,
+                  const std::vector<MaterialSeeds>& seeds, double initTime);
   // Lays out the grid fields on the nodes this rank stores (`grid`: the whole grid, or this
   // rank's window); `ghosts` completes the source marks on the nodes shared with other ranks
   // (none: a run of one rank).
@@ -108,7 +115,7 @@ class ReactiveFlow {
 
   MPMFlags flags_;
   Grid grid_;
-  std::vector<FaceBC> faceBCs_;
+  std::vector<ConcentrationBC> concentrationBCs_;  // SD-Type, in file order
   DiffusionInterface interface_;
   ExternalScalarFlux flux_;
   std::vector<std::vector<double>> dirichletMask_;  // per material, per node: 1 on Dirichlet nodes

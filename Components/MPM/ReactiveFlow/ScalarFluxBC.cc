@@ -33,14 +33,13 @@ bool onSurface(const GeometryPiece& piece, const Vec3& x, const Vec3& dxp, int n
   return false;
 }
 
-std::vector<ScalarFluxBC> ScalarFluxBC::fromInput(const PSNode& physicalBC) {
+std::vector<ScalarFluxBC> ScalarFluxBC::fromInput(const std::vector<PSNode>& blocks) {
   std::vector<ScalarFluxBC> out;
-  const PSNode mpm = physicalBC.child("MPM");
-  if (!mpm) return out;
-  for (const PSNode& block : mpm.children("scalar_flux")) {
+  for (const PSNode& block : blocks) {
     ScalarFluxBC bc;
     bc.line = block.line();
     const PSNode geom = block.requireChild("geom_object");
+    bc.geomLine = geom.line();
     const auto pieces = geom.children();
     if (pieces.size() != 1)
       geom.fail("a <scalar_flux> <geom_object> holds exactly one box, cylinder or sphere");

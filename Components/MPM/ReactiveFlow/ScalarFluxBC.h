@@ -29,8 +29,10 @@ struct ScalarFluxBC {
   // BC's surface (FluxSurfaceArea.h).
   bool particleFaceArea = false;
   int line = 0;
+  int geomLine = 0;  // of its <geom_object>
 
-  static std::vector<ScalarFluxBC> fromInput(const PSNode& physicalBC);
+  // The <scalar_flux> blocks, in file order, which MPM's reader of <PhysicalBC> hands over.
+  static std::vector<ScalarFluxBC> fromInput(const std::vector<PSNode>& blocks);
 
   // The area of the face this BC names for a particle at x, selected with the spacing dxp;
   // faceAreas are the particle's face areas normal to x, y, z (for smooth pieces: normal to r,
