@@ -148,7 +148,8 @@ void MPM::timeAdvance(double t, double dt) {
   }
   {
     ScopedTimer s(timers_, tasks_.particleUpdate);
-    stopTogether([&] { interpolateToParticlesAndUpdate(dt); });  // 7-8: G2P (Eq. 8), F, stress
+    // 7-8: G2P (Eq. 8), F, stress
+    collective::stopTogether([&] { interpolateToParticlesAndUpdate(dt); });
   }
   if (flags_.refineParticles) {
     ScopedTimer s(timers_, tasks_.splitting);
@@ -167,7 +168,7 @@ void MPM::timeAdvance(double t, double dt) {
 
 void MPM::computeWeightsAndActiveNodes() {
   NodeBox reached;
-  stopTogether([&] { reached = computeInterpolationWeights(); });
+  collective::stopTogether([&] { reached = computeInterpolationWeights(); });
   // The ghost nodes get the other ranks' parts: a stored node takes part in the step where any
   // rank's particles reach it (outside the ranks' stopTogether, as it is collective).
   previous_ = active_.box;
@@ -423,7 +424,7 @@ void MPM::splitParticles() {
     // (its particles stay in ID order), whatever rank holds a parent.
     std::vector<int64_t> parents;
     const std::vector<int64_t> mine = stretchedParticleIds(p, grid_, flags_.stretchRatio);
-    for (const std::string& ids : Communicator::allGather(std::string(
+    for (const std::string& ids : collective::allGather(std::string(
              reinterpret_cast<const char*>(mine.data()), mine.size() * sizeof(int64_t)))) {
       const size_t at = parents.size();
       parents.resize(at + ids.size() / sizeof(int64_t));
@@ -467,7 +468,7 @@ StableTimestep MPM::computeStableTimestep() const {
     limits.bound[StableTimestep::Diffusion] = diffusion_->diffusionTimestep(grid_);
     limits.bound[StableTimestep::Flux] = diffusion_->fluxTimestep(materials_);
   }
-  Communicator::minimum(limits.bound.data(), 2);  // Eqs. 43 and 44 over ranks
+  collective::minimum(limits.bound.data(), 2);  // Eqs. 43 and 44 over ranks
   return limits;
 }
 
@@ -502,9 +503,9 @@ StepSummary MPM::summarize() const {
   if (distributed_) {
     double sums[3] = {s.kineticEnergy, s.totalLithium, static_cast<double>(s.particles)};
     double lows[2] = {s.minJ, s.minConcentration}, highs[2] = {s.maxJ, s.maxConcentration};
-    Communicator::sum(sums, 3);
-    Communicator::minimum(lows, 2);
-    Communicator::maximum(highs, 2);
+    collective::sum(sums, 3);
+    collective::minimum(lows, 2);
+    collective::maximum(highs, 2);
     s.kineticEnergy = sums[0], s.totalLithium = sums[1], s.particles = static_cast<size_t>(sums[2]);
     s.minJ = lows[0], s.minConcentration = lows[1], s.maxJ = highs[0],
     s.maxConcentration = highs[1];

@@ -151,15 +151,15 @@ void StateChecks::afterStep(const MPM& mpm, double dt) {
     velocityEnergy += ve, velocityProduct += vp, concentrationEnergy += ce,
         concentrationProduct += cp;
   }
-  stopTogether([&] {
+  collective::stopTogether([&] {
     if (!problem.empty()) throw SimulationError(problem);
   });
   double sums[6] = {energy,          totalMass,           velocityEnergy,
                     velocityProduct, concentrationEnergy, concentrationProduct};
-  Communicator::sum(sums, 6);
+  collective::sum(sums, 6);
   energy = sums[0], totalMass = sums[1], velocityEnergy = sums[2], velocityProduct = sums[3],
   concentrationEnergy = sums[4], concentrationProduct = sums[5];
-  restart = Communicator::any(restart);
+  restart = collective::any(restart);
   if (restart) {
     velocityOscillation_ = concentrationOscillation_ = Oscillation();
   } else {
@@ -222,7 +222,7 @@ void StateChecks::checkOscillation(const MPM& mpm, double velocityEnergy, double
       if (size > worst) worst = size, worstM = m, worstI = i;
     }
   }
-  if (worst < Communicator::maximum(worst)) stopTogether([] {});
+  if (worst < collective::maximum(worst)) collective::stopTogether([] {});
   const ParticleSet& p = materials[worstM].particles;
   const Oscillation& o = velocity ? velocityOscillation_ : concentrationOscillation_;
   std::ostringstream s;
@@ -240,7 +240,7 @@ void StateChecks::checkOscillation(const MPM& mpm, double velocityEnergy, double
   else
     s << ": p.concentration = " << p.concentration[worstI] << " after a change of "
       << concentrationIncrement_[worstM][worstI];
-  stopTogether([&] { throw SimulationError(s.str()); });
+  collective::stopTogether([&] { throw SimulationError(s.str()); });
 }
 
 void StateChecks::checkKineticEnergy(const MPM& mpm, double energy) {
@@ -264,7 +264,7 @@ void StateChecks::checkKineticEnergy(const MPM& mpm, double energy) {
         fastM = m;
         fastI = i;
       }
-  if (fastest < Communicator::maximum(fastest)) stopTogether([] {});
+  if (fastest < collective::maximum(fastest)) collective::stopTogether([] {});
   std::ostringstream s;
   if (!std::isfinite(energy)) {
     s << "the kinetic energy overflows (" << energy << ")";
@@ -277,7 +277,7 @@ void StateChecks::checkKineticEnergy(const MPM& mpm, double energy) {
   }
   s << "; the fastest is " << describeParticle(materials[fastM], fastM, fastI)
     << " with p.velocity = " << formatVector(materials[fastM].particles.velocity[fastI]);
-  stopTogether([&] { throw SimulationError(s.str()); });
+  collective::stopTogether([&] { throw SimulationError(s.str()); });
 }
 
 }  // namespace anode

@@ -38,8 +38,8 @@ std::vector<std::string> SymmetryFaceWatch::start(const MPM& mpm) {
     const ParticleSet& p = mat.particles;
     Vec3 lo = Vec3::Constant(INFINITY), hi = -lo;
     for (const Vec3& x : p.x) lo = lo.cwiseMin(x), hi = hi.cwiseMax(x);
-    Communicator::minimum(lo.data(), 3);
-    Communicator::maximum(hi.data(), 3);
+    collective::minimum(lo.data(), 3);
+    collective::maximum(hi.data(), 3);
     bool startsOn[3][2] = {};
     for (const FaceBC& bc : mpm.faceBCs())
       if (bc.kind == FaceBC::Kind::Symmetric && bc.appliesTo(static_cast<int>(m)))
@@ -103,8 +103,8 @@ std::vector<std::string> SymmetryFaceWatch::afterStep(const MPM& mpm, long step,
     }
     lo[f.material] = Vec3(x0, y0, z0);
     hi[f.material] = Vec3(x1, y1, z1);
-    Communicator::minimum(lo[f.material].data(), 3);
-    Communicator::maximum(hi[f.material].data(), 3);
+    collective::minimum(lo[f.material].data(), 3);
+    collective::maximum(hi[f.material].data(), 3);
   }
   for (size_t w = 0; w < watched_.size();) {
     const Face f = watched_[w];
@@ -120,7 +120,7 @@ std::vector<std::string> SymmetryFaceWatch::afterStep(const MPM& mpm, long step,
       ++reached;
     watched_.erase(watched_.begin() + static_cast<long>(w));  // once per face and material
     // The lowest rank holding such a particle reports it.
-    if (Communicator::firstRankWith(reached < p.count()) != Communicator::rank()) continue;
+    if (collective::firstRankWith(reached < p.count()) != Communicator::rank()) continue;
     std::ostringstream s;
     s << "warning: step " << step << ", t = " << t << ": "
       << describeParticle(mat, f.material, reached)

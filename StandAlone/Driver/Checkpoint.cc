@@ -267,7 +267,7 @@ void writeCheckpoint(const std::string& path, const CheckpointHeader& header,
   std::vector<std::string> partHashes;
   if (distributed) {
     const uint64_t hash = writePart(path, mpm);
-    partHashes = Communicator::allGather(std::string(reinterpret_cast<const char*>(&hash), 8));
+    partHashes = collective::allGather(std::string(reinterpret_cast<const char*>(&hash), 8));
   } else {
     fs::create_directories(fs::path(path).parent_path());
   }
@@ -307,7 +307,7 @@ CheckpointHeader loadCheckpoint(const std::string& path, DataArchiver* outputs, 
   } catch (const std::runtime_error& e) {
     error = e.what();
   }
-  const int failed = Communicator::firstRankWith(!error.empty());
+  const int failed = collective::firstRankWith(!error.empty());
   if (failed >= 0)
     throw std::runtime_error(failed == Communicator::rank()
                                  ? error

@@ -136,10 +136,10 @@ void Simulation::start(bool restart) {
   } else {
     // Rank 0 picks the directory (the next free version) for all.
     archiver_.open(
-        Communicator::broadcast(
-            Communicator::isRoot() ? chooseOutputDirectory(options_.outputDir, archiver_.filebase())
-                                   : "",
-            0),
+        collective::broadcast(Communicator::isRoot()
+                                  ? chooseOutputDirectory(options_.outputDir, archiver_.filebase())
+                                  : "",
+                              0),
         options_.input);
   }
   outputTask_ = mpm_.timers().task("output");
@@ -163,7 +163,7 @@ double Simulation::wallTime() const {
 
 bool Simulation::finished() const {
   return t_ >= time_.maxTime || (time_.maxTimesteps > 0 && step_ >= time_.maxTimesteps) ||
-         (time_.maxWallTime > 0 && Communicator::any(wallTime() >= time_.maxWallTime));
+         (time_.maxWallTime > 0 && collective::any(wallTime() >= time_.maxWallTime));
 }
 
 std::string Simulation::restartFromNewestCheckpoint() {
@@ -172,7 +172,7 @@ std::string Simulation::restartFromNewestCheckpoint() {
     removeTemporaryFiles(options_.restartDir);
     removeUnfinishedCheckpointParts(options_.restartDir);
   }
-  Communicator::barrier();
+  collective::barrier();
   newestCheckpoint_ = loadNewestCheckpoint();
   firstStepOfThisProcess_ = step_;
   scenes_.skipTimesUpTo(t_);
@@ -229,7 +229,7 @@ void Simulation::reportSymmetryFaces() {
 Simulation::Requests Simulation::requestsOfAnyRank(bool done) const {
   double anyRank[2] = {stopRequested() ? 1.0 : 0.0,
                        wallTime() - newestCheckpointWallTime_ >= kReplayInterval ? 1.0 : 0.0};
-  if (!done) Communicator::maximum(anyRank, 2);
+  if (!done) collective::maximum(anyRank, 2);
   return {!done && anyRank[0] > 0, !done && anyRank[1] > 0};
 }
 
@@ -311,7 +311,7 @@ void Simulation::writeCheckpoint(CheckpointKind kind) {
       removeOldCheckpoints(dir, kind, 1);
     }
   }
-  Communicator::barrier();
+  collective::barrier();
   newestCheckpointWallTime_ = wallTime();
 }
 
@@ -373,17 +373,17 @@ void Simulation::printTimings() const {
   // Per task the slowest rank's time (the others wait for it at the next exchange).
   const TaskTimers& timers = mpm_.timers();
   std::vector<double> seconds = timers.seconds();
-  Communicator::maximum(seconds.data(), static_cast<int>(seconds.size()));
+  collective::maximum(seconds.data(), static_cast<int>(seconds.size()));
   const size_t particles =
-      static_cast<size_t>(Communicator::sum(static_cast<int64_t>(mpm_.numParticles())));
+      static_cast<size_t>(collective::sum(static_cast<int64_t>(mpm_.numParticles())));
   const double imbalance = mpm_.imbalance();
   double communication[2] = {Communicator::bytesSent(), Communicator::communicationSeconds()};
-  Communicator::sum(communication, 1);
-  Communicator::maximum(communication + 1, 1);
+  collective::sum(communication, 1);
+  collective::maximum(communication + 1, 1);
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
   const double ownPeak = usage.ru_maxrss * 1024.0;  // Linux: kilobytes
-  const double peakBytes = Communicator::maximum(ownPeak), allPeaks = Communicator::sum(ownPeak);
+  const double peakBytes = collective::maximum(ownPeak), allPeaks = collective::sum(ownPeak);
   if (!Communicator::isRoot()) return;
   double total = 0;
   for (double v : seconds) total += v;

@@ -151,7 +151,7 @@ double ExternalScalarFlux::stableTimestep(const std::vector<MPMMaterial>& materi
     }
   }
   double lows[4] = {-maxInflowRate_, -maxOutflowRate_, -fullest, emptiest};
-  Communicator::minimum(lows, 4);
+  collective::minimum(lows, 4);
   double dt = std::numeric_limits<double>::infinity();
   if (lows[0] < 0) dt = std::min(dt, fluxStepToRoot(-lows[2]) / -lows[0]);
   if (lows[1] < 0) dt = std::min(dt, fluxStepToRoot(1 - lows[3]) / -lows[1]);
@@ -174,11 +174,11 @@ void ExternalScalarFlux::updateAutoCycle(const std::vector<MPMMaterial>& materia
     n += mat.particles.count();
   }
   // Over every rank's particles (the identity on one rank).
-  const double count = Communicator::sum(static_cast<double>(n));
+  const double count = collective::sum(static_cast<double>(n));
   if (count == 0) return;
-  const double mean = Communicator::sum(sum) / count;
-  lo = Communicator::minimum(lo);
-  hi = Communicator::maximum(hi);
+  const double mean = collective::sum(sum) / count;
+  lo = collective::minimum(lo);
+  hi = collective::maximum(hi);
   if (sign_ > 0 && (flags.autoCycleUseMinMax ? lo : mean) > flags.autoCycleMax) sign_ = -1;
   if (sign_ < 0 && (flags.autoCycleUseMinMax ? hi : mean) < flags.autoCycleMin) sign_ = 1;
 }
