@@ -222,25 +222,28 @@ void StateChecks::checkOscillation(const MPM& mpm, double velocityEnergy, double
       if (size > worst) worst = size, worstM = m, worstI = i;
     }
   }
-  if (worst < collective::maximum(worst)) collective::stopTogether([] {});
-  const ParticleSet& p = materials[worstM].particles;
-  const Oscillation& o = velocity ? velocityOscillation_ : concentrationOscillation_;
-  std::ostringstream s;
-  s << "the particle " << (velocity ? "velocities" : "concentrations")
-    << " oscillate with growing amplitude: for " << o.steps
-    << " steps each step's increment reversed the previous one "
-    << "(mass-weighted correlation " << correlation << ") and their energy grew by a factor of "
-    << growth << ": the explicit " << (velocity ? "momentum" : "diffusion")
-    << " update is unstable at this time step (lower <timestep_multiplier>); the largest increment "
-       "is at "
-    << describeParticle(materials[worstM], worstM, worstI);
-  if (velocity)
-    s << ": p.velocity = " << formatVector(p.velocity[worstI]) << " after a change of "
-      << formatVector(velocityIncrement_[worstM][worstI]);
-  else
-    s << ": p.concentration = " << p.concentration[worstI] << " after a change of "
-      << concentrationIncrement_[worstM][worstI];
-  collective::stopTogether([&] { throw SimulationError(s.str()); });
+  const bool holdsWorst = worst == collective::maximum(worst);
+  collective::stopTogether([&] {
+    if (!holdsWorst) return;
+    const ParticleSet& p = materials[worstM].particles;
+    const Oscillation& o = velocity ? velocityOscillation_ : concentrationOscillation_;
+    std::ostringstream s;
+    s << "the particle " << (velocity ? "velocities" : "concentrations")
+      << " oscillate with growing amplitude: for " << o.steps
+      << " steps each step's increment reversed the previous one "
+      << "(mass-weighted correlation " << correlation << ") and their energy grew by a factor of "
+      << growth << ": the explicit " << (velocity ? "momentum" : "diffusion")
+      << " update is unstable at this time step (lower <timestep_multiplier>); the largest "
+         "increment is at "
+      << describeParticle(materials[worstM], worstM, worstI);
+    if (velocity)
+      s << ": p.velocity = " << formatVector(p.velocity[worstI]) << " after a change of "
+        << formatVector(velocityIncrement_[worstM][worstI]);
+    else
+      s << ": p.concentration = " << p.concentration[worstI] << " after a change of "
+        << concentrationIncrement_[worstM][worstI];
+    throw SimulationError(s.str());
+  });
 }
 
 void StateChecks::checkKineticEnergy(const MPM& mpm, double energy) {
@@ -264,20 +267,23 @@ void StateChecks::checkKineticEnergy(const MPM& mpm, double energy) {
         fastM = m;
         fastI = i;
       }
-  if (fastest < collective::maximum(fastest)) collective::stopTogether([] {});
-  std::ostringstream s;
-  if (!std::isfinite(energy)) {
-    s << "the kinetic energy overflows (" << energy << ")";
-  } else {
-    s << "the kinetic energy grew by a factor of at least " << kGrowthPerStep
-      << " at each of the last " << growingSteps_ << " steps, from " << energyBeforeGrowth_
-      << " to " << energy
-      << ": a numerical instability (a time step beyond the stable one: lower "
-         "<timestep_multiplier>)";
-  }
-  s << "; the fastest is " << describeParticle(materials[fastM], fastM, fastI)
-    << " with p.velocity = " << formatVector(materials[fastM].particles.velocity[fastI]);
-  collective::stopTogether([&] { throw SimulationError(s.str()); });
+  const bool holdsFastest = fastest == collective::maximum(fastest);
+  collective::stopTogether([&] {
+    if (!holdsFastest) return;
+    std::ostringstream s;
+    if (!std::isfinite(energy)) {
+      s << "the kinetic energy overflows (" << energy << ")";
+    } else {
+      s << "the kinetic energy grew by a factor of at least " << kGrowthPerStep
+        << " at each of the last " << growingSteps_ << " steps, from " << energyBeforeGrowth_
+        << " to " << energy
+        << ": a numerical instability (a time step beyond the stable one: lower "
+           "<timestep_multiplier>)";
+    }
+    s << "; the fastest is " << describeParticle(materials[fastM], fastM, fastI)
+      << " with p.velocity = " << formatVector(materials[fastM].particles.velocity[fastI]);
+    throw SimulationError(s.str());
+  });
 }
 
 }  // namespace anode
