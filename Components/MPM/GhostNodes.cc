@@ -18,8 +18,8 @@ void forNodes(const Grid& local, const NodeBox& b, F&& f) {
 
 }  // namespace
 
-GhostNodes::GhostNodes(const Decomposition& d, const Grid& whole, const Grid& local, int rank,
-                       int ghost)
+GhostNodes::GhostNodes(Collective, const Decomposition& d, const Grid& whole, const Grid& local,
+                       int rank, int ghost)
     : neighbours_(Collective{}, d.neighbours(whole, rank, ghost)), rank_(rank), local_(local) {
   slotOfNode_.assign(local.numNodes(), -1);
   for (int r : neighbours_.ranks()) {
@@ -35,7 +35,7 @@ GhostNodes::GhostNodes(const Decomposition& d, const Grid& whole, const Grid& lo
     }
 }
 
-NodeBox GhostNodes::setReach(const NodeBox& mine) {
+NodeBox GhostNodes::setReach(Collective, const NodeBox& mine) {
   // One all-reduce of the lowest corners and the negated highest; a rank reaching no node adds
   // nothing.
   constexpr double none = 1e9;
@@ -53,7 +53,7 @@ NodeBox GhostNodes::setReach(const NodeBox& mine) {
   return reachOfAll_;
 }
 
-void GhostNodes::sumOverRanks(const std::vector<NodeArray>& arrays) {
+void GhostNodes::sumOverRanks(Collective, const std::vector<NodeArray>& arrays) {
   const std::vector<int>& ranks = neighbours_.ranks();
   if (ranks.empty()) return;
   int width = 0;
@@ -121,7 +121,7 @@ void GhostNodes::sumOverRanks(const std::vector<NodeArray>& arrays) {
   }
 }
 
-void GhostNodes::unionOverRanks(std::vector<unsigned char>& marks) const {
+void GhostNodes::unionOverRanks(Collective, std::vector<unsigned char>& marks) const {
   const std::vector<int>& ranks = neighbours_.ranks();
   if (ranks.empty()) return;
   std::vector<std::string> send(ranks.size()), receive;

@@ -115,7 +115,7 @@ void MPM::layOutGrid() {
   previous_ = {};
 }
 
-void MPM::timeAdvance(double t, double dt) {
+void MPM::timeAdvance(Collective, double t, double dt) {
   // The tasks in order (docs/diffusion.md lists the diffusion part of each). DESIGN.md §4 has the
   // same ones but computes D and the flux rate at the start of a step: here task 10 computes
   // them for the new state, which its output and its time step (Eq. 44) need as well. In a
@@ -158,7 +158,7 @@ void MPM::timeAdvance(double t, double dt) {
   if (diffusion_) {
     // 10: the range check of c, then D (Eqs. 23-24) and the flux rates (Eqs. 16-17) at t + dt
     ScopedTimer s(timers_, tasks_.diffusionState);
-    diffusion_->updateDiffusionState(materials_, t + dt);
+    diffusion_->updateDiffusionState(Collective{}, materials_, t + dt);
   }
   if (distributed_) {
     ScopedTimer s(timers_, tasks_.communication);
@@ -172,7 +172,8 @@ void MPM::computeWeightsAndActiveNodes() {
   // The ghost nodes get the other ranks' parts: a stored node takes part in the step where any
   // rank's particles reach it (outside the ranks' stopTogether, as it is collective).
   previous_ = active_.box;
-  active_ = ActiveNodes::of(grid_, distributed_ ? ghosts_.setReach(reached) : reached);
+  active_ =
+      ActiveNodes::of(grid_, distributed_ ? ghosts_.setReach(Collective{}, reached) : reached);
 }
 
 NodeBox MPM::computeInterpolationWeights() {
@@ -447,7 +448,7 @@ size_t MPM::numParticles() const {
   return n;
 }
 
-StableTimestep MPM::computeStableTimestep() const {
+StableTimestep MPM::computeStableTimestep(Collective) const {
   StableTimestep limits;
   double& dt = limits.bound[StableTimestep::Mechanics];
   for (const MPMMaterial& mat : materials_) {
@@ -466,13 +467,13 @@ StableTimestep MPM::computeStableTimestep() const {
   }
   if (diffusion_) {
     limits.bound[StableTimestep::Diffusion] = diffusion_->diffusionTimestep(grid_);
-    limits.bound[StableTimestep::Flux] = diffusion_->fluxTimestep(materials_);
+    limits.bound[StableTimestep::Flux] = diffusion_->fluxTimestep(Collective{}, materials_);
   }
   collective::minimum(limits.bound.data(), 2);  // Eqs. 43 and 44 over ranks
   return limits;
 }
 
-void MPM::interpolateToGridForOutput() {
+void MPM::interpolateToGridForOutput(Collective) {
   computeWeightsAndActiveNodes();
   interpolateParticlesToGrid();
   if (distributed_) sumGhostNodes();
@@ -483,7 +484,7 @@ void MPM::releaseInterpolationWeights() {
   for (InterpolationWeights& w : weights_) w = InterpolationWeights();
 }
 
-StepSummary MPM::summarize() const {
+StepSummary MPM::summarize(Collective) const {
   StepSummary s;
   s.minJ = std::numeric_limits<double>::infinity();
   s.maxJ = -std::numeric_limits<double>::infinity();

@@ -83,15 +83,15 @@ void MPM::decompose(bool allHere) {
 void MPM::layOutWindow() {
   const int me = Communicator::rank();
   grid_ = decomposition_.window(whole_, me, ghostWidth_);
-  ghosts_ = GhostNodes(decomposition_, whole_, grid_, me, ghostWidth_);
+  ghosts_ = GhostNodes(Collective{}, decomposition_, whole_, grid_, me, ghostWidth_);
   layOutGrid();
 }
 
-void MPM::redistributeParticles() {
+void MPM::redistributeParticles(Collective) {
   decompose(false);
 }
 
-double MPM::imbalance() const {
+double MPM::imbalance(Collective) const {
   const double mine = static_cast<double>(numParticles());
   const double most = collective::maximum(mine), total = collective::sum(mine);
   return total > 0 ? most / (total / Communicator::size()) : 1.0;
@@ -105,7 +105,7 @@ void MPM::sumGhostNodes() {
     sums.push_back({g.internalForce.data()->data(), 3});
   }
   if (diffusion_) diffusion_->addScatteredArrays(sums);
-  ghosts_.sumOverRanks(sums);
+  ghosts_.sumOverRanks(Collective{}, sums);
 }
 
 void MPM::migrateParticles() {

@@ -70,7 +70,7 @@ bool StateChecks::oscillates(Oscillation& o, double energy, double product, doub
          (o.steps >= kSustainedSteps && *growth >= kSustainedGrowth);
 }
 
-void StateChecks::afterStep(const MPM& mpm, double dt) {
+void StateChecks::afterStep(Collective, const MPM& mpm, double dt) {
   const auto& materials = mpm.materials();
   const size_t count = materials.size();
   if (velocity_.size() != count || mpm.layoutGeneration() != layoutGeneration_) {

@@ -29,7 +29,7 @@ std::string materialName(const MPMMaterial& mat, size_t m) {
 
 }  // namespace
 
-std::vector<std::string> SymmetryFaceWatch::start(const MPM& mpm) {
+std::vector<std::string> SymmetryFaceWatch::start(Collective, const MPM& mpm) {
   const Grid& g = mpm.grid();
   std::vector<std::string> notes;
   watched_.clear();
@@ -81,7 +81,8 @@ std::vector<std::string> SymmetryFaceWatch::start(const MPM& mpm) {
   return notes;
 }
 
-std::vector<std::string> SymmetryFaceWatch::afterStep(const MPM& mpm, long step, double t) {
+std::vector<std::string> SymmetryFaceWatch::afterStep(Collective, const MPM& mpm, long step,
+                                                      double t) {
   std::vector<std::string> warnings;
   if (watched_.empty()) return warnings;
   const Grid& g = mpm.grid();

@@ -261,7 +261,7 @@ uint64_t fileHash(const std::string& path) {
   return h.value();
 }
 
-void writeCheckpoint(const std::string& path, const CheckpointHeader& header,
+void writeCheckpoint(Collective, const std::string& path, const CheckpointHeader& header,
                      const DataArchiver& archiver, const MPM& mpm) {
   const bool distributed = header.ranks > 1;
   std::vector<std::string> partHashes;
@@ -297,7 +297,8 @@ void writeCheckpoint(const std::string& path, const CheckpointHeader& header,
   });
 }
 
-CheckpointHeader loadCheckpoint(const std::string& path, DataArchiver* outputs, MPM& mpm) {
+CheckpointHeader loadCheckpoint(Collective, const std::string& path, DataArchiver* outputs,
+                                MPM& mpm) {
   // Read on every rank, then agreed on, before any collective step of laying the particles out.
   CheckpointHeader header;
   MPM::Layout layout;
@@ -313,9 +314,9 @@ CheckpointHeader loadCheckpoint(const std::string& path, DataArchiver* outputs, 
                                  ? error
                                  : path + ": unreadable on rank " + std::to_string(failed));
   if (header.ranks != Communicator::size())
-    mpm.keepOwnShare();
+    mpm.keepOwnShare(Collective{});
   else if (header.ranks > 1)
-    mpm.adoptLayout(layout);
+    mpm.adoptLayout(Collective{}, layout);
   return header;
 }
 

@@ -233,7 +233,7 @@ bool DataArchiver::isOutputStep(long step, double time) const {
   return time >= next * (1 - 1e-12);
 }
 
-void DataArchiver::writeOutput(long step, double time, const MPM& mpm) {
+void DataArchiver::writeOutput(Collective, long step, double time, const MPM& mpm) {
   const std::string name = stepName("step_", step);
   const std::string particleFile =
       writeParticles("particles/" + name, gatherParticles(mpm, particleLabels_));
@@ -249,7 +249,7 @@ void DataArchiver::writeOutput(long step, double time, const MPM& mpm) {
   writeHistory();
 }
 
-std::string DataArchiver::writeFailedState(long step, const MPM& mpm) const {
+std::string DataArchiver::writeFailedState(Collective, long step, const MPM& mpm) const {
   const std::string file = writeParticles("particles/" + stepName("failed_step_", step),
                                           gatherParticles(mpm, particleLabels_));
   return (fs::path(dir_) / file).string();

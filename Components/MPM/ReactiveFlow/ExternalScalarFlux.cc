@@ -132,7 +132,8 @@ void ExternalScalarFlux::computeFluxRates(std::vector<MPMMaterial>& materials, d
   }
 }
 
-double ExternalScalarFlux::stableTimestep(const std::vector<MPMMaterial>& materials) const {
+double ExternalScalarFlux::stableTimestep(Collective,
+                                          const std::vector<MPMMaterial>& materials) const {
   // A particle's source s_p = R(c_p) sum_i S_ip G_i / W_i (docs/diffusion.md step 5), and each
   // G_i / W_i is a weighted mean of unrestricted rates, at most the largest of its sign. The
   // step to the root falls as c nears it, so the fullest particle below the root (for an
@@ -158,7 +159,7 @@ double ExternalScalarFlux::stableTimestep(const std::vector<MPMMaterial>& materi
   return dt;
 }
 
-void ExternalScalarFlux::updateAutoCycle(const std::vector<MPMMaterial>& materials,
+void ExternalScalarFlux::updateAutoCycle(Collective, const std::vector<MPMMaterial>& materials,
                                          const MPMFlags& flags) {
   // Mean (or min and max) normalised concentration of the materials with <do_conc_reduction>.
   double sum = 0, lo = std::numeric_limits<double>::infinity(), hi = -lo;
