@@ -62,7 +62,7 @@ int run(anode::RunOptions& options) {
     // core for 2 ranks or fewer) makes the threads take turns: said once, not changed.
     const int cores = coresOfThisRank();
     const int crowded =
-        anode::Communicator::firstRankWith(cores > 0 && omp_get_max_threads() > cores);
+        anode::collective::firstRankWith(cores > 0 && omp_get_max_threads() > cores);
     if (root) {
       if (anode::Communicator::size() > 1)
         std::fprintf(stderr, "sus: %d ranks x %d thread(s), instruction set %s\n",

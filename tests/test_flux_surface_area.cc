@@ -105,7 +105,7 @@ TEST(FluxSurfaceArea, SphereTakesUpItsAreaAndTheFrontIsRound) {
   EXPECT_NEAR(area / octant, 1.0, 0.02);
   // The first step takes up rho J A dt (R(0) = 1).
   sim.advance();
-  EXPECT_NEAR(sim.mpm().summarize().totalLithium / (sim.dt() * octant), 1.0, 0.02);
+  EXPECT_NEAR(sim.mpm().summarize(Collective{}).totalLithium / (sim.dt() * octant), 1.0, 0.02);
   while (sim.time() < 0.04 - 1e-9) sim.advance();
   // The front (c = 0.1, about half the surface value) 4.4 cells deep: as deep along the diagonal
   // as along each axis, within a quarter of the particle spacing (it is within 0.02 of it; with

@@ -33,19 +33,19 @@ struct NodeBox {
 class GhostNodes {
  public:
   GhostNodes() = default;
-  // The shared nodes of rank `rank` (window `local`) with its neighbours. Collective.
-  GhostNodes(const Decomposition& d, const Grid& whole, const Grid& local, int rank, int ghost);
+  // The shared nodes of rank `rank` (window `local`) with its neighbours.
+  GhostNodes(Collective, const Decomposition& d, const Grid& whole, const Grid& local, int rank,
+             int ghost);
 
   bool empty() const { return neighbours_.ranks().empty(); }
   // This step's nodes: this rank's particles reach none outside `mine`. Returns the box holding
-  // every rank's, outside which no rank has a part in any sum. Collective.
-  NodeBox setReach(const NodeBox& mine);
+  // every rank's, outside which no rank has a part in any sum.
+  NodeBox setReach(Collective, const NodeBox& mine);
   // Completes the sums of `arrays` on the shared nodes (each rank's part added in rank order),
-  // after this step's setReach. Collective.
-  void sumOverRanks(const std::vector<NodeArray>& arrays);
+  // after this step's setReach.
+  void sumOverRanks(Collective, const std::vector<NodeArray>& arrays);
   // The bitwise OR of each rank's marks on the shared nodes, after this step's setReach.
-  // Collective.
-  void unionOverRanks(std::vector<unsigned char>& marks) const;
+  void unionOverRanks(Collective, std::vector<unsigned char>& marks) const;
   const std::vector<int>& neighbours() const { return neighbours_.ranks(); }
   const Neighbourhood& neighbourhood() const { return neighbours_; }
 

@@ -95,7 +95,7 @@ void MPM::layOutGrid() {
   previous_ = {};
 }
 
-void MPM::timeAdvance(double t, double dt) {
+void MPM::timeAdvance(Collective, double t, double dt) {
   // The tasks in order (docs/diffusion.md lists the diffusion part of each). DESIGN.md §4 has the
   // same ones but computes D and the flux rate at the start of a step: here task 10 computes
   // them for the new state, which its output and its time step (Eq. 44) need as well. In a
@@ -128,7 +128,8 @@ void MPM::timeAdvance(double t, double dt) {
   }
   {
     ScopedTimer s(timers_, tasks_.particleUpdate);
-    stopTogether([&] { interpolateToParticlesAndUpdate(dt); });  // 7-8: G2P (Eq. 8), F, stress
+    // 7-8: G2P (Eq. 8), F, stress
+    collective::stopTogether([&] { interpolateToParticlesAndUpdate(dt); });
   }
   if (flags_.refineParticles) {
     ScopedTimer s(timers_, tasks_.splitting);
@@ -137,7 +138,7 @@ void MPM::timeAdvance(double t, double dt) {
   if (diffusion_) {
     // 10: the range check of c, then D (Eqs. 23-24) and the flux rates (Eqs. 16-17) at t + dt
     ScopedTimer s(timers_, tasks_.diffusionState);
-    diffusion_->updateDiffusionState(materials_, t + dt);
+    diffusion_->updateDiffusionState(Collective{}, materials_, t + dt);
   }
   if (distributed_) {
     ScopedTimer s(timers_, tasks_.communication);
@@ -302,7 +303,7 @@ void MPM::splitParticles() {
     // (its particles stay in ID order), whatever rank holds a parent.
     std::vector<int64_t> parents;
     const std::vector<int64_t> mine = stretchedParticleIds(p, grid_, flags_.stretchRatio);
-    for (const std::string& ids : Communicator::allGather(std::string(
+    for (const std::string& ids : collective::allGather(std::string(
              reinterpret_cast<const char*>(mine.data()), mine.size() * sizeof(int64_t)))) {
       const size_t at = parents.size();
       parents.resize(at + ids.size() / sizeof(int64_t));
@@ -325,7 +326,7 @@ size_t MPM::numParticles() const {
   return n;
 }
 
-StableTimestep MPM::computeStableTimestep() const {
+StableTimestep MPM::computeStableTimestep(Collective) const {
   StableTimestep limits;
   double& dt = limits.bound[StableTimestep::Mechanics];
   for (const MPMMaterial& mat : materials_) {
@@ -344,13 +345,13 @@ StableTimestep MPM::computeStableTimestep() const {
   }
   if (diffusion_) {
     limits.bound[StableTimestep::Diffusion] = diffusion_->diffusionTimestep(grid_);
-    limits.bound[StableTimestep::Flux] = diffusion_->fluxTimestep(materials_);
+    limits.bound[StableTimestep::Flux] = diffusion_->fluxTimestep(Collective{}, materials_);
   }
-  Communicator::minimum(limits.bound.data(), 2);  // Eqs. 43 and 44 over ranks
+  collective::minimum(limits.bound.data(), 2);  // Eqs. 43 and 44 over ranks
   return limits;
 }
 
-void MPM::interpolateToGridForOutput() {
+void MPM::interpolateToGridForOutput(Collective) {
   computeWeightsAndActiveNodes();
   interpolateParticlesToGrid();
   if (distributed_) sumGhostNodes();
@@ -361,7 +362,7 @@ void MPM::releaseInterpolationWeights() {
   for (InterpolationWeights& w : weights_) w = InterpolationWeights();
 }
 
-StepSummary MPM::summarize() const {
+StepSummary MPM::summarize(Collective) const {
   StepSummary s;
   s.minJ = std::numeric_limits<double>::infinity();
   s.maxJ = -std::numeric_limits<double>::infinity();
@@ -381,9 +382,9 @@ StepSummary MPM::summarize() const {
   if (distributed_) {
     double sums[3] = {s.kineticEnergy, s.totalLithium, static_cast<double>(s.particles)};
     double lows[2] = {s.minJ, s.minConcentration}, highs[2] = {s.maxJ, s.maxConcentration};
-    Communicator::sum(sums, 3);
-    Communicator::minimum(lows, 2);
-    Communicator::maximum(highs, 2);
+    collective::sum(sums, 3);
+    collective::minimum(lows, 2);
+    collective::maximum(highs, 2);
     s.kineticEnergy = sums[0], s.totalLithium = sums[1], s.particles = static_cast<size_t>(sums[2]);
     s.minJ = lows[0], s.minConcentration = lows[1], s.maxJ = highs[0],
     s.maxConcentration = highs[1];

@@ -35,23 +35,23 @@ class MPM {
 
   // Advances the state from time t by dt (DESIGN.md §4). Throws SimulationError when a particle
   // leaves the grid, J <= 0, or a concentration leaves [min, max] beyond kConcentrationTolerance
-  // (in a distributed run on every rank together: Core/Parallel/StopTogether.h). Collective.
-  void timeAdvance(double t, double dt);
+  // (in a distributed run on every rank together: Core/Parallel/StopTogether.h).
+  void timeAdvance(Collective, double t, double dt);
   // Largest stable dt of the current state before the multiplier: paper Eq. 45, the smallest of
-  // the mechanical Eq. 43 and the diffusion limits (Eq. 44 and the flux limit). Collective.
-  StableTimestep computeStableTimestep() const;
+  // the mechanical Eq. 43 and the diffusion limits (Eq. 44 and the flux limit).
+  StableTimestep computeStableTimestep(Collective) const;
   // Shares the particles out anew among the ranks from their counts per cell plane (after a
-  // restart, or when the particles per rank have drifted apart). Collective.
-  void redistributeParticles();
-  // Largest over mean particles per rank. Collective.
-  double imbalance() const;
+  // restart, or when the particles per rank have drifted apart).
+  void redistributeParticles(Collective);
+  // Largest over mean particles per rank.
+  double imbalance(Collective) const;
   // Interpolation weights and the grid fields of the current state (for output of g.* labels).
-  void interpolateToGridForOutput();
+  void interpolateToGridForOutput(Collective);
   // Frees the interpolation weights between steps so output can use the memory; the next step
   // lays them out again.
   void releaseInterpolationWeights();
-  // Totals over every rank's particles. Collective.
-  StepSummary summarize() const;
+  // Totals over every rank's particles.
+  StepSummary summarize(Collective) const;
 
   // The state a step starts from (every particle array and the scalars carried between steps),
   // for checkpoints (MPMState.cc). loadState expects the materials of the same input and throws
@@ -61,17 +61,17 @@ class MPM {
   // The same particles appended to this rank's (a distributed checkpoint read part by part).
   void appendState(BinaryReader& in);
   // The boxes of a distributed run, for its checkpoint; adoptLayout takes them back after each
-  // rank loaded its own part (Collective).
+  // rank loaded its own part.
   struct Layout {
     std::array<std::vector<int>, 3> cuts;  // per axis (Decomposition::cuts)
     int ghostWidth = 0;
   };
   void saveLayout(BinaryWriter& out) const;
   static Layout readLayout(BinaryReader& in);
-  void adoptLayout(const Layout& layout);
+  void adoptLayout(Collective, const Layout& layout);
   // After every rank loaded all particles (a checkpoint of another rank count): puts them in ID
-  // order and keeps this rank's share under a decomposition drawn anew. Collective.
-  void keepOwnShare();
+  // order and keeps this rank's share under a decomposition drawn anew.
+  void keepOwnShare(Collective);
 
   // The nodes this rank stores (the whole grid on one rank; its window in a distributed run).
   const Grid& grid() const { return grid_; }

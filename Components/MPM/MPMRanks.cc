@@ -34,7 +34,7 @@ int MPM::computeGhostWidth(bool allHere) const {
     for (long i = 0; i < n; ++i)
       reach = std::max(reach, 0.5 * (p.F[i] * p.size[i]).cwiseAbs().rowwise().sum().maxCoeff());
   }
-  if (!allHere) reach = Communicator::maximum(reach);
+  if (!allHere) reach = collective::maximum(reach);
   return std::max(2, static_cast<int>(std::ceil(reach)) + 1);
 }
 
@@ -56,7 +56,7 @@ void MPM::decompose(bool allHere) {
         planes[d][std::clamp(static_cast<int>(std::floor(xi[d])), 0, whole_.cells[d] - 1)] += 1;
     }
   if (!allHere)
-    for (int d = 0; d < 3; ++d) Communicator::sum(planes[d].data(), whole_.cells[d]);
+    for (int d = 0; d < 3; ++d) collective::sum(planes[d].data(), whole_.cells[d]);
   decomposition_ = Decomposition::balanced(whole_.cells, ranks, planes);
   ghostWidth_ = computeGhostWidth(allHere);
   std::vector<std::string> send(ranks);
@@ -70,7 +70,7 @@ void MPM::decompose(bool allHere) {
     keepParticles(p, to[me]);
   }
   if (!allHere) {
-    const std::vector<std::string> received = Communicator::exchangeWithAll(send);
+    const std::vector<std::string> received = collective::exchangeWithAll(send);
     for (int r = 0; r < ranks; ++r) {
       if (r == me) continue;
       const char* in = received[r].data();
@@ -83,17 +83,17 @@ void MPM::decompose(bool allHere) {
 void MPM::layOutWindow() {
   const int me = Communicator::rank();
   grid_ = decomposition_.window(whole_, me, ghostWidth_);
-  ghosts_ = GhostNodes(decomposition_, whole_, grid_, me, ghostWidth_);
+  ghosts_ = GhostNodes(Collective{}, decomposition_, whole_, grid_, me, ghostWidth_);
   layOutGrid();
 }
 
-void MPM::redistributeParticles() {
+void MPM::redistributeParticles(Collective) {
   decompose(false);
 }
 
-double MPM::imbalance() const {
+double MPM::imbalance(Collective) const {
   const double mine = static_cast<double>(numParticles());
-  const double most = Communicator::maximum(mine), total = Communicator::sum(mine);
+  const double most = collective::maximum(mine), total = collective::sum(mine);
   return total > 0 ? most / (total / Communicator::size()) : 1.0;
 }
 
@@ -105,7 +105,7 @@ void MPM::sumGhostNodes() {
     sums.push_back({g.internalForce.data()->data(), 3});
   }
   if (diffusion_) diffusion_->addScatteredArrays(sums);
-  ghosts_.sumOverRanks(sums);
+  ghosts_.sumOverRanks(Collective{}, sums);
 }
 
 void MPM::migrateParticles() {
@@ -137,7 +137,7 @@ void MPM::migrateParticles() {
     }
     for (size_t q = 0; q < neighbours.size(); ++q) packParticles(p, leaving[q], send[q]);
   }
-  stopTogether([&] {
+  collective::stopTogether([&] {
     if (stray >= 0)
       throw SimulationError(describeParticle(materials_[strayMaterial], strayMaterial, stray) +
                             " moved in one step from rank " + std::to_string(me) +
@@ -145,7 +145,7 @@ void MPM::migrateParticles() {
                             "'s, beyond the boxes next to it");
   });
   std::vector<std::string> received;
-  ghosts_.neighbourhood().exchange(send, received);
+  collective::exchangeWithNeighbours(ghosts_.neighbourhood(), send, received);
   for (size_t m = 0; m < materials_.size(); ++m) {
     ParticleSet& p = materials_[m].particles;
     Reordering& r = reordering_[m];

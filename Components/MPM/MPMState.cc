@@ -64,7 +64,7 @@ MPM::Layout MPM::readLayout(BinaryReader& in) {
   return layout;
 }
 
-void MPM::adoptLayout(const Layout& layout) {
+void MPM::adoptLayout(Collective, const Layout& layout) {
   ghostWidth_ = layout.ghostWidth;
   for (int d = 0; d < 3; ++d)
     if (layout.cuts[d].size() < 2 || layout.cuts[d].back() != whole_.cells[d])
@@ -73,7 +73,7 @@ void MPM::adoptLayout(const Layout& layout) {
   layOutWindow();
 }
 
-void MPM::keepOwnShare() {
+void MPM::keepOwnShare(Collective) {
   for (MPMMaterial& mat : materials_) {
     ParticleSet& p = mat.particles;
     std::vector<long> order(p.count());

@@ -14,11 +14,12 @@ namespace anode {
 
 void MPM::computeWeightsAndActiveNodes() {
   NodeBox reached;
-  stopTogether([&] { reached = computeInterpolationWeights(); });
+  collective::stopTogether([&] { reached = computeInterpolationWeights(); });
   // The ghost nodes get the other ranks' parts: a stored node takes part in the step where any
   // rank's particles reach it (outside the ranks' stopTogether, as it is collective).
   previous_ = active_.box;
-  active_ = ActiveNodes::of(grid_, distributed_ ? ghosts_.setReach(reached) : reached);
+  active_ =
+      ActiveNodes::of(grid_, distributed_ ? ghosts_.setReach(Collective{}, reached) : reached);
 }
 
 NodeBox MPM::computeInterpolationWeights() {

@@ -70,7 +70,7 @@ bool StateChecks::oscillates(Oscillation& o, double energy, double product, doub
          (o.steps >= kSustainedSteps && *growth >= kSustainedGrowth);
 }
 
-void StateChecks::afterStep(const MPM& mpm, double dt) {
+void StateChecks::afterStep(Collective, const MPM& mpm, double dt) {
   const auto& materials = mpm.materials();
   const size_t count = materials.size();
   if (velocity_.size() != count || mpm.layoutGeneration() != layoutGeneration_) {
@@ -151,15 +151,15 @@ void StateChecks::afterStep(const MPM& mpm, double dt) {
     velocityEnergy += ve, velocityProduct += vp, concentrationEnergy += ce,
         concentrationProduct += cp;
   }
-  stopTogether([&] {
+  collective::stopTogether([&] {
     if (!problem.empty()) throw SimulationError(problem);
   });
   double sums[6] = {energy,          totalMass,           velocityEnergy,
                     velocityProduct, concentrationEnergy, concentrationProduct};
-  Communicator::sum(sums, 6);
+  collective::sum(sums, 6);
   energy = sums[0], totalMass = sums[1], velocityEnergy = sums[2], velocityProduct = sums[3],
   concentrationEnergy = sums[4], concentrationProduct = sums[5];
-  restart = Communicator::any(restart);
+  restart = collective::any(restart);
   if (restart) {
     velocityOscillation_ = concentrationOscillation_ = Oscillation();
   } else {
@@ -222,25 +222,28 @@ void StateChecks::checkOscillation(const MPM& mpm, double velocityEnergy, double
       if (size > worst) worst = size, worstM = m, worstI = i;
     }
   }
-  if (worst < Communicator::maximum(worst)) stopTogether([] {});
-  const ParticleSet& p = materials[worstM].particles;
-  const Oscillation& o = velocity ? velocityOscillation_ : concentrationOscillation_;
-  std::ostringstream s;
-  s << "the particle " << (velocity ? "velocities" : "concentrations")
-    << " oscillate with growing amplitude: for " << o.steps
-    << " steps each step's increment reversed the previous one "
-    << "(mass-weighted correlation " << correlation << ") and their energy grew by a factor of "
-    << growth << ": the explicit " << (velocity ? "momentum" : "diffusion")
-    << " update is unstable at this time step (lower <timestep_multiplier>); the largest increment "
-       "is at "
-    << describeParticle(materials[worstM], worstM, worstI);
-  if (velocity)
-    s << ": p.velocity = " << formatVector(p.velocity[worstI]) << " after a change of "
-      << formatVector(velocityIncrement_[worstM][worstI]);
-  else
-    s << ": p.concentration = " << p.concentration[worstI] << " after a change of "
-      << concentrationIncrement_[worstM][worstI];
-  stopTogether([&] { throw SimulationError(s.str()); });
+  const bool holdsWorst = worst == collective::maximum(worst);
+  collective::stopTogether([&] {
+    if (!holdsWorst) return;
+    const ParticleSet& p = materials[worstM].particles;
+    const Oscillation& o = velocity ? velocityOscillation_ : concentrationOscillation_;
+    std::ostringstream s;
+    s << "the particle " << (velocity ? "velocities" : "concentrations")
+      << " oscillate with growing amplitude: for " << o.steps
+      << " steps each step's increment reversed the previous one "
+      << "(mass-weighted correlation " << correlation << ") and their energy grew by a factor of "
+      << growth << ": the explicit " << (velocity ? "momentum" : "diffusion")
+      << " update is unstable at this time step (lower <timestep_multiplier>); the largest "
+         "increment is at "
+      << describeParticle(materials[worstM], worstM, worstI);
+    if (velocity)
+      s << ": p.velocity = " << formatVector(p.velocity[worstI]) << " after a change of "
+        << formatVector(velocityIncrement_[worstM][worstI]);
+    else
+      s << ": p.concentration = " << p.concentration[worstI] << " after a change of "
+        << concentrationIncrement_[worstM][worstI];
+    throw SimulationError(s.str());
+  });
 }
 
 void StateChecks::checkKineticEnergy(const MPM& mpm, double energy) {
@@ -264,20 +267,23 @@ void StateChecks::checkKineticEnergy(const MPM& mpm, double energy) {
         fastM = m;
         fastI = i;
       }
-  if (fastest < Communicator::maximum(fastest)) stopTogether([] {});
-  std::ostringstream s;
-  if (!std::isfinite(energy)) {
-    s << "the kinetic energy overflows (" << energy << ")";
-  } else {
-    s << "the kinetic energy grew by a factor of at least " << kGrowthPerStep
-      << " at each of the last " << growingSteps_ << " steps, from " << energyBeforeGrowth_
-      << " to " << energy
-      << ": a numerical instability (a time step beyond the stable one: lower "
-         "<timestep_multiplier>)";
-  }
-  s << "; the fastest is " << describeParticle(materials[fastM], fastM, fastI)
-    << " with p.velocity = " << formatVector(materials[fastM].particles.velocity[fastI]);
-  stopTogether([&] { throw SimulationError(s.str()); });
+  const bool holdsFastest = fastest == collective::maximum(fastest);
+  collective::stopTogether([&] {
+    if (!holdsFastest) return;
+    std::ostringstream s;
+    if (!std::isfinite(energy)) {
+      s << "the kinetic energy overflows (" << energy << ")";
+    } else {
+      s << "the kinetic energy grew by a factor of at least " << kGrowthPerStep
+        << " at each of the last " << growingSteps_ << " steps, from " << energyBeforeGrowth_
+        << " to " << energy
+        << ": a numerical instability (a time step beyond the stable one: lower "
+           "<timestep_multiplier>)";
+    }
+    s << "; the fastest is " << describeParticle(materials[fastM], fastM, fastI)
+      << " with p.velocity = " << formatVector(materials[fastM].particles.velocity[fastI]);
+    throw SimulationError(s.str());
+  });
 }
 
 }  // namespace anode

@@ -51,8 +51,8 @@ class StateChecks {
   static constexpr double kLocalMotion = 1e-9;
 
   // Checks the state after a step of length dt; throws SimulationError on the first problem found
-  // (in a distributed run on every rank together). Collective.
-  void afterStep(const MPM& mpm, double dt);
+  // (in a distributed run on every rank together).
+  void afterStep(Collective, const MPM& mpm, double dt);
 
  private:
   // The oscillation watch of one field (velocity or concentration).

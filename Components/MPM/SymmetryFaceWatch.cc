@@ -29,7 +29,7 @@ std::string materialName(const MPMMaterial& mat, size_t m) {
 
 }  // namespace
 
-std::vector<std::string> SymmetryFaceWatch::start(const MPM& mpm) {
+std::vector<std::string> SymmetryFaceWatch::start(Collective, const MPM& mpm) {
   const Grid& g = mpm.grid();
   std::vector<std::string> notes;
   watched_.clear();
@@ -38,8 +38,8 @@ std::vector<std::string> SymmetryFaceWatch::start(const MPM& mpm) {
     const ParticleSet& p = mat.particles;
     Vec3 lo = Vec3::Constant(INFINITY), hi = -lo;
     for (const Vec3& x : p.x) lo = lo.cwiseMin(x), hi = hi.cwiseMax(x);
-    Communicator::minimum(lo.data(), 3);
-    Communicator::maximum(hi.data(), 3);
+    collective::minimum(lo.data(), 3);
+    collective::maximum(hi.data(), 3);
     bool startsOn[3][2] = {};
     for (const BCFace& bc : mpm.gridBCs().symmetric)
       if (bc.appliesTo(static_cast<int>(m)))
@@ -79,7 +79,8 @@ std::vector<std::string> SymmetryFaceWatch::start(const MPM& mpm) {
   return notes;
 }
 
-std::vector<std::string> SymmetryFaceWatch::afterStep(const MPM& mpm, long step, double t) {
+std::vector<std::string> SymmetryFaceWatch::afterStep(Collective, const MPM& mpm, long step,
+                                                      double t) {
   std::vector<std::string> warnings;
   if (watched_.empty()) return warnings;
   const Grid& g = mpm.grid();
@@ -101,8 +102,8 @@ std::vector<std::string> SymmetryFaceWatch::afterStep(const MPM& mpm, long step,
     }
     lo[f.material] = Vec3(x0, y0, z0);
     hi[f.material] = Vec3(x1, y1, z1);
-    Communicator::minimum(lo[f.material].data(), 3);
-    Communicator::maximum(hi[f.material].data(), 3);
+    collective::minimum(lo[f.material].data(), 3);
+    collective::maximum(hi[f.material].data(), 3);
   }
   for (size_t w = 0; w < watched_.size();) {
     const Face f = watched_[w];
@@ -118,7 +119,7 @@ std::vector<std::string> SymmetryFaceWatch::afterStep(const MPM& mpm, long step,
       ++reached;
     watched_.erase(watched_.begin() + static_cast<long>(w));  // once per face and material
     // The lowest rank holding such a particle reports it.
-    if (Communicator::firstRankWith(reached < p.count()) != Communicator::rank()) continue;
+    if (collective::firstRankWith(reached < p.count()) != Communicator::rank()) continue;
     std::ostringstream s;
     s << "warning: step " << step << ", t = " << t << ": "
       << describeParticle(mat, f.material, reached)

@@ -15,10 +15,10 @@ class SymmetryFaceWatch {
  public:
   // Finds the Symmetric faces each material starts on (a particle within one cell of the face)
   // and returns the setup notes.
-  std::vector<std::string> start(const MPM& mpm);
+  std::vector<std::string> start(Collective, const MPM& mpm);
   // The warnings of the step that ended at (step, t): a material's particle within one cell of
   // a Symmetric face it did not start on, once per face and material.
-  std::vector<std::string> afterStep(const MPM& mpm, long step, double t);
+  std::vector<std::string> afterStep(Collective, const MPM& mpm, long step, double t);
 
  private:
   struct Face {

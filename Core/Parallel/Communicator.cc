@@ -87,30 +87,39 @@ int Communicator::size() {
   return worldSize;
 }
 
-void Communicator::sum(double* values, int n) {
+double Communicator::communicationSeconds() {
+  return seconds;
+}
+double Communicator::bytesSent() {
+  return bytes;
+}
+
+namespace collective {
+
+void sum(double* values, int n) {
   reduce(values, n, MPI_SUM);
 }
-void Communicator::minimum(double* values, int n) {
+void minimum(double* values, int n) {
   reduce(values, n, MPI_MIN);
 }
-void Communicator::maximum(double* values, int n) {
+void maximum(double* values, int n) {
   reduce(values, n, MPI_MAX);
 }
 
-double Communicator::sum(double v) {
+double sum(double v) {
   sum(&v, 1);
   return v;
 }
-double Communicator::minimum(double v) {
+double minimum(double v) {
   minimum(&v, 1);
   return v;
 }
-double Communicator::maximum(double v) {
+double maximum(double v) {
   maximum(&v, 1);
   return v;
 }
 
-int64_t Communicator::sum(int64_t v) {
+int64_t sum(int64_t v) {
   if (!started) return v;
   CommunicationTimer t;
   bytes += 8;
@@ -118,11 +127,11 @@ int64_t Communicator::sum(int64_t v) {
   return v;
 }
 
-bool Communicator::any(bool v) {
+bool any(bool v) {
   return firstRankWith(v) >= 0;
 }
 
-int Communicator::firstRankWith(bool flag) {
+int firstRankWith(bool flag) {
   int first = flag ? worldRank : worldSize;
   if (started) {
     CommunicationTimer t;
@@ -133,13 +142,13 @@ int Communicator::firstRankWith(bool flag) {
   return first < worldSize ? first : -1;
 }
 
-void Communicator::barrier() {
+void barrier() {
   if (!started) return;
   CommunicationTimer t;
   check(MPI_Barrier(MPI_COMM_WORLD), "MPI_Barrier");
 }
 
-std::string Communicator::broadcast(const std::string& data, int root) {
+std::string broadcast(const std::string& data, int root) {
   if (!started) return data;
   CommunicationTimer t;
   long long n = static_cast<long long>(data.size());
@@ -150,7 +159,7 @@ std::string Communicator::broadcast(const std::string& data, int root) {
   return out;
 }
 
-std::vector<std::string> Communicator::allGather(const std::string& data) {
+std::vector<std::string> allGather(const std::string& data) {
   if (!started) return {data};
   CommunicationTimer t;
   int n = byteCount(data.size());
@@ -167,7 +176,7 @@ std::vector<std::string> Communicator::allGather(const std::string& data) {
   return out;
 }
 
-std::vector<std::string> Communicator::exchangeWithAll(const std::vector<std::string>& send) {
+std::vector<std::string> exchangeWithAll(const std::vector<std::string>& send) {
   if (!started) return send;
   CommunicationTimer t;
   std::vector<int> sendCounts(worldSize), receiveCounts(worldSize);
@@ -191,18 +200,13 @@ std::vector<std::string> Communicator::exchangeWithAll(const std::vector<std::st
   return received;
 }
 
-double Communicator::communicationSeconds() {
-  return seconds;
-}
-double Communicator::bytesSent() {
-  return bytes;
-}
+}  // namespace collective
 
 struct Neighbourhood::Handle {
   MPI_Comm graph = MPI_COMM_NULL;
 };
 
-Neighbourhood::Neighbourhood(std::vector<int> ranks) : ranks_(std::move(ranks)) {
+Neighbourhood::Neighbourhood(Collective, std::vector<int> ranks) : ranks_(std::move(ranks)) {
   if (!started) return;
   handle_ = std::make_unique<Handle>();
   const int n = static_cast<int>(ranks_.size());
@@ -228,11 +232,12 @@ Neighbourhood& Neighbourhood::operator=(Neighbourhood&& other) noexcept {
   return *this;
 }
 
-void Neighbourhood::exchange(const std::vector<std::string>& send,
-                             std::vector<std::string>& receive) const {
-  const size_t n = ranks_.size();
+void collective::exchangeWithNeighbours(const Neighbourhood& neighbours,
+                                        const std::vector<std::string>& send,
+                                        std::vector<std::string>& receive) {
+  const size_t n = neighbours.ranks_.size();
   receive.resize(n);
-  if (!handle_) return;
+  if (!neighbours.handle_) return;
   CommunicationTimer t;
   std::vector<int> sendCounts(n), receiveCounts(n);
   for (size_t i = 0; i < n; ++i) {
@@ -240,7 +245,7 @@ void Neighbourhood::exchange(const std::vector<std::string>& send,
     bytes += static_cast<double>(send[i].size());
   }
   check(MPI_Neighbor_alltoall(sendCounts.data(), 1, MPI_INT, receiveCounts.data(), 1, MPI_INT,
-                              handle_->graph),
+                              neighbours.handle_->graph),
         "MPI_Neighbor_alltoall");
   std::string out, in;
   for (const auto& s : send) out += s;
@@ -248,7 +253,8 @@ void Neighbourhood::exchange(const std::vector<std::string>& send,
                          receiveAt = displacements(receiveCounts);
   in.resize(n ? static_cast<size_t>(receiveAt.back()) + receiveCounts.back() : 0);
   check(MPI_Neighbor_alltoallv(out.data(), sendCounts.data(), sendAt.data(), MPI_CHAR, in.data(),
-                               receiveCounts.data(), receiveAt.data(), MPI_CHAR, handle_->graph),
+                               receiveCounts.data(), receiveAt.data(), MPI_CHAR,
+                               neighbours.handle_->graph),
         "MPI_Neighbor_alltoallv");
   for (size_t i = 0; i < n; ++i) receive[i] = in.substr(receiveAt[i], receiveCounts[i]);
 }

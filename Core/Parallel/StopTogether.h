@@ -18,9 +18,11 @@ class StoppedOnAnotherRank : public SimulationError {
       : SimulationError("stopped by rank " + std::to_string(rank)) {}
 };
 
+namespace collective {
+
 // Runs `phase`; when it throws a SimulationError on any rank, every rank throws after it: the
-// lowest such rank its own error, the others StoppedOnAnotherRank. Collective (one reduction of
-// an int; nothing on a run of one rank).
+// lowest such rank its own error, the others StoppedOnAnotherRank. One reduction of an int
+// (nothing on a run of one rank).
 template <class Phase>
 void stopTogether(Phase&& phase) {
   std::exception_ptr error;
@@ -29,10 +31,12 @@ void stopTogether(Phase&& phase) {
   } catch (const SimulationError&) {
     error = std::current_exception();
   }
-  const int first = Communicator::firstRankWith(error != nullptr);
+  const int first = firstRankWith(error != nullptr);
   if (first < 0) return;
   if (first == Communicator::rank()) std::rethrow_exception(error);
   throw StoppedOnAnotherRank(first);
 }
+
+}  // namespace collective
 
 }  // namespace anode

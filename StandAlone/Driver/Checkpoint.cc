@@ -261,13 +261,13 @@ uint64_t fileHash(const std::string& path) {
   return h.value();
 }
 
-void writeCheckpoint(const std::string& path, const CheckpointHeader& header,
+void writeCheckpoint(Collective, const std::string& path, const CheckpointHeader& header,
                      const DataArchiver& archiver, const MPM& mpm) {
   const bool distributed = header.ranks > 1;
   std::vector<std::string> partHashes;
   if (distributed) {
     const uint64_t hash = writePart(path, mpm);
-    partHashes = Communicator::allGather(std::string(reinterpret_cast<const char*>(&hash), 8));
+    partHashes = collective::allGather(std::string(reinterpret_cast<const char*>(&hash), 8));
   } else {
     fs::create_directories(fs::path(path).parent_path());
   }
@@ -297,7 +297,8 @@ void writeCheckpoint(const std::string& path, const CheckpointHeader& header,
   });
 }
 
-CheckpointHeader loadCheckpoint(const std::string& path, DataArchiver* outputs, MPM& mpm) {
+CheckpointHeader loadCheckpoint(Collective, const std::string& path, DataArchiver* outputs,
+                                MPM& mpm) {
   // Read on every rank, then agreed on, before any collective step of laying the particles out.
   CheckpointHeader header;
   MPM::Layout layout;
@@ -307,15 +308,15 @@ CheckpointHeader loadCheckpoint(const std::string& path, DataArchiver* outputs, 
   } catch (const std::runtime_error& e) {
     error = e.what();
   }
-  const int failed = Communicator::firstRankWith(!error.empty());
+  const int failed = collective::firstRankWith(!error.empty());
   if (failed >= 0)
     throw std::runtime_error(failed == Communicator::rank()
                                  ? error
                                  : path + ": unreadable on rank " + std::to_string(failed));
   if (header.ranks != Communicator::size())
-    mpm.keepOwnShare();
+    mpm.keepOwnShare(Collective{});
   else if (header.ranks > 1)
-    mpm.adoptLayout(layout);
+    mpm.adoptLayout(Collective{}, layout);
   return header;
 }
 

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "Components/MPM/StableTimestep.h"
+#include "Core/Parallel/Communicator.h"
 #include "Core/ProblemSpec/ProblemSpec.h"
 
 namespace anode {
@@ -76,12 +77,13 @@ uint64_t fileHash(const std::string& path);
 
 // Writes the checkpoint `path`: on one rank one file (header, output state, particles); on
 // several, every rank's part, then rank 0's manifest (header, output state, boxes, the parts'
-// hashes) under the checkpoint's name, so that it is complete once that name exists. Collective.
-void writeCheckpoint(const std::string& path, const CheckpointHeader& header,
+// hashes) under the checkpoint's name, so that it is complete once that name exists.
+void writeCheckpoint(Collective, const std::string& path, const CheckpointHeader& header,
                      const DataArchiver& archiver, const MPM& mpm);
 // Reads the checkpoint `path` into `mpm` on every rank, its particles shared out among this run's
 // ranks, and into `outputs` (the output series and the last history row) unless null; returns its
-// header. Throws std::runtime_error, on every rank together. Collective.
-CheckpointHeader loadCheckpoint(const std::string& path, DataArchiver* outputs, MPM& mpm);
+// header. Throws std::runtime_error, on every rank together.
+CheckpointHeader loadCheckpoint(Collective, const std::string& path, DataArchiver* outputs,
+                                MPM& mpm);
 
 }  // namespace anode

@@ -140,7 +140,7 @@ void DataArchiver::open(const std::string& dir, const std::string& inputFile) {
       fs::copy_file(inputFile, tmp, fs::copy_options::overwrite_existing);
     });
   }
-  Communicator::barrier();
+  collective::barrier();
 }
 
 namespace {
@@ -173,13 +173,13 @@ std::string DataArchiver::writeParticles(const std::string& base, const Particle
   }
   // The pieces of the ranks holding particles (rank 0's when none does), then the .pvtu: every
   // piece is in place when the gather returns.
-  const bool anyHeld = Communicator::any(data.count() > 0);
+  const bool anyHeld = collective::any(data.count() > 0);
   const bool writes = data.count() > 0 || (!anyHeld && Communicator::isRoot());
   if (writes)
     writeParticlesVTU((fs::path(dir_) / pieceName(base, Communicator::rank(), ".vtu")).string(),
                       data);
   const std::vector<std::string> types =
-      Communicator::allGather(writes ? "+" + arrayTypes(data.arrays) : "");
+      collective::allGather(writes ? "+" + arrayTypes(data.arrays) : "");
   if (Communicator::isRoot()) {
     std::vector<std::string> pieces;
     ParticleData sample;
@@ -208,7 +208,7 @@ std::string DataArchiver::writeGrid(const std::string& base, const GridData& dat
   std::ostringstream extent;
   for (int d = 0; d < 3; ++d)
     extent << data.first[d] << " " << data.first[d] + data.dims[d] - 1 << " ";
-  const std::vector<std::string> extents = Communicator::allGather(extent.str());
+  const std::vector<std::string> extents = collective::allGather(extent.str());
   if (Communicator::isRoot()) {
     std::vector<std::string> pieces;
     std::vector<std::array<int, 6>> pieceExtents;
@@ -233,7 +233,7 @@ bool DataArchiver::isOutputStep(long step, double time) const {
   return time >= next * (1 - 1e-12);
 }
 
-void DataArchiver::writeOutput(long step, double time, const MPM& mpm) {
+void DataArchiver::writeOutput(Collective, long step, double time, const MPM& mpm) {
   const std::string name = stepName("step_", step);
   const std::string particleFile =
       writeParticles("particles/" + name, gatherParticles(mpm, particleLabels_));
@@ -249,7 +249,7 @@ void DataArchiver::writeOutput(long step, double time, const MPM& mpm) {
   writeHistory();
 }
 
-std::string DataArchiver::writeFailedState(long step, const MPM& mpm) const {
+std::string DataArchiver::writeFailedState(Collective, long step, const MPM& mpm) const {
   const std::string file = writeParticles("particles/" + stepName("failed_step_", step),
                                           gatherParticles(mpm, particleLabels_));
   return (fs::path(dir_) / file).string();
@@ -367,7 +367,7 @@ void DataArchiver::removeOutputsAfter(long step) {
   }
   unwritten_.clear();
   historyStarted_ = true;
-  if (Communicator::any(!error.empty()))
+  if (collective::any(!error.empty()))
     throw std::runtime_error(Communicator::isRoot() ? error
                                                     : "rank 0 could not restore history.csv");
 }

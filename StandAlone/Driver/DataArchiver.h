@@ -41,13 +41,13 @@ class DataArchiver {
   bool isOutputStep(long step, double time) const;
   // Writes particles (and grid, if asked) for this state and records it in the .pvd series; in a
   // distributed run every rank writes its piece and rank 0 the .pvtu (.pvti) over them, then the
-  // .pvd. Collective.
-  void writeOutput(long step, double time, const MPM& mpm);
+  // .pvd.
+  void writeOutput(Collective, long step, double time, const MPM& mpm);
   // The step of the last writeOutput (-1 before the first).
   long lastOutputStep() const { return lastOutputStep_; }
   // Writes the particles of a step that failed a check to particles/failed_step_NNNNNN.vtu (or
-  // .pvtu), outside the .pvd series; returns that path. Collective.
-  std::string writeFailedState(long step, const MPM& mpm) const;
+  // .pvtu), outside the .pvd series; returns that path.
+  std::string writeFailedState(Collective, long step, const MPM& mpm) const;
   void recordHistory(const HistoryRow& row) {
     unwritten_.push_back(row);
     lastRow_ = row;

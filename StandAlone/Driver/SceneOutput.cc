@@ -62,7 +62,7 @@ ParticleData gatherToRoot(ParticleData data) {
   };
   append(data.points);
   for (const NamedArray& a : data.arrays) append(a.real);
-  const std::vector<std::string> all = Communicator::allGather(bytes);
+  const std::vector<std::string> all = collective::allGather(bytes);
   if (!Communicator::isRoot()) return {};
   ParticleData out = data;
   out.points.clear();

@@ -46,16 +46,16 @@ void Simulation::setup() {
 }
 
 void Simulation::takeStableTimestep(double previousDt) {
-  const StableTimestep stable = mpm_.computeStableTimestep();
+  const StableTimestep stable = mpm_.computeStableTimestep(Collective{});
   dt_ = time_.nextTimestep(stable.dt(), previousDt, t_);
   dtLimit_ = stable.binding();
 }
 
 void Simulation::advance() {
   try {
-    mpm_.timeAdvance(t_, dt_);
+    mpm_.timeAdvance(Collective{}, t_, dt_);
     ScopedTimer timer(mpm_.timers(), mpm_.timers().task("stateChecks"));
-    checks_.afterStep(mpm_, dt_);
+    checks_.afterStep(Collective{}, mpm_, dt_);
   } catch (const StoppedOnAnotherRank&) {
     throw;
   } catch (const SimulationError& e) {
@@ -77,11 +77,11 @@ void Simulation::run() {
   runStart_ = std::chrono::steady_clock::now();
   inputHash_ = fileHash(options_.input);
   const bool restart = !options_.restartDir.empty();
-  start(restart);
+  start(Collective{}, restart);
   if (options_.progress && Communicator::isRoot())
     progress_.emplace(t_, time_.maxTime, step_, time_.maxTimesteps);
   // A checkpoint at the end of the run (killed before it wrote its last output) has no step left.
-  const bool nothingLeft = restart && finished();
+  const bool nothingLeft = restart && finished(Collective{});
   if (nothingLeft && archiver_.lastOutputStep() != step_) writeOutput(false);
   while (!nothingLeft) {
     const double stepDt = dt_;
@@ -96,21 +96,21 @@ void Simulation::run() {
     particleSteps_ += particles;
     particleStepsOfThisProcess_ += particles;
     reportSymmetryFaces();
-    const bool done = finished();
+    const bool done = finished(Collective{});
     // A rebalance is followed by a checkpoint, so a replay to the last good state never
     // crosses one (it takes the same steps with the same boxes).
     bool rebalanced = false;
     if (done || archiver_.isOutputStep(step_, t_)) {
       writeOutput(true);
-      rebalanced = !done && rebalance();
+      rebalanced = !done && rebalance(Collective{});
     }
     scenes_.renderDue(t_, mpm_, archiver_.directory());
-    const Requests anyRank = requestsOfAnyRank(done);
+    const Requests anyRank = requestsOfAnyRank(Collective{}, done);
     stoppedOnRequest_ = anyRank.stop;
     if (checkpoints_.isDue(step_, t_, lastCheckpointTime_))
-      writeCheckpoint(CheckpointKind::Scheduled);
+      writeCheckpoint(Collective{}, CheckpointKind::Scheduled);
     else if (rebalanced || anyRank.stop || anyRank.replayCheckpoint)
-      writeCheckpoint(CheckpointKind::Automatic);
+      writeCheckpoint(Collective{}, CheckpointKind::Automatic);
     if (progress_)
       progress_->update(step_, t_, stepDt, StableTimestep::name(stepLimit),
                         particleStepsOfThisProcess_, done);
@@ -129,22 +129,22 @@ void Simulation::run() {
   wallSeconds_ = wallTime();
 }
 
-void Simulation::start(bool restart) {
+void Simulation::start(Collective, bool restart) {
   std::string restartedFrom;
   if (restart) {
-    restartedFrom = restartFromNewestCheckpoint();
+    restartedFrom = restartFromNewestCheckpoint(Collective{});
   } else {
     // Rank 0 picks the directory (the next free version) for all.
     archiver_.open(
-        Communicator::broadcast(
-            Communicator::isRoot() ? chooseOutputDirectory(options_.outputDir, archiver_.filebase())
-                                   : "",
-            0),
+        collective::broadcast(Communicator::isRoot()
+                                  ? chooseOutputDirectory(options_.outputDir, archiver_.filebase())
+                                  : "",
+                              0),
         options_.input);
   }
   outputTask_ = mpm_.timers().task("output");
   checkpointTask_ = mpm_.timers().task("checkpoint");
-  reportSetup();
+  reportSetup(Collective{});
   if (restart) {
     if (Communicator::isRoot())
       std::fprintf(stderr, "sus: restarting from %s (step %ld, t = %.6e)\n", restartedFrom.c_str(),
@@ -153,7 +153,7 @@ void Simulation::start(bool restart) {
     recordHistoryRow(0.0);
     writeOutput(false);
     scenes_.renderDue(t_, mpm_, archiver_.directory());
-    writeCheckpoint(CheckpointKind::Automatic);
+    writeCheckpoint(Collective{}, CheckpointKind::Automatic);
   }
 }
 
@@ -161,27 +161,27 @@ double Simulation::wallTime() const {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - runStart_).count();
 }
 
-bool Simulation::finished() const {
+bool Simulation::finished(Collective) const {
   return t_ >= time_.maxTime || (time_.maxTimesteps > 0 && step_ >= time_.maxTimesteps) ||
-         (time_.maxWallTime > 0 && Communicator::any(wallTime() >= time_.maxWallTime));
+         (time_.maxWallTime > 0 && collective::any(wallTime() >= time_.maxWallTime));
 }
 
-std::string Simulation::restartFromNewestCheckpoint() {
+std::string Simulation::restartFromNewestCheckpoint(Collective) {
   archiver_.reopen(options_.restartDir);
   if (Communicator::isRoot()) {
     removeTemporaryFiles(options_.restartDir);
     removeUnfinishedCheckpointParts(options_.restartDir);
   }
-  Communicator::barrier();
+  collective::barrier();
   newestCheckpoint_ = loadNewestCheckpoint();
   firstStepOfThisProcess_ = step_;
   scenes_.skipTimesUpTo(t_);
   return newestCheckpoint_;
 }
 
-void Simulation::reportSetup() {
-  const size_t particles = mpm_.summarize().particles;
-  layoutImbalance_ = mpm_.imbalance();
+void Simulation::reportSetup(Collective) {
+  const size_t particles = mpm_.summarize(Collective{}).particles;
+  layoutImbalance_ = mpm_.imbalance(Collective{});
   if (Communicator::isRoot()) {
     std::fprintf(stderr,
                  "sus: %zu particles in %zu material(s), grid %dx%dx%d cells, output in %s\n",
@@ -196,12 +196,12 @@ void Simulation::reportSetup() {
       for (const std::string& line : mpm_.diffusion()->setupReport())
         std::fprintf(stderr, "sus: %s\n", line.c_str());
   }
-  for (const std::string& note : symmetryFaces_.start(mpm_))
+  for (const std::string& note : symmetryFaces_.start(Collective{}, mpm_))
     if (Communicator::isRoot()) std::fprintf(stderr, "%s\n", note.c_str());
 }
 
 size_t Simulation::recordHistoryRow(double stepDt) {
-  const StepSummary s = mpm_.summarize();
+  const StepSummary s = mpm_.summarize(Collective{});
   archiver_.recordHistory({step_, s.particles, t_, stepDt, s.kineticEnergy, s.minJ, s.maxJ,
                            earlierWallSeconds_ + wallTime(), s.diffusion, s.totalLithium,
                            s.minConcentration, s.maxConcentration});
@@ -212,34 +212,34 @@ void Simulation::writeOutput(bool afterStep) {
   ScopedTimer timer(mpm_.timers(), outputTask_);
   // Before any step of this process (the start, or a restart with no step left) the grid labels
   // are interpolated from the particles.
-  if (archiver_.wantsGrid() && !afterStep) mpm_.interpolateToGridForOutput();
+  if (archiver_.wantsGrid() && !afterStep) mpm_.interpolateToGridForOutput(Collective{});
   // Between steps the weights are not needed: the output's copy of the particles takes their
   // memory instead of adding to the peak.
   mpm_.releaseInterpolationWeights();
-  archiver_.writeOutput(step_, t_, mpm_);
+  archiver_.writeOutput(Collective{}, step_, t_, mpm_);
 }
 
 void Simulation::reportSymmetryFaces() {
-  for (const std::string& warning : symmetryFaces_.afterStep(mpm_, step_, t_)) {
+  for (const std::string& warning : symmetryFaces_.afterStep(Collective{}, mpm_, step_, t_)) {
     if (progress_) progress_->finish();
     std::fprintf(stderr, "%s\n", warning.c_str());
   }
 }
 
-Simulation::Requests Simulation::requestsOfAnyRank(bool done) const {
+Simulation::Requests Simulation::requestsOfAnyRank(Collective, bool done) const {
   double anyRank[2] = {stopRequested() ? 1.0 : 0.0,
                        wallTime() - newestCheckpointWallTime_ >= kReplayInterval ? 1.0 : 0.0};
-  if (!done) Communicator::maximum(anyRank, 2);
+  if (!done) collective::maximum(anyRank, 2);
   return {!done && anyRank[0] > 0, !done && anyRank[1] > 0};
 }
 
-bool Simulation::rebalance() {
+bool Simulation::rebalance(Collective) {
   if (Communicator::size() == 1) return false;
-  const double before = mpm_.imbalance();
+  const double before = mpm_.imbalance(Collective{});
   if (before <= kRebalanceImbalance * layoutImbalance_) return false;
   ScopedTimer timer(mpm_.timers(), mpm_.timers().task("rebalance"));
-  mpm_.redistributeParticles();
-  const double after = mpm_.imbalance();
+  mpm_.redistributeParticles(Collective{});
+  const double after = mpm_.imbalance(Collective{});
   if (Communicator::isRoot())
     std::fprintf(stderr,
                  "sus: step %ld: particles per rank max/mean %.3f, %.2f times the %.3f the boxes "
@@ -255,12 +255,12 @@ void Simulation::writeStateOnStop() {
   if (progress_) progress_->finish();
   // The failing step's particles outside the .pvd series, then the last good state (the end of
   // step_) as the series' last entry.
-  const std::string failed = archiver_.writeFailedState(step_ + 1, mpm_);
+  const std::string failed = archiver_.writeFailedState(Collective{}, step_ + 1, mpm_);
   replayToLastGoodState();
   if (Communicator::isRoot()) removeAutomaticCheckpoints(archiver_.directory());
   if (archiver_.lastOutputStep() != step_) {
-    if (archiver_.wantsGrid()) mpm_.interpolateToGridForOutput();
-    archiver_.writeOutput(step_, t_, mpm_);
+    if (archiver_.wantsGrid()) mpm_.interpolateToGridForOutput(Collective{});
+    archiver_.writeOutput(Collective{}, step_, t_, mpm_);
   }
   if (Communicator::isRoot())
     std::fprintf(
@@ -272,16 +272,16 @@ void Simulation::writeStateOnStop() {
 
 void Simulation::replayToLastGoodState() {
   const long lastGood = step_;
-  loadCheckpoint(newestCheckpoint_, false);
+  loadCheckpoint(Collective{}, newestCheckpoint_, false);
   if (step_ < lastGood && Communicator::isRoot())
     std::fprintf(stderr, "sus: replaying steps %ld to %ld from %s for the last good state\n",
                  step_ + 1, lastGood, newestCheckpoint_.c_str());
   while (step_ < lastGood) {
-    mpm_.timeAdvance(t_, dt_);
+    mpm_.timeAdvance(Collective{}, t_, dt_);
     finishStep();
   }
   // The replayed state must be the one the run had: its history row says what it was.
-  const StepSummary s = mpm_.summarize();
+  const StepSummary s = mpm_.summarize(Collective{});
   const HistoryRow& row = archiver_.lastHistoryRow();
   if ((row.step != step_ || row.kineticEnergy != s.kineticEnergy ||
        row.totalLithium != s.totalLithium) &&
@@ -292,14 +292,14 @@ void Simulation::replayToLastGoodState() {
         step_, s.kineticEnergy, row.kineticEnergy);
 }
 
-void Simulation::writeCheckpoint(CheckpointKind kind) {
+void Simulation::writeCheckpoint(Collective, CheckpointKind kind) {
   ScopedTimer timer(mpm_.timers(), checkpointTask_);
   const double wallSeconds = earlierWallSeconds_ + wallTime();
   archiver_.writeHistory();  // history.csv holds every row up to the checkpoint's step
   const std::string dir = archiver_.directory();
   if (kind == CheckpointKind::Scheduled) lastCheckpointTime_ = t_;
   newestCheckpoint_ = checkpointPath(dir, step_, kind);
-  anode::writeCheckpoint(newestCheckpoint_,
+  anode::writeCheckpoint(Collective{}, newestCheckpoint_,
                          {omp_get_max_threads(), Communicator::size(), inputHash_, t_, dt_,
                           dtLimit_, step_, particleSteps_, wallSeconds, lastCheckpointTime_},
                          archiver_, mpm_);
@@ -311,12 +311,13 @@ void Simulation::writeCheckpoint(CheckpointKind kind) {
       removeOldCheckpoints(dir, kind, 1);
     }
   }
-  Communicator::barrier();
+  collective::barrier();
   newestCheckpointWallTime_ = wallTime();
 }
 
-void Simulation::loadCheckpoint(const std::string& path, bool outputs) {
-  const CheckpointHeader read = anode::loadCheckpoint(path, outputs ? &archiver_ : nullptr, mpm_);
+void Simulation::loadCheckpoint(Collective, const std::string& path, bool outputs) {
+  const CheckpointHeader read =
+      anode::loadCheckpoint(Collective{}, path, outputs ? &archiver_ : nullptr, mpm_);
   t_ = read.t;
   dt_ = read.dt;
   dtLimit_ = read.dtLimit;
@@ -357,7 +358,7 @@ std::string Simulation::loadNewestCheckpoint() {
       continue;
     }
     try {
-      loadCheckpoint(path, true);
+      loadCheckpoint(Collective{}, path, true);
       archiver_.removeOutputsAfter(step_);
       archiver_.writeIndexFiles();
       return path;
@@ -373,17 +374,17 @@ void Simulation::printTimings() const {
   // Per task the slowest rank's time (the others wait for it at the next exchange).
   const TaskTimers& timers = mpm_.timers();
   std::vector<double> seconds = timers.seconds();
-  Communicator::maximum(seconds.data(), static_cast<int>(seconds.size()));
+  collective::maximum(seconds.data(), static_cast<int>(seconds.size()));
   const size_t particles =
-      static_cast<size_t>(Communicator::sum(static_cast<int64_t>(mpm_.numParticles())));
-  const double imbalance = mpm_.imbalance();
+      static_cast<size_t>(collective::sum(static_cast<int64_t>(mpm_.numParticles())));
+  const double imbalance = mpm_.imbalance(Collective{});
   double communication[2] = {Communicator::bytesSent(), Communicator::communicationSeconds()};
-  Communicator::sum(communication, 1);
-  Communicator::maximum(communication + 1, 1);
+  collective::sum(communication, 1);
+  collective::maximum(communication + 1, 1);
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
   const double ownPeak = usage.ru_maxrss * 1024.0;  // Linux: kilobytes
-  const double peakBytes = Communicator::maximum(ownPeak), allPeaks = Communicator::sum(ownPeak);
+  const double peakBytes = collective::maximum(ownPeak), allPeaks = collective::sum(ownPeak);
   if (!Communicator::isRoot()) return;
   double total = 0;
   for (double v : seconds) total += v;

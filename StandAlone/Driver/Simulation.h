@@ -63,18 +63,18 @@ class Simulation {
   void takeStableTimestep(double previousDt);
   // The run's start: opens its directory (a new one, or the restart directory at its newest
   // checkpoint), reports the setup and, unless a restart, records and writes the initial state
-  // with a checkpoint. Collective.
-  void start(bool restart);
+  // with a checkpoint.
+  void start(Collective, bool restart);
   // Seconds since run() began.
   double wallTime() const;
   // Whether the run has reached the end <Time> sets (time, steps or wall time). Collective
   // when a wall time is set.
-  bool finished() const;
+  bool finished(Collective) const;
   // Continues the run of the restart directory from its newest complete checkpoint; returns its
-  // path. Collective.
-  std::string restartFromNewestCheckpoint();
-  // The lines on the run's setup: particles, grid, ranks, diffusion, symmetry faces. Collective.
-  void reportSetup();
+  // path.
+  std::string restartFromNewestCheckpoint(Collective);
+  // The lines on the run's setup: particles, grid, ranks, diffusion, symmetry faces.
+  void reportSetup(Collective);
   // Appends the state's row (after a step of `stepDt`) to the history; returns the particle count.
   size_t recordHistoryRow(double stepDt);
   // Writes the output of step_; `afterStep`: the grid labels hold the last step's nodal values.
@@ -83,28 +83,26 @@ class Simulation {
   void reportSymmetryFaces();
   // At an output step of a distributed run: draws the boxes anew from the particle counts when
   // the particles per rank (max/mean) grew by kRebalanceImbalance since they were drawn; true
-  // if it did. Collective.
-  bool rebalance();
+  // if it did.
+  bool rebalance(Collective);
   // What any rank asks for at the end of a step (none after the last): to stop, and its own
-  // checkpoint (kReplayInterval of wall time since the last one). One exchange. Collective.
+  // checkpoint (kReplayInterval of wall time since the last one). One exchange.
   struct Requests {
     bool stop = false, replayCheckpoint = false;
   };
-  Requests requestsOfAnyRank(bool done) const;
+  Requests requestsOfAnyRank(Collective, bool done) const;
   // After a failed step: writes its particles and the last good state (DESIGN.md §8).
   void writeStateOnStop();
   // Brings the state back to the end of step_ (the last good one) by loading the newest
   // checkpoint and taking the same steps again (they are deterministic).
   void replayToLastGoodState();
   // Writes the state after step_ to a checkpoint (Checkpoint.h) and drops the oldest of its kind.
-  // Collective.
-  void writeCheckpoint(CheckpointKind kind);
+  void writeCheckpoint(Collective, CheckpointKind kind);
   // Loads the newest complete checkpoint of the restart directory; returns its path.
   std::string loadNewestCheckpoint();
   // Loads one checkpoint (Checkpoint.h; the output series and history only if `outputs`) and
   // warns of what differs from this run; throws std::runtime_error, on every rank together.
-  // Collective.
-  void loadCheckpoint(const std::string& path, bool outputs);
+  void loadCheckpoint(Collective, const std::string& path, bool outputs);
 
   RunOptions options_;
   std::unique_ptr<ProblemSpec> spec_;

@@ -9,8 +9,9 @@
 #   kill INPUT STEPS             a rank of 3 is killed (SIGKILL) at a random moment: the job ends
 #                                within 60 s, every output file is complete, a 2-rank restart agrees
 #   badinput INPUT               3 ranks: exit code 2, the file:line message once, within 30 s
-#   stop INPUT                   3 ranks, a particle leaves the grid on one rank: exit code 3 in
-#                                the same step, the message once, the last good state written
+#   stop INPUT [RANKS]           RANKS ranks (3 unless given) stop on a diagnostic one of them
+#                                finds: exit code 3 in the step of one rank, its message once,
+#                                the last good state of one rank written
 #   paraview INPUT STEPS         VTK's own reader opens the .pvd of a 3-rank run: every time, all
 #                                particles, every array; its pictures are the 1-rank ones (at
 #                                most 0.1% of the pixels differ)
@@ -138,22 +139,22 @@ EOF
     echo "exit 2 after $(($(date +%s) - start)) s"
     ;;
   stop)
-    input=$1
+    input=$1 ranks=${2:-3}
     run 1 "$work/r1" "$input"
     [ $? = 3 ] || fail "1 rank: exit code not 3"
-    run 3 "$work/r3" "$input"
+    run "$ranks" "$work/rn" "$input"
     code=$?
-    [ $code = 3 ] || fail "3 ranks: exit code $code, not 3 ($(tail -5 "$work/r3.log"))"
-    count=$(grep -c "simulation stopped" "$work/r3.log")
+    [ $code = 3 ] || fail "$ranks ranks: exit code $code, not 3 ($(tail -5 "$work/rn.log"))"
+    count=$(grep -c "simulation stopped" "$work/rn.log")
     [ "$count" = 1 ] || fail "the diagnostic appears $count times"
     grep "simulation stopped" "$work/r1.log" | sed 's/^/1 rank:  /'
-    grep "simulation stopped" "$work/r3.log" | sed 's/^/3 ranks: /'
-    [ "$(grep "simulation stopped" "$work/r1.log")" = "$(grep "simulation stopped" "$work/r3.log")" ] ||
-      fail "3 ranks stop elsewhere than 1 rank"
+    grep "simulation stopped" "$work/rn.log" | sed "s/^/$ranks ranks: /"
+    [ "$(grep "simulation stopped" "$work/r1.log")" = "$(grep "simulation stopped" "$work/rn.log")" ] ||
+      fail "$ranks ranks stop elsewhere than 1 rank"
     last1=$(grep -o 'file="[^"]*"' "$work/r1/particles.pvd" | tail -1 | sed 's/.*step_\([0-9]*\).*/\1/')
-    last3=$(grep -o 'file="[^"]*"' "$work/r3/particles.pvd" | tail -1 | sed 's/.*step_\([0-9]*\).*/\1/')
-    [ "$last1" = "$last3" ] || fail "last good state: step $last3 on 3 ranks, $last1 on 1"
-    $compare "$(stepFile "$work/r1" $((10#$last1)))" "$(stepFile "$work/r3" $((10#$last3)))" | tail -1 ||
+    lastN=$(grep -o 'file="[^"]*"' "$work/rn/particles.pvd" | tail -1 | sed 's/.*step_\([0-9]*\).*/\1/')
+    [ "$last1" = "$lastN" ] || fail "last good state: step $lastN on $ranks ranks, $last1 on 1"
+    $compare "$(stepFile "$work/r1" $((10#$last1)))" "$(stepFile "$work/rn" $((10#$lastN)))" | tail -1 ||
       fail "the last good states differ"
     ;;
   paraview)

@@ -132,7 +132,8 @@ void ExternalScalarFlux::computeFluxRates(std::vector<MPMMaterial>& materials, d
   }
 }
 
-double ExternalScalarFlux::stableTimestep(const std::vector<MPMMaterial>& materials) const {
+double ExternalScalarFlux::stableTimestep(Collective,
+                                          const std::vector<MPMMaterial>& materials) const {
   // A particle's source s_p = R(c_p) sum_i S_ip G_i / W_i (docs/diffusion.md step 5), and each
   // G_i / W_i is a weighted mean of unrestricted rates, at most the largest of its sign. The
   // step to the root falls as c nears it, so the fullest particle below the root (for an
@@ -151,14 +152,14 @@ double ExternalScalarFlux::stableTimestep(const std::vector<MPMMaterial>& materi
     }
   }
   double lows[4] = {-maxInflowRate_, -maxOutflowRate_, -fullest, emptiest};
-  Communicator::minimum(lows, 4);
+  collective::minimum(lows, 4);
   double dt = std::numeric_limits<double>::infinity();
   if (lows[0] < 0) dt = std::min(dt, fluxStepToRoot(-lows[2]) / -lows[0]);
   if (lows[1] < 0) dt = std::min(dt, fluxStepToRoot(1 - lows[3]) / -lows[1]);
   return dt;
 }
 
-void ExternalScalarFlux::updateAutoCycle(const std::vector<MPMMaterial>& materials,
+void ExternalScalarFlux::updateAutoCycle(Collective, const std::vector<MPMMaterial>& materials,
                                          const MPMFlags& flags) {
   // Mean (or min and max) normalised concentration of the materials with <do_conc_reduction>.
   double sum = 0, lo = std::numeric_limits<double>::infinity(), hi = -lo;
@@ -174,11 +175,11 @@ void ExternalScalarFlux::updateAutoCycle(const std::vector<MPMMaterial>& materia
     n += mat.particles.count();
   }
   // Over every rank's particles (the identity on one rank).
-  const double count = Communicator::sum(static_cast<double>(n));
+  const double count = collective::sum(static_cast<double>(n));
   if (count == 0) return;
-  const double mean = Communicator::sum(sum) / count;
-  lo = Communicator::minimum(lo);
-  hi = Communicator::maximum(hi);
+  const double mean = collective::sum(sum) / count;
+  lo = collective::minimum(lo);
+  hi = collective::maximum(hi);
   if (sign_ > 0 && (flags.autoCycleUseMinMax ? lo : mean) > flags.autoCycleMax) sign_ = -1;
   if (sign_ < 0 && (flags.autoCycleUseMinMax ? hi : mean) < flags.autoCycleMin) sign_ = 1;
 }

@@ -43,11 +43,12 @@ class ExternalScalarFlux {
   // The flux limit (docs/diffusion.md, "Time step"): the longest step in which no particle of a
   // material the fluxes reach passes the restriction's root, taken at the fullest particle below
   // the root (the emptiest above the mirrored root for an outflow), as every particle's source
-  // is at most R(c) times the largest rate; over all ranks, infinity without flux. Collective.
-  double stableTimestep(const std::vector<MPMMaterial>& materials) const;
+  // is at most R(c) times the largest rate; over all ranks, infinity without flux.
+  double stableTimestep(Collective, const std::vector<MPMMaterial>& materials) const;
   // <do_auto_cycle_bc>: flips the sign of every flux when the concentration of the materials
   // with <do_conc_reduction> crosses the thresholds.
-  void updateAutoCycle(const std::vector<MPMMaterial>& materials, const MPMFlags& flags);
+  void updateAutoCycle(Collective, const std::vector<MPMMaterial>& materials,
+                       const MPMFlags& flags);
   // Particle splitting: each split particle's flux faces shared among its children (a face
   // normal to the split goes whole to the child nearest it, one along it to all 4, a quarter
   // of its area each).

@@ -189,9 +189,9 @@ void ReactiveFlow::integrateConcentration(const std::vector<GridFields>& mechani
   }
 }
 
-void ReactiveFlow::updateDiffusionState(std::vector<MPMMaterial>& materials, double t) {
-  stopTogether([&] { checkConcentrationRange(materials, t); });
-  if (flags_.autoCycle) flux_.updateAutoCycle(materials, flags_);
+void ReactiveFlow::updateDiffusionState(Collective, std::vector<MPMMaterial>& materials, double t) {
+  collective::stopTogether([&] { checkConcentrationRange(materials, t); });
+  if (flags_.autoCycle) flux_.updateAutoCycle(Collective{}, materials, flags_);
   computeDiffusivity(materials, t);
   flux_.computeFluxRates(materials, t);
 }

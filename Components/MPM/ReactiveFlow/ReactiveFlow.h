@@ -76,12 +76,12 @@ class ReactiveFlow {
   // After G2P at time t: the range diagnostic, the auto-cycle switch, and the new state's
   // diffusivity (Eq. 23 or 24) and flux rates (Eqs. 16-17), which output, the next time step
   // and the next step use.
-  void updateDiffusionState(std::vector<MPMMaterial>& materials, double t);
+  void updateDiffusionState(Collective, std::vector<MPMMaterial>& materials, double t);
   // Eq. 44 over this rank's particles: dx^2 / (2 D_max), infinity without diffusivity.
   double diffusionTimestep(const Grid& grid) const;
-  // The flux limit over all ranks (docs/diffusion.md, "Time step"). Collective.
-  double fluxTimestep(const std::vector<MPMMaterial>& materials) const {
-    return flux_.stableTimestep(materials);
+  // The flux limit over all ranks (docs/diffusion.md, "Time step").
+  double fluxTimestep(Collective, const std::vector<MPMMaterial>& materials) const {
+    return flux_.stableTimestep(Collective{}, materials);
   }
 
   // Adds the total lithium and the concentration range (initialised by the caller).
@@ -139,7 +139,7 @@ void ReactiveFlow::withScatter(size_t m, const ParticleSet& p, const Interpolati
   forEachNodeRange(cleared, [&g](long begin, long end) { g.clearAll(begin, end); });
   if (receivesFlux_[m]) {
     markSourceNodes(p, W, g.sourceReached, cleared);
-    if (ghosts_) ghosts_->unionOverRanks(g.sourceReached);
+    if (ghosts_) ghosts_->unionOverRanks(Collective{}, g.sourceReached);
     f(ConcentrationScatter<true>(p, W, g.sourceReached.data(), cmax_[m], g));
   } else {
     f(ConcentrationScatter<false>(p, W, nullptr, cmax_[m], g));
