@@ -32,4 +32,12 @@ class ConstitutiveModel {
 // Factory keyed by <constitutive_model type="...">; `diffusion` tells whether concentration exists.
 std::unique_ptr<ConstitutiveModel> createConstitutiveModel(const PSNode& node, bool diffusion);
 
+// The tags every model reads alike: <bulk_modulus> K and <shear_modulus> G (> 0), and the
+// swelling coefficient eta, <volume_expansion_coeff>, required with diffusion (it has nothing to
+// act on without: then inert and 0).
+struct ElasticConstants {
+  double K, G, eta;
+  static ElasticConstants fromInput(const PSNode& node, bool diffusion);
+};
+
 }  // namespace anode

@@ -11,4 +11,17 @@ std::unique_ptr<ConstitutiveModel> createConstitutiveModel(const PSNode& node, b
             "\" is not supported; accepted: rf_elastic_plastic, comp_neo_hook");
 }
 
+ElasticConstants ElasticConstants::fromInput(const PSNode& node, bool diffusion) {
+  ElasticConstants c{};
+  c.K = node.require<double>("bulk_modulus");
+  if (!(c.K > 0)) node.requireChild("bulk_modulus").fail("<bulk_modulus> must be positive");
+  c.G = node.require<double>("shear_modulus");
+  if (!(c.G > 0)) node.requireChild("shear_modulus").fail("<shear_modulus> must be positive");
+  if (diffusion)
+    c.eta = node.require<double>("volume_expansion_coeff");
+  else
+    node.acceptInert("volume_expansion_coeff");
+  return c;
+}
+
 }  // namespace anode

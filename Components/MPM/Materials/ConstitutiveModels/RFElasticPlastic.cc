@@ -8,16 +8,7 @@
 namespace anode {
 
 std::unique_ptr<RFElasticPlastic> RFElasticPlastic::fromInput(const PSNode& node, bool diffusion) {
-  const double K = node.require<double>("bulk_modulus");
-  if (!(K > 0)) node.requireChild("bulk_modulus").fail("<bulk_modulus> must be positive");
-  const double G = node.require<double>("shear_modulus");
-  if (!(G > 0)) node.requireChild("shear_modulus").fail("<shear_modulus> must be positive");
-  // Swelling needs a concentration; without diffusion the coefficient has nothing to act on.
-  double eta = 0;
-  if (diffusion)
-    eta = node.require<double>("volume_expansion_coeff");
-  else
-    node.acceptInert("volume_expansion_coeff");
+  const ElasticConstants elastic = ElasticConstants::fromInput(node, diffusion);
   for (const char* inert :
        {"initial_material_temperature", "taylor_quinney_coeff", "coeff_thermal_expansion",
         "critical_stress", "tolerance", "useModifiedEOS", "check_TEPLA_failure_criterion",
@@ -62,7 +53,7 @@ std::unique_ptr<RFElasticPlastic> RFElasticPlastic::fromInput(const PSNode& node
     if (!flowNode) yield.fail("<yield_condition> requires a <flow_model>");
     yield.markSubtreeUsed();
   }
-  return std::make_unique<RFElasticPlastic>(K, G, flow, eta);
+  return std::make_unique<RFElasticPlastic>(elastic.K, elastic.G, flow, elastic.eta);
 }
 
 void RFElasticPlastic::initializeState(ParticleSet& p) const {
