@@ -66,11 +66,10 @@ int fieldComponents(const std::string& label) {
   return components;
 }
 
-// Writes particle `indices` of the array saved as `label` to out (zeros where the material does
-// not have that array).
+// Writes particle `indices` of the array saved as `label` to out, which holds zeros (left where
+// the material does not have that array).
 void copyField(const ParticleSet& p, const std::string& label, const std::vector<size_t>& indices,
                double* out) {
-  std::fill(out, out + fieldComponents(label) * indices.size(), 0.0);
   p.forEachField([&](const auto& v, const auto& field) {
     if (!field.label || label != field.label || v.empty()) return;
     constexpr int n = componentsOf<typename std::decay_t<decltype(v)>::value_type>();
