@@ -63,6 +63,19 @@ void MPM::problemSetup(const PSNode& root, double initTime, double maxTime) {
   for (size_t m = 0; m < materials_.size(); ++m)
     seeds[m].checkPiecesInsideGrid(grid_, gridBCs_.symmetryPlanes(static_cast<int>(m)));
 
+  if (flags_.implicit) {
+    checkImplicitSetup(root);
+    // Materials in single_velocity contact share one field of unknowns; others have their own.
+    fieldOf_.assign(materials_.size(), -1);
+    int fields = 0;
+    if (contact_.type == Contact::Type::SingleVelocity) {
+      for (int m : contact_.materials) fieldOf_[m] = 0;
+      fields = 1;
+    }
+    for (int& f : fieldOf_)
+      if (f < 0) f = fields++;
+    equilibrium_.useTimers(timers_);
+  }
   checkProblemSize(gridNode, grid_, flags_, materials_.size(), numParticles(),
                    omp_get_max_threads());
   if (diffusion_) diffusion_->initialize(root, grid_, materials_, seeds, initTime);
@@ -328,6 +341,13 @@ size_t MPM::numParticles() const {
 
 StableTimestep MPM::computeStableTimestep(Collective) const {
   StableTimestep limits;
+  if (flags_.implicit) {  // ImpMPM's rule; the first step takes <delt_max> (or <delt_init>)
+    limits.bound[StableTimestep::Newton] =
+        lastQuasiStaticDt_ > 0
+            ? flags_.implicit->nextTimestep(lastQuasiStaticDt_, newton_.lastIterations)
+            : std::numeric_limits<double>::max();
+    return limits;
+  }
   double& dt = limits.bound[StableTimestep::Mechanics];
   for (const MPMMaterial& mat : materials_) {
     const ParticleSet& p = mat.particles;

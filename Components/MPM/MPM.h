@@ -11,6 +11,7 @@
 #include "Components/MPM/GhostNodes.h"
 #include "Components/MPM/GridBoundaryConditions.h"
 #include "Components/MPM/GridFields.h"
+#include "Components/MPM/Implicit/EquilibriumSolver.h"
 #include "Components/MPM/Interpolator.h"
 #include "Components/MPM/MPMFlags.h"
 #include "Components/MPM/Materials/MPMMaterial.h"
@@ -37,6 +38,19 @@ class MPM {
   // leaves the grid, J <= 0, or a concentration leaves [min, max] beyond kConcentrationTolerance
   // (in a distributed run on every rank together: Core/Parallel/StopTogether.h).
   void timeAdvance(Collective, double t, double dt);
+  // The quasi-static step of an implicit run (DESIGN.md §4b, MPMQuasiStatic.cc): Newton on the
+  // grid for the equilibrium at t + dt; a step Newton does not converge in is retaken with dt
+  // times <delT_decrease_factor>, and below dtMin the run stops (SimulationError). Returns the dt
+  // taken.
+  double advanceQuasiStatic(Collective, double t, double dt, double dtMin);
+  // Newton's iterations: of the last step, and the totals of the steps (and retaken attempts)
+  // of this process.
+  struct NewtonCounts {
+    int lastIterations = 0, lastKrylov = 0;
+    long iterations = 0, krylov = 0, retakes = 0;
+    std::vector<std::pair<double, double>> lastRatios;  // NewtonReport::ratios of the last step
+  };
+  const NewtonCounts& newtonCounts() const { return newton_; }
   // Largest stable dt of the current state before the multiplier: paper Eq. 45, the smallest of
   // the mechanical Eq. 43 and the diffusion limits (Eq. 44 and the flux limit).
   StableTimestep computeStableTimestep(Collective) const;
@@ -141,6 +155,13 @@ class MPM {
   int computeGhostWidth(bool allHere) const;
   // Rank of the box holding material m's particle i.
   int ownerOf(const ParticleSet& p, size_t i) const;
+  // The equilibrium problem of the step: fields, nodal masses, the displacement increments the
+  // Velocity and Symmetric faces prescribe over dt.
+  EquilibriumProblem equilibriumProblem(double dt);
+  // The particles after the converged step (positions, F, stress, the models' state).
+  void updateParticlesFromEquilibrium(double dt);
+  // The setup checks of an implicit run: what it does not support is an input error.
+  void checkImplicitSetup(const PSNode& root) const;
   template <class Concentration>
   void scatterMaterial(size_t m, const Concentration& concentration);
   template <class F>
@@ -175,6 +196,12 @@ class MPM {
   // sums per thread after the first (P2G without locks).
   std::vector<NodeQuad> nodeQuads_;
   std::vector<std::vector<NodeQuad>> threadScatter_;
+  // Implicit runs: the Newton solver, the field of each material (single_velocity members share
+  // one), the last step's dt and counts.
+  EquilibriumSolver equilibrium_;
+  std::vector<int> fieldOf_;
+  double lastQuasiStaticDt_ = 0;
+  NewtonCounts newton_;
   TaskTimers timers_;
   struct StepTasks {  // timer indices of the step's tasks
     int interpolationWeights, particlesToGrid, gridIntegration, particleUpdate, splitting,

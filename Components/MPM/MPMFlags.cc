@@ -77,9 +77,9 @@ void readRefinementCriteria(const PSNode& root, MPMFlags& f) {
 MPMFlags MPMFlags::fromInput(const PSNode& root) {
   const PSNode component = root.requireChild("SimulationComponent");
   const std::string type = component.requireAttribute("type");
-  if (type != "amrmpm" && type != "mpm")
+  if (type != "amrmpm" && type != "mpm" && type != "impm")
     component.fail("SimulationComponent type=\"" + type +
-                   "\" is not supported; accepted: amrmpm, mpm");
+                   "\" is not supported; accepted: amrmpm, mpm, impm");
   if (type == "amrmpm" && !root.child("AMR"))
     component.fail("type=\"amrmpm\" requires an <AMR> block with <useLockStep>true</useLockStep>");
   readAMR(root);
@@ -96,15 +96,21 @@ MPMFlags MPMFlags::fromInput(const PSNode& root) {
   } else if (mpm) {
     f.gravity = mpm.get<Vec3>("gravity", Vec3::Zero());
   }
+  if (type == "impm" && (!mpm || mpm.get<std::string>("time_integrator", "") != "implicit"))
+    component.fail("type=\"impm\" needs <MPM><time_integrator>implicit</time_integrator>");
   if (!mpm) {
     readRefinementCriteria(root, f);  // no <refine_particles>: the thresholds are inert
     return f;
   }
 
   const std::string integrator = mpm.get<std::string>("time_integrator", "explicit");
-  if (integrator != "explicit")
+  if (integrator == "implicit") {
+    f.implicit = ImplicitOptions::fromInput(mpm);
+  } else if (integrator != "explicit") {
     mpm.requireChild("time_integrator")
-        .fail("time_integrator \"" + integrator + "\" is not supported; accepted: explicit");
+        .fail("time_integrator \"" + integrator +
+              "\" is not supported; accepted: explicit, implicit");
+  }
 
   const std::string interp = mpm.get<std::string>("interpolator", "linear");
   if (interp == "linear") {

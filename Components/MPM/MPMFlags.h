@@ -1,6 +1,9 @@
 // Options of the <MPM> block (UINTAH_UPS.md §2.4) and <PhysicalConstants>.
 #pragma once
 
+#include <optional>
+
+#include "Components/MPM/Implicit/ImplicitOptions.h"
 #include "Components/MPM/Interpolator.h"
 #include "Core/ProblemSpec/ProblemSpec.h"
 
@@ -23,6 +26,8 @@ struct MPMFlags {
   bool refineParticles = false;
   double stretchRatio = 0;  // split a particle whose domain is stretched beyond this ratio
   int refineMaterial = -1;  // -1: all materials
+  // <time_integrator>implicit: each step solves equilibrium (DESIGN.md §4b); empty: explicit.
+  std::optional<ImplicitOptions> implicit;
 
   // Reads <MPM>, <PhysicalConstants> and checks <SimulationComponent> and <AMR>.
   static MPMFlags fromInput(const PSNode& root);

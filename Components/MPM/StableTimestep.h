@@ -1,6 +1,7 @@
 // The stable time step of the current state before the multiplier (paper Eq. 45): the smallest
 // of the mechanical limit (Eq. 43), the diffusion limit (Eq. 44) and the flux limit
-// (docs/diffusion.md, "Time step"), each over all ranks, and which of them sets it.
+// (docs/diffusion.md, "Time step"), each over all ranks, and which of them sets it. An implicit
+// run has one limit, the last dt grown or shrunk by its Newton iterations (ImpMPM's rule).
 #pragma once
 
 #include <algorithm>
@@ -10,11 +11,11 @@
 namespace anode {
 
 struct StableTimestep {
-  enum Limit { Mechanics, Diffusion, Flux, kLimits };
+  enum Limit { Mechanics, Diffusion, Flux, Newton, kLimits };
   // Each limit's dt; infinity where it does not apply.
-  std::array<double, kLimits> bound{std::numeric_limits<double>::infinity(),
-                                    std::numeric_limits<double>::infinity(),
-                                    std::numeric_limits<double>::infinity()};
+  std::array<double, kLimits> bound{
+      std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
+      std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
 
   double dt() const { return *std::min_element(bound.begin(), bound.end()); }
   Limit binding() const {
@@ -22,7 +23,7 @@ struct StableTimestep {
   }
   static const char* name(Limit limit) {
     constexpr const char* names[kLimits] = {"mechanics (Eq. 43)", "diffusion (Eq. 44)",
-                                            "flux restriction"};
+                                            "flux restriction", "Newton iterations"};
     return names[limit];
   }
 };

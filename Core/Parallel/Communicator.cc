@@ -7,12 +7,14 @@
 #include <limits>
 #include <numeric>
 #include <stdexcept>
+#include <vector>
 
 namespace anode {
 
 namespace {
 
 bool started = false;
+std::vector<void (*)()> stopHooks;  // Communicator::beforeStop
 int worldRank = 0, worldSize = 1;
 double seconds = 0, bytes = 0;
 
@@ -70,7 +72,16 @@ void Communicator::start(int* argc, char*** argv) {
   MPI_Comm_size(MPI_COMM_WORLD, &worldSize);
 }
 
+void Communicator::beforeStop(void (*f)()) {
+  if (started)
+    stopHooks.push_back(f);
+  else
+    std::atexit(f);
+}
+
 void Communicator::stop() {
+  for (auto it = stopHooks.rbegin(); it != stopHooks.rend(); ++it) (*it)();
+  stopHooks.clear();
   if (started) MPI_Finalize();
   started = false;
 }

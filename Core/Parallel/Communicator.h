@@ -23,6 +23,9 @@ class Communicator {
   // by an MPI launcher; otherwise does nothing. `stop` ends MPI if `start` began it.
   static void start(int* argc, char*** argv);
   static void stop();
+  // Runs `f` in `stop` before MPI ends (a library that uses MPI too, such as PETSc, ends first);
+  // when `start` did not begin MPI, at the process's exit.
+  static void beforeStop(void (*f)());
   // Ends every rank of the run with `code` (a rank that cannot reach the others' next collective).
   [[noreturn]] static void abort(int code);
 

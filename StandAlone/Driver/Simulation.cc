@@ -29,6 +29,8 @@ void Simulation::setup() {
   PSNode root = spec_->root();
   time_ = TimeControl::fromInput(root.requireChild("Time"));
   mpm_.problemSetup(root, time_.initTime, time_.maxTime);
+  // An implicit run's dt follows Newton's iterations (ImpMPM): no multiplier applies to it.
+  if (mpm_.flags().implicit) time_.multiplier = 1;
   archiver_ =
       DataArchiver::fromInput(root.requireChild("DataArchiver"), mpm_.flags().doScalarDiffusion,
                               static_cast<int>(mpm_.materials().size()));
@@ -53,7 +55,10 @@ void Simulation::takeStableTimestep(double previousDt) {
 
 void Simulation::advance() {
   try {
-    mpm_.timeAdvance(Collective{}, t_, dt_);
+    if (mpm_.flags().implicit)
+      dt_ = mpm_.advanceQuasiStatic(Collective{}, t_, dt_, time_.deltMin);
+    else
+      mpm_.timeAdvance(Collective{}, t_, dt_);
     ScopedTimer timer(mpm_.timers(), mpm_.timers().task("stateChecks"));
     checks_.afterStep(Collective{}, mpm_, dt_);
   } catch (const StoppedOnAnotherRank&) {
@@ -64,6 +69,7 @@ void Simulation::advance() {
     throw SimulationError(s.str());
   }
   ++stepsLimitedBy_[dtLimit_];
+  lastStepDt_ = dt_;
   finishStep();
 }
 
@@ -84,7 +90,6 @@ void Simulation::run() {
   const bool nothingLeft = restart && finished(Collective{});
   if (nothingLeft && archiver_.lastOutputStep() != step_) writeOutput(false);
   while (!nothingLeft) {
-    const double stepDt = dt_;
     const StableTimestep::Limit stepLimit = dtLimit_;
     try {
       advance();
@@ -92,6 +97,7 @@ void Simulation::run() {
       writeStateOnStop();
       throw;
     }
+    const double stepDt = lastStepDt_;
     const double particles = static_cast<double>(recordHistoryRow(stepDt));
     particleSteps_ += particles;
     particleStepsOfThisProcess_ += particles;
@@ -112,7 +118,7 @@ void Simulation::run() {
     else if (rebalanced || anyRank.stop || anyRank.replayCheckpoint)
       writeCheckpoint(Collective{}, CheckpointKind::Automatic);
     if (progress_)
-      progress_->update(step_, t_, stepDt, StableTimestep::name(stepLimit),
+      progress_->update(step_, t_, stepDt, stepReport(stepLimit).c_str(),
                         particleStepsOfThisProcess_, done);
     if (done || stoppedOnRequest_) break;
   }
@@ -127,6 +133,12 @@ void Simulation::run() {
     removeAutomaticCheckpoints(archiver_.directory());
   }
   wallSeconds_ = wallTime();
+}
+
+std::string Simulation::stepReport(StableTimestep::Limit limit) const {
+  if (!mpm_.flags().implicit) return StableTimestep::name(limit);
+  const MPM::NewtonCounts& n = mpm_.newtonCounts();
+  return "Newton " + std::to_string(n.lastIterations) + ", Krylov " + std::to_string(n.lastKrylov);
 }
 
 void Simulation::start(Collective, bool restart) {
@@ -405,6 +417,15 @@ void Simulation::printTimings() const {
                 std::string(StableTimestep::name(static_cast<StableTimestep::Limit>(l))) + " " +
                 std::to_string(stepsLimitedBy_[l]);
   if (!limits.empty()) std::fprintf(stderr, "  steps whose dt the limit set: %s\n", limits.c_str());
+  if (mpm_.flags().implicit) {
+    const MPM::NewtonCounts& n = mpm_.newtonCounts();
+    const long steps = std::max(step_ - firstStepOfThisProcess_, 1L);
+    std::fprintf(stderr,
+                 "  Newton iterations %ld (%.2f per step), Krylov iterations %ld (%.1f per Newton "
+                 "iteration), steps retaken with a smaller dt %ld\n",
+                 n.iterations, static_cast<double>(n.iterations) / steps, n.krylov,
+                 n.iterations > 0 ? static_cast<double>(n.krylov) / n.iterations : 0.0, n.retakes);
+  }
   std::fprintf(stderr, "  instruction set: %s\n", instructionSet().c_str());
   // This process's steps over its wall time; after a restart also the whole run's (the time
   // of each earlier process up to its last checkpoint, as the steps).

@@ -79,6 +79,9 @@ class Simulation {
   size_t recordHistoryRow(double stepDt);
   // Writes the output of step_; `afterStep`: the grid labels hold the last step's nodal values.
   void writeOutput(bool afterStep);
+  // What set the step's dt, for the progress line (an implicit step: its Newton and Krylov
+  // iterations).
+  std::string stepReport(StableTimestep::Limit limit) const;
   // Prints the symmetry-face warnings of the step just taken.
   void reportSymmetryFaces();
   // At an output step of a distributed run: draws the boxes anew from the particle counts when
@@ -115,6 +118,7 @@ class Simulation {
   CheckpointSchedule checkpoints_;
   std::string newestCheckpoint_;  // of either kind: where a replay to the last good state starts
   double t_ = 0, dt_ = 0;
+  double lastStepDt_ = 0;  // the dt the last step took (an implicit one may retake it smaller)
   StableTimestep::Limit dtLimit_ = StableTimestep::Mechanics;   // the limit that set dt_
   std::array<long, StableTimestep::kLimits> stepsLimitedBy_{};  // steps of this process's run
   long step_ = 0;

@@ -1,0 +1,211 @@
+#include "Components/MPM/Implicit/EquilibriumSolver.h"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <variant>
+
+#include "Components/MPM/Implicit/LinearSolver.h"
+#include "Components/MPM/Implicit/ParticleEquilibrium.h"
+#include "Components/MPM/Materials/ConstitutiveModels/ConcreteModels.h"
+
+namespace anode {
+
+namespace {
+
+// Newton's linear solves: residual reduced by this factor (an inexact Newton step well below
+// ImpMPM's default criteria).
+constexpr double kLinearTolerance = 1e-9;
+// The free body's rigid modes: alpha m I added to each node's diagonal block, alpha this fraction
+// of the mean diagonal stiffness per unit nodal mass. It changes Newton's path, not the
+// equilibrium it converges to (the residual is exact).
+constexpr double kRigidModeRegularization = 1e-10;
+
+// Entries S_I or grad S_I of particle entry e that couple the node to the particle.
+bool couples(const InterpolationWeights& W, size_t e) {
+  return W.weight[e] != 0 || W.gradient[e] != Vec3::Zero();
+}
+
+}  // namespace
+
+void EquilibriumSolver::useTimers(TaskTimers& timers) {
+  timers_ = &timers;
+  assemblyTask_ = timers.task("assembleEquilibrium");
+  solveTask_ = timers.task("solveLinearSystem");
+}
+
+void EquilibriumSolver::numberUnknowns(const EquilibriumProblem& problem) {
+  const int fields = 1 + *std::max_element(problem.fieldOf.begin(), problem.fieldOf.end());
+  const int nodes = problem.grid.numNodes();
+  row_.assign(fields, std::vector<int>(nodes, -1));
+  unknown_.clear();
+  for (size_t m = 0; m < problem.materials.size(); ++m) {
+    const InterpolationWeights& W = problem.weights[m];
+    std::vector<int>& row = row_[problem.fieldOf[m]];
+    for (size_t i = 0; i < problem.materials[m].particles.count(); ++i)
+      for (size_t e = W.offset[i]; e < W.offset[i] + W.count[i]; ++e)
+        if (couples(W, e) && row[W.node[e]] < 0) row[W.node[e]] = 0;
+  }
+  // Block rows in (field, node) order.
+  for (int f = 0; f < fields; ++f)
+    for (int k = 0; k < nodes; ++k)
+      if (row_[f][k] == 0) {
+        row_[f][k] = static_cast<int>(unknown_.size());
+        unknown_.emplace_back(f, k);
+      }
+  std::vector<std::vector<int>> columns(unknown_.size());
+  for (size_t m = 0; m < problem.materials.size(); ++m) {
+    const InterpolationWeights& W = problem.weights[m];
+    const std::vector<int>& row = row_[problem.fieldOf[m]];
+    for (size_t i = 0; i < problem.materials[m].particles.count(); ++i)
+      for (size_t e = W.offset[i]; e < W.offset[i] + W.count[i]; ++e) {
+        if (!couples(W, e)) continue;
+        std::vector<int>& c = columns[row[W.node[e]]];
+        for (size_t g = W.offset[i]; g < W.offset[i] + W.count[i]; ++g)
+          if (couples(W, g)) c.push_back(row[W.node[g]]);
+      }
+  }
+  K_ = BlockMatrix();
+  for (std::vector<int>& c : columns) {
+    std::sort(c.begin(), c.end());
+    c.erase(std::unique(c.begin(), c.end()), c.end());
+    K_.column.insert(K_.column.end(), c.begin(), c.end());
+    K_.rowStart.push_back(static_cast<int>(K_.column.size()));
+  }
+  K_.block.assign(K_.column.size(), Mat3::Zero());
+  coordinates_.resize(3 * unknown_.size());
+  fixed_.clear();
+  for (size_t r = 0; r < unknown_.size(); ++r) {
+    const auto [f, k] = unknown_[r];
+    const Vec3i ijk = problem.grid.nodeOf(k);
+    const Vec3 x = problem.grid.nodePosition(ijk.x(), ijk.y(), ijk.z());
+    for (int a = 0; a < 3; ++a) {
+      coordinates_[3 * r + a] = x[a];
+      if (!std::isnan(problem.prescribed[f][k][a])) fixed_.push_back(static_cast<int>(3 * r + a));
+    }
+  }
+}
+
+void EquilibriumSolver::assemble(const EquilibriumProblem& problem, double dt) {
+  K_.clearValues();
+  residual_.assign(3 * unknown_.size(), 0.0);
+  std::vector<Mat3> P;
+  std::vector<Mat9> A;
+  for (size_t m = 0; m < problem.materials.size(); ++m) {
+    ParticleSet& p = problem.materials[m].particles;
+    const InterpolationWeights& W = problem.weights[m];
+    const int f = problem.fieldOf[m];
+    std::visit([&](const auto* model) { evaluateTrialStress(p, W, *model, u_[f], dt, P, &A); },
+               problem.materials[m].model->concrete().model);
+    const std::vector<int>& row = row_[f];
+    Eigen::Matrix<double, 3, 9> T;
+    for (size_t i = 0; i < p.count(); ++i) {
+      const double V = p.volume[i];
+      const size_t b = W.offset[i];
+      for (int e = 0; e < W.count[i]; ++e) {
+        if (!couples(W, b + e)) continue;
+        const int r = row[W.node[b + e]];
+        const Vec3& ge = W.gradient[b + e];
+        const Vec3 force = V * P[i] * ge;  // f_int of this particle at node e
+        for (int a = 0; a < 3; ++a) residual_[3 * r + a] -= force[a];
+        // T(a, 3 b + g) = V sum_d ge_d A(3 a + d, 3 b + g)
+        for (int a = 0; a < 3; ++a)
+          T.row(a) = V * (ge[0] * A[i].row(3 * a) + ge[1] * A[i].row(3 * a + 1) +
+                          ge[2] * A[i].row(3 * a + 2));
+        for (int g = 0; g < W.count[i]; ++g) {
+          if (!couples(W, b + g)) continue;
+          const Vec3& gg = W.gradient[b + g];
+          Mat3 k;
+          for (int a = 0; a < 3; ++a)
+            for (int c = 0; c < 3; ++c)
+              k(a, c) = T(a, 3 * c) * gg[0] + T(a, 3 * c + 1) * gg[1] + T(a, 3 * c + 2) * gg[2];
+          K_.at(r, row[W.node[b + g]]) += k;
+        }
+      }
+    }
+  }
+  // Gravity, the fixed components' rows, and the rigid-mode regularization.
+  double diagonal = 0, mass = 0;
+  for (size_t r = 0; r < unknown_.size(); ++r) {
+    const auto [f, k] = unknown_[r];
+    for (int a = 0; a < 3; ++a) residual_[3 * r + a] += problem.mass[f][k] * problem.gravity[a];
+    diagonal += K_.at(static_cast<int>(r), static_cast<int>(r)).trace();
+    mass += 3 * problem.mass[f][k];
+  }
+  for (int i : fixed_) residual_[i] = 0;
+  const double alpha = mass > 0 ? kRigidModeRegularization * diagonal / mass : 0;
+  for (size_t r = 0; r < unknown_.size(); ++r) {
+    const auto [f, k] = unknown_[r];
+    K_.at(static_cast<int>(r), static_cast<int>(r)) +=
+        alpha * problem.mass[f][k] * Mat3::Identity();
+  }
+}
+
+NewtonReport EquilibriumSolver::solve(const EquilibriumProblem& problem, double dt,
+                                      const ImplicitOptions& options) {
+  numberUnknowns(problem);
+  u_.assign(row_.size(), std::vector<Vec3>(problem.grid.numNodes(), Vec3::Zero()));
+  for (size_t f = 0; f < row_.size(); ++f)
+    for (int k = 0; k < problem.grid.numNodes(); ++k)
+      for (int a = 0; a < 3; ++a)
+        if (!std::isnan(problem.prescribed[f][k][a])) u_[f][k][a] = problem.prescribed[f][k][a];
+  NewtonReport report;
+  double normMax = 0, qNorm0 = 0;
+  std::vector<double> du;
+  while (true) {
+    if (report.iterations >= options.maxIterations) {
+      report.failure = "no convergence in " + std::to_string(options.maxIterations) +
+                       " iterations (<iters_before_timestep_restart>)";
+      return report;
+    }
+    ++report.iterations;
+    {
+      std::optional<ScopedTimer> s;
+      if (timers_) s.emplace(*timers_, assemblyTask_);
+      assemble(problem, dt);
+    }
+    LinearSolve linear;
+    {
+      std::optional<ScopedTimer> s;
+      if (timers_) s.emplace(*timers_, solveTask_);
+      linear = solveLinearSystem(K_, residual_, fixed_, coordinates_, kLinearTolerance, du);
+    }
+    report.krylovIterations += linear.iterations;
+    if (!linear.converged) {
+      report.failure = "the linear solve did not converge (" + linear.reason + ", " +
+                       std::to_string(linear.iterations) + " iterations)";
+      return report;
+    }
+    double norm = 0, qNorm = 0;
+    for (size_t i = 0; i < du.size(); ++i) {
+      norm += du[i] * du[i];
+      qNorm += du[i] * residual_[i];
+    }
+    for (size_t r = 0; r < unknown_.size(); ++r) {
+      const auto [f, k] = unknown_[r];
+      u_[f][k] += Vec3(du[3 * r], du[3 * r + 1], du[3 * r + 2]);
+    }
+    normMax = std::max(normMax, norm);
+    if (report.iterations == 1) qNorm0 = qNorm;
+    const double dispRatio = norm / (normMax + 1e-100), energyRatio = qNorm / (qNorm0 + 1e-100);
+    report.ratios.emplace_back(dispRatio, energyRatio);
+    if (!std::isfinite(dispRatio) || !std::isfinite(energyRatio)) {
+      report.failure = "a residual that is not a number";
+      return report;
+    }
+    if (dispRatio < 0 || energyRatio < 0) {
+      report.failure = "a negative energy norm du.r (the Jacobian is not positive there)";
+      return report;
+    }
+    const bool dispDone =
+        dispRatio <= options.convergenceDisp || normMax <= options.convergenceDisp;
+    const bool energyDone =
+        energyRatio <= options.convergenceEnergy || qNorm0 <= options.convergenceEnergy;
+    if (dispDone && energyDone) {
+      report.converged = true;
+      return report;
+    }
+  }
+}
+
+}  // namespace anode

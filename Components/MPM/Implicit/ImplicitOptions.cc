@@ -1,0 +1,73 @@
+#include "Components/MPM/Implicit/ImplicitOptions.h"
+
+#include <string>
+
+namespace anode {
+
+namespace {
+
+template <class T>
+void readPositive(const PSNode& mpm, const char* tag, T& value) {
+  value = mpm.get<T>(tag, value);
+  if (!(value > 0)) mpm.requireChild(tag).fail("<" + std::string(tag) + "> must be positive");
+}
+
+}  // namespace
+
+ImplicitOptions ImplicitOptions::fromInput(const PSNode& mpm) {
+  ImplicitOptions o;
+  o.dynamic = mpm.get<bool>("dynamic", o.dynamic);
+  if (o.dynamic) {
+    const PSNode where = mpm.child("dynamic") ? mpm.child("dynamic") : mpm;
+    where.unsupported(
+        "implicit dynamics (Newmark; ImpMPM's default when <dynamic> is absent): only "
+        "<dynamic>false</dynamic>, quasi-static equilibrium, is supported");
+    o.dynamic = false;
+  }
+  readPositive(mpm, "convergence_criteria_disp", o.convergenceDisp);
+  readPositive(mpm, "convergence_criteria_energy", o.convergenceEnergy);
+  readPositive(mpm, "iters_before_timestep_restart", o.maxIterations);
+  readPositive(mpm, "num_iters_to_decrease_delT", o.itersToDecrease);
+  o.itersToIncrease = mpm.get<int>("num_iters_to_increase_delT", o.itersToIncrease);
+  if (o.itersToIncrease < 0)
+    mpm.requireChild("num_iters_to_increase_delT")
+        .fail("<num_iters_to_increase_delT> must be >= 0");
+  if (o.itersToIncrease >= o.itersToDecrease)
+    mpm.requireChild("num_iters_to_increase_delT")
+        .fail("<num_iters_to_increase_delT> must be below <num_iters_to_decrease_delT> (" +
+              std::to_string(o.itersToDecrease) + ")");
+  readPositive(mpm, "delT_decrease_factor", o.decreaseFactor);
+  if (!(o.decreaseFactor < 1))
+    mpm.requireChild("delT_decrease_factor").fail("<delT_decrease_factor> must be in (0, 1)");
+  readPositive(mpm, "delT_increase_factor", o.increaseFactor);
+  if (!(o.increaseFactor >= 1))
+    mpm.requireChild("delT_increase_factor").fail("<delT_increase_factor> must be >= 1");
+  if (const PSNode solver = mpm.child("solver")) {
+    const std::string name = solver.value<std::string>();
+    if (name == "simple")
+      solver.warn("<solver>simple: the linear systems are solved by PETSc (CG, GAMG) all the same");
+    else if (name != "petsc")
+      solver.fail("<solver> must be petsc or simple, found \"" + name + "\"");
+  }
+  if (const PSNode mechanics = mpm.child("DoMechanics"))
+    if (!mechanics.value<bool>()) mechanics.unsupported("<DoMechanics>false");
+  if (const PSNode temperature = mpm.child("temperature_solve"))
+    if (temperature.value<bool>()) temperature.unsupported("the implicit heat conduction solve");
+  if (const PSNode reset = mpm.child("do_grid_reset"))
+    if (!reset.value<bool>()) reset.unsupported("<do_grid_reset>false (a grid that moves)");
+  if (const PSNode factor = mpm.child("ForceBC_force_increment_factor"))
+    if (factor.value<double>() != 1) factor.unsupported("<ForceBC_force_increment_factor>");
+  if (const PSNode faces = mpm.child("boundary_traction_faces"))
+    faces.unsupported("<boundary_traction_faces> (the reaction forces on grid faces)");
+  mpm.acceptInert("ProjectHeatSource");
+  mpm.acceptInert("interpolateParticleTempToGridEveryStep");
+  return o;
+}
+
+double ImplicitOptions::nextTimestep(double dt, int iterations) const {
+  if (iterations >= itersToDecrease) return dt * decreaseFactor;
+  if (iterations <= itersToIncrease) return dt * increaseFactor;
+  return dt;
+}
+
+}  // namespace anode

@@ -1,0 +1,29 @@
+// The options of an implicit run, in Uintah's ImpMPM vocabulary (<MPM><time_integrator>implicit,
+// ImpMPMFlags; defaults equal Uintah's): Newton's convergence criteria and the rules that retake
+// a step and grow or shrink dt by Newton's iteration count (docs/quasi-static.md).
+#pragma once
+
+#include "Core/ProblemSpec/ProblemSpec.h"
+
+namespace anode {
+
+struct ImplicitOptions {
+  // <dynamic>: Newmark (ImpMPM's default, true) or quasi-static equilibrium (false).
+  bool dynamic = true;
+  // Newton stops when both ratios fall to these: |du|^2 over its largest value in the step, and
+  // du.r over its value in the first iteration (or when those largest/first values fall to them).
+  double convergenceDisp = 1e-10, convergenceEnergy = 4e-10;
+  // A step taking more Newton iterations than this is retaken with dt x decreaseFactor.
+  int maxIterations = 25;
+  // The next dt is dt x decreaseFactor after a step of at least itersToDecrease iterations,
+  // dt x increaseFactor after one of at most itersToIncrease.
+  int itersToDecrease = 12, itersToIncrease = 4;
+  double decreaseFactor = 0.6, increaseFactor = 2;
+
+  // Reads the ImpMPM tags of <MPM> (only with <time_integrator>implicit).
+  static ImplicitOptions fromInput(const PSNode& mpm);
+  // dt for the step after one that took `iterations` Newton iterations with `dt`.
+  double nextTimestep(double dt, int iterations) const;
+};
+
+}  // namespace anode

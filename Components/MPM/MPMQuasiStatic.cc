@@ -1,0 +1,123 @@
+// The quasi-static step of an implicit run (DESIGN.md §4b; docs/quasi-static.md): the weights of
+// the start-of-step configuration, P2G of the masses, Newton for the equilibrium at t + dt
+// (Implicit/EquilibriumSolver.h, retaken with a smaller dt when it fails), then the particles
+// moved and their stresses set by the converged displacement increments.
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <variant>
+
+#include "Components/MPM/Implicit/ParticleEquilibrium.h"
+#include "Components/MPM/MPM.h"
+#include "Components/MPM/Materials/ConstitutiveModels/ConcreteModels.h"
+#include "Core/Parallel/Communicator.h"
+#include "Core/Util/Errors.h"
+
+namespace anode {
+
+void MPM::checkImplicitSetup(const PSNode& root) const {
+  const PSNode mpm = root.requireChild("MPM");
+  if (diffusion_)
+    mpm.requireChild("do_scalar_diffusion")
+        .fail(
+            "<do_scalar_diffusion>true with <time_integrator>implicit: the implicit path has no "
+            "diffusion yet (docs/quasi-static.md)");
+  if (Communicator::size() > 1)
+    mpm.requireChild("time_integrator")
+        .fail("<time_integrator>implicit runs on one rank only so far, not " +
+              std::to_string(Communicator::size()) + " (docs/quasi-static.md)");
+  if (contact_.excluded >= 0)
+    root.requireChild("MaterialProperties")
+        .requireChild("MPM")
+        .requireChild("contact")
+        .fail("<ExcludeMaterial> with <time_integrator>implicit is not supported");
+}
+
+EquilibriumProblem MPM::equilibriumProblem(double dt) {
+  const int nodes = grid_.numNodes();
+  const int fields = 1 + *std::max_element(fieldOf_.begin(), fieldOf_.end());
+  EquilibriumProblem problem{grid_, materials_, weights_, fieldOf_, {}, {}, flags_.gravity};
+  problem.mass.assign(fields, std::vector<double>(nodes, 0.0));
+  const double free = std::numeric_limits<double>::quiet_NaN();
+  problem.prescribed.assign(fields, std::vector<Vec3>(nodes, Vec3::Constant(free)));
+  for (size_t m = 0; m < materials_.size(); ++m) {
+    const int f = fieldOf_[m];
+    forEachNode(active_.rows, [&](long k) { problem.mass[f][k] += fields_[m].mass[k]; });
+    // The faces' conditions as in the explicit step (Velocity, then Symmetric on it) on a field
+    // of NaN: what they set is prescribed, velocity times dt.
+    std::vector<Vec3> set(nodes, Vec3::Constant(free));
+    applyVelocityDirichlet(grid_, gridBCs_.velocity, static_cast<int>(m), set);
+    applySymmetry(grid_, gridBCs_.symmetric, static_cast<int>(m), active_.box, set);
+    for (int k = 0; k < nodes; ++k)
+      for (int a = 0; a < 3; ++a)
+        if (!std::isnan(set[k][a])) problem.prescribed[f][k][a] = set[k][a] * dt;
+  }
+  return problem;
+}
+
+void MPM::updateParticlesFromEquilibrium(double dt) {
+  for (size_t m = 0; m < materials_.size(); ++m) {
+    MPMMaterial& mat = materials_[m];
+    const std::vector<Vec3>& u = equilibrium_.displacement(fieldOf_[m]);
+    long firstInverted = 0;
+    std::visit(
+        [&](const auto* model) {
+          firstInverted = updateParticlesFromDisplacement(mat.particles, weights_[m], *model,
+                                                          mat.density, u, dt);
+        },
+        mat.model->concrete().model);
+    if (firstInverted < static_cast<long>(mat.particles.count())) {
+      std::ostringstream s;
+      s << describeParticle(mat, m, firstInverted)
+        << " would reach det F <= 0 in the converged step (inverted or degenerate deformation)";
+      throw SimulationError(s.str());
+    }
+  }
+}
+
+double MPM::advanceQuasiStatic(Collective, double t, double dt, double dtMin) {
+  {
+    ScopedTimer s(timers_, tasks_.interpolationWeights);
+    computeWeightsAndActiveNodes();  // 1: S_ip, grad S_ip at the start of the step
+  }
+  {
+    ScopedTimer s(timers_, tasks_.particlesToGrid);
+    interpolateParticlesToGrid();  // the nodal masses (gravity, the rigid-mode regularization)
+  }
+  while (true) {  // 3: Newton, retaken with a smaller dt until it converges
+    const NewtonReport report = equilibrium_.solve(equilibriumProblem(dt), dt, *flags_.implicit);
+    newton_.iterations += report.iterations;
+    newton_.krylov += report.krylovIterations;
+    if (report.converged) {
+      newton_.lastIterations = report.iterations;
+      newton_.lastKrylov = report.krylovIterations;
+      newton_.lastRatios = report.ratios;
+      break;
+    }
+    const double smaller = dt * flags_.implicit->decreaseFactor;
+    if (smaller < dtMin) {
+      std::ostringstream s;
+      s.precision(3);
+      s << "the equilibrium step from t = " << t << " over dt = " << dt
+        << " failed: " << report.failure << "; a retake with dt = " << smaller
+        << " would be below <delt_min> " << dtMin
+        << ". Newton's ratios |du|^2/max, du.r/first by iteration:";
+      for (const auto& [disp, energy] : report.ratios) s << " (" << disp << ", " << energy << ")";
+      throw SimulationError(s.str());
+    }
+    ++newton_.retakes;
+    dt = smaller;
+  }
+  {
+    ScopedTimer s(timers_, tasks_.particleUpdate);
+    updateParticlesFromEquilibrium(dt);  // 5: x, F, stress and the models' state
+  }
+  if (flags_.refineParticles) {
+    ScopedTimer s(timers_, tasks_.splitting);
+    splitParticles();
+  }
+  lastQuasiStaticDt_ = dt;
+  return dt;
+}
+
+}  // namespace anode

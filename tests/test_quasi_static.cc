@@ -1,0 +1,169 @@
+// The implicit (quasi-static) path: closed-form equilibria of a block in uniaxial strain, the
+// order of its time integration, Newton's convergence, and the inputs it refuses.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+#include <sstream>
+#include <string>
+
+#include "Core/Util/Errors.h"
+#include "StandAlone/Driver/Simulation.h"
+
+namespace anode {
+namespace {
+
+// A unit cube filling a 4^3 grid, pushed down at its top face (Velocity [0, 0, -v]) with every
+// other face Symmetric: in the first step, while the body still fills the grid, uniaxial strain
+// F = diag(1, 1, lambda), lambda = 1 - v dt, at every particle. (Later steps are not uniform:
+// the grid's face nodes push a body whose top has left the face.)
+struct CompressionCase {
+  std::string model = "comp_neo_hook";
+  std::string mpmFlags = "<dynamic>false</dynamic>";
+  std::string component = "impm";
+  std::string extraMPM;
+  // Inside <constitutive_model>, after it, inside <geom_object>.
+  std::string modelExtra, materialExtra, geomExtra;
+  double K = 60e6, G = 6e6, v = 0.2;
+  int steps = 1;
+
+  std::string text() const {
+    std::ostringstream s;
+    s << "<Uintah_specification><SimulationComponent type=\"" << component << "\"/>"
+      << "<Time><maxTime>1</maxTime><initTime>0</initTime><delt_min>1e-4</delt_min><delt_max>"
+      << 1.0 / steps << "</delt_max><timestep_multiplier>1</timestep_multiplier><max_Timesteps>"
+      << steps << "</max_Timesteps></Time>"
+      << "<DataArchiver><filebase>q.uda</filebase><outputTimestepInterval>1000</"
+         "outputTimestepInterval><save label=\"p.stress\"/></DataArchiver>"
+      << "<MPM><time_integrator>implicit</time_integrator>" << mpmFlags << extraMPM << "</MPM>"
+      << "<MaterialProperties><MPM><material name=\"block\"><density>1</density>"
+      << "<constitutive_model type=\"" << model << "\"><bulk_modulus>" << K
+      << "</bulk_modulus><shear_modulus>" << G << "</shear_modulus>" << modelExtra
+      << "</constitutive_model>" << materialExtra
+      << "<geom_object><box label=\"c\"><min>[0,0,0]</min><max>[1,1,1]</max></box>"
+      << "<res>[2,2,2]</res><velocity>[0,0,0]</velocity><temperature>0</temperature>" << geomExtra
+      << "</geom_object></material></MPM></MaterialProperties>"
+      << "<Grid><Level><Box label=\"1\"><lower>[0,0,0]</lower><upper>[1,1,1]</upper>"
+      << "<resolution>[4,4,4]</resolution></Box></Level><BoundaryConditions>";
+    for (const char* side : {"x-", "x+", "y-", "y+", "z-"})
+      s << "<Face side=\"" << side << "\"><BCType id=\"all\" label=\"Symmetric\" "
+        << "var=\"symmetry\"/></Face>";
+    s << "<Face side=\"z+\"><BCType id=\"all\" label=\"Velocity\" var=\"Dirichlet\"><value>[0,0,"
+      << -v << "]</value></BCType></Face></BoundaryConditions></Grid></Uintah_specification>";
+    return s.str();
+  }
+};
+
+// The tolerances below follow from Newton's stopping test (ImpMPM's default criteria, |du|^2
+// relative 1e-10): F to 1e-9, stresses to 1e-8 relative.
+std::unique_ptr<Simulation> runToEnd(const CompressionCase& c) {
+  RunOptions o;
+  o.progress = false;
+  auto sim = std::make_unique<Simulation>(c.text(), "compression.ups", o);
+  while (sim->step() < sim->timeControl().maxTimesteps) sim->advance();
+  return sim;
+}
+
+TEST(QuasiStatic, NeoHookeanUniaxialStrainMatchesClosedForm) {
+  const CompressionCase c;
+  auto sim = runToEnd(c);
+  const double lambda = 1 - c.v * sim->time();
+  ASSERT_NEAR(sim->time(), 1.0, 1e-12);
+  // sigma = K/2 (J - 1/J) I + G J^(-5/3) dev(b), b = diag(1, 1, lambda^2), J = lambda.
+  const double volumetric = 0.5 * c.K * (lambda - 1 / lambda);
+  const double shear = c.G * std::pow(lambda, -5.0 / 3.0) * (lambda * lambda - 1) / 3;
+  const double zz = volumetric + 2 * shear, xx = volumetric - shear;
+  const ParticleSet& p = sim->mpm().materials()[0].particles;
+  ASSERT_EQ(p.count(), 512u);
+  for (size_t i = 0; i < p.count(); ++i) {
+    EXPECT_NEAR(p.F[i](2, 2), lambda, 1e-9) << "particle " << i;
+    EXPECT_NEAR(p.stress[i](2, 2), zz, 1e-8 * std::abs(zz)) << "particle " << i;
+    EXPECT_NEAR(p.stress[i](0, 0), xx, 1e-8 * std::abs(zz)) << "particle " << i;
+    EXPECT_NEAR(p.stress[i](0, 1), 0.0, 1e-8 * std::abs(zz)) << "particle " << i;
+  }
+  // Newton with the algorithmic tangent on a 20% compression in one step: a few iterations.
+  const MPM::NewtonCounts& n = sim->mpm().newtonCounts();
+  EXPECT_LE(n.iterations, 6);
+  EXPECT_EQ(n.retakes, 0);
+  // Quadratic convergence: each of the last two |du|^2 ratios at most the square of the one
+  // before (measured: 3.2e-2, 2.3e-5, 9.4e-12).
+  const auto& r = n.lastRatios;
+  ASSERT_GE(r.size(), 3u);
+  for (size_t k = r.size() - 2; k < r.size(); ++k)
+    EXPECT_LE(r[k].first, r[k - 1].first * r[k - 1].first) << "iteration " << k + 1;
+}
+
+// rf_elastic_plastic (elastic) sees the midpoint rule's rate of deformation, D dt =
+// 2 (lambda - 1)/(lambda + 1) along z: sigma_zz = (K + 4G/3) D dt, sigma_xx = (K - 2G/3) D dt.
+TEST(QuasiStatic, HypoelasticUniaxialStrainTakesTheMidpointRate) {
+  CompressionCase c;
+  c.model = "rf_elastic_plastic";
+  auto sim = runToEnd(c);
+  const double lambda = 1 - c.v;
+  const double strain = 2 * (lambda - 1) / (lambda + 1);
+  const double zz = (c.K + 4 * c.G / 3) * strain, xx = (c.K - 2 * c.G / 3) * strain;
+  const ParticleSet& p = sim->mpm().materials()[0].particles;
+  for (size_t i = 0; i < p.count(); ++i) {
+    EXPECT_NEAR(p.F[i](2, 2), lambda, 1e-9) << "particle " << i;
+    EXPECT_NEAR(p.stress[i](2, 2), zz, 1e-8 * std::abs(zz)) << "particle " << i;
+    EXPECT_NEAR(p.stress[i](0, 0), xx, 1e-8 * std::abs(zz)) << "particle " << i;
+  }
+  EXPECT_LE(sim->mpm().newtonCounts().iterations, 6);
+}
+
+void expectInputError(const CompressionCase& c, const std::string& words) {
+  RunOptions o;
+  o.progress = false;
+  try {
+    Simulation sim(c.text(), "bad.ups", o);
+    FAIL() << "accepted; expected an error with \"" << words << "\"";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
+  }
+}
+
+TEST(QuasiStatic, RejectsWhatItDoesNotSupport) {
+  CompressionCase c;
+  c.mpmFlags = "";  // ImpMPM's default is dynamic
+  expectInputError(c, "implicit dynamics");
+  c.mpmFlags = "<dynamic>false</dynamic><solver>hypre</solver>";
+  expectInputError(c, "<solver> must be petsc or simple");
+  c.mpmFlags = "<dynamic>false</dynamic><do_scalar_diffusion>true</do_scalar_diffusion>";
+  c.modelExtra = "<volume_expansion_coeff>0.1</volume_expansion_coeff>";
+  c.materialExtra =
+      "<diffusion_model type=\"constant_rate\"><diffusivity>0</diffusivity>"
+      "<max_concentration>1</max_concentration><constant_rate>1</constant_rate></diffusion_model>";
+  c.geomExtra = "<concentration>0</concentration>";
+  expectInputError(c, "no diffusion yet");
+  c.modelExtra = c.materialExtra = c.geomExtra = "";
+  c.mpmFlags = "<dynamic>false</dynamic><delT_decrease_factor>1.5</delT_decrease_factor>";
+  expectInputError(c, "<delT_decrease_factor> must be in (0, 1)");
+  c.mpmFlags =
+      "<dynamic>false</dynamic><num_iters_to_increase_delT>12</num_iters_to_increase_delT>";
+  expectInputError(c, "must be below <num_iters_to_decrease_delT>");
+  c.mpmFlags =
+      "<dynamic>false</dynamic><boundary_traction_faces>[zminus]</boundary_traction_faces>";
+  expectInputError(c, "boundary_traction_faces");
+}
+
+TEST(QuasiStatic, ImpmNeedsTheImplicitIntegrator) {
+  CompressionCase c;
+  c.mpmFlags = "";
+  std::string text = c.text();
+  text.replace(text.find("<time_integrator>implicit</time_integrator>"),
+               std::string("<time_integrator>implicit</time_integrator>").size(), "");
+  RunOptions o;
+  o.progress = false;
+  EXPECT_THROW(Simulation(text, "bad.ups", o), InputError);
+}
+
+TEST(QuasiStatic, ImplicitOptionsFollowImpMPMsTimeStepRule) {
+  ImplicitOptions o;
+  EXPECT_DOUBLE_EQ(o.nextTimestep(1.0, 4), 2.0);
+  EXPECT_DOUBLE_EQ(o.nextTimestep(1.0, 5), 1.0);
+  EXPECT_DOUBLE_EQ(o.nextTimestep(1.0, 11), 1.0);
+  EXPECT_DOUBLE_EQ(o.nextTimestep(1.0, 12), 0.6);
+}
+
+}  // namespace
+}  // namespace anode
