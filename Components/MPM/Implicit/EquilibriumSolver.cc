@@ -21,10 +21,11 @@ constexpr double kLinearTolerance = 1e-9;
 // equilibrium it converges to (the residual is exact).
 constexpr double kRigidModeRegularization = 1e-10;
 
-// Entries S_I or grad S_I of particle entry e that couple the node to the particle.
-bool couples(const InterpolationWeights& W, size_t e) {
-  return W.weight[e] != 0 || W.gradient[e] != Vec3::Zero();
-}
+// A node is an unknown when its mass exceeds this fraction of its field's largest nodal mass.
+// Below it a node carries only round-off weights (a particle at the edge of its support): its
+// displacement would be set by stiffness at round-off level, so it is left out with the particle
+// entries that reach it, as an explicit step gives a massless node no acceleration.
+constexpr double kUnknownNodeMass = 1e-9;
 
 }  // namespace
 
@@ -39,30 +40,26 @@ void EquilibriumSolver::numberUnknowns(const EquilibriumProblem& problem) {
   const int nodes = problem.grid.numNodes();
   row_.assign(fields, std::vector<int>(nodes, -1));
   unknown_.clear();
-  for (size_t m = 0; m < problem.materials.size(); ++m) {
-    const InterpolationWeights& W = problem.weights[m];
-    std::vector<int>& row = row_[problem.fieldOf[m]];
-    for (size_t i = 0; i < problem.materials[m].particles.count(); ++i)
-      for (size_t e = W.offset[i]; e < W.offset[i] + W.count[i]; ++e)
-        if (couples(W, e) && row[W.node[e]] < 0) row[W.node[e]] = 0;
-  }
   // Block rows in (field, node) order.
-  for (int f = 0; f < fields; ++f)
+  for (int f = 0; f < fields; ++f) {
+    const std::vector<double>& mass = problem.mass[f];
+    const double least = kUnknownNodeMass * *std::max_element(mass.begin(), mass.end());
     for (int k = 0; k < nodes; ++k)
-      if (row_[f][k] == 0) {
+      if (mass[k] > least) {
         row_[f][k] = static_cast<int>(unknown_.size());
         unknown_.emplace_back(f, k);
       }
+  }
   std::vector<std::vector<int>> columns(unknown_.size());
   for (size_t m = 0; m < problem.materials.size(); ++m) {
     const InterpolationWeights& W = problem.weights[m];
     const std::vector<int>& row = row_[problem.fieldOf[m]];
     for (size_t i = 0; i < problem.materials[m].particles.count(); ++i)
       for (size_t e = W.offset[i]; e < W.offset[i] + W.count[i]; ++e) {
-        if (!couples(W, e)) continue;
+        if (row[W.node[e]] < 0) continue;
         std::vector<int>& c = columns[row[W.node[e]]];
         for (size_t g = W.offset[i]; g < W.offset[i] + W.count[i]; ++g)
-          if (couples(W, g)) c.push_back(row[W.node[g]]);
+          if (row[W.node[g]] >= 0) c.push_back(row[W.node[g]]);
       }
   }
   K_ = BlockMatrix();
@@ -103,8 +100,8 @@ void EquilibriumSolver::assemble(const EquilibriumProblem& problem, double dt) {
       const double V = p.volume[i];
       const size_t b = W.offset[i];
       for (int e = 0; e < W.count[i]; ++e) {
-        if (!couples(W, b + e)) continue;
         const int r = row[W.node[b + e]];
+        if (r < 0) continue;
         const Vec3& ge = W.gradient[b + e];
         const Vec3 force = V * P[i] * ge;  // f_int of this particle at node e
         for (int a = 0; a < 3; ++a) residual_[3 * r + a] -= force[a];
@@ -113,7 +110,7 @@ void EquilibriumSolver::assemble(const EquilibriumProblem& problem, double dt) {
           T.row(a) = V * (ge[0] * A[i].row(3 * a) + ge[1] * A[i].row(3 * a + 1) +
                           ge[2] * A[i].row(3 * a + 2));
         for (int g = 0; g < W.count[i]; ++g) {
-          if (!couples(W, b + g)) continue;
+          if (row[W.node[b + g]] < 0) continue;
           const Vec3& gg = W.gradient[b + g];
           Mat3 k;
           for (int a = 0; a < 3; ++a)
