@@ -8,6 +8,7 @@
 #include <type_traits>
 
 #include "Components/MPM/Materials/ConstitutiveModels/ConcreteModels.h"
+#include "Components/MPM/ReactiveFlow/DiffusionParticles.h"
 
 namespace anode {
 
@@ -44,12 +45,13 @@ constexpr int componentsOf() {
   return 1;
 }
 
-// Calls f(field) for every particle array any material may have: ParticleSet's one list and
-// every constitutive model's state.
+// Calls f(field) for every particle array any material may have: ParticleSet's one list, every
+// constitutive model's state and the diffusion subcomponent's arrays.
 template <class F>
 void forEachParticleField(F&& f) {
   ParticleSet().forEachField([&f](const auto&, const auto& field) { f(field); });
   forEachModelStateField(f);
+  DiffusionFields::forEach(f);
 }
 
 template <class T>
@@ -100,7 +102,8 @@ const std::map<std::string, DerivedLabel>& derivedLabels() {
       {"p.concentrationInterp",
        {1,
         [](const MPMMaterial& m, const Grid&, size_t i, double* o) {
-          o[0] = m.particles.concentration.empty() ? 0.0 : m.particles.concentration[i];
+          const std::vector<double>* c = concentrationOf(m.particles);
+          o[0] = c && !c->empty() ? (*c)[i] : 0.0;
         }}},
       {"p.pressure_t1",
        {1,

@@ -126,8 +126,9 @@ void addGeomObject(const PSNode& geom, const Grid& grid, const MPMFlags& flags, 
       out.spacing.push_back(dxp);
     }
     if (flags.doScalarDiffusion) {
-      p.concentration[i] = c0;
-      p.diffusivity[i] = m.diffusion->D0;
+      const DiffusionParticles d(p);
+      d.concentration[i] = c0;
+      d.diffusivity[i] = m.diffusion->D0;
     }
     p.id[i] = nextId++;
     p.x[i] = s.x;
@@ -174,7 +175,7 @@ MPMMaterial MPMMaterial::fromInput(const PSNode& node, const Grid& grid, const M
     if (rigid.value<bool>()) rigid.unsupported("rigid materials <is_rigid>");
   m.model =
       createConstitutiveModel(node.requireChild("constitutive_model"), flags.doScalarDiffusion);
-  if (flags.doScalarDiffusion) m.particles.enable(Physics::Diffusion);
+  if (flags.doScalarDiffusion) declareDiffusionArrays(m.particles);
 
   const auto geoms = node.children("geom_object");
   if (geoms.empty()) node.fail("<material> needs at least one <geom_object>");

@@ -10,6 +10,7 @@
 #include "Components/MPM/NodeQuads.h"
 #include "Components/MPM/ParticleSet.h"
 #include "Components/MPM/ReactiveFlow/DiffusionGridFields.h"
+#include "Components/MPM/ReactiveFlow/DiffusionParticles.h"
 #include "Components/MPM/ReactiveFlow/FluxRestriction.h"
 
 namespace anode {
@@ -38,23 +39,23 @@ class ConcentrationScatter {
   // the material's max_concentration.
   ConcentrationScatter(const ParticleSet& p, const InterpolationWeights& W,
                        const unsigned char* reached, double cmax, ConcentrationScatterFields& grid)
-      : p_(p), W_(W), reached_(reached), cmax_(cmax), grid_(&grid) {}
+      : p_(p), d_(p), W_(W), reached_(reached), cmax_(cmax), grid_(&grid) {}
 
   // Particle i's terms: m c, m q (q = D grad c) and, with flux, m rate and m R(c) where a
   // source can reach.
   void addScatterTerms(long i, ScatterTerms<2>& t) const {
     const double mp = p_.mass[i];
-    const Vec3 mq = mp * p_.diffusivity[i] * p_.concentrationGradient[i];
+    const Vec3 mq = mp * d_.diffusivity[i] * d_.concentrationGradient[i];
     for (int d = 0; d < 3; ++d) t.byGradient[d][ScatterLane::diffusionRate] = mq[d];
     double* terms = t.byWeight[1];
-    terms[ScatterLane::massConcentration] = mp * p_.concentration[i];
+    terms[ScatterLane::massConcentration] = mp * d_.concentration[i];
     if constexpr (Flux) {
-      terms[ScatterLane::fluxSource] = mp * p_.externalScalarFlux[i];
+      terms[ScatterLane::fluxSource] = mp * d_.externalScalarFlux[i];
       // A particle's weights matter only on the nodes a source reaches (elsewhere G = 0).
       const size_t b = W_.offset[i];
       unsigned char reached = 0;
       for (int e = 0; e < W_.count[i]; ++e) reached |= reached_[W_.node[b + e]];
-      const double c = p_.concentration[i] / cmax_;
+      const double c = d_.concentration[i] / cmax_;
       if (reached & 1) terms[ScatterLane::receiverWeightIn] = mp * fluxRestriction(c, true);
       if (reached & 2) terms[ScatterLane::receiverWeightOut] = mp * fluxRestriction(c, false);
     }
@@ -74,6 +75,7 @@ class ConcentrationScatter {
 
  private:
   const ParticleSet& p_;
+  ConstDiffusionParticles d_;
   const InterpolationWeights& W_;
   const unsigned char* reached_;
   double cmax_;
@@ -126,7 +128,7 @@ class ConcentrationGather {
   }
 
  private:
-  ParticleSet& p_;
+  DiffusionParticles p_;
   const ConcentrationGridFields& g_;
   const double* wallMask_;
   double cmax_;

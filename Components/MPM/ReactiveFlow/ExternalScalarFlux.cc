@@ -18,12 +18,13 @@ void shareFluxFaces(ParticleSet& p, const std::vector<ScalarFluxBC>& bcs,
                     const SplitParticle& split) {
   const size_t* child = split.child;
   const size_t parent = child[0];
+  const DiffusionParticles d(p);
   const Vec3 parentX = p.x[parent] - split.offset[0];
-  const Vec3i ids = p.loadCurveID[parent];
-  const Vec3 areas = p.area[parent];
+  const Vec3i ids = d.loadCurveID[parent];
+  const Vec3 areas = d.area[parent];
   for (int c = 0; c < 4; ++c) {
-    p.loadCurveID[child[c]].setZero();
-    p.area[child[c]].setZero();
+    d.loadCurveID[child[c]].setZero();
+    d.area[child[c]].setZero();
   }
   int slots[4] = {0, 0, 0, 0};
   for (int s = 0; s < 3 && ids[s] > 0; ++s) {
@@ -34,8 +35,8 @@ void shareFluxFaces(ParticleSet& p, const std::vector<ScalarFluxBC>& bcs,
       if (bc.distanceToFace(p.x[child[c]]) < bc.distanceToFace(p.x[child[nearest]])) nearest = c;
     for (int c = 0; c < 4; ++c) {
       if (acrossFace && c != nearest) continue;
-      p.loadCurveID[child[c]][slots[c]] = ids[s];
-      p.area[child[c]][slots[c]] = acrossFace ? areas[s] : 0.25 * areas[s];
+      d.loadCurveID[child[c]][slots[c]] = ids[s];
+      d.area[child[c]][slots[c]] = acrossFace ? areas[s] : 0.25 * areas[s];
       ++slots[c];
     }
   }
@@ -56,6 +57,7 @@ std::vector<ExternalScalarFlux::Flagged> ExternalScalarFlux::assignToParticles(
     if (bcs_.empty() || !mat.diffusion->diffuses())
       continue;  // a material without diffusivity gets no lithium
     p.enable(Physics::FluxBC);
+    const DiffusionParticles d(p);
     // Per BC, how many particles it flags, those that hold it (at most 3 BCs a particle) and
     // the slot it has in each.
     std::vector<size_t> flagged(bcs_.size(), 0);
@@ -70,8 +72,8 @@ std::vector<ExternalScalarFlux::Flagged> ExternalScalarFlux::assignToParticles(
         if (a <= 0) continue;
         ++flagged[b];
         if (slot == 3) continue;  // a particle holds at most 3 load curves
-        p.loadCurveID[i][slot] = static_cast<int>(b) + 1;
-        p.area[i][slot] = a;
+        d.loadCurveID[i][slot] = static_cast<int>(b) + 1;
+        d.area[i][slot] = a;
         holding[b].push_back(i);
         slots[b].push_back(slot);
         spacing = spacing.cwiseMax(surface.spacing[i]);
@@ -91,7 +93,7 @@ std::vector<ExternalScalarFlux::Flagged> ExternalScalarFlux::assignToParticles(
         f.surfaceArea = share.surfaceArea;
         f.bodyArea = share.bodyArea;
       }
-      for (size_t k = 0; k < holding[b].size(); ++k) f.area += p.area[holding[b][k]][slots[b][k]];
+      for (size_t k = 0; k < holding[b].size(); ++k) f.area += d.area[holding[b][k]][slots[b][k]];
       report.push_back(f);
     }
   }
@@ -105,25 +107,26 @@ void ExternalScalarFlux::computeFluxRates(std::vector<MPMMaterial>& materials, d
   for (size_t b = 0; b < bcs_.size(); ++b) J[b] = sign_ * bcs_[b].load.at(t);
   for (MPMMaterial& mat : materials) {
     ParticleSet& p = mat.particles;
-    if (p.loadCurveID.empty()) continue;
+    const DiffusionParticles d(p);
+    if (d.loadCurveID.empty()) continue;
     const double cmax = mat.diffusion->maxConcentration;
     const long n = static_cast<long>(p.count());
     double inflow = 0, outflow = 0;
 #pragma omp parallel for schedule(static) reduction(max : inflow, outflow)
     for (long i = 0; i < n; ++i) {
       double rate = 0, in = 0, out = 0;
-      for (int s = 0; s < 3 && p.loadCurveID[i][s] > 0; ++s) {
-        const int b = p.loadCurveID[i][s] - 1;
+      for (int s = 0; s < 3 && d.loadCurveID[i][s] > 0; ++s) {
+        const int b = d.loadCurveID[i][s] - 1;
         const double area =
             bcs_[b].deformedArea
-                ? p.area[i][s] * bcs_[b].areaStretch(p.F[i], p.x[i] - p.displacement[i])
-                : p.area[i][s];
+                ? d.area[i][s] * bcs_[b].areaStretch(p.F[i], p.x[i] - p.displacement[i])
+                : d.area[i][s];
         rate += J[b] * area;
         (J[b] > 0 ? in : out) += std::abs(J[b]) * area;
       }
       // Eq. 17 restricts inflow as c -> 1; outflow is restricted the same way as c -> 0.
-      const double c = p.concentration[i] / cmax;
-      p.externalScalarFlux[i] = rate / p.volume[i] * fluxRestriction(c, rate >= 0) * cmax;
+      const double c = d.concentration[i] / cmax;
+      d.externalScalarFlux[i] = rate / p.volume[i] * fluxRestriction(c, rate >= 0) * cmax;
       inflow = std::max(inflow, in / p.volume[i]);
       outflow = std::max(outflow, out / p.volume[i]);
     }
@@ -141,12 +144,13 @@ double ExternalScalarFlux::stableTimestep(Collective,
   double fullest = 0, emptiest = 1;
   for (const MPMMaterial& mat : materials) {
     const ParticleSet& p = mat.particles;
-    if (p.loadCurveID.empty()) continue;
+    const ConstDiffusionParticles d(p);
+    if (d.loadCurveID.empty()) continue;
     const double cmax = mat.diffusion->maxConcentration;
     const long n = static_cast<long>(p.count());
 #pragma omp parallel for schedule(static) reduction(max : fullest) reduction(min : emptiest)
     for (long i = 0; i < n; ++i) {
-      const double c = p.concentration[i] / cmax;
+      const double c = d.concentration[i] / cmax;
       if (c < kRestrictionRoot) fullest = std::max(fullest, c);
       if (1 - c < kRestrictionRoot) emptiest = std::min(emptiest, c);
     }
@@ -167,7 +171,7 @@ void ExternalScalarFlux::updateAutoCycle(Collective, const std::vector<MPMMateri
   for (const MPMMaterial& mat : materials) {
     if (!mat.reducesConcentration) continue;
     const double cmax = mat.diffusion->maxConcentration;
-    for (double c : mat.particles.concentration) {
+    for (double c : diffusionParticles(mat.particles).concentration) {
       sum += c / cmax;
       lo = std::min(lo, c / cmax);
       hi = std::max(hi, c / cmax);
@@ -186,7 +190,7 @@ void ExternalScalarFlux::updateAutoCycle(Collective, const std::vector<MPMMateri
 
 void ExternalScalarFlux::shareFacesOnSplit(ParticleSet& p,
                                            const std::vector<SplitParticle>& splits) const {
-  if (p.loadCurveID.empty()) return;
+  if (diffusionParticles(p).loadCurveID.empty()) return;
   for (const SplitParticle& s : splits) shareFluxFaces(p, bcs_, s);
 }
 
@@ -208,10 +212,11 @@ void markSourceNodes(const ParticleSet& p, const InterpolationWeights& W,
     std::fill(reached.begin() + begin, reached.begin() + end, 0);
   });
   unsigned char* mark = reached.data();
+  const ConstDiffusionParticles d(p);
   const long n = static_cast<long>(p.count());
 #pragma omp parallel for schedule(static)
   for (long i = 0; i < n; ++i) {
-    const double rate = p.externalScalarFlux[i];
+    const double rate = d.externalScalarFlux[i];
     if (rate == 0) continue;
     const unsigned char bit = rate > 0 ? 1 : 2;
     for (int e = 0; e < W.count[i]; ++e) {

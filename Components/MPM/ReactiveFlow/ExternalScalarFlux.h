@@ -9,6 +9,7 @@
 #include "Components/MPM/Interpolator.h"
 #include "Components/MPM/MPMFlags.h"
 #include "Components/MPM/Materials/MPMMaterial.h"
+#include "Components/MPM/ReactiveFlow/DiffusionParticles.h"
 #include "Components/MPM/ReactiveFlow/ScalarFluxBC.h"
 #include "Components/MPM/SplitParticle.h"
 #include "Core/Grid/Grid.h"

@@ -82,7 +82,7 @@ void ReactiveFlow::initialize(const PSNode& root, const Grid& grid,
             "<do_auto_cycle_bc>true watches the concentration of the materials with "
             "<do_conc_reduction>true, and none has it (Uintah then never reverses the flux)");
   for (const MPMMaterial& mat : materials) {
-    receivesFlux_.push_back(!mat.particles.externalScalarFlux.empty());
+    receivesFlux_.push_back(!diffusionParticles(mat.particles).externalScalarFlux.empty());
     cmax_.push_back(mat.diffusion->maxConcentration);
     constantRate_.push_back(mat.diffusion->constantRate());
   }
@@ -209,11 +209,12 @@ void ReactiveFlow::computeDiffusivity(std::vector<MPMMaterial>& materials, doubl
 void ReactiveFlow::checkConcentrationRange(const std::vector<MPMMaterial>& materials,
                                            double t) const {
   for (size_t m = 0; m < materials.size(); ++m) {
-    const ParticleSet& p = materials[m].particles;
+    const std::vector<double>& concentration =
+        diffusionParticles(materials[m].particles).concentration;
     const ScalarDiffusionModel& d = *materials[m].diffusion;
     const double tol = kConcentrationTolerance * (d.maxConcentration - d.minConcentration);
-    for (size_t i = 0; i < p.count(); ++i) {
-      const double c = p.concentration[i];
+    for (size_t i = 0; i < concentration.size(); ++i) {
+      const double c = concentration[i];
       if (c >= d.minConcentration - tol && c <= d.maxConcentration + tol) continue;
       std::ostringstream s;
       s.precision(10);  // enough digits to show by how much it left the range
@@ -235,10 +236,11 @@ void ReactiveFlow::summarize(const std::vector<MPMMaterial>& materials, StepSumm
   s.diffusion = true;
   for (const MPMMaterial& mat : materials) {
     const ParticleSet& p = mat.particles;
+    const std::vector<double>& c = diffusionParticles(p).concentration;
     for (size_t i = 0; i < p.count(); ++i) {
-      s.totalLithium += p.mass[i] * p.concentration[i];
-      s.minConcentration = std::min(s.minConcentration, p.concentration[i]);
-      s.maxConcentration = std::max(s.maxConcentration, p.concentration[i]);
+      s.totalLithium += p.mass[i] * c[i];
+      s.minConcentration = std::min(s.minConcentration, c[i]);
+      s.maxConcentration = std::max(s.maxConcentration, c[i]);
     }
   }
 }

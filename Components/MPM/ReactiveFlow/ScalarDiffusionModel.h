@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "Components/MPM/ParticleSet.h"
+#include "Components/MPM/ReactiveFlow/DiffusionParticles.h"
 #include "Core/ProblemSpec/ProblemSpec.h"
 #include "Core/Util/BinaryStream.h"
 
