@@ -15,6 +15,13 @@
 
 namespace anode {
 
+// The lanes ConcentrationScatter uses: of the quad it asks for after the mechanics' first
+// (ScatterTerms<2>), and the kernel lane of the last quad (NodeQuads.h).
+namespace ConcentrationLane {
+constexpr int massConcentration = 0, fluxSource = 1, receiverWeightIn = 2, receiverWeightOut = 3;
+constexpr int diffusionRate = kKernelLane;
+}  // namespace ConcentrationLane
+
 // Diffusion off: no concentration on particles or grid.
 struct NoConcentration {
   static constexpr int scatterWeightQuads = 1;
@@ -23,7 +30,7 @@ struct NoConcentration {
   void spread(long, const NodeQuad*) const {}
   void nodeValues(long, double& concentration, double& rate) const { concentration = rate = 0.0; }
   void gather(Particle&, int, double) const {}
-  double update(long, const Particle&, const GatheredConcentration&, double) const { return 0.0; }
+  double update(long, const Particle&, const GatheredKernelValue&, double) const { return 0.0; }
 };
 
 // P2G: (mc)_i = sum m c S (Eq. 5), R_i = -sum m grad S . q with q_p = D_p grad c_p of the
@@ -46,30 +53,30 @@ class ConcentrationScatter {
   void addScatterTerms(long i, ScatterTerms<2>& t) const {
     const double mp = p_.mass[i];
     const Vec3 mq = mp * d_.diffusivity[i] * d_.concentrationGradient[i];
-    for (int d = 0; d < 3; ++d) t.byGradient[d][ScatterLane::diffusionRate] = mq[d];
+    for (int d = 0; d < 3; ++d) t.byGradient[d][ConcentrationLane::diffusionRate] = mq[d];
     double* terms = t.byWeight[1];
-    terms[ScatterLane::massConcentration] = mp * d_.concentration[i];
+    terms[ConcentrationLane::massConcentration] = mp * d_.concentration[i];
     if constexpr (Flux) {
-      terms[ScatterLane::fluxSource] = mp * d_.externalScalarFlux[i];
+      terms[ConcentrationLane::fluxSource] = mp * d_.externalScalarFlux[i];
       // A particle's weights matter only on the nodes a source reaches (elsewhere G = 0).
       const size_t b = W_.offset[i];
       unsigned char reached = 0;
       for (int e = 0; e < W_.count[i]; ++e) reached |= reached_[W_.node[b + e]];
       const double c = d_.concentration[i] / cmax_;
-      if (reached & 1) terms[ScatterLane::receiverWeightIn] = mp * fluxRestriction(c, true);
-      if (reached & 2) terms[ScatterLane::receiverWeightOut] = mp * fluxRestriction(c, false);
+      if (reached & 1) terms[ConcentrationLane::receiverWeightIn] = mp * fluxRestriction(c, true);
+      if (reached & 2) terms[ConcentrationLane::receiverWeightOut] = mp * fluxRestriction(c, false);
     }
   }
 
   // Node k's sums from its quads into the grid's fields.
   void spread(long k, const NodeQuad* quads) const {
     const double* sums = quads[1].value;
-    grid_->massConcentration[k] = sums[ScatterLane::massConcentration];
-    grid_->diffusionRate[k] = quads[2].value[ScatterLane::diffusionRate];
+    grid_->massConcentration[k] = sums[ConcentrationLane::massConcentration];
+    grid_->diffusionRate[k] = quads[2].value[ConcentrationLane::diffusionRate];
     if constexpr (Flux) {
-      grid_->fluxSource[k] = sums[ScatterLane::fluxSource];
-      grid_->receiverWeightIn[k] = sums[ScatterLane::receiverWeightIn];
-      grid_->receiverWeightOut[k] = sums[ScatterLane::receiverWeightOut];
+      grid_->fluxSource[k] = sums[ConcentrationLane::fluxSource];
+      grid_->receiverWeightIn[k] = sums[ConcentrationLane::receiverWeightIn];
+      grid_->receiverWeightOut[k] = sums[ConcentrationLane::receiverWeightOut];
     }
   }
 
@@ -115,7 +122,7 @@ class ConcentrationGather {
   }
 
   // Updates particle i's concentration and gradient; returns the concentration change.
-  double update(long i, const Particle& a, const GatheredConcentration& sums, double dt) const {
+  double update(long i, const Particle& a, const GatheredKernelValue& sums, double dt) const {
     p_.concentrationGradient[i] = sums.gradient;
     const double c0 = p_.concentration[i];
     double received = 0;

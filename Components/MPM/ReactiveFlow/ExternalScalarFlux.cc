@@ -45,8 +45,8 @@ void shareFluxFaces(ParticleSet& p, const std::vector<ScalarFluxBC>& bcs,
 }  // namespace
 
 std::vector<ExternalScalarFlux::Flagged> ExternalScalarFlux::assignToParticles(
-    std::vector<MPMMaterial>& materials, const std::vector<MaterialSeeds>& seeds,
-    const Grid& grid) const {
+    std::vector<MPMMaterial>& materials, const std::vector<DiffusionMaterial>& diffusion,
+    const std::vector<MaterialSeeds>& seeds, const Grid& grid) const {
   // Surface particles get, per BC that flags them, the area of the face that BC names
   // (UINTAH_UPS.md §3.1; unlike Uintah, not the area left by the last BC tested).
   std::vector<Flagged> report;
@@ -54,7 +54,7 @@ std::vector<ExternalScalarFlux::Flagged> ExternalScalarFlux::assignToParticles(
     MPMMaterial& mat = materials[m];
     const MaterialSeeds& surface = seeds[m];
     ParticleSet& p = mat.particles;
-    if (bcs_.empty() || !mat.diffusion->diffuses())
+    if (bcs_.empty() || !diffusion[m].model->diffuses())
       continue;  // a material without diffusivity gets no lithium
     p.enable(Physics::FluxBC);
     const DiffusionParticles d(p);
@@ -64,22 +64,26 @@ std::vector<ExternalScalarFlux::Flagged> ExternalScalarFlux::assignToParticles(
     std::vector<std::vector<size_t>> holding(bcs_.size());
     std::vector<std::vector<int>> slots(bcs_.size());
     Vec3 spacing = Vec3::Zero();
-    for (size_t i = 0; i < p.count(); ++i) {
-      if (!surface.onSurface[i]) continue;
-      int slot = 0;
-      for (size_t b = 0; b < bcs_.size(); ++b) {
-        const double a = bcs_[b].flaggedArea(p.x[i], surface.spacing[i], surface.faceArea[i]);
-        if (a <= 0) continue;
-        ++flagged[b];
-        if (slot == 3) continue;  // a particle holds at most 3 load curves
-        d.loadCurveID[i][slot] = static_cast<int>(b) + 1;
-        d.area[i][slot] = a;
-        holding[b].push_back(i);
-        slots[b].push_back(slot);
-        spacing = spacing.cwiseMax(surface.spacing[i]);
-        ++slot;
+    for (const MaterialSeeds::Object& object : surface.objects)
+      for (size_t i = object.first; i < object.first + object.count; ++i) {
+        // Smooth pieces are not searched for their surface: every particle is tested by the
+        // flux BCs (UINTAH_UPS.md §3.2), with the spacing dx/res.
+        if (!object.smooth && !onSurface(*object.piece, p.x[i], object.spacing, grid.ndim()))
+          continue;
+        int slot = 0;
+        for (size_t b = 0; b < bcs_.size(); ++b) {
+          const double a = bcs_[b].flaggedArea(p.x[i], object.spacing, object.faceAreaOf(i));
+          if (a <= 0) continue;
+          ++flagged[b];
+          if (slot == 3) continue;  // a particle holds at most 3 load curves
+          d.loadCurveID[i][slot] = static_cast<int>(b) + 1;
+          d.area[i][slot] = a;
+          holding[b].push_back(i);
+          slots[b].push_back(slot);
+          spacing = spacing.cwiseMax(object.spacing);
+          ++slot;
+        }
       }
-    }
     for (size_t b = 0; b < bcs_.size(); ++b) {
       if (flagged[b] == 0) continue;
       Flagged f{b, m, flagged[b]};
@@ -100,16 +104,18 @@ std::vector<ExternalScalarFlux::Flagged> ExternalScalarFlux::assignToParticles(
   return report;
 }
 
-void ExternalScalarFlux::computeFluxRates(std::vector<MPMMaterial>& materials, double t) {
+void ExternalScalarFlux::computeFluxRates(std::vector<MPMMaterial>& materials,
+                                          const std::vector<DiffusionMaterial>& diffusion,
+                                          double t) {
   maxInflowRate_ = maxOutflowRate_ = 0;
   if (bcs_.empty()) return;
   std::vector<double> J(bcs_.size());
   for (size_t b = 0; b < bcs_.size(); ++b) J[b] = sign_ * bcs_[b].load.at(t);
-  for (MPMMaterial& mat : materials) {
-    ParticleSet& p = mat.particles;
+  for (size_t m = 0; m < materials.size(); ++m) {
+    ParticleSet& p = materials[m].particles;
     const DiffusionParticles d(p);
     if (d.loadCurveID.empty()) continue;
-    const double cmax = mat.diffusion->maxConcentration;
+    const double cmax = diffusion[m].model->maxConcentration;
     const long n = static_cast<long>(p.count());
     double inflow = 0, outflow = 0;
 #pragma omp parallel for schedule(static) reduction(max : inflow, outflow)
@@ -135,18 +141,18 @@ void ExternalScalarFlux::computeFluxRates(std::vector<MPMMaterial>& materials, d
   }
 }
 
-double ExternalScalarFlux::stableTimestep(Collective,
-                                          const std::vector<MPMMaterial>& materials) const {
+double ExternalScalarFlux::stableTimestep(Collective, const std::vector<MPMMaterial>& materials,
+                                          const std::vector<DiffusionMaterial>& diffusion) const {
   // A particle's source s_p = R(c_p) sum_i S_ip G_i / W_i (docs/diffusion.md step 5), and each
   // G_i / W_i is a weighted mean of unrestricted rates, at most the largest of its sign. The
   // step to the root falls as c nears it, so the fullest particle below the root (for an
   // outflow: the emptiest above e^-4) bounds them all.
   double fullest = 0, emptiest = 1;
-  for (const MPMMaterial& mat : materials) {
-    const ParticleSet& p = mat.particles;
+  for (size_t m = 0; m < materials.size(); ++m) {
+    const ParticleSet& p = materials[m].particles;
     const ConstDiffusionParticles d(p);
     if (d.loadCurveID.empty()) continue;
-    const double cmax = mat.diffusion->maxConcentration;
+    const double cmax = diffusion[m].model->maxConcentration;
     const long n = static_cast<long>(p.count());
 #pragma omp parallel for schedule(static) reduction(max : fullest) reduction(min : emptiest)
     for (long i = 0; i < n; ++i) {
@@ -164,19 +170,20 @@ double ExternalScalarFlux::stableTimestep(Collective,
 }
 
 void ExternalScalarFlux::updateAutoCycle(Collective, const std::vector<MPMMaterial>& materials,
+                                         const std::vector<DiffusionMaterial>& diffusion,
                                          const MPMFlags& flags) {
   // Mean (or min and max) normalised concentration of the materials with <do_conc_reduction>.
   double sum = 0, lo = std::numeric_limits<double>::infinity(), hi = -lo;
   size_t n = 0;
-  for (const MPMMaterial& mat : materials) {
-    if (!mat.reducesConcentration) continue;
-    const double cmax = mat.diffusion->maxConcentration;
-    for (double c : diffusionParticles(mat.particles).concentration) {
+  for (size_t m = 0; m < materials.size(); ++m) {
+    if (!diffusion[m].reducesConcentration) continue;
+    const double cmax = diffusion[m].model->maxConcentration;
+    for (double c : diffusionParticles(materials[m].particles).concentration) {
       sum += c / cmax;
       lo = std::min(lo, c / cmax);
       hi = std::max(hi, c / cmax);
     }
-    n += mat.particles.count();
+    n += materials[m].particles.count();
   }
   // Over every rank's particles (the identity on one rank).
   const double count = collective::sum(static_cast<double>(n));
