@@ -112,11 +112,13 @@ struct ModelFromText {
 
 ParticleSet particles(const std::vector<double>& c, const Mat3& stress = Mat3::Zero()) {
   ParticleSet p;
-  for (double ci : c) {
-    p.x.push_back(Vec3::Zero());
-    p.concentration.push_back(ci);
-    p.stress.push_back(stress);
-    p.diffusivity.push_back(-1.0);  // overwritten by the model
+  p.resize(c.size());
+  declareDiffusionArrays(p);
+  const DiffusionParticles d(p);
+  for (size_t i = 0; i < c.size(); ++i) {
+    d.concentration[i] = c[i];
+    p.stress[i] = stress;
+    d.diffusivity[i] = -1.0;  // overwritten by the model
   }
   return p;
 }
@@ -132,7 +134,7 @@ TEST(DiffusionModel, JgGivesD0Everywhere) {
   EXPECT_EQ(m.model->constantRate(), 0.0);
   ParticleSet p = particles(kConcentrations, -3e6 * Mat3::Identity());
   EXPECT_EQ(m.model->computeDiffusivity(p, 0.0), 2.5e-3);
-  for (double d : p.diffusivity) EXPECT_EQ(d, 2.5e-3);
+  for (double d : diffusionParticles(p).diffusivity) EXPECT_EQ(d, 2.5e-3);
 }
 
 TEST(DiffusionModel, NonLinear1WithoutPressureIsD0ExpAlphaC) {
@@ -145,10 +147,10 @@ TEST(DiffusionModel, NonLinear1WithoutPressureIsD0ExpAlphaC) {
   ParticleSet p = particles(kConcentrations, -2e6 * Mat3::Identity());
   const double dmax = m.model->computeDiffusivity(p, 0.0);
   for (size_t i = 0; i < p.count(); ++i)
-    EXPECT_NEAR(p.diffusivity[i], 1e-5 * std::exp(6.0 * kConcentrations[i]),
-                1e-14 * p.diffusivity[i]);
-  EXPECT_NEAR(p.diffusivity[3], 1e-5 * 20.085536923187668, 1e-18);  // e^3
-  EXPECT_NEAR(dmax, 1e-5 * std::exp(6.0), 1e-14 * dmax);            // at c = 1
+    EXPECT_NEAR(diffusionParticles(p).diffusivity[i], 1e-5 * std::exp(6.0 * kConcentrations[i]),
+                1e-14 * diffusionParticles(p).diffusivity[i]);
+  EXPECT_NEAR(diffusionParticles(p).diffusivity[3], 1e-5 * 20.085536923187668, 1e-18);  // e^3
+  EXPECT_NEAR(dmax, 1e-5 * std::exp(6.0), 1e-14 * dmax);                                // at c = 1
 }
 
 std::string pressureModel(double floor = 0.0, double pmax = 3.0) {
@@ -166,9 +168,10 @@ TEST(DiffusionModel, NonLinear1WithPressure) {
   ParticleSet p = particles(kConcentrations, -2e6 * Mat3::Identity());
   m.model->computeDiffusivity(p, 0.0);
   for (size_t i = 0; i < p.count(); ++i)
-    EXPECT_NEAR(p.diffusivity[i], 1e-5 * std::exp(6.0 * kConcentrations[i] - 2 * 0.5),
-                1e-14 * p.diffusivity[i]);
-  EXPECT_NEAR(p.diffusivity[0], 1e-5 * 0.36787944117144233, 1e-19);  // e^-1
+    EXPECT_NEAR(diffusionParticles(p).diffusivity[i],
+                1e-5 * std::exp(6.0 * kConcentrations[i] - 2 * 0.5),
+                1e-14 * diffusionParticles(p).diffusivity[i]);
+  EXPECT_NEAR(diffusionParticles(p).diffusivity[0], 1e-5 * 0.36787944117144233, 1e-19);  // e^-1
   // Only the trace counts: a deviatoric part changes nothing.
   Mat3 s = -2e6 * Mat3::Identity();
   s(0, 1) = s(1, 0) = 5e6;
@@ -176,7 +179,8 @@ TEST(DiffusionModel, NonLinear1WithPressure) {
   s(1, 1) -= 1e6;
   ParticleSet q = particles({0.5}, s);
   m.model->computeDiffusivity(q, 0.0);
-  EXPECT_NEAR(q.diffusivity[0], 1e-5 * std::exp(3.0 - 1.0), 1e-14 * q.diffusivity[0]);
+  EXPECT_NEAR(diffusionParticles(q).diffusivity[0], 1e-5 * std::exp(3.0 - 1.0),
+              1e-14 * diffusionParticles(q).diffusivity[0]);
 }
 
 TEST(DiffusionModel, NonLinear1TensionGoesToTheFloor) {
@@ -185,17 +189,19 @@ TEST(DiffusionModel, NonLinear1TensionGoesToTheFloor) {
   ParticleSet p = particles(kConcentrations, 4e6 * Mat3::Identity());
   m.model->computeDiffusivity(p, 0.0);
   for (size_t i = 0; i < p.count(); ++i)
-    EXPECT_NEAR(p.diffusivity[i], 1e-5 * std::exp(6.0 * kConcentrations[i]),
-                1e-14 * p.diffusivity[i]);
+    EXPECT_NEAR(diffusionParticles(p).diffusivity[i], 1e-5 * std::exp(6.0 * kConcentrations[i]),
+                1e-14 * diffusionParticles(p).diffusivity[i]);
   // A negative floor: p' = max(-4, -0.5) = -0.5 -> D = D0 exp(alpha c + 0.25).
   ModelFromText n(pressureModel(-0.5, 3.0));
   ParticleSet q = particles({0.2}, 4e6 * Mat3::Identity());
   n.model->computeDiffusivity(q, 0.0);
-  EXPECT_NEAR(q.diffusivity[0], 1e-5 * std::exp(1.2 + 0.25), 1e-14 * q.diffusivity[0]);
+  EXPECT_NEAR(diffusionParticles(q).diffusivity[0], 1e-5 * std::exp(1.2 + 0.25),
+              1e-14 * diffusionParticles(q).diffusivity[0]);
   // Inside the range with a negative floor: p' = -0.3 is kept.
   ParticleSet r = particles({0.2}, 0.3e6 * Mat3::Identity());
   n.model->computeDiffusivity(r, 0.0);
-  EXPECT_NEAR(r.diffusivity[0], 1e-5 * std::exp(1.2 + 0.15), 1e-14 * r.diffusivity[0]);
+  EXPECT_NEAR(diffusionParticles(r).diffusivity[0], 1e-5 * std::exp(1.2 + 0.15),
+              1e-14 * diffusionParticles(r).diffusivity[0]);
 }
 
 TEST(DiffusionModel, NonLinear1CompressionIsCappedAtTuning4) {
@@ -206,9 +212,10 @@ TEST(DiffusionModel, NonLinear1CompressionIsCappedAtTuning4) {
   ParticleSet at = particles(kConcentrations, -3e6 * Mat3::Identity());
   m.model->computeDiffusivity(at, 0.0);
   for (size_t i = 0; i < p.count(); ++i) {
-    EXPECT_NEAR(p.diffusivity[i], 1e-5 * std::exp(6.0 * kConcentrations[i] - 1.5),
-                1e-14 * p.diffusivity[i]);
-    EXPECT_EQ(p.diffusivity[i], at.diffusivity[i]);
+    EXPECT_NEAR(diffusionParticles(p).diffusivity[i],
+                1e-5 * std::exp(6.0 * kConcentrations[i] - 1.5),
+                1e-14 * diffusionParticles(p).diffusivity[i]);
+    EXPECT_EQ(diffusionParticles(p).diffusivity[i], diffusionParticles(at).diffusivity[i]);
   }
 }
 
@@ -224,9 +231,9 @@ TEST(DiffusionModel, CubicIsD0OneMinusCCubedPlusDmaxCCubed) {
       "</diffusion_model>");
   ParticleSet p = particles({0.0, 0.5, 1.0});
   const double dmax = m.model->computeDiffusivity(p, 0.0);
-  EXPECT_NEAR(p.diffusivity[0], 1e-17, 1e-31);                // D0
-  EXPECT_NEAR(p.diffusivity[1], (1e-17 + 1e-15) / 8, 1e-31);  // 1.2625e-16
-  EXPECT_NEAR(p.diffusivity[2], 1e-15, 1e-29);                // Dmax
+  EXPECT_NEAR(diffusionParticles(p).diffusivity[0], 1e-17, 1e-31);                // D0
+  EXPECT_NEAR(diffusionParticles(p).diffusivity[1], (1e-17 + 1e-15) / 8, 1e-31);  // 1.2625e-16
+  EXPECT_NEAR(diffusionParticles(p).diffusivity[2], 1e-15, 1e-29);                // Dmax
   EXPECT_NEAR(dmax, 1e-15, 1e-29);
   EXPECT_TRUE(m.model->diffuses());
   // D0 = 0 still diffuses through Dmax.
@@ -260,31 +267,31 @@ TEST(DiffusionModel, DiffCurveFreezesDDuringOut) {
   ModelFromText m(curveModel(10.0), 5.0);
   ParticleSet p = particles({0.1, 0.3});
   m.model->computeDiffusivity(p, 0.0);
-  EXPECT_NEAR(p.diffusivity[0], d(0.1), 1e-16);
-  EXPECT_NEAR(p.diffusivity[1], d(0.3), 1e-16);
+  EXPECT_NEAR(diffusionParticles(p).diffusivity[0], d(0.1), 1e-16);
+  EXPECT_NEAR(diffusionParticles(p).diffusivity[1], d(0.3), 1e-16);
   // "in": recomputed from the new concentrations (t = 1 still belongs to the first interval).
-  p.concentration = {0.2, 0.4};
+  diffusionParticles(p).concentration = {0.2, 0.4};
   m.model->computeDiffusivity(p, 1.0);
-  EXPECT_NEAR(p.diffusivity[0], d(0.2), 1e-16);
-  EXPECT_NEAR(p.diffusivity[1], d(0.4), 1e-16);
+  EXPECT_NEAR(diffusionParticles(p).diffusivity[0], d(0.2), 1e-16);
+  EXPECT_NEAR(diffusionParticles(p).diffusivity[1], d(0.4), 1e-16);
   // "out": each particle keeps its previous D whatever its concentration; the maximum returned
   // is that of the frozen values.
-  p.concentration = {0.9, 0.0};
+  diffusionParticles(p).concentration = {0.9, 0.0};
   EXPECT_NEAR(m.model->computeDiffusivity(p, 1.5), d(0.4), 1e-16);
-  EXPECT_NEAR(p.diffusivity[0], d(0.2), 1e-16);
-  EXPECT_NEAR(p.diffusivity[1], d(0.4), 1e-16);
-  p.concentration = {0.95, 0.05};
+  EXPECT_NEAR(diffusionParticles(p).diffusivity[0], d(0.2), 1e-16);
+  EXPECT_NEAR(diffusionParticles(p).diffusivity[1], d(0.4), 1e-16);
+  diffusionParticles(p).concentration = {0.95, 0.05};
   m.model->computeDiffusivity(p, 2.0);
-  EXPECT_NEAR(p.diffusivity[0], d(0.2), 1e-16);
-  EXPECT_NEAR(p.diffusivity[1], d(0.4), 1e-16);
+  EXPECT_NEAR(diffusionParticles(p).diffusivity[0], d(0.2), 1e-16);
+  EXPECT_NEAR(diffusionParticles(p).diffusivity[1], d(0.4), 1e-16);
   // "in" again: recomputed.
   m.model->computeDiffusivity(p, 2.5);
-  EXPECT_NEAR(p.diffusivity[0], d(0.95), 1e-16);
-  EXPECT_NEAR(p.diffusivity[1], d(0.05), 1e-16);
+  EXPECT_NEAR(diffusionParticles(p).diffusivity[0], d(0.95), 1e-16);
+  EXPECT_NEAR(diffusionParticles(p).diffusivity[1], d(0.05), 1e-16);
   // "transition" (the last interval is never entered before maxTime; stays "in").
-  p.concentration = {0.5, 0.5};
+  diffusionParticles(p).concentration = {0.5, 0.5};
   m.model->computeDiffusivity(p, 4.9);
-  EXPECT_NEAR(p.diffusivity[0], d(0.5), 1e-16);
+  EXPECT_NEAR(diffusionParticles(p).diffusivity[0], d(0.5), 1e-16);
 }
 
 TEST(DiffusionModel, DiffCurveAdvancesAtMostOneIntervalPerCall) {
@@ -292,12 +299,12 @@ TEST(DiffusionModel, DiffCurveAdvancesAtMostOneIntervalPerCall) {
   ParticleSet p = particles({0.1});
   m.model->computeDiffusivity(p, 0.0);
   // Jumping from t = 0 to t = 2.5 (in the third interval) advances only to "out": frozen.
-  p.concentration = {0.6};
+  diffusionParticles(p).concentration = {0.6};
   m.model->computeDiffusivity(p, 2.5);
-  EXPECT_NEAR(p.diffusivity[0], d(0.1), 1e-16);
+  EXPECT_NEAR(diffusionParticles(p).diffusivity[0], d(0.1), 1e-16);
   // The next call advances to the third interval ("in"): recomputed.
   m.model->computeDiffusivity(p, 2.5);
-  EXPECT_NEAR(p.diffusivity[0], d(0.6), 1e-16);
+  EXPECT_NEAR(diffusionParticles(p).diffusivity[0], d(0.6), 1e-16);
 }
 
 TEST(DiffusionModel, ConstantRateReportsItsRateAndDoesNotDiffuse) {
@@ -310,7 +317,7 @@ TEST(DiffusionModel, ConstantRateReportsItsRateAndDoesNotDiffuse) {
   EXPECT_FALSE(m.model->diffuses());
   ParticleSet p = particles({0.1, 0.7});
   EXPECT_EQ(m.model->computeDiffusivity(p, 0.0), 0.0);
-  for (double x : p.diffusivity) EXPECT_EQ(x, 0.0);
+  for (double x : diffusionParticles(p).diffusivity) EXPECT_EQ(x, 0.0);
   // jg with D0 = 0 does not diffuse either.
   ModelFromText z(
       "<diffusion_model type=\"jg\"><diffusivity>0</diffusivity>"

@@ -66,7 +66,7 @@ const char* kAutoCycle =
 double meanConcentration(Simulation& sim, size_t material = 0) {
   const ParticleSet& p = sim.mpm().materials()[material].particles;
   double sum = 0;
-  for (double c : p.concentration) sum += c;
+  for (double c : diffusionParticles(p).concentration) sum += c;
   return sum / p.count();
 }
 

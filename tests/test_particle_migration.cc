@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "Components/MPM/ParticleMigration.h"
+#include "Components/MPM/ReactiveFlow/DiffusionParticles.h"
 
 namespace anode {
 namespace {
@@ -13,7 +14,7 @@ namespace {
 ParticleSet numberedParticles() {
   ParticleSet p;
   p.resize(5);
-  p.enable(Physics::Diffusion);
+  declareDiffusionArrays(p);
   p.enable(Physics::Splitting);
   p.declareModelArray(ParticleField<double>{nullptr, Physics::Plasticity, 0.0, OnSplit::Copy});
   for (size_t i = 0; i < 5; ++i) {
@@ -21,8 +22,8 @@ ParticleSet numberedParticles() {
     p.x[i] = Vec3(i, 2.0 * i, 3.0 * i);
     p.mass[i] = 1.0 + i;
     p.F[i] = (1.0 + i) * Mat3::Identity();
-    p.concentration[i] = 0.1 * i;
-    p.concentrationGradient[i] = Vec3::Constant(-1.0 * i);
+    diffusionParticles(p).concentration[i] = 0.1 * i;
+    diffusionParticles(p).concentrationGradient[i] = Vec3::Constant(-1.0 * i);
     p.refined[i] = static_cast<uint8_t>(i % 2);
     p.modelArray<double>(0)[i] = 0.5 * i;
   }
@@ -35,8 +36,9 @@ void expectSameParticle(const ParticleSet& a, size_t i, const ParticleSet& b, si
   EXPECT_EQ(a.x[i], b.x[j]);
   EXPECT_EQ(a.mass[i], b.mass[j]);
   EXPECT_EQ(a.F[i], b.F[j]);
-  EXPECT_EQ(a.concentration[i], b.concentration[j]);
-  EXPECT_EQ(a.concentrationGradient[i], b.concentrationGradient[j]);
+  EXPECT_EQ(diffusionParticles(a).concentration[i], diffusionParticles(b).concentration[j]);
+  EXPECT_EQ(diffusionParticles(a).concentrationGradient[i],
+            diffusionParticles(b).concentrationGradient[j]);
   EXPECT_EQ(a.refined[i], b.refined[j]);
 }
 
@@ -57,7 +59,7 @@ TEST(ParticleMigration, PackedParticlesArriveWithEveryArray) {
   expectSameParticle(from, 3, to, 6);
   EXPECT_EQ(none.count(), 0u);
   // Arrays of physics the material lacks stay empty.
-  EXPECT_EQ(to.externalScalarFlux.size(), 0u);
+  EXPECT_EQ(diffusionParticles(to).externalScalarFlux.size(), 0u);
 }
 
 TEST(ParticleMigration, KeptParticlesKeepTheirOrder) {

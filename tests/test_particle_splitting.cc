@@ -38,7 +38,7 @@ TEST(ParticleSplitting, SplitAxisComparesSquaredEdgeLengths) {
 ParticleSet stretchedParticle() {
   ParticleSet p;
   p.resize(1);
-  p.enable(Physics::Diffusion);
+  declareDiffusionArrays(p);
   p.enable(Physics::FluxBC);
   p.enable(Physics::Splitting);
   p.id[0] = 7;
@@ -48,7 +48,7 @@ ParticleSet stretchedParticle() {
   p.volume[0] = 0.375;
   p.F[0] = Vec3(3, 1, 1).asDiagonal();
   p.size[0] = Vec3(0.5, 0.5, 0.5).asDiagonal();
-  p.concentration[0] = 0.4;
+  diffusionParticles(p).concentration[0] = 0.4;
   return p;
 }
 
@@ -76,7 +76,7 @@ TEST(ParticleSplitting, FourChildrenConserveMassMomentumAndLithium) {
     EXPECT_EQ(p.size[i], Mat3(Vec3(0.125, 0.5, 0.5).asDiagonal()));
     mass += p.mass[i];
     volume += p.volume[i];
-    lithium += p.mass[i] * p.concentration[i];
+    lithium += p.mass[i] * diffusionParticles(p).concentration[i];
     momentum += p.mass[i] * p.velocity[i];
   }
   EXPECT_EQ(mass, 8.0);
@@ -132,8 +132,8 @@ TEST(ParticleSplitting, FluxFacesGoWholeToTheNearestChildOrAreShared) {
   ScalarFluxBC xFace, yFace;
   xFace.boxMin = Vec3(2.75, 0, 0), xFace.boxMax = Vec3(2.75, 4, 4);
   yFace.boxMin = Vec3(0, 2.25, 0), yFace.boxMax = Vec3(4, 2.25, 4);
-  p.loadCurveID[0] = Vec3i(1, 2, 0);
-  p.area[0] = Vec3(0.25, 0.75, 0);
+  diffusionParticles(p).loadCurveID[0] = Vec3i(1, 2, 0);
+  diffusionParticles(p).area[0] = Vec3(0.25, 0.75, 0);
   int64_t nextId = 100;
   const std::vector<SplitParticle> splits = splitStretchedParticles(p, unitGrid(), 2.0, nextId);
   ASSERT_EQ(parentsOf(splits), std::vector<long>{0});
@@ -141,18 +141,18 @@ TEST(ParticleSplitting, FluxFacesGoWholeToTheNearestChildOrAreShared) {
   double xArea = 0, yArea = 0;
   for (size_t i = 0; i < 4; ++i)
     for (int s = 0; s < 3; ++s) {
-      if (p.loadCurveID[i][s] == 1) xArea += p.area[i][s];
-      if (p.loadCurveID[i][s] == 2) {
-        EXPECT_EQ(p.area[i][s], 0.75 / 4);
-        yArea += p.area[i][s];
+      if (diffusionParticles(p).loadCurveID[i][s] == 1) xArea += diffusionParticles(p).area[i][s];
+      if (diffusionParticles(p).loadCurveID[i][s] == 2) {
+        EXPECT_EQ(diffusionParticles(p).area[i][s], 0.75 / 4);
+        yArea += diffusionParticles(p).area[i][s];
       }
     }
   EXPECT_EQ(xArea, 0.25);
   EXPECT_EQ(yArea, 0.75);
   // The x face went to the child at x = 2.5625, nearest the face at 2.75.
-  EXPECT_EQ(p.loadCurveID[3][0], 1);
-  EXPECT_EQ(p.area[3][0], 0.25);
-  for (size_t i = 0; i < 3; ++i) EXPECT_NE(p.loadCurveID[i][0], 1);
+  EXPECT_EQ(diffusionParticles(p).loadCurveID[3][0], 1);
+  EXPECT_EQ(diffusionParticles(p).area[3][0], 0.25);
+  for (size_t i = 0; i < 3; ++i) EXPECT_NE(diffusionParticles(p).loadCurveID[i][0], 1);
 }
 
 }  // namespace

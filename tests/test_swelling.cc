@@ -80,7 +80,7 @@ TEST(Swelling, FreeBodyReachesExpOf3EtaDcWithoutStress) {
   const double expected = std::exp(3 * eta * 0.5);
   double maxStress = 0;
   for (size_t i = 0; i < m.particles.count(); ++i) {
-    EXPECT_NEAR(m.particles.concentration[i], 0.5, 1e-12);
+    EXPECT_NEAR(diffusionParticles(m.particles).concentration[i], 0.5, 1e-12);
     EXPECT_NEAR(m.particles.F[i].determinant(), expected,
                 1e-4 * expected);  // measured 9e-6; the issue asks 0.5%
     maxStress = std::max(maxStress, m.particles.stress[i].norm());

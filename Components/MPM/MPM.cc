@@ -37,7 +37,7 @@ void MPM::problemSetup(const PSNode& root, double initTime, double maxTime) {
   std::vector<MaterialSeeds> seeds(materialNodes.size());
   for (size_t m = 0; m < materialNodes.size(); ++m)
     materials_.push_back(
-        MPMMaterial::fromInput(materialNodes[m], grid_, flags_, maxTime, pieces, nextId, seeds[m]));
+        MPMMaterial::fromInput(materialNodes[m], grid_, flags_, pieces, nextId, seeds[m]));
   nextParticleId_ = nextId;
   if (flags_.refineMaterial >= static_cast<int>(materials_.size()))
     root.requireChild("AMR").fail("the stretchRatio names material " +
@@ -50,7 +50,7 @@ void MPM::problemSetup(const PSNode& root, double initTime, double maxTime) {
   contact_ = Contact::fromInput(mpmMats, static_cast<int>(materials_.size()));
   const PhysicalBCs physical = readPhysicalBCs(root);
   if (flags_.doScalarDiffusion)
-    diffusion_ = std::make_unique<ReactiveFlow>(root, flags_, materials_.size(), physical);
+    diffusion_ = std::make_unique<ReactiveFlow>(root, flags_, materials_, seeds, maxTime, physical);
   else
     ReactiveFlow::rejectWithoutDiffusion(root, flags_, physical);
   gridBCs_ = readGridBoundaryConditions(gridNode, static_cast<int>(materials_.size()),
@@ -98,8 +98,7 @@ void MPM::layOutGrid() {
   for (GridFields& f : fields_) f.resize(nodes);
   weights_.resize(materials_.size());
   capacity_.resize(materials_.size());
-  const size_t scatterQuads =
-      static_cast<size_t>(nodes) * (diffusion_ ? ScatterTerms<2>::quads : ScatterTerms<1>::quads);
+  const size_t scatterQuads = static_cast<size_t>(nodes) * scatterQuadsPerNode(diffusion_.get());
   nodeQuads_.resize(std::max(scatterQuads, static_cast<size_t>(nodes) * kGatherQuads));
   threadScatter_.assign(std::max(omp_get_max_threads() - 1, 0),
                         std::vector<NodeQuad>(scatterQuads));
@@ -159,22 +158,6 @@ void MPM::timeAdvance(Collective, double t, double dt) {
   }
 }
 
-template <class F>
-void MPM::withConcentrationScatter(size_t m, const std::vector<NodeRange>& cleared, F&& f) {
-  if (diffusion_)
-    diffusion_->withScatter(m, materials_[m].particles, weights_[m], cleared, f);
-  else
-    f(NoConcentration{});
-}
-
-template <class F>
-void MPM::withConcentrationGather(size_t m, F&& f) {
-  if (diffusion_)
-    diffusion_->withGather(m, materials_[m].particles, f);
-  else
-    f(NoConcentration{});
-}
-
 template <class Concentration>
 void MPM::scatterMaterial(size_t m, const Concentration& concentration) {
   constexpr int perNode = ScatterTerms<Concentration::scatterWeightQuads>::quads;
@@ -222,8 +205,8 @@ void MPM::interpolateParticlesToGrid() {
       ActiveNodes::of(grid_, hullOf(active_.box, previous_)).rows;
   for (size_t m = 0; m < materials_.size(); ++m) {
     forEachNodeRange(cleared, [&](long begin, long end) { fields_[m].clearAll(begin, end); });
-    withConcentrationScatter(m, cleared,
-                             [&](const auto& concentration) { scatterMaterial(m, concentration); });
+    withScatterKernel(diffusion_.get(), m, materials_[m].particles, weights_[m], cleared,
+                      [&](const auto& concentration) { scatterMaterial(m, concentration); });
   }
 }
 
@@ -284,7 +267,7 @@ void MPM::interpolateToParticlesAndUpdate(double dt) {
     long firstInverted = 0;
     std::visit(
         [&](const auto* concrete) {
-          withConcentrationGather(m, [&](const auto& concentration) {
+          withGatherKernel(diffusion_.get(), m, mat.particles, [&](const auto& concentration) {
             fillGatherQuads(fields_[m], concentration, active_.rows, nodeQuads_.data());
             firstInverted = updateParticles(mat.particles, update, *concrete, concentration);
           });

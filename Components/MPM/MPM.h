@@ -164,10 +164,6 @@ class MPM {
   void checkImplicitSetup(const PSNode& root) const;
   template <class Concentration>
   void scatterMaterial(size_t m, const Concentration& concentration);
-  template <class F>
-  void withConcentrationScatter(size_t m, const std::vector<NodeRange>& cleared, F&& f);
-  template <class F>
-  void withConcentrationGather(size_t m, F&& f);
 
   MPMFlags flags_;
   Grid whole_;  // the problem's grid

@@ -14,7 +14,7 @@ void MPM::saveState(BinaryWriter& out) const {
   for (const MPMMaterial& mat : materials_)
     mat.particles.forEachArray([&](const auto& array) { out.array(array); });
   out.value(nextParticleId_);
-  if (diffusion_) diffusion_->saveState(materials_, out);
+  if (diffusion_) diffusion_->saveState(out);
 }
 
 void MPM::loadState(BinaryReader& in) {
@@ -49,7 +49,7 @@ void MPM::readState(BinaryReader& in, bool append) {
                                ": the checkpoint's particle arrays do not match the input");
   }
   nextParticleId_ = in.value<int64_t>();
-  if (diffusion_) diffusion_->loadState(materials_, in);
+  if (diffusion_) diffusion_->loadState(in);
 }
 
 void MPM::saveLayout(BinaryWriter& out) const {

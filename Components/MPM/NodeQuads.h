@@ -21,9 +21,11 @@ inline void store(const Quad& v, NodeQuad& q) {
 }
 
 // What P2G adds at a node, in `WeightQuads` quads multiplied by the weight S and one by its
-// gradient. Without diffusion (1 + 1 quads): [mass (Eq. 4), momentum] [internal force, 0]. With
-// diffusion (2 + 1): [mass, momentum] [m c (Eq. 5), flux source G (Eq. 18), receiver weights
-// W_in, W_out (docs/diffusion.md, step 5)] [internal force, diffusion rate R (Eq. 7)].
+// gradient: the mechanics' [mass (Eq. 4), momentum] first and [internal force, kernel lane] last.
+// A subcomponent's kernel asks for the quads between (its scatterWeightQuads, counting the
+// mechanics' first) and may use the kernel lane; it names their lanes itself (ReactiveFlow's
+// ConcentrationKernels.h). The particle loops are compiled per kernel, so the layout is fixed
+// at compile time.
 template <int WeightQuads>
 struct ScatterTerms {
   static constexpr int quads = WeightQuads + 1;
@@ -31,22 +33,25 @@ struct ScatterTerms {
   alignas(32) double byWeight[WeightQuads][4] = {};
   alignas(32) double byGradient[3][4] = {};
 };
-namespace ScatterLane {  // lanes of the quads above
+namespace ScatterLane {  // the mechanics' lanes of the first and the last quad above
 constexpr int mass = 0, momentum = 1;
-constexpr int massConcentration = 0, fluxSource = 1, receiverWeightIn = 2, receiverWeightOut = 3;
-constexpr int internalForce = 0, diffusionRate = 3;
+constexpr int internalForce = 0;
 }  // namespace ScatterLane
 
-// What G2P reads at a node k, quads 2k and 2k + 1: [velocity_star, c*] [acceleration, the nodal
-// concentration rate] (c* and the rate zero without diffusion). Its velocity and acceleration
-// are sums over nodes of the quads times S, L and grad c the first quad times grad S.
-constexpr int kGatherQuads = 2, kConcentrationLane = 3;
+// The lane the mechanics leaves to a subcomponent's kernel: of P2G's last quad, and of both of
+// G2P's quads, where it holds the kernel's nodal value and rate (nodeValues).
+constexpr int kKernelLane = 3;
 
-// What G2P sums for a particle from c* and the concentration rate.
-struct GatheredConcentration {
-  Vec3 gradient;  // sum c* grad S
-  double rate;    // sum S c-rate
-  double value;   // sum S c*
+// What G2P reads at a node k, quads 2k and 2k + 1: [velocity_star, s] [acceleration, s-rate], s
+// the kernel's nodal value (zero without one). Its velocity and acceleration are sums over
+// nodes of the quads times S, L and grad s the first quad times grad S.
+constexpr int kGatherQuads = 2;
+
+// What G2P sums for a particle from the kernel's nodal value s and its rate.
+struct GatheredKernelValue {
+  Vec3 gradient;  // sum s grad S
+  double rate;    // sum S s-rate
+  double value;   // sum S s
 };
 
 // Zeroes `count` quads.

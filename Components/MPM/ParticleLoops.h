@@ -62,7 +62,7 @@ void fillGatherQuads(const GridFields& g, const Concentration& concentration,
       v[d] = g.velocityStar[k][d];
       a[d] = g.acceleration[k][d];
     }
-    concentration.nodeValues(k, v[kConcentrationLane], a[kConcentrationLane]);
+    concentration.nodeValues(k, v[kKernelLane], a[kKernelLane]);
   });
 }
 
@@ -120,8 +120,8 @@ long updateParticles(ParticleSet& p, const ParticleUpdate& u, const Model& model
         s.setPlaceholder(l);
         continue;
       }
-      // Per node: the sums of [v*, c*] and [a, c-rate] times S and of [v*, c*] times grad S
-      // (Eq. 8 and L = sum v* grad S).
+      // Per node: the sums of [v*, s] and [a, s-rate] times S and of [v*, s] times grad S
+      // (Eq. 8 and L = sum v* grad S; s the kernel's nodal value, c* with diffusion).
       Quad velocity(0.0), acceleration(0.0), byX(0.0), byY(0.0), byZ(0.0);
       typename Concentration::Particle c{};
       const size_t b = W.offset[i];
@@ -146,9 +146,9 @@ long updateParticles(ParticleSet& p, const ParticleUpdate& u, const Model& model
         gradV(a, 1) = byY[a];
         gradV(a, 2) = byZ[a];
       }
-      const int cl = kConcentrationLane;
-      const GatheredConcentration gathered{Vec3(byX[cl], byY[cl], byZ[cl]), acceleration[cl],
-                                           velocity[cl]};
+      const int cl = kKernelLane;
+      const GatheredKernelValue gathered{Vec3(byX[cl], byY[cl], byZ[cl]), acceleration[cl],
+                                         velocity[cl]};
       // F^{n+1} = (I + L dt/N)^N F^n, subcycled when L dt is large (Uintah's rule).
       const int cycles = std::min(
           std::max(u.minimumSubcyclesForF, 2 * static_cast<int>(gradV.norm() * dt)), 10000);

@@ -1,33 +1,37 @@
-// Particle state of one material, stored as structure-of-arrays. Every array is declared once,
-// in eachArray below (the diffusion subcomponent's in DiffusionParticles.h, the constitutive
-// model's by the model at setup, ConstitutiveState.h): its Uintah label (the name it is saved
-// under), the physics it belongs to (it exists only when the material has that physics), its
-// initial value and what particle splitting does to it. Checkpoints, output, splitting and setup
-// all go through that one list, so a new array is one member and one line.
+// Particle state of one material, stored as structure-of-arrays. Every array is declared once:
+// the mechanics arrays in eachArray below, the constitutive model's by the model at setup
+// (declareModelArray, ConstitutiveState.h) and a subcomponent's by the subcomponent at setup
+// (declareArray; the diffusion subcomponent's in ReactiveFlow/DiffusionParticles.h), each with its
+// Uintah label (the name it is saved under), the physics it belongs to (it exists only when the
+// material has that physics), its initial value and what particle splitting does to it.
+// Checkpoints, output, splitting and setup all go through that one list, so a new array is one
+// member and one line.
 #pragma once
 
 #include <cstdint>
+#include <cstring>
 #include <type_traits>
+#include <variant>
 #include <vector>
 
 #include "Components/MPM/ConstitutiveState.h"
 #include "Components/MPM/ParticleField.h"
-#include "Components/MPM/ReactiveFlow/DiffusionParticles.h"
 #include "Core/Math/Types.h"
 
 namespace anode {
 
-struct ParticleSet : DiffusionParticles {
-  std::vector<int64_t> id;         // p.particleID, stable for the run
-  std::vector<Vec3> x;             // p.x
-  std::vector<Vec3> velocity;      // p.velocity
-  std::vector<Vec3> displacement;  // p.displacement
-  std::vector<double> mass;        // p.mass (constant)
-  std::vector<double> volume;      // p.volume = mass/rho0 * det F
-  std::vector<Mat3> F;             // p.deformationMeasure
-  std::vector<Mat3> stress;        // p.stress (Cauchy, lab frame)
-  std::vector<Mat3> size;          // p.size: reference domain edge vectors in grid-cell units
-  ConstitutiveState modelState;    // the arrays the material's constitutive model declared
+struct ParticleSet {
+  std::vector<int64_t> id;            // p.particleID, stable for the run
+  std::vector<Vec3> x;                // p.x
+  std::vector<Vec3> velocity;         // p.velocity
+  std::vector<Vec3> displacement;     // p.displacement
+  std::vector<double> mass;           // p.mass (constant)
+  std::vector<double> volume;         // p.volume = mass/rho0 * det F
+  std::vector<Mat3> F;                // p.deformationMeasure
+  std::vector<Mat3> stress;           // p.stress (Cauchy, lab frame)
+  std::vector<Mat3> size;             // p.size: reference domain edge vectors in grid-cell units
+  ConstitutiveState modelState;       // the arrays the material's constitutive model declared
+  DeclaredArrays subcomponentArrays;  // the arrays subcomponents declared (declareArray)
   // Particle splitting (only with <refine_particles>true): 1 once a particle or its parent split.
   std::vector<uint8_t> refined;
 
@@ -86,6 +90,25 @@ struct ParticleSet : DiffusionParticles {
     return modelArrays<T>(modelState)[index].values;
   }
 
+  // Creates a subcomponent's array: field.initial for every particle if the material has its
+  // physics, empty until enable() otherwise.
+  template <class T>
+  void declareArray(const ParticleField<T>& field) {
+    subcomponentArrays.arrays.push_back(StateArray<T>{
+        has(field.physics) ? std::vector<T>(count(), field.initial) : std::vector<T>(), field});
+  }
+  // The subcomponent's array declared with `field` (found by its label); null if none was.
+  template <class T>
+  std::vector<T>* findArray(const ParticleField<T>& field) {
+    auto* array = find(subcomponentArrays, field.label);
+    return array ? &std::get<StateArray<T>>(*array).values : nullptr;
+  }
+  template <class T>
+  const std::vector<T>* findArray(const ParticleField<T>& field) const {
+    const auto* array = find(subcomponentArrays, field.label);
+    return array ? &std::get<StateArray<T>>(*array).values : nullptr;
+  }
+
   // Appends a copy of particle i (every array that exists) and returns its index.
   size_t duplicate(size_t i) {
     forEachArray([i](auto& v) {
@@ -101,6 +124,14 @@ struct ParticleSet : DiffusionParticles {
       return state.tensors;
     else
       return state.scalars;
+  }
+  template <class Arrays>
+  static auto* find(Arrays& a, const char* label) {
+    for (auto& array : a.arrays) {
+      const char* name = DeclaredArrays::labelOf(array);
+      if (name && std::strcmp(name, label) == 0) return &array;
+    }
+    return static_cast<decltype(&a.arrays[0])>(nullptr);
   }
   static uint8_t bit(Physics physics) {
     return static_cast<uint8_t>(1u << static_cast<int>(physics));
@@ -121,7 +152,7 @@ struct ParticleSet : DiffusionParticles {
     f(s.stress, ParticleField<Mat3>{"p.stress", P::Mechanics, zero, S::Copy});
     f(s.size, ParticleField<Mat3>{"p.size", P::Mechanics, I, S::Own});
     ConstitutiveState::eachArray(s.modelState, f);
-    eachDiffusionArray(s, f);
+    DeclaredArrays::eachArray(s.subcomponentArrays, f);
     f(s.refined, ParticleField<uint8_t>{"p.refinedMPM", P::Splitting, 0, S::Own});
   }
 

@@ -47,8 +47,9 @@ void StateChecks::forEachHistory(size_t m, const ParticleSet& p, F&& f) {
   f(velocity_[m], [&](size_t j) { return p.velocity[j]; });
   f(velocityIncrement_[m], [](size_t) { return Vec3::Zero().eval(); });
   f(localStreak_[m], [](size_t) { return uint8_t{0}; });
-  if (p.concentration.empty()) return;
-  f(concentration_[m], [&](size_t j) { return p.concentration[j]; });
+  const std::vector<double>* concentration = concentrationOf(p);
+  if (!concentration || concentration->empty()) return;
+  f(concentration_[m], [concentration](size_t j) { return (*concentration)[j]; });
   f(concentrationIncrement_[m], [](size_t) { return 0.0; });
 }
 
@@ -97,7 +98,8 @@ void StateChecks::afterStep(Collective, const MPM& mpm, double dt) {
     const MPMMaterial& mat = materials[m];
     const ParticleSet& p = mat.particles;
     const long n = static_cast<long>(p.count());
-    const bool diffusion = !p.concentration.empty();
+    const std::vector<double>* concentration = concentrationOf(p);
+    const bool diffusion = concentration && !concentration->empty();
     followReordering(mpm.lastReordering()[m], m, p);
     if (velocity_[m].size() != p.count()) {
       // The first step (or the particles were shared out anew): the oscillation watch starts.
@@ -135,10 +137,10 @@ void StateChecks::afterStep(Collective, const MPM& mpm, double dt) {
       v[i] = p.velocity[i];
       dv[i] = d;
       if (c) {
-        const double e = p.concentration[i] - c[i];
+        const double e = (*concentration)[i] - c[i];
         ce += half * e * e;
         cp += half * e * dc[i];
-        c[i] = p.concentration[i];
+        c[i] = (*concentration)[i];
         dc[i] = e;
       }
     }
@@ -240,7 +242,7 @@ void StateChecks::checkOscillation(const MPM& mpm, double velocityEnergy, double
       s << ": p.velocity = " << formatVector(p.velocity[worstI]) << " after a change of "
         << formatVector(velocityIncrement_[worstM][worstI]);
     else
-      s << ": p.concentration = " << p.concentration[worstI] << " after a change of "
+      s << ": p.concentration = " << (*concentrationOf(p))[worstI] << " after a change of "
         << concentrationIncrement_[worstM][worstI];
     throw SimulationError(s.str());
   });

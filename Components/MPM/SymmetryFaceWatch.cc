@@ -53,7 +53,7 @@ std::vector<std::string> SymmetryFaceWatch::start(Collective, const MPM& mpm) {
       watched_.push_back({m, bc.axis, bc.side});
       // Only a material that can take up lithium swells.
       if (!mpm.diffusion() || growth <= 1 ||
-          !(mat.diffusion->diffuses() || mat.diffusion->constantRate() != 0))
+          !(mpm.diffusion()->model(m).diffuses() || mpm.diffusion()->model(m).constantRate() != 0))
         continue;
       // Free growth away from a face the body starts on (a symmetry plane), or about its middle.
       const int a = bc.axis;

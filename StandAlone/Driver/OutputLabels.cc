@@ -8,6 +8,7 @@
 #include <type_traits>
 
 #include "Components/MPM/Materials/ConstitutiveModels/ConcreteModels.h"
+#include "Components/MPM/ReactiveFlow/DiffusionParticles.h"
 
 namespace anode {
 
@@ -44,12 +45,13 @@ constexpr int componentsOf() {
   return 1;
 }
 
-// Calls f(field) for every particle array any material may have: ParticleSet's one list and
-// every constitutive model's state.
+// Calls f(field) for every particle array any material may have: ParticleSet's one list, every
+// constitutive model's state and the diffusion subcomponent's arrays.
 template <class F>
 void forEachParticleField(F&& f) {
   ParticleSet().forEachField([&f](const auto&, const auto& field) { f(field); });
   forEachModelStateField(f);
+  DiffusionFields::forEach(f);
 }
 
 template <class T>
@@ -77,8 +79,8 @@ void copyField(const ParticleSet& p, const std::string& label, const std::vector
   });
 }
 
-// Labels computed from the particle arrays (not stored): value of particle i.
-using DerivedGetter = std::function<void(const MPMMaterial&, const Grid&, size_t, double*)>;
+// Labels computed from the particle arrays (not stored): value of particle i of material m.
+using DerivedGetter = std::function<void(const MPM&, size_t, size_t, double*)>;
 struct DerivedLabel {
   int components;
   DerivedGetter get;
@@ -89,28 +91,33 @@ const std::map<std::string, DerivedLabel>& derivedLabels() {
       // Current physical particle domain F*size*diag(dx), computed only when written.
       {"p.scalefactor",
        {9,
-        [](const MPMMaterial& m, const Grid& g, size_t i, double* o) {
-          put(Mat3(m.particles.F[i] * m.particles.size[i] * g.dx.asDiagonal().toDenseMatrix()), o);
+        [](const MPM& mpm, size_t m, size_t i, double* o) {
+          const ParticleSet& p = mpm.materials()[m].particles;
+          put(Mat3(p.F[i] * p.size[i] * mpm.grid().dx.asDiagonal().toDenseMatrix()), o);
         }}},
       // No external mechanical loads exist in this code: the external force is zero.
       {"p.externalforce",
-       {3, [](const MPMMaterial&, const Grid&, size_t, double* o) { o[0] = o[1] = o[2] = 0; }}},
+       {3, [](const MPM&, size_t, size_t, double* o) { o[0] = o[1] = o[2] = 0; }}},
       // Removed Uintah labels kept as aliases: the concentration and the scaled pressure that the
       // diffusivity uses (Eq. 23), and the von Mises equivalent stress.
       {"p.concentrationInterp",
        {1,
-        [](const MPMMaterial& m, const Grid&, size_t i, double* o) {
-          o[0] = m.particles.concentration.empty() ? 0.0 : m.particles.concentration[i];
+        [](const MPM& mpm, size_t m, size_t i, double* o) {
+          const std::vector<double>* c = concentrationOf(mpm.materials()[m].particles);
+          o[0] = c && !c->empty() ? (*c)[i] : 0.0;
         }}},
       {"p.pressure_t1",
        {1,
-        [](const MPMMaterial& m, const Grid&, size_t i, double* o) {
-          o[0] = m.diffusion ? m.diffusion->scaledPressure(m.particles.stress[i]) : 0.0;
+        [](const MPM& mpm, size_t m, size_t i, double* o) {
+          const ReactiveFlow* diffusion = mpm.diffusion();
+          o[0] = diffusion
+                     ? diffusion->model(m).scaledPressure(mpm.materials()[m].particles.stress[i])
+                     : 0.0;
         }}},
       {"p.equivalentStress_t1",
        {1,
-        [](const MPMMaterial& m, const Grid&, size_t i, double* o) {
-          const Mat3& s = m.particles.stress[i];
+        [](const MPM& mpm, size_t m, size_t i, double* o) {
+          const Mat3& s = mpm.materials()[m].particles.stress[i];
           const Mat3 dev = s - s.trace() / 3.0 * Mat3::Identity();
           o[0] = std::sqrt(1.5) * dev.norm();
         }}},
@@ -144,7 +151,7 @@ NamedArray gatherLabel(const MPM& mpm, const std::string& name, const std::strin
     } else {
       const DerivedLabel& d = derivedLabels().at(label);
       for (size_t k = 0; k < indices[m].size(); ++k)
-        d.get(mat, mpm.grid(), indices[m][k], out + components * k);
+        d.get(mpm, m, indices[m][k], out + components * k);
     }
     offset += indices[m].size();
   }

@@ -6,6 +6,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "Components/MPM/ReactiveFlow/DiffusionParticles.h"
 #include "Core/Util/Errors.h"
 #include "StandAlone/Studies/StudyInput.h"
 #include "StandAlone/Studies/VerificationRun.h"
@@ -107,6 +108,7 @@ DiffusionSlabResult runDiffusionSlab(const DiffusionSlabCase& c) {
                           c.variant() + ".ups");
   Simulation& sim = run.simulation();
   ParticleSet& p = run.particles();
+  const DiffusionParticles d(p);
 
   DiffusionSlabResult r;
   r.interpolator = c.interpolator;
@@ -118,7 +120,7 @@ DiffusionSlabResult runDiffusionSlab(const DiffusionSlabCase& c) {
   r.minConcentration = std::numeric_limits<double>::infinity();
   r.maxConcentration = -std::numeric_limits<double>::infinity();
   auto track = [&](double t) {
-    const auto [lo, hi] = std::minmax_element(p.concentration.begin(), p.concentration.end());
+    const auto [lo, hi] = std::minmax_element(d.concentration.begin(), d.concentration.end());
     if (*lo < r.minConcentration) {
       r.minConcentration = *lo;
       r.minConcentrationTime = t;
@@ -134,7 +136,7 @@ DiffusionSlabResult runDiffusionSlab(const DiffusionSlabCase& c) {
     while (run.beforeEndTime()) {
       sim.advance();
       if (c.clampAfterStep)
-        for (double& x : p.concentration) x = std::clamp(x, 0.0, 1.0);
+        for (double& x : d.concentration) x = std::clamp(x, 0.0, 1.0);
       track(sim.time());
     }
     r.completed = true;
@@ -168,7 +170,7 @@ DiffusionSlabResult runDiffusionSlab(const DiffusionSlabCase& c) {
   for (size_t i = 0; i < n; ++i) {
     const double x = p.x[i].x();
     const double exact = diffusionSlabExact(x, r.finalTime, c.diffusivity, c.fourierTerms);
-    const double computed = p.concentration[i];
+    const double computed = d.concentration[i];
     const double err = computed - exact;
     const double rel = exact != 0 ? (exact - computed) / exact : 0.0;  // Eq. 14
     sumRel2 += rel * rel;

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "Components/MPM/ReactiveFlow/DiffusionParticles.h"
 #include "Components/MPM/ReactiveFlow/FluxRestriction.h"
 #include "StandAlone/Studies/StudyInput.h"
 #include "StandAlone/Studies/VerificationRun.h"
@@ -26,7 +27,8 @@ std::string loadCurve(int id, const std::vector<std::pair<double, double>>& poin
 
 double lithium(const ParticleSet& p) {
   double s = 0;
-  for (size_t i = 0; i < p.count(); ++i) s += p.mass[i] * p.concentration[i];
+  const ConstDiffusionParticles d(p);
+  for (size_t i = 0; i < p.count(); ++i) s += p.mass[i] * d.concentration[i];
   return s;
 }
 
@@ -124,14 +126,15 @@ FluxSlabResult runFluxSlab(const FluxSlabCase& c) {
                       "flux_slab_" + c.interpolator + "_" + std::to_string(c.cells) + ".ups");
   Simulation& sim = run.simulation();
   const ParticleSet& p = run.particles();
-  if (p.externalScalarFlux.size() != p.count())
+  const ConstDiffusionParticles d(p);
+  if (d.externalScalarFlux.size() != p.count())
     throw std::logic_error("flux slab: the flux BC was not assigned");
 
   FluxSlabResult r;
   r.interpolator = c.interpolator;
   r.cells = c.cells;
   r.particles = p.count();
-  for (size_t i = 0; i < p.count(); ++i) r.fluxParticles += p.loadCurveID[i][0] > 0;
+  for (size_t i = 0; i < p.count(); ++i) r.fluxParticles += d.loadCurveID[i][0] > 0;
   r.lithium0 = lithium(p);
   r.minConcentration = 0;
   double maxFlagged = 0;
@@ -140,12 +143,12 @@ FluxSlabResult runFluxSlab(const FluxSlabCase& c) {
     const double dt = sim.dt();
     if (sim.step() == 0) r.dt = dt;
     double rate = 0;  // sum_p m_p rate_p of this step's start
-    for (size_t i = 0; i < p.count(); ++i) rate += p.mass[i] * p.externalScalarFlux[i];
+    for (size_t i = 0; i < p.count(); ++i) rate += p.mass[i] * d.externalScalarFlux[i];
     r.injected += dt * rate;
     sim.advance();
     for (size_t i = 0; i < p.count(); ++i) {
-      r.minConcentration = std::min(r.minConcentration, p.concentration[i]);
-      if (p.loadCurveID[i][0] > 0) maxFlagged = std::max(maxFlagged, p.concentration[i]);
+      r.minConcentration = std::min(r.minConcentration, d.concentration[i]);
+      if (d.loadCurveID[i][0] > 0) maxFlagged = std::max(maxFlagged, d.concentration[i]);
     }
   }
   r.lithium = lithium(p);
@@ -155,7 +158,7 @@ FluxSlabResult runFluxSlab(const FluxSlabCase& c) {
   double err2 = 0, ref2 = 0, maxErr = 0, maxRef = 0;
   for (size_t i = 0; i < p.count(); ++i) {
     const double exact = fluxSlabAnalytic(p.x[i].x(), t, c.flux, c.length, c.diffusivity);
-    const double e = p.concentration[i] - exact;
+    const double e = d.concentration[i] - exact;
     err2 += e * e;
     ref2 += exact * exact;
     if (p.x[i].x() <= 0.5 * c.length)
@@ -165,10 +168,10 @@ FluxSlabResult runFluxSlab(const FluxSlabCase& c) {
       r.maxErrorAt = p.x[i].x();
     }
     r.x.push_back(p.x[i].x());
-    r.c.push_back(p.concentration[i]);
+    r.c.push_back(d.concentration[i]);
     r.exact.push_back(exact);
     maxRef = std::max(maxRef, std::abs(exact));
-    r.maxConcentration = std::max(r.maxConcentration, p.concentration[i]);
+    r.maxConcentration = std::max(r.maxConcentration, d.concentration[i]);
   }
   r.l2Error = std::sqrt(err2 / ref2);
   r.maxError = maxErr / maxRef;

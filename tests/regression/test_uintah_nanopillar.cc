@@ -23,8 +23,8 @@ TEST(UintahNanoPillar2D, MatchesUintahAtTheLastReportedTime) {
   const ParticleSet& p = sim.mpm().materials()[0].particles;
   double sum = 0, cmax = 0;
   for (size_t i = 0; i < p.count(); ++i) {
-    sum += p.concentration[i];
-    cmax = std::max(cmax, p.concentration[i]);
+    sum += diffusionParticles(p).concentration[i];
+    cmax = std::max(cmax, diffusionParticles(p).concentration[i]);
   }
   std::printf("t = %.4e us, step %ld: %zu particles, mean c %.4f, max c %.4f\n", sim.time(),
               sim.step(), p.count(), sum / p.count(), cmax);

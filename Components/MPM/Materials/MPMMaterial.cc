@@ -5,7 +5,6 @@
 #include <sstream>
 
 #include "Components/MPM/ProblemSize.h"
-#include "Components/MPM/ReactiveFlow/ScalarFluxBC.h"
 #include "Core/Geometry/ParticleFill.h"
 #include "Core/Geometry/SmoothCylinder.h"
 #include "Core/Util/MemoryBudget.h"
@@ -33,20 +32,9 @@ void addGeomObject(const PSNode& geom, const Grid& grid, const MPMFlags& flags, 
   if ((res.array() < 1).any())
     resNode.fail("<res> needs at least one particle per cell in each direction");
   const Vec3 velocity = geom.require<Vec3>("velocity");
-  // Temperature and colour change nothing in isothermal single-field MPM; concentration matters
-  // only with diffusion.
+  // Temperature and colour change nothing in isothermal single-field MPM (the concentration is
+  // the diffusion subcomponent's: ReactiveFlow).
   for (const char* inert : {"temperature", "color"}) geom.acceptInert(inert);
-  double c0 = 0;
-  if (flags.doScalarDiffusion) {
-    c0 = geom.require<double>("concentration");
-    if (c0 < m.diffusion->minConcentration || c0 > m.diffusion->maxConcentration)
-      geom.requireChild("concentration")
-          .fail("<concentration> must lie in [min_concentration, max_concentration] = [" +
-                std::to_string(m.diffusion->minConcentration) + ", " +
-                std::to_string(m.diffusion->maxConcentration) + "]");
-  } else {
-    geom.acceptInert("concentration");
-  }
   if (const PSNode levels = geom.child("numLevelsParticleFilling"))
     if (levels.value<int>() != 1) levels.unsupported("multi-level particle filling");
   for (const char* affine : {"affineTransformation_A0", "affineTransformation_A1",
@@ -112,23 +100,17 @@ void addGeomObject(const PSNode& geom, const Grid& grid, const MPMFlags& flags, 
     geom.fail(
         "<geom_object> places no particle: its pieces contain no particle position of the grid");
 
-  const bool findSurface = flags.doScalarDiffusion && flags.useLoadCurves;
   const size_t first = p.count();
+  MaterialSeeds::Object object{geom, piece, first, seeds.size(), dxp, smooth != nullptr};
+  if (smooth)
+    for (const SmoothParticle& s : seeds) object.smoothFaceAreas.push_back(s.faceArea);
+  else
+    object.faceArea = seeds[0].faceArea;
+  out.objects.push_back(std::move(object));
   p.resize(first + seeds.size());  // every array of the material's physics, at its initial value
   for (size_t k = 0; k < seeds.size(); ++k) {
     const SmoothParticle& s = seeds[k];
     const size_t i = first + k;
-    if (findSurface) {
-      // Smooth pieces are not searched for their surface: every particle is tested by the flux
-      // BCs (UINTAH_UPS.md §3.2), with the spacing dx/res.
-      out.onSurface.push_back(smooth || onSurface(*piece, s.x, dxp, grid.ndim()));
-      out.faceArea.push_back(s.faceArea);
-      out.spacing.push_back(dxp);
-    }
-    if (flags.doScalarDiffusion) {
-      p.concentration[i] = c0;
-      p.diffusivity[i] = m.diffusion->D0;
-    }
     p.id[i] = nextId++;
     p.x[i] = s.x;
     p.velocity[i] = velocity;
@@ -156,7 +138,7 @@ std::string describeParticle(const MPMMaterial& mat, size_t matl, size_t i) {
 }
 
 MPMMaterial MPMMaterial::fromInput(const PSNode& node, const Grid& grid, const MPMFlags& flags,
-                                   double maxTime, GeometryPieceFactory& pieces, int64_t& nextId,
+                                   GeometryPieceFactory& pieces, int64_t& nextId,
                                    MaterialSeeds& seeds) {
   MPMMaterial m;
   m.name = node.attribute("name").value_or("");
@@ -165,16 +147,10 @@ MPMMaterial MPMMaterial::fromInput(const PSNode& node, const Grid& grid, const M
   for (const char* inert :
        {"thermal_conductivity", "specific_heat", "melt_temp", "room_temp", "C_p"})
     node.acceptInert(inert);
-  m.reducesConcentration = node.get<bool>("do_conc_reduction", false);
-  if (flags.doScalarDiffusion)
-    m.diffusion = createDiffusionModel(node.requireChild("diffusion_model"), maxTime);
-  else
-    node.acceptInert("diffusion_model");  // Uintah reads it only with do_scalar_diffusion
   if (const PSNode rigid = node.child("is_rigid"))
     if (rigid.value<bool>()) rigid.unsupported("rigid materials <is_rigid>");
   m.model =
       createConstitutiveModel(node.requireChild("constitutive_model"), flags.doScalarDiffusion);
-  if (flags.doScalarDiffusion) m.particles.enable(Physics::Diffusion);
 
   const auto geoms = node.children("geom_object");
   if (geoms.empty()) node.fail("<material> needs at least one <geom_object>");

@@ -9,20 +9,30 @@
 #include "Components/MPM/MPMFlags.h"
 #include "Components/MPM/Materials/ConstitutiveModels/ConstitutiveModel.h"
 #include "Components/MPM/ParticleSet.h"
-#include "Components/MPM/ReactiveFlow/ScalarDiffusionModel.h"
 #include "Core/Geometry/GeometryPiece.h"
 #include "Core/Grid/Grid.h"
 
 namespace anode {
 
 // What setup learns while filling a material's particles and needs once the rest of the input
-// is read: which particles lie on the surface of their geometry (for the flux BCs), and the
+// is read: which <geom_object> laid out which particles (for the subcomponents: the diffusion
+// subcomponent reads its initial concentration and finds the surface particles there), and the
 // grid-filled pieces (checked against the grid once the face BCs are known). Setup only.
 struct MaterialSeeds {
-  // Per particle: on the surface, its face areas (normal to x, y, z; for smooth pieces normal to
-  // r, r, axis) and the spacing the flux BCs select it with (only with flux BCs possible).
-  std::vector<uint8_t> onSurface;
-  std::vector<Vec3> faceArea, spacing;
+  // One <geom_object>: its particles [first, first + count), laid out dx/res apart, with their
+  // face areas (normal to x, y, z; for a smooth piece normal to r, r, axis, per particle).
+  struct Object {
+    PSNode node;
+    GeometryPieceP piece;  // the union of its pieces
+    size_t first = 0, count = 0;
+    Vec3 spacing = Vec3::Zero();        // dx/res
+    bool smooth = false;                // laid out by a <smoothcyl>
+    Vec3 faceArea = Vec3::Zero();       // of every particle of a grid-filled object
+    std::vector<Vec3> smoothFaceAreas;  // per particle of a smooth one
+
+    Vec3 faceAreaOf(size_t i) const { return smooth ? smoothFaceAreas[i - first] : faceArea; }
+  };
+  std::vector<Object> objects;
   // The grid-filled pieces of the geom_objects with their <res>.
   struct FilledPiece {
     PSNode node;
@@ -41,17 +51,13 @@ struct MaterialSeeds {
 struct MPMMaterial {
   std::string name;
   double density = 0;  // rho0; particle mass = rho0 * V0
-  // <do_conc_reduction>: its particles count in the concentration <do_auto_cycle_bc> watches.
-  bool reducesConcentration = false;
   std::unique_ptr<ConstitutiveModel> model;
-  std::unique_ptr<ScalarDiffusionModel> diffusion;  // only with <do_scalar_diffusion>true
   ParticleSet particles;
 
   // Reads the material and fills its particles; `nextId` numbers particles across materials.
-  // `maxTime` bounds the diffusion model's diff_curve. `seeds` receives what setup needs later.
+  // `seeds` receives what setup needs later.
   static MPMMaterial fromInput(const PSNode& node, const Grid& grid, const MPMFlags& flags,
-                               double maxTime, GeometryPieceFactory& pieces, int64_t& nextId,
-                               MaterialSeeds& seeds);
+                               GeometryPieceFactory& pieces, int64_t& nextId, MaterialSeeds& seeds);
 };
 
 // "[x, y, z]", for diagnostics.

@@ -10,9 +10,17 @@
 #include "Components/MPM/NodeQuads.h"
 #include "Components/MPM/ParticleSet.h"
 #include "Components/MPM/ReactiveFlow/DiffusionGridFields.h"
+#include "Components/MPM/ReactiveFlow/DiffusionParticles.h"
 #include "Components/MPM/ReactiveFlow/FluxRestriction.h"
 
 namespace anode {
+
+// The lanes ConcentrationScatter uses: of the quad it asks for after the mechanics' first
+// (ScatterTerms<2>), and the kernel lane of the last quad (NodeQuads.h).
+namespace ConcentrationLane {
+constexpr int massConcentration = 0, fluxSource = 1, receiverWeightIn = 2, receiverWeightOut = 3;
+constexpr int diffusionRate = kKernelLane;
+}  // namespace ConcentrationLane
 
 // Diffusion off: no concentration on particles or grid.
 struct NoConcentration {
@@ -22,7 +30,7 @@ struct NoConcentration {
   void spread(long, const NodeQuad*) const {}
   void nodeValues(long, double& concentration, double& rate) const { concentration = rate = 0.0; }
   void gather(Particle&, int, double) const {}
-  double update(long, const Particle&, const GatheredConcentration&, double) const { return 0.0; }
+  double update(long, const Particle&, const GatheredKernelValue&, double) const { return 0.0; }
 };
 
 // P2G: (mc)_i = sum m c S (Eq. 5), R_i = -sum m grad S . q with q_p = D_p grad c_p of the
@@ -38,42 +46,43 @@ class ConcentrationScatter {
   // the material's max_concentration.
   ConcentrationScatter(const ParticleSet& p, const InterpolationWeights& W,
                        const unsigned char* reached, double cmax, ConcentrationScatterFields& grid)
-      : p_(p), W_(W), reached_(reached), cmax_(cmax), grid_(&grid) {}
+      : p_(p), d_(p), W_(W), reached_(reached), cmax_(cmax), grid_(&grid) {}
 
   // Particle i's terms: m c, m q (q = D grad c) and, with flux, m rate and m R(c) where a
   // source can reach.
   void addScatterTerms(long i, ScatterTerms<2>& t) const {
     const double mp = p_.mass[i];
-    const Vec3 mq = mp * p_.diffusivity[i] * p_.concentrationGradient[i];
-    for (int d = 0; d < 3; ++d) t.byGradient[d][ScatterLane::diffusionRate] = mq[d];
+    const Vec3 mq = mp * d_.diffusivity[i] * d_.concentrationGradient[i];
+    for (int d = 0; d < 3; ++d) t.byGradient[d][ConcentrationLane::diffusionRate] = mq[d];
     double* terms = t.byWeight[1];
-    terms[ScatterLane::massConcentration] = mp * p_.concentration[i];
+    terms[ConcentrationLane::massConcentration] = mp * d_.concentration[i];
     if constexpr (Flux) {
-      terms[ScatterLane::fluxSource] = mp * p_.externalScalarFlux[i];
+      terms[ConcentrationLane::fluxSource] = mp * d_.externalScalarFlux[i];
       // A particle's weights matter only on the nodes a source reaches (elsewhere G = 0).
       const size_t b = W_.offset[i];
       unsigned char reached = 0;
       for (int e = 0; e < W_.count[i]; ++e) reached |= reached_[W_.node[b + e]];
-      const double c = p_.concentration[i] / cmax_;
-      if (reached & 1) terms[ScatterLane::receiverWeightIn] = mp * fluxRestriction(c, true);
-      if (reached & 2) terms[ScatterLane::receiverWeightOut] = mp * fluxRestriction(c, false);
+      const double c = d_.concentration[i] / cmax_;
+      if (reached & 1) terms[ConcentrationLane::receiverWeightIn] = mp * fluxRestriction(c, true);
+      if (reached & 2) terms[ConcentrationLane::receiverWeightOut] = mp * fluxRestriction(c, false);
     }
   }
 
   // Node k's sums from its quads into the grid's fields.
   void spread(long k, const NodeQuad* quads) const {
     const double* sums = quads[1].value;
-    grid_->massConcentration[k] = sums[ScatterLane::massConcentration];
-    grid_->diffusionRate[k] = quads[2].value[ScatterLane::diffusionRate];
+    grid_->massConcentration[k] = sums[ConcentrationLane::massConcentration];
+    grid_->diffusionRate[k] = quads[2].value[ConcentrationLane::diffusionRate];
     if constexpr (Flux) {
-      grid_->fluxSource[k] = sums[ScatterLane::fluxSource];
-      grid_->receiverWeightIn[k] = sums[ScatterLane::receiverWeightIn];
-      grid_->receiverWeightOut[k] = sums[ScatterLane::receiverWeightOut];
+      grid_->fluxSource[k] = sums[ConcentrationLane::fluxSource];
+      grid_->receiverWeightIn[k] = sums[ConcentrationLane::receiverWeightIn];
+      grid_->receiverWeightOut[k] = sums[ConcentrationLane::receiverWeightOut];
     }
   }
 
  private:
   const ParticleSet& p_;
+  ConstDiffusionParticles d_;
   const InterpolationWeights& W_;
   const unsigned char* reached_;
   double cmax_;
@@ -113,7 +122,7 @@ class ConcentrationGather {
   }
 
   // Updates particle i's concentration and gradient; returns the concentration change.
-  double update(long i, const Particle& a, const GatheredConcentration& sums, double dt) const {
+  double update(long i, const Particle& a, const GatheredKernelValue& sums, double dt) const {
     p_.concentrationGradient[i] = sums.gradient;
     const double c0 = p_.concentration[i];
     double received = 0;
@@ -126,7 +135,7 @@ class ConcentrationGather {
   }
 
  private:
-  ParticleSet& p_;
+  DiffusionParticles p_;
   const ConcentrationGridFields& g_;
   const double* wallMask_;
   double cmax_;

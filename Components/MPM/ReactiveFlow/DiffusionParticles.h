@@ -1,37 +1,93 @@
-// The particle arrays of the diffusion subcomponent. They exist only with
-// <do_scalar_diffusion>true, the flux arrays only for materials whose particles a <scalar_flux>
-// can reach; ParticleSet holds them with the mechanics arrays, in its one list of arrays.
+// The particle arrays of the diffusion subcomponent, which it declares on each material's
+// particle set (declareDiffusionArrays) and reaches there through a view (DiffusionParticles).
+// They exist only with <do_scalar_diffusion>true, the flux arrays only for materials whose
+// particles a <scalar_flux> can reach (empty otherwise).
 #pragma once
 
+#include <stdexcept>
+#include <string>
+#include <type_traits>
 #include <vector>
 
-#include "Components/MPM/ParticleField.h"
+#include "Components/MPM/ParticleSet.h"
 #include "Core/Math/Types.h"
 
 namespace anode {
 
-struct DiffusionParticles {
-  std::vector<double> concentration;        // p.concentration, normalised
-  std::vector<Vec3> concentrationGradient;  // p.concentrationGradient, from the previous step
-  std::vector<double> diffusivity;          // p.diffusivity (Eq. 23 or 24)
-  std::vector<double> externalScalarFlux;  // p.externalScalarFlux: dc/dt from the flux BCs (Eq. 16)
-  std::vector<Vec3i> loadCurveID;          // p.loadCurveID: up to 3 load curves (0: none)
-  std::vector<Vec3> area;                  // p.area: face area of each of those curves
+// The arrays' fields, in declaration order (the order of checkpoints and splitting).
+struct DiffusionFields {
+  static inline const ParticleField<double> concentration{"p.concentration", Physics::Diffusion,
+                                                          0.0, OnSplit::Copy};
+  static inline const ParticleField<Vec3> concentrationGradient{
+      "p.concentrationGradient", Physics::Diffusion, Vec3::Zero(), OnSplit::Copy};
+  static inline const ParticleField<double> diffusivity{"p.diffusivity", Physics::Diffusion, 0.0,
+                                                        OnSplit::Copy};
+  static inline const ParticleField<double> externalScalarFlux{"p.externalScalarFlux",
+                                                               Physics::FluxBC, 0.0, OnSplit::Copy};
+  static inline const ParticleField<Vec3i> loadCurveID{"p.loadCurveID", Physics::FluxBC,
+                                                       Vec3i::Zero(), OnSplit::Own};
+  static inline const ParticleField<Vec3> area{"p.area", Physics::FluxBC, Vec3::Zero(),
+                                               OnSplit::Own};
 
- protected:
-  // Calls f(array, field) for each array above (part of ParticleSet::eachArray).
-  template <class Self, class F>
-  static void eachDiffusionArray(Self& s, F& f) {
-    using P = Physics;
-    using S = OnSplit;
-    f(s.concentration, ParticleField<double>{"p.concentration", P::Diffusion, 0.0, S::Copy});
-    f(s.concentrationGradient,
-      ParticleField<Vec3>{"p.concentrationGradient", P::Diffusion, Vec3::Zero(), S::Copy});
-    f(s.diffusivity, ParticleField<double>{"p.diffusivity", P::Diffusion, 0.0, S::Copy});
-    f(s.externalScalarFlux, ParticleField<double>{"p.externalScalarFlux", P::FluxBC, 0.0, S::Copy});
-    f(s.loadCurveID, ParticleField<Vec3i>{"p.loadCurveID", P::FluxBC, Vec3i::Zero(), S::Own});
-    f(s.area, ParticleField<Vec3>{"p.area", P::FluxBC, Vec3::Zero(), S::Own});
+  // Calls f(field) for each field above.
+  template <class F>
+  static void forEach(F&& f) {
+    f(concentration);
+    f(concentrationGradient);
+    f(diffusivity);
+    f(externalScalarFlux);
+    f(loadCurveID);
+    f(area);
   }
 };
+
+// Declares the arrays on `p` and creates those of Physics::Diffusion.
+inline void declareDiffusionArrays(ParticleSet& p) {
+  DiffusionFields::forEach([&p](const auto& field) { p.declareArray(field); });
+  p.enable(Physics::Diffusion);
+}
+
+// The arrays of one particle set (`Set`: ParticleSet, or const ParticleSet to read them).
+template <class Set>
+struct DiffusionArrays {
+  template <class T>
+  using Array = std::conditional_t<std::is_const_v<Set>, const std::vector<T>, std::vector<T>>;
+
+  explicit DiffusionArrays(Set& p)
+      : concentration(of(p, DiffusionFields::concentration)),
+        concentrationGradient(of(p, DiffusionFields::concentrationGradient)),
+        diffusivity(of(p, DiffusionFields::diffusivity)),
+        externalScalarFlux(of(p, DiffusionFields::externalScalarFlux)),
+        loadCurveID(of(p, DiffusionFields::loadCurveID)),
+        area(of(p, DiffusionFields::area)) {}
+
+  Array<double>& concentration;        // p.concentration, normalised
+  Array<Vec3>& concentrationGradient;  // p.concentrationGradient, from the previous step
+  Array<double>& diffusivity;          // p.diffusivity (Eq. 23 or 24)
+  Array<double>& externalScalarFlux;   // p.externalScalarFlux: dc/dt from the flux BCs (Eq. 16)
+  Array<Vec3i>& loadCurveID;           // p.loadCurveID: up to 3 load curves (0: none)
+  Array<Vec3>& area;                   // p.area: face area of each of those curves
+
+ private:
+  template <class T>
+  static Array<T>& of(Set& p, const ParticleField<T>& field) {
+    if (Array<T>* array = p.findArray(field)) return *array;
+    throw std::logic_error(std::string("particles without the diffusion array ") + field.label);
+  }
+};
+using DiffusionParticles = DiffusionArrays<ParticleSet>;
+using ConstDiffusionParticles = DiffusionArrays<const ParticleSet>;
+
+inline DiffusionParticles diffusionParticles(ParticleSet& p) {
+  return DiffusionParticles(p);
+}
+inline ConstDiffusionParticles diffusionParticles(const ParticleSet& p) {
+  return ConstDiffusionParticles(p);
+}
+
+// p.concentration, or null for particles without the diffusion arrays (a run without diffusion).
+inline const std::vector<double>* concentrationOf(const ParticleSet& p) {
+  return p.findArray(DiffusionFields::concentration);
+}
 
 }  // namespace anode

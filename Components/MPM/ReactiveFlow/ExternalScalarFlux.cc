@@ -18,12 +18,13 @@ void shareFluxFaces(ParticleSet& p, const std::vector<ScalarFluxBC>& bcs,
                     const SplitParticle& split) {
   const size_t* child = split.child;
   const size_t parent = child[0];
+  const DiffusionParticles d(p);
   const Vec3 parentX = p.x[parent] - split.offset[0];
-  const Vec3i ids = p.loadCurveID[parent];
-  const Vec3 areas = p.area[parent];
+  const Vec3i ids = d.loadCurveID[parent];
+  const Vec3 areas = d.area[parent];
   for (int c = 0; c < 4; ++c) {
-    p.loadCurveID[child[c]].setZero();
-    p.area[child[c]].setZero();
+    d.loadCurveID[child[c]].setZero();
+    d.area[child[c]].setZero();
   }
   int slots[4] = {0, 0, 0, 0};
   for (int s = 0; s < 3 && ids[s] > 0; ++s) {
@@ -34,8 +35,8 @@ void shareFluxFaces(ParticleSet& p, const std::vector<ScalarFluxBC>& bcs,
       if (bc.distanceToFace(p.x[child[c]]) < bc.distanceToFace(p.x[child[nearest]])) nearest = c;
     for (int c = 0; c < 4; ++c) {
       if (acrossFace && c != nearest) continue;
-      p.loadCurveID[child[c]][slots[c]] = ids[s];
-      p.area[child[c]][slots[c]] = acrossFace ? areas[s] : 0.25 * areas[s];
+      d.loadCurveID[child[c]][slots[c]] = ids[s];
+      d.area[child[c]][slots[c]] = acrossFace ? areas[s] : 0.25 * areas[s];
       ++slots[c];
     }
   }
@@ -44,8 +45,8 @@ void shareFluxFaces(ParticleSet& p, const std::vector<ScalarFluxBC>& bcs,
 }  // namespace
 
 std::vector<ExternalScalarFlux::Flagged> ExternalScalarFlux::assignToParticles(
-    std::vector<MPMMaterial>& materials, const std::vector<MaterialSeeds>& seeds,
-    const Grid& grid) const {
+    std::vector<MPMMaterial>& materials, const std::vector<DiffusionMaterial>& diffusion,
+    const std::vector<MaterialSeeds>& seeds, const Grid& grid) const {
   // Surface particles get, per BC that flags them, the area of the face that BC names
   // (UINTAH_UPS.md §3.1; unlike Uintah, not the area left by the last BC tested).
   std::vector<Flagged> report;
@@ -53,31 +54,36 @@ std::vector<ExternalScalarFlux::Flagged> ExternalScalarFlux::assignToParticles(
     MPMMaterial& mat = materials[m];
     const MaterialSeeds& surface = seeds[m];
     ParticleSet& p = mat.particles;
-    if (bcs_.empty() || !mat.diffusion->diffuses())
+    if (bcs_.empty() || !diffusion[m].model->diffuses())
       continue;  // a material without diffusivity gets no lithium
     p.enable(Physics::FluxBC);
+    const DiffusionParticles d(p);
     // Per BC, how many particles it flags, those that hold it (at most 3 BCs a particle) and
     // the slot it has in each.
     std::vector<size_t> flagged(bcs_.size(), 0);
     std::vector<std::vector<size_t>> holding(bcs_.size());
     std::vector<std::vector<int>> slots(bcs_.size());
     Vec3 spacing = Vec3::Zero();
-    for (size_t i = 0; i < p.count(); ++i) {
-      if (!surface.onSurface[i]) continue;
-      int slot = 0;
-      for (size_t b = 0; b < bcs_.size(); ++b) {
-        const double a = bcs_[b].flaggedArea(p.x[i], surface.spacing[i], surface.faceArea[i]);
-        if (a <= 0) continue;
-        ++flagged[b];
-        if (slot == 3) continue;  // a particle holds at most 3 load curves
-        p.loadCurveID[i][slot] = static_cast<int>(b) + 1;
-        p.area[i][slot] = a;
-        holding[b].push_back(i);
-        slots[b].push_back(slot);
-        spacing = spacing.cwiseMax(surface.spacing[i]);
-        ++slot;
+    for (const MaterialSeeds::Object& object : surface.objects)
+      for (size_t i = object.first; i < object.first + object.count; ++i) {
+        // Smooth pieces are not searched for their surface: every particle is tested by the
+        // flux BCs (UINTAH_UPS.md §3.2), with the spacing dx/res.
+        if (!object.smooth && !onSurface(*object.piece, p.x[i], object.spacing, grid.ndim()))
+          continue;
+        int slot = 0;
+        for (size_t b = 0; b < bcs_.size(); ++b) {
+          const double a = bcs_[b].flaggedArea(p.x[i], object.spacing, object.faceAreaOf(i));
+          if (a <= 0) continue;
+          ++flagged[b];
+          if (slot == 3) continue;  // a particle holds at most 3 load curves
+          d.loadCurveID[i][slot] = static_cast<int>(b) + 1;
+          d.area[i][slot] = a;
+          holding[b].push_back(i);
+          slots[b].push_back(slot);
+          spacing = spacing.cwiseMax(object.spacing);
+          ++slot;
+        }
       }
-    }
     for (size_t b = 0; b < bcs_.size(); ++b) {
       if (flagged[b] == 0) continue;
       Flagged f{b, m, flagged[b]};
@@ -91,39 +97,42 @@ std::vector<ExternalScalarFlux::Flagged> ExternalScalarFlux::assignToParticles(
         f.surfaceArea = share.surfaceArea;
         f.bodyArea = share.bodyArea;
       }
-      for (size_t k = 0; k < holding[b].size(); ++k) f.area += p.area[holding[b][k]][slots[b][k]];
+      for (size_t k = 0; k < holding[b].size(); ++k) f.area += d.area[holding[b][k]][slots[b][k]];
       report.push_back(f);
     }
   }
   return report;
 }
 
-void ExternalScalarFlux::computeFluxRates(std::vector<MPMMaterial>& materials, double t) {
+void ExternalScalarFlux::computeFluxRates(std::vector<MPMMaterial>& materials,
+                                          const std::vector<DiffusionMaterial>& diffusion,
+                                          double t) {
   maxInflowRate_ = maxOutflowRate_ = 0;
   if (bcs_.empty()) return;
   std::vector<double> J(bcs_.size());
   for (size_t b = 0; b < bcs_.size(); ++b) J[b] = sign_ * bcs_[b].load.at(t);
-  for (MPMMaterial& mat : materials) {
-    ParticleSet& p = mat.particles;
-    if (p.loadCurveID.empty()) continue;
-    const double cmax = mat.diffusion->maxConcentration;
+  for (size_t m = 0; m < materials.size(); ++m) {
+    ParticleSet& p = materials[m].particles;
+    const DiffusionParticles d(p);
+    if (d.loadCurveID.empty()) continue;
+    const double cmax = diffusion[m].model->maxConcentration;
     const long n = static_cast<long>(p.count());
     double inflow = 0, outflow = 0;
 #pragma omp parallel for schedule(static) reduction(max : inflow, outflow)
     for (long i = 0; i < n; ++i) {
       double rate = 0, in = 0, out = 0;
-      for (int s = 0; s < 3 && p.loadCurveID[i][s] > 0; ++s) {
-        const int b = p.loadCurveID[i][s] - 1;
+      for (int s = 0; s < 3 && d.loadCurveID[i][s] > 0; ++s) {
+        const int b = d.loadCurveID[i][s] - 1;
         const double area =
             bcs_[b].deformedArea
-                ? p.area[i][s] * bcs_[b].areaStretch(p.F[i], p.x[i] - p.displacement[i])
-                : p.area[i][s];
+                ? d.area[i][s] * bcs_[b].areaStretch(p.F[i], p.x[i] - p.displacement[i])
+                : d.area[i][s];
         rate += J[b] * area;
         (J[b] > 0 ? in : out) += std::abs(J[b]) * area;
       }
       // Eq. 17 restricts inflow as c -> 1; outflow is restricted the same way as c -> 0.
-      const double c = p.concentration[i] / cmax;
-      p.externalScalarFlux[i] = rate / p.volume[i] * fluxRestriction(c, rate >= 0) * cmax;
+      const double c = d.concentration[i] / cmax;
+      d.externalScalarFlux[i] = rate / p.volume[i] * fluxRestriction(c, rate >= 0) * cmax;
       inflow = std::max(inflow, in / p.volume[i]);
       outflow = std::max(outflow, out / p.volume[i]);
     }
@@ -132,21 +141,22 @@ void ExternalScalarFlux::computeFluxRates(std::vector<MPMMaterial>& materials, d
   }
 }
 
-double ExternalScalarFlux::stableTimestep(Collective,
-                                          const std::vector<MPMMaterial>& materials) const {
+double ExternalScalarFlux::stableTimestep(Collective, const std::vector<MPMMaterial>& materials,
+                                          const std::vector<DiffusionMaterial>& diffusion) const {
   // A particle's source s_p = R(c_p) sum_i S_ip G_i / W_i (docs/diffusion.md step 5), and each
   // G_i / W_i is a weighted mean of unrestricted rates, at most the largest of its sign. The
   // step to the root falls as c nears it, so the fullest particle below the root (for an
   // outflow: the emptiest above e^-4) bounds them all.
   double fullest = 0, emptiest = 1;
-  for (const MPMMaterial& mat : materials) {
-    const ParticleSet& p = mat.particles;
-    if (p.loadCurveID.empty()) continue;
-    const double cmax = mat.diffusion->maxConcentration;
+  for (size_t m = 0; m < materials.size(); ++m) {
+    const ParticleSet& p = materials[m].particles;
+    const ConstDiffusionParticles d(p);
+    if (d.loadCurveID.empty()) continue;
+    const double cmax = diffusion[m].model->maxConcentration;
     const long n = static_cast<long>(p.count());
 #pragma omp parallel for schedule(static) reduction(max : fullest) reduction(min : emptiest)
     for (long i = 0; i < n; ++i) {
-      const double c = p.concentration[i] / cmax;
+      const double c = d.concentration[i] / cmax;
       if (c < kRestrictionRoot) fullest = std::max(fullest, c);
       if (1 - c < kRestrictionRoot) emptiest = std::min(emptiest, c);
     }
@@ -160,19 +170,20 @@ double ExternalScalarFlux::stableTimestep(Collective,
 }
 
 void ExternalScalarFlux::updateAutoCycle(Collective, const std::vector<MPMMaterial>& materials,
+                                         const std::vector<DiffusionMaterial>& diffusion,
                                          const MPMFlags& flags) {
   // Mean (or min and max) normalised concentration of the materials with <do_conc_reduction>.
   double sum = 0, lo = std::numeric_limits<double>::infinity(), hi = -lo;
   size_t n = 0;
-  for (const MPMMaterial& mat : materials) {
-    if (!mat.reducesConcentration) continue;
-    const double cmax = mat.diffusion->maxConcentration;
-    for (double c : mat.particles.concentration) {
+  for (size_t m = 0; m < materials.size(); ++m) {
+    if (!diffusion[m].reducesConcentration) continue;
+    const double cmax = diffusion[m].model->maxConcentration;
+    for (double c : diffusionParticles(materials[m].particles).concentration) {
       sum += c / cmax;
       lo = std::min(lo, c / cmax);
       hi = std::max(hi, c / cmax);
     }
-    n += mat.particles.count();
+    n += materials[m].particles.count();
   }
   // Over every rank's particles (the identity on one rank).
   const double count = collective::sum(static_cast<double>(n));
@@ -186,7 +197,7 @@ void ExternalScalarFlux::updateAutoCycle(Collective, const std::vector<MPMMateri
 
 void ExternalScalarFlux::shareFacesOnSplit(ParticleSet& p,
                                            const std::vector<SplitParticle>& splits) const {
-  if (p.loadCurveID.empty()) return;
+  if (diffusionParticles(p).loadCurveID.empty()) return;
   for (const SplitParticle& s : splits) shareFluxFaces(p, bcs_, s);
 }
 
@@ -208,10 +219,11 @@ void markSourceNodes(const ParticleSet& p, const InterpolationWeights& W,
     std::fill(reached.begin() + begin, reached.begin() + end, 0);
   });
   unsigned char* mark = reached.data();
+  const ConstDiffusionParticles d(p);
   const long n = static_cast<long>(p.count());
 #pragma omp parallel for schedule(static)
   for (long i = 0; i < n; ++i) {
-    const double rate = p.externalScalarFlux[i];
+    const double rate = d.externalScalarFlux[i];
     if (rate == 0) continue;
     const unsigned char bit = rate > 0 ? 1 : 2;
     for (int e = 0; e < W.count[i]; ++e) {

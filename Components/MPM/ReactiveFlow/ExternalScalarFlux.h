@@ -9,6 +9,8 @@
 #include "Components/MPM/Interpolator.h"
 #include "Components/MPM/MPMFlags.h"
 #include "Components/MPM/Materials/MPMMaterial.h"
+#include "Components/MPM/ReactiveFlow/DiffusionParticles.h"
+#include "Components/MPM/ReactiveFlow/ScalarDiffusionModel.h"
 #include "Components/MPM/ReactiveFlow/ScalarFluxBC.h"
 #include "Components/MPM/SplitParticle.h"
 #include "Core/Grid/Grid.h"
@@ -34,21 +36,24 @@ class ExternalScalarFlux {
   // that flags them, their area of the face that BC names (docs/diffusion.md, "Flux area at the
   // start"). Returns what each BC flagged in each material (no entry: nothing).
   std::vector<Flagged> assignToParticles(std::vector<MPMMaterial>& materials,
+                                         const std::vector<DiffusionMaterial>& diffusion,
                                          const std::vector<MaterialSeeds>& seeds,
                                          const Grid& grid) const;
   // Eqs. 16-17: rate_p = R(c_p) sum_k J_k(t) A_k / V_p, the restriction applied once; also the
   // largest unrestricted inflow and outflow rates, sum J A / V over the BCs of either sign, for
   // the time-step limit.
-  void computeFluxRates(std::vector<MPMMaterial>& materials, double t);
+  void computeFluxRates(std::vector<MPMMaterial>& materials,
+                        const std::vector<DiffusionMaterial>& diffusion, double t);
   // The flux limit (docs/diffusion.md, "Time step"): the longest step in which no particle of a
   // material the fluxes reach passes the restriction's root, taken at the fullest particle below
   // the root (the emptiest above the mirrored root for an outflow), as every particle's source
   // is at most R(c) times the largest rate; over all ranks, infinity without flux.
-  double stableTimestep(Collective, const std::vector<MPMMaterial>& materials) const;
+  double stableTimestep(Collective, const std::vector<MPMMaterial>& materials,
+                        const std::vector<DiffusionMaterial>& diffusion) const;
   // <do_auto_cycle_bc>: flips the sign of every flux when the concentration of the materials
   // with <do_conc_reduction> crosses the thresholds.
   void updateAutoCycle(Collective, const std::vector<MPMMaterial>& materials,
-                       const MPMFlags& flags);
+                       const std::vector<DiffusionMaterial>& diffusion, const MPMFlags& flags);
   // Particle splitting: each split particle's flux faces shared among its children (a face
   // normal to the split goes whole to the child nearest it, one along it to all 4, a quarter
   // of its area each).

@@ -89,10 +89,11 @@ SurfaceShare shareSurfaceArea(const ScalarFluxBC& bc, const std::vector<Geometry
     const Vec3i n = grid.cells + Vec3i::Constant(3);
     return (static_cast<long>(c.z() + 1) * n.y() + (c.y() + 1)) * n.x() + (c.x() + 1);
   };
+  const DiffusionParticles d(p);
   std::unordered_map<long, std::vector<int>> cells;
   for (size_t k = 0; k < flagged.size(); ++k) {
     cells[key(cellOf(p.x[flagged[k]]))].push_back(static_cast<int>(k));
-    p.area[flagged[k]][slot[k]] = 0;
+    d.area[flagged[k]][slot[k]] = 0;
   }
   const auto insideBody = [&](const Vec3& x) {
     for (const GeometryPieceP& piece : body)
@@ -122,7 +123,7 @@ SurfaceShare shareSurfaceArea(const ScalarFluxBC& bc, const std::vector<Geometry
           }
         }
     if (nearest < 0) continue;
-    p.area[flagged[nearest]][slot[nearest]] += s.area;
+    d.area[flagged[nearest]][slot[nearest]] += s.area;
     share.assignedArea += s.area;
   }
   return share;

@@ -11,7 +11,7 @@
 
 #include <vector>
 
-#include "Components/MPM/ParticleSet.h"
+#include "Components/MPM/ReactiveFlow/DiffusionParticles.h"
 #include "Components/MPM/ReactiveFlow/ScalarFluxBC.h"
 #include "Core/Geometry/GeometryPiece.h"
 #include "Core/Grid/Grid.h"

@@ -31,20 +31,58 @@ std::vector<ScalarFluxBC> readFluxBCs(const PSNode& root, const MPMFlags& flags,
   return bcs;
 }
 
+std::vector<PSNode> materialNodes(const PSNode& root) {
+  return root.requireChild("MaterialProperties").requireChild("MPM").children("material");
+}
+
+// Declares the diffusion arrays on a material's particles and sets the initial state the input
+// gives: each <geom_object>'s <concentration> and the model's diffusivity D0.
+void setInitialState(const ScalarDiffusionModel& model, const MaterialSeeds& seeds,
+                     ParticleSet& p) {
+  declareDiffusionArrays(p);
+  const DiffusionParticles d(p);
+  for (const MaterialSeeds::Object& object : seeds.objects) {
+    const double c0 = object.node.require<double>("concentration");
+    if (c0 < model.minConcentration || c0 > model.maxConcentration)
+      object.node.requireChild("concentration")
+          .fail("<concentration> must lie in [min_concentration, max_concentration] = [" +
+                std::to_string(model.minConcentration) + ", " +
+                std::to_string(model.maxConcentration) + "]");
+    std::fill_n(d.concentration.begin() + object.first, object.count, c0);
+  }
+  std::fill(d.diffusivity.begin(), d.diffusivity.end(), model.D0);
+}
+
 }  // namespace
 
-ReactiveFlow::ReactiveFlow(const PSNode& root, const MPMFlags& flags, size_t materials,
+ReactiveFlow::ReactiveFlow(const PSNode& root, const MPMFlags& flags,
+                           std::vector<MPMMaterial>& materials,
+                           const std::vector<MaterialSeeds>& seeds, double maxTime,
                            const PhysicalBCs& physical)
     : flags_(flags),
       interface_(DiffusionInterface::fromInput(
-          root.requireChild("MaterialProperties").requireChild("MPM"), true, materials)),
-      flux_(readFluxBCs(root, flags, physical)) {}
+          root.requireChild("MaterialProperties").requireChild("MPM"), true, materials.size())),
+      flux_(readFluxBCs(root, flags, physical)) {
+  const std::vector<PSNode> nodes = materialNodes(root);
+  for (size_t m = 0; m < materials.size(); ++m) {
+    DiffusionMaterial& mat = materials_.emplace_back();
+    mat.reducesConcentration = nodes[m].get<bool>("do_conc_reduction", false);
+    mat.model = createDiffusionModel(nodes[m].requireChild("diffusion_model"), maxTime);
+    setInitialState(*mat.model, seeds[m], materials[m].particles);
+  }
+}
 
 void ReactiveFlow::rejectWithoutDiffusion(const PSNode& root, const MPMFlags& flags,
                                           const PhysicalBCs& physical) {
   DiffusionInterface::fromInput(root.requireChild("MaterialProperties").requireChild("MPM"), false,
                                 0);
   readFluxBCs(root, flags, physical);
+  for (const PSNode& material : materialNodes(root)) {
+    material.get<bool>("do_conc_reduction", false);
+    material.acceptInert("diffusion_model");  // Uintah reads it only with do_scalar_diffusion
+    for (const PSNode& object : material.children("geom_object"))
+      object.acceptInert("concentration");  // it matters only with diffusion
+  }
 }
 
 void ReactiveFlow::rejectConcentrationBC(const BCType& bc) {
@@ -55,7 +93,7 @@ void ReactiveFlow::initialize(const PSNode& root, const Grid& grid,
                               std::vector<MPMMaterial>& materials,
                               const std::vector<MaterialSeeds>& seeds, double initTime) {
   const std::vector<ExternalScalarFlux::Flagged> flagged =
-      flux_.assignToParticles(materials, seeds, grid);
+      flux_.assignToParticles(materials, materials_, seeds, grid);
   for (size_t b = 0; b < flux_.bcs().size(); ++b)
     if (std::none_of(flagged.begin(), flagged.end(), [b](const auto& f) { return f.bc == b; }))
       throw InputError(
@@ -74,24 +112,24 @@ void ReactiveFlow::initialize(const PSNode& root, const Grid& grid,
       s << " (their particle faces)";
     setupReport_.push_back(s.str());
   }
-  if (flags_.autoCycle && std::none_of(materials.begin(), materials.end(),
+  if (flags_.autoCycle && std::none_of(materials_.begin(), materials_.end(),
                                        [](const auto& mat) { return mat.reducesConcentration; }))
     root.requireChild("MPM")
         .requireChild("do_auto_cycle_bc")
         .fail(
             "<do_auto_cycle_bc>true watches the concentration of the materials with "
             "<do_conc_reduction>true, and none has it (Uintah then never reverses the flux)");
-  for (const MPMMaterial& mat : materials) {
-    receivesFlux_.push_back(!mat.particles.externalScalarFlux.empty());
-    cmax_.push_back(mat.diffusion->maxConcentration);
-    constantRate_.push_back(mat.diffusion->constantRate());
+  for (size_t m = 0; m < materials.size(); ++m) {
+    receivesFlux_.push_back(!diffusionParticles(materials[m].particles).externalScalarFlux.empty());
+    cmax_.push_back(model(m).maxConcentration);
+    constantRate_.push_back(model(m).constantRate());
   }
   for (size_t m = 0; m < materials.size(); ++m) {
-    changes_.push_back(concentrationCanChange(m, *materials[m].diffusion));
+    changes_.push_back(concentrationCanChange(m, model(m)));
     if (!changes_.back()) noUptake_.push_back(describeMaterial(materials[m], m));
   }
   computeDiffusivity(materials, initTime);
-  flux_.computeFluxRates(materials, initTime);
+  flux_.computeFluxRates(materials, materials_, initTime);
 }
 
 void ReactiveFlow::layOutGrid(const Grid& grid, const GhostNodes* ghosts) {
@@ -191,9 +229,9 @@ void ReactiveFlow::integrateConcentration(const std::vector<GridFields>& mechani
 
 void ReactiveFlow::updateDiffusionState(Collective, std::vector<MPMMaterial>& materials, double t) {
   collective::stopTogether([&] { checkConcentrationRange(materials, t); });
-  if (flags_.autoCycle) flux_.updateAutoCycle(Collective{}, materials, flags_);
+  if (flags_.autoCycle) flux_.updateAutoCycle(Collective{}, materials, materials_, flags_);
   computeDiffusivity(materials, t);
-  flux_.computeFluxRates(materials, t);
+  flux_.computeFluxRates(materials, materials_, t);
 }
 
 void ReactiveFlow::computeDiffusivity(std::vector<MPMMaterial>& materials, double t) {
@@ -203,17 +241,18 @@ void ReactiveFlow::computeDiffusivity(std::vector<MPMMaterial>& materials, doubl
   for (size_t m = 0; m < materials.size(); ++m)
     if (changes_[m])
       maxDiffusivity_ = std::max(
-          maxDiffusivity_, materials[m].diffusion->computeDiffusivity(materials[m].particles, t));
+          maxDiffusivity_, materials_[m].model->computeDiffusivity(materials[m].particles, t));
 }
 
 void ReactiveFlow::checkConcentrationRange(const std::vector<MPMMaterial>& materials,
                                            double t) const {
   for (size_t m = 0; m < materials.size(); ++m) {
-    const ParticleSet& p = materials[m].particles;
-    const ScalarDiffusionModel& d = *materials[m].diffusion;
+    const std::vector<double>& concentration =
+        diffusionParticles(materials[m].particles).concentration;
+    const ScalarDiffusionModel& d = model(m);
     const double tol = kConcentrationTolerance * (d.maxConcentration - d.minConcentration);
-    for (size_t i = 0; i < p.count(); ++i) {
-      const double c = p.concentration[i];
+    for (size_t i = 0; i < concentration.size(); ++i) {
+      const double c = concentration[i];
       if (c >= d.minConcentration - tol && c <= d.maxConcentration + tol) continue;
       std::ostringstream s;
       s.precision(10);  // enough digits to show by how much it left the range
@@ -235,24 +274,25 @@ void ReactiveFlow::summarize(const std::vector<MPMMaterial>& materials, StepSumm
   s.diffusion = true;
   for (const MPMMaterial& mat : materials) {
     const ParticleSet& p = mat.particles;
+    const std::vector<double>& c = diffusionParticles(p).concentration;
     for (size_t i = 0; i < p.count(); ++i) {
-      s.totalLithium += p.mass[i] * p.concentration[i];
-      s.minConcentration = std::min(s.minConcentration, p.concentration[i]);
-      s.maxConcentration = std::max(s.maxConcentration, p.concentration[i]);
+      s.totalLithium += p.mass[i] * c[i];
+      s.minConcentration = std::min(s.minConcentration, c[i]);
+      s.maxConcentration = std::max(s.maxConcentration, c[i]);
     }
   }
 }
 
-void ReactiveFlow::saveState(const std::vector<MPMMaterial>& materials, BinaryWriter& out) const {
+void ReactiveFlow::saveState(BinaryWriter& out) const {
   out.value(maxDiffusivity_);
   flux_.saveState(out);
-  for (const MPMMaterial& mat : materials) mat.diffusion->saveState(out);
+  for (const DiffusionMaterial& mat : materials_) mat.model->saveState(out);
 }
 
-void ReactiveFlow::loadState(std::vector<MPMMaterial>& materials, BinaryReader& in) {
+void ReactiveFlow::loadState(BinaryReader& in) {
   maxDiffusivity_ = in.value<double>();
   flux_.loadState(in);
-  for (MPMMaterial& mat : materials) mat.diffusion->loadState(in);
+  for (DiffusionMaterial& mat : materials_) mat.model->loadState(in);
 }
 
 }  // namespace anode

@@ -1,10 +1,11 @@
 // ReactiveFlow: the diffusion subcomponent of MPM (paper §2, Eqs. 2-8, 16-18, 23-24, 44; the
 // method step by step in docs/diffusion.md). It exists only with <do_scalar_diffusion>true and
-// owns everything diffusion: its particle arrays (DiffusionParticles), its grid fields, the
-// diffusivity models, the flux BCs with their restriction and receivers, the SD-Type conditions,
-// the diffusion interface, its time-step limit and its checkpoint state. MPM calls it at named
-// points of the step; the per-particle work runs inside MPM's fused particle loops through the
-// kernels it hands out (ConcentrationKernels.h), so diffusion adds no pass over the particles.
+// owns everything diffusion: its particle arrays (DiffusionParticles, declared on each material's
+// particles), its grid fields, each material's diffusivity model, the flux BCs with their
+// restriction and receivers, the SD-Type conditions, the diffusion interface, its time-step limit
+// and its checkpoint state. MPM calls it at named points of the step; the per-particle work runs
+// inside MPM's fused particle loops through the kernels it hands out (ConcentrationKernels.h), so
+// diffusion adds no pass over the particles.
 #pragma once
 
 #include <memory>
@@ -30,10 +31,15 @@ namespace anode {
 
 class ReactiveFlow {
  public:
-  // Reads <diffusion_interface> and the <scalar_flux> blocks of `physical`.
-  ReactiveFlow(const PSNode& root, const MPMFlags& flags, size_t materials,
+  // Reads <diffusion_interface>, the <scalar_flux> blocks of `physical` and each material's
+  // <diffusion_model> (`maxTime` bounds its diff_curve); declares the diffusion arrays on the
+  // materials' particles and sets their initial state: each <geom_object>'s <concentration>
+  // (`seeds`: which object laid out which particles) and the diffusivity D0.
+  ReactiveFlow(const PSNode& root, const MPMFlags& flags, std::vector<MPMMaterial>& materials,
+               const std::vector<MaterialSeeds>& seeds, double maxTime,
                const PhysicalBCs& physical);
-  // A run without diffusion: the tags that would need it are errors, not silently dropped.
+  // A run without diffusion: the tags that would need it are errors, not silently dropped; the
+  // diffusion tags of the materials are read as Uintah reads them then (not at all).
   static void rejectWithoutDiffusion(const PSNode& root, const MPMFlags& flags,
                                      const PhysicalBCs& physical);
   // An SD-Type <BCType>, which MPM's reader of <Grid><BoundaryConditions> hands over; in a run
@@ -81,13 +87,15 @@ class ReactiveFlow {
   double diffusionTimestep(const Grid& grid) const;
   // The flux limit over all ranks (docs/diffusion.md, "Time step").
   double fluxTimestep(Collective, const std::vector<MPMMaterial>& materials) const {
-    return flux_.stableTimestep(Collective{}, materials);
+    return flux_.stableTimestep(Collective{}, materials, materials_);
   }
+  // Material m's diffusivity model.
+  const ScalarDiffusionModel& model(size_t m) const { return *materials_[m].model; }
 
   // Adds the total lithium and the concentration range (initialised by the caller).
   void summarize(const std::vector<MPMMaterial>& materials, StepSummary& s) const;
-  void saveState(const std::vector<MPMMaterial>& materials, BinaryWriter& out) const;
-  void loadState(std::vector<MPMMaterial>& materials, BinaryReader& in);
+  void saveState(BinaryWriter& out) const;
+  void loadState(BinaryReader& in);
 
   // False for a material whose concentration no step can change: no diffusivity, no constant
   // rate, no <scalar_flux>, no SD-Type condition, no common interface (docs/diffusion.md,
@@ -114,6 +122,7 @@ class ReactiveFlow {
   bool concentrationCanChange(size_t m, const ScalarDiffusionModel& model) const;
 
   MPMFlags flags_;
+  std::vector<DiffusionMaterial> materials_;  // per material
   Grid grid_;
   std::vector<ConcentrationBC> concentrationBCs_;  // SD-Type, in file order
   DiffusionInterface interface_;
@@ -130,6 +139,31 @@ class ReactiveFlow {
   std::vector<std::string> noUptake_;  // "material m (name)" of those that take up no lithium
   const GhostNodes* ghosts_ = nullptr;
 };
+
+// The one place that chooses the diffusion kernels of MPM's fused particle loops: material m's
+// P2G or G2P kernel, ReactiveFlow's or NoConcentration in a run without diffusion (`diffusion`
+// null), handed to f, so that the caller's loop is compiled per kernel type.
+template <class F>
+void withScatterKernel(ReactiveFlow* diffusion, size_t m, const ParticleSet& p,
+                       const InterpolationWeights& W, const std::vector<NodeRange>& cleared,
+                       F&& f) {
+  if (diffusion)
+    diffusion->withScatter(m, p, W, cleared, f);
+  else
+    f(NoConcentration{});
+}
+template <class F>
+void withGatherKernel(ReactiveFlow* diffusion, size_t m, ParticleSet& p, F&& f) {
+  if (diffusion)
+    diffusion->withGather(m, p, f);
+  else
+    f(NoConcentration{});
+}
+// The node quads per node that P2G with these kernels adds into (NodeQuads.h).
+inline int scatterQuadsPerNode(const ReactiveFlow* diffusion) {
+  return diffusion ? ScatterTerms<ConcentrationScatter<true>::scatterWeightQuads>::quads
+                   : ScatterTerms<NoConcentration::scatterWeightQuads>::quads;
+}
 
 template <class F>
 void ReactiveFlow::withScatter(size_t m, const ParticleSet& p, const InterpolationWeights& W,

@@ -30,7 +30,8 @@ double maxOf(const std::vector<double>& v) {
 class ConstantDiffusivity : public ScalarDiffusionModel {
  public:
   double computeDiffusivity(ParticleSet& p, double) override {
-    std::fill(p.diffusivity.begin(), p.diffusivity.end(), D0);
+    const DiffusionParticles d(p);
+    std::fill(d.diffusivity.begin(), d.diffusivity.end(), D0);
     return D0;
   }
 };
@@ -40,7 +41,8 @@ class ConstantRate : public ScalarDiffusionModel {
  public:
   double rate = 0;
   double computeDiffusivity(ParticleSet& p, double) override {
-    std::fill(p.diffusivity.begin(), p.diffusivity.end(), 0.0);
+    const DiffusionParticles d(p);
+    std::fill(d.diffusivity.begin(), d.diffusivity.end(), 0.0);
     return 0.0;
   }
   double constantRate() const override { return rate; }
@@ -74,15 +76,16 @@ class NonLinear1 : public ScalarDiffusionModel {
   }
 
   double computeDiffusivity(ParticleSet& p, double t) override {
+    const DiffusionParticles d(p);
     // Frozen: each particle keeps its diffusivity (D0 from the start, as in Uintah).
-    if (curve && curve->frozenAt(t)) return maxOf(p.diffusivity);
+    if (curve && curve->frozenAt(t)) return maxOf(d.diffusivity);
     const long n = static_cast<long>(p.count());
     double dmax = 0;
 #pragma omp parallel for schedule(static) reduction(max : dmax)
     for (long i = 0; i < n; ++i) {
-      p.diffusivity[i] = nonLinear1Diffusivity(
-          D0, alpha, beta, p.concentration[i] / maxConcentration, scaledPressure(p.stress[i]));
-      dmax = std::max(dmax, p.diffusivity[i]);
+      d.diffusivity[i] = nonLinear1Diffusivity(
+          D0, alpha, beta, d.concentration[i] / maxConcentration, scaledPressure(p.stress[i]));
+      dmax = std::max(dmax, d.diffusivity[i]);
     }
     return dmax;
   }
@@ -106,12 +109,13 @@ class Cubic : public ScalarDiffusionModel {
  public:
   double Dmax = 0;
   double computeDiffusivity(ParticleSet& p, double) override {
+    const DiffusionParticles d(p);
     const long n = static_cast<long>(p.count());
     double dmax = 0;
 #pragma omp parallel for schedule(static) reduction(max : dmax)
     for (long i = 0; i < n; ++i) {
-      p.diffusivity[i] = cubicDiffusivity(D0, Dmax, p.concentration[i] / maxConcentration);
-      dmax = std::max(dmax, p.diffusivity[i]);
+      d.diffusivity[i] = cubicDiffusivity(D0, Dmax, d.concentration[i] / maxConcentration);
+      dmax = std::max(dmax, d.diffusivity[i]);
     }
     return dmax;
   }

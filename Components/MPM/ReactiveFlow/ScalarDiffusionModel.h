@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "Components/MPM/ParticleSet.h"
+#include "Components/MPM/ReactiveFlow/DiffusionParticles.h"
 #include "Core/ProblemSpec/ProblemSpec.h"
 #include "Core/Util/BinaryStream.h"
 
@@ -39,6 +39,13 @@ class ScalarDiffusionModel {
 // A concentration may leave [min, max] by this much (relative to max - min) before the run is
 // stopped: round-off of the explicit update, never a clamp.
 constexpr double kConcentrationTolerance = 1e-6;
+
+// What the diffusion subcomponent keeps of each <material>.
+struct DiffusionMaterial {
+  std::unique_ptr<ScalarDiffusionModel> model;  // <diffusion_model>
+  // <do_conc_reduction>: its particles count in the concentration <do_auto_cycle_bc> watches.
+  bool reducesConcentration = false;
+};
 
 // Factory keyed by type=: jg, constant_rate, non_linear1, cubic. `maxTime` bounds diff_curve.
 std::unique_ptr<ScalarDiffusionModel> createDiffusionModel(const PSNode& node, double maxTime);
