@@ -157,6 +157,37 @@ TEST(QuasiStatic, ImpmNeedsTheImplicitIntegrator) {
   EXPECT_THROW(Simulation(text, "bad.ups", o), InputError);
 }
 
+// A step Newton cannot finish is retaken with dt x 0.6 and stops at <delt_min>, or after 20
+// retakes when <delt_min> is 0, with Newton's ratios in the message (exit code 3 from sus).
+std::string stopMessage(double deltMin) {
+  CompressionCase c;
+  c.mpmFlags =
+      "<dynamic>false</dynamic><iters_before_timestep_restart>1</iters_before_timestep_restart>"
+      "<convergence_criteria_disp>1e-30</convergence_criteria_disp>";
+  std::string text = c.text();
+  text.replace(text.find("<delt_min>1e-4</delt_min>"), 25,
+               "<delt_min>" + std::to_string(deltMin) + "</delt_min>");
+  RunOptions o;
+  o.progress = false;
+  Simulation sim(text, "stop.ups", o);
+  try {
+    sim.advance();
+  } catch (const SimulationError& e) {
+    return e.what();
+  }
+  return "no stop";
+}
+
+TEST(QuasiStatic, StepThatDoesNotConvergeStops) {
+  const std::string atMin = stopMessage(0.5);
+  EXPECT_NE(atMin.find("over dt = 0.6 failed: no convergence in 1 iterations"), std::string::npos)
+      << atMin;
+  EXPECT_NE(atMin.find("below <delt_min>"), std::string::npos) << atMin;
+  EXPECT_NE(atMin.find("Newton's ratios"), std::string::npos) << atMin;
+  const std::string capped = stopMessage(0);
+  EXPECT_NE(capped.find("20 retakes with a smaller dt failed"), std::string::npos) << capped;
+}
+
 TEST(QuasiStatic, ImplicitOptionsFollowImpMPMsTimeStepRule) {
   ImplicitOptions o;
   EXPECT_DOUBLE_EQ(o.nextTimestep(1.0, 4), 2.0);

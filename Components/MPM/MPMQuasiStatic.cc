@@ -15,6 +15,10 @@
 
 namespace anode {
 
+namespace {
+constexpr int kMaxRetakes = 20;  // of one step
+}  // namespace
+
 void MPM::checkImplicitSetup(const PSNode& root) const {
   const PSNode mpm = root.requireChild("MPM");
   if (diffusion_)
@@ -84,6 +88,7 @@ double MPM::advanceQuasiStatic(Collective, double t, double dt, double dtMin) {
     ScopedTimer s(timers_, tasks_.particlesToGrid);
     interpolateParticlesToGrid();  // the nodal masses (gravity, the rigid-mode regularization)
   }
+  int retakes = 0;
   while (true) {  // 3: Newton, retaken with a smaller dt until it converges
     const NewtonReport report = equilibrium_.solve(equilibriumProblem(dt), dt, *flags_.implicit);
     newton_.iterations += report.iterations;
@@ -95,12 +100,15 @@ double MPM::advanceQuasiStatic(Collective, double t, double dt, double dtMin) {
       break;
     }
     const double smaller = dt * flags_.implicit->decreaseFactor;
-    if (smaller < dtMin) {
+    // With <delt_min> 0 the retakes end after kMaxRetakes (0.6^20: 4e-5 of the first dt).
+    if (smaller < dtMin || ++retakes > kMaxRetakes) {
       std::ostringstream s;
       s.precision(3);
       s << "the equilibrium step from t = " << t << " over dt = " << dt
-        << " failed: " << report.failure << "; a retake with dt = " << smaller
-        << " would be below <delt_min> " << dtMin
+        << " failed: " << report.failure << "; "
+        << (smaller < dtMin ? "a retake with dt = " + std::to_string(smaller) +
+                                  " would be below <delt_min> " + std::to_string(dtMin)
+                            : std::to_string(kMaxRetakes) + " retakes with a smaller dt failed")
         << ". Newton's ratios |du|^2/max, du.r/first by iteration:";
       for (const auto& [disp, energy] : report.ratios) s << " (" << disp << ", " << energy << ")";
       throw SimulationError(s.str());
