@@ -38,16 +38,17 @@ class MPM {
   // leaves the grid, J <= 0, or a concentration leaves [min, max] beyond kConcentrationTolerance
   // (in a distributed run on every rank together: Core/Parallel/StopTogether.h).
   void timeAdvance(Collective, double t, double dt);
-  // The quasi-static step of an implicit run (DESIGN.md §4b, MPMQuasiStatic.cc): Newton on the
-  // grid for the equilibrium at t + dt; a step Newton does not converge in is retaken with dt
-  // times <delT_decrease_factor>, and below dtMin the run stops (SimulationError). Returns the dt
-  // taken.
-  double advanceQuasiStatic(Collective, double t, double dt, double dtMin);
+  // The quasi-static step of an implicit run (DESIGN.md §4b, MPMQuasiStatic.cc): diffusion over
+  // dt in sub-steps of substepMultiplier times its explicit limits, then Newton on the grid for
+  // the equilibrium at t + dt; a step Newton does not converge in is retaken with dt times
+  // <delT_decrease_factor>, and below dtMin the run stops (SimulationError). Returns the dt taken.
+  double advanceQuasiStatic(Collective, double t, double dt, double dtMin,
+                            double substepMultiplier);
   // Newton's iterations: of the last step, and the totals of the steps (and retaken attempts)
   // of this process.
   struct NewtonCounts {
     int lastIterations = 0, lastKrylov = 0;
-    long iterations = 0, krylov = 0, retakes = 0;
+    long iterations = 0, krylov = 0, retakes = 0, diffusionSubsteps = 0;
     std::vector<std::pair<double, double>> lastRatios;  // NewtonReport::ratios of the last step
   };
   const NewtonCounts& newtonCounts() const { return newton_; }
@@ -158,6 +159,9 @@ class MPM {
   // The equilibrium problem of the step: fields, nodal masses, the displacement increments the
   // Velocity and Symmetric faces prescribe over dt.
   EquilibriumProblem equilibriumProblem(double dt);
+  // Diffusion over the quasi-static step in explicit sub-steps on its start-of-step configuration;
+  // concentrationChange_ receives each particle's change.
+  void diffuseOverStep(double t, double dt, double substepMultiplier);
   // The particles after the converged step (positions, F, stress, the models' state).
   void updateParticlesFromEquilibrium(double dt);
   // The setup checks of an implicit run: what it does not support is an input error.
@@ -196,6 +200,7 @@ class MPM {
   // one), the last step's dt and counts.
   EquilibriumSolver equilibrium_;
   std::vector<int> fieldOf_;
+  std::vector<std::vector<double>> concentrationChange_;  // per material: dc of the step
   double lastQuasiStaticDt_ = 0;
   NewtonCounts newton_;
   TaskTimers timers_;

@@ -1,15 +1,18 @@
 // The quasi-static step of an implicit run (DESIGN.md §4b; docs/quasi-static.md): the weights of
-// the start-of-step configuration, P2G of the masses, Newton for the equilibrium at t + dt
-// (Implicit/EquilibriumSolver.h, retaken with a smaller dt when it fails), then the particles
-// moved and their stresses set by the converged displacement increments.
+// the start-of-step configuration, P2G of the masses, diffusion over dt in explicit sub-steps on
+// that configuration, Newton for the equilibrium at t + dt with the swelling of the new
+// concentration (Implicit/EquilibriumSolver.h; retaken with a smaller dt when it fails), then the
+// particles moved and their stresses set by the converged displacement increments.
 #include <cmath>
 #include <limits>
 #include <sstream>
 #include <variant>
 
+#include "Components/MPM/Implicit/ConcentrationSubstep.h"
 #include "Components/MPM/Implicit/ParticleEquilibrium.h"
 #include "Components/MPM/MPM.h"
 #include "Components/MPM/Materials/ConstitutiveModels/ConcreteModels.h"
+#include "Components/MPM/ParticleLoops.h"
 #include "Core/Parallel/Communicator.h"
 #include "Core/Util/Errors.h"
 
@@ -21,11 +24,6 @@ constexpr int kMaxRetakes = 20;  // of one step
 
 void MPM::checkImplicitSetup(const PSNode& root) const {
   const PSNode mpm = root.requireChild("MPM");
-  if (diffusion_)
-    mpm.requireChild("do_scalar_diffusion")
-        .fail(
-            "<do_scalar_diffusion>true with <time_integrator>implicit: the implicit path has no "
-            "diffusion yet (docs/quasi-static.md)");
   if (Communicator::size() > 1)
     mpm.requireChild("time_integrator")
         .fail("<time_integrator>implicit runs on one rank only so far, not " +
@@ -40,7 +38,10 @@ void MPM::checkImplicitSetup(const PSNode& root) const {
 EquilibriumProblem MPM::equilibriumProblem(double dt) {
   const int nodes = grid_.numNodes();
   const int fields = 1 + *std::max_element(fieldOf_.begin(), fieldOf_.end());
-  EquilibriumProblem problem{grid_, materials_, weights_, fieldOf_, {}, {}, flags_.gravity};
+  EquilibriumProblem problem{grid_, materials_, weights_, fieldOf_, {}, {}, flags_.gravity, {}};
+  for (size_t m = 0; m < materials_.size(); ++m)
+    problem.concentrationChange.push_back(
+        diffusion_ && materials_[m].model->swells() ? concentrationChange_[m].data() : nullptr);
   problem.mass.assign(fields, std::vector<double>(nodes, 0.0));
   const double free = std::numeric_limits<double>::quiet_NaN();
   problem.prescribed.assign(fields, std::vector<Vec3>(nodes, Vec3::Constant(free)));
@@ -66,8 +67,9 @@ void MPM::updateParticlesFromEquilibrium(double dt) {
     long firstInverted = 0;
     std::visit(
         [&](const auto* model) {
-          firstInverted = updateParticlesFromDisplacement(mat.particles, weights_[m], *model,
-                                                          mat.density, u, dt);
+          firstInverted = updateParticlesFromDisplacement(
+              mat.particles, weights_[m], *model, mat.density, u,
+              diffusion_ && model->swells() ? concentrationChange_[m].data() : nullptr, dt);
         },
         mat.model->concrete().model);
     if (firstInverted < static_cast<long>(mat.particles.count())) {
@@ -79,17 +81,64 @@ void MPM::updateParticlesFromEquilibrium(double dt) {
   }
 }
 
-double MPM::advanceQuasiStatic(Collective, double t, double dt, double dtMin) {
+void MPM::diffuseOverStep(double t, double dt, double substepMultiplier) {
+  concentrationChange_.resize(materials_.size());
+  for (size_t m = 0; m < materials_.size(); ++m)
+    concentrationChange_[m].assign(materials_[m].particles.count(), 0.0);
+  double done = 0;
+  while (done < dt) {
+    const double limit =
+        substepMultiplier * std::min(diffusion_->diffusionTimestep(grid_),
+                                     diffusion_->fluxTimestep(Collective{}, materials_));
+    // The last sub-step ends at t + dt exactly (a remainder below 1e-12 dt joins the one before).
+    double h = std::min(limit, dt - done);
+    if (dt - done - h < 1e-12 * dt) h = dt - done;
+    if (done > 0) {
+      ScopedTimer s(timers_, tasks_.particlesToGrid);
+      interpolateParticlesToGrid();  // the concentration's sums of the start-of-step particles
+    }
+    {
+      ScopedTimer s(timers_, tasks_.particlesToGrid);
+      computeNodalVelocityAndConcentration();  // Eq. 5 and the diffusion interface
+    }
+    {
+      ScopedTimer s(timers_, tasks_.gridIntegration);
+      diffusion_->integrateConcentration(fields_, h, active_.rows);  // c* and the rate (Eq. 18)
+    }
+    {
+      ScopedTimer s(timers_, tasks_.particleUpdate);
+      for (size_t m = 0; m < materials_.size(); ++m)
+        withGatherKernel(diffusion_.get(), m, materials_[m].particles, [&](const auto& kernel) {
+          fillGatherQuads(fields_[m], kernel, active_.rows, nodeQuads_.data());
+          updateConcentrationOnly(materials_[m].particles, weights_[m], nodeQuads_.data(), kernel,
+                                  h, concentrationChange_[m]);
+        });
+    }
+    done = h == dt - done ? dt : done + h;
+    ++newton_.diffusionSubsteps;
+    ScopedTimer s(timers_, tasks_.diffusionState);
+    diffusion_->updateDiffusionState(Collective{}, materials_, t + done);  // range, D, flux rates
+  }
+}
+
+double MPM::advanceQuasiStatic(Collective, double t, double dt, double dtMin,
+                               double substepMultiplier) {
   {
     ScopedTimer s(timers_, tasks_.interpolationWeights);
     computeWeightsAndActiveNodes();  // 1: S_ip, grad S_ip at the start of the step
   }
-  {
-    ScopedTimer s(timers_, tasks_.particlesToGrid);
-    interpolateParticlesToGrid();  // the nodal masses (gravity, the rigid-mode regularization)
-  }
+  // A step retaken with a smaller dt diffuses again from the particles of the step's start.
+  std::vector<ParticleSet> start;
   int retakes = 0;
-  while (true) {  // 3: Newton, retaken with a smaller dt until it converges
+  if (diffusion_)
+    for (const MPMMaterial& mat : materials_) start.push_back(mat.particles);
+  while (true) {
+    {
+      ScopedTimer s(timers_, tasks_.particlesToGrid);
+      interpolateParticlesToGrid();  // the nodal masses (and the concentration's sums)
+    }
+    if (diffusion_) diffuseOverStep(t, dt, substepMultiplier);  // 2: c over dt
+    // 3: Newton, retaken with a smaller dt until it converges
     const NewtonReport report = equilibrium_.solve(equilibriumProblem(dt), dt, *flags_.implicit);
     newton_.iterations += report.iterations;
     newton_.krylov += report.krylovIterations;
@@ -115,6 +164,8 @@ double MPM::advanceQuasiStatic(Collective, double t, double dt, double dtMin) {
     }
     ++newton_.retakes;
     dt = smaller;
+    for (size_t m = 0; m < start.size(); ++m) materials_[m].particles = start[m];
+    if (diffusion_) diffusion_->updateDiffusionState(Collective{}, materials_, t);
   }
   {
     ScopedTimer s(timers_, tasks_.particleUpdate);

@@ -29,7 +29,9 @@ void Simulation::setup() {
   PSNode root = spec_->root();
   time_ = TimeControl::fromInput(root.requireChild("Time"));
   mpm_.problemSetup(root, time_.initTime, time_.maxTime);
-  // An implicit run's dt follows Newton's iterations (ImpMPM): no multiplier applies to it.
+  // An implicit run's dt follows Newton's iterations (ImpMPM): the multiplier applies to its
+  // diffusion sub-steps only.
+  substepMultiplier_ = time_.multiplier;
   if (mpm_.flags().implicit) time_.multiplier = 1;
   archiver_ =
       DataArchiver::fromInput(root.requireChild("DataArchiver"), mpm_.flags().doScalarDiffusion,
@@ -56,7 +58,7 @@ void Simulation::takeStableTimestep(double previousDt) {
 void Simulation::advance() {
   try {
     if (mpm_.flags().implicit)
-      dt_ = mpm_.advanceQuasiStatic(Collective{}, t_, dt_, time_.deltMin);
+      dt_ = mpm_.advanceQuasiStatic(Collective{}, t_, dt_, time_.deltMin, substepMultiplier_);
     else
       mpm_.timeAdvance(Collective{}, t_, dt_);
     ScopedTimer timer(mpm_.timers(), mpm_.timers().task("stateChecks"));
@@ -422,9 +424,10 @@ void Simulation::printTimings() const {
     const long steps = std::max(step_ - firstStepOfThisProcess_, 1L);
     std::fprintf(stderr,
                  "  Newton iterations %ld (%.2f per step), Krylov iterations %ld (%.1f per Newton "
-                 "iteration), steps retaken with a smaller dt %ld\n",
+                 "iteration), steps retaken with a smaller dt %ld, diffusion sub-steps %ld\n",
                  n.iterations, static_cast<double>(n.iterations) / steps, n.krylov,
-                 n.iterations > 0 ? static_cast<double>(n.krylov) / n.iterations : 0.0, n.retakes);
+                 n.iterations > 0 ? static_cast<double>(n.krylov) / n.iterations : 0.0, n.retakes,
+                 n.diffusionSubsteps);
   }
   std::fprintf(stderr, "  instruction set: %s\n", instructionSet().c_str());
   // This process's steps over its wall time; after a restart also the whole run's (the time

@@ -118,7 +118,10 @@ class Simulation {
   CheckpointSchedule checkpoints_;
   std::string newestCheckpoint_;  // of either kind: where a replay to the last good state starts
   double t_ = 0, dt_ = 0;
-  double lastStepDt_ = 0;  // the dt the last step took (an implicit one may retake it smaller)
+  double lastStepDt_ = 0;
+  double substepMultiplier_ =
+      1;  // <timestep_multiplier>: an implicit run's diffusion sub-steps  // the dt the last step
+          // took (an implicit one may retake it smaller)
   StableTimestep::Limit dtLimit_ = StableTimestep::Mechanics;   // the limit that set dt_
   std::array<long, StableTimestep::kLimits> stepsLimitedBy_{};  // steps of this process's run
   long step_ = 0;

@@ -92,8 +92,11 @@ void EquilibriumSolver::assemble(const EquilibriumProblem& problem, double dt) {
     ParticleSet& p = problem.materials[m].particles;
     const InterpolationWeights& W = problem.weights[m];
     const int f = problem.fieldOf[m];
-    std::visit([&](const auto* model) { evaluateTrialStress(p, W, *model, u_[f], dt, P, &A); },
-               problem.materials[m].model->concrete().model);
+    std::visit(
+        [&](const auto* model) {
+          evaluateTrialStress(p, W, *model, u_[f], problem.concentrationChange[m], dt, P, &A);
+        },
+        problem.materials[m].model->concrete().model);
     const std::vector<int>& row = row_[f];
     Eigen::Matrix<double, 3, 9> T;
     for (size_t i = 0; i < p.count(); ++i) {

@@ -29,6 +29,9 @@ struct EquilibriumProblem {
   std::vector<std::vector<double>> mass;
   std::vector<std::vector<Vec3>> prescribed;
   Vec3 gravity;
+  // Per material: the particles' concentration change over the step (the swelling the stress
+  // update sees), or null.
+  std::vector<const double*> concentrationChange;
 };
 
 // How Newton went in one attempt at a step.

@@ -117,6 +117,10 @@ LinearSolve solveLinearSystem(const BlockMatrix& K, const std::vector<double>& b
   check(KSPGetPC(o.ksp, &pc), "KSPGetPC");
   check(PCSetType(pc, PCGAMG), "PCSetType");
   check(KSPSetTolerances(o.ksp, relativeTolerance, 0.0, PETSC_DEFAULT, 2000), "KSPSetTolerances");
+  // Symmetric diagonal scaling: nodes a particle's corner just reaches have stiffness 1e-8 of
+  // the others', which breaks GMRES down on the unscaled system.
+  check(KSPSetDiagonalScale(o.ksp, PETSC_TRUE), "KSPSetDiagonalScale");
+  check(KSPSetDiagonalScaleFix(o.ksp, PETSC_TRUE), "KSPSetDiagonalScaleFix");
   check(KSPSetFromOptions(o.ksp), "KSPSetFromOptions");
   check(KSPSolve(o.ksp, o.b, o.x), "KSPSolve");
 

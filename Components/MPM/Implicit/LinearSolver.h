@@ -1,6 +1,7 @@
 // The linear solve of each Newton iteration, by PETSc: GMRES preconditioned by algebraic multigrid
-// (GAMG) with the rigid-body modes of the nodes as its near-null space; PETSC_OPTIONS (the
-// environment) may change any of it (docs/quasi-static.md).
+// (GAMG) with the rigid-body modes of the nodes as its near-null space, on the system scaled
+// symmetrically by its diagonal; PETSC_OPTIONS (the environment) may change any of it
+// (docs/quasi-static.md).
 #pragma once
 
 #include <string>

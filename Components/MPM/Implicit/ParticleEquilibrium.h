@@ -6,10 +6,11 @@
 // Kinematics relative to the start of the step (weights and gradients of that configuration):
 // H = sum_I u_I (x) grad S_I, dF = I + H, F = dF F_n; the model sees the rate of deformation of
 // the midpoint rule, L dt = 2 (dF - I)(I + dF)^-1 (second order in the step, where explicit MPM
-// takes L dt = H), and no concentration change. The nodal forces need the first Piola-Kirchhoff
-// stress relative to the start-of-step configuration, P = J_d sigma dF^-T = sigma cof(dF), on
-// the start-of-step volume V_n: f_I = sum_p V_n P grad S_I. Its derivative A = dP/dH (9 x 9,
-// index 3a + d for component (a, d)) is the model's algorithmic tangent, taken by central
+// takes L dt = H), and the particle's concentration change over the step (dc, from the
+// diffusion sub-steps that come first; none without diffusion). The nodal forces need the first
+// Piola-Kirchhoff stress relative to the start-of-step configuration, P = J_d sigma dF^-T = sigma
+// cof(dF), on the start-of-step volume V_n: f_I = sum_p V_n P grad S_I. Its derivative A = dP/dH (9
+// x 9, index 3a + d for component (a, d)) is the model's algorithmic tangent, taken by central
 // differences of the model's own update (step kTangentStep in H): any model listed in
 // ConcreteModels.h gets it without code of its own.
 #pragma once
@@ -55,19 +56,24 @@ inline Mat3 displacementGradient(const InterpolationWeights& W, long i,
 template <class Model>
 struct TrialBlock {
   Mat3Pack stress, F, H;
+  Pack dc;
   typename Model::template State<Pack> state;
 
+  // `concentrationChange`: dc per particle, or null (no swelling in this step).
   TrialBlock(const ParticleSet& p, const typename Model::StateArrays& arrays,
-             const InterpolationWeights& W, const std::vector<Vec3>& u, long first) {
+             const InterpolationWeights& W, const std::vector<Vec3>& u,
+             const double* concentrationChange, long first) {
     for (int l = 0; l < static_cast<int>(Pack::size()); ++l) {
       const long i = first + l;
       if (i >= static_cast<long>(p.count())) {
         setLane(stress, l, Mat3::Zero());
         setLane(F, l, Mat3::Identity());
         setLane(H, l, Mat3::Zero());
+        dc[l] = 0;
         Model::StateArrays::loadUnstrained(state, l);
         continue;
       }
+      dc[l] = concentrationChange ? concentrationChange[i] : 0.0;
       setLane(stress, l, p.stress[i]);
       setLane(F, l, p.F[i]);
       setLane(H, l, displacementGradient(W, i, u));
@@ -84,7 +90,7 @@ struct TrialBlock {
     const Mat3Pack inverseSum = cofactorOf(sum).transpose() / sum.determinant();
     const Mat3Pack L = Pack(2.0 / dt) * h * inverseSum;
     after = state;
-    return model.updateStress(stress, Mat3Pack(dF * F), L, Pack(0.0), dt, after);
+    return model.updateStress(stress, Mat3Pack(dF * F), L, dc, dt, after);
   }
   Mat3Pack piola(const Model& model, const Mat3Pack& h, double dt) const {
     typename Model::template State<Pack> after;
@@ -92,11 +98,11 @@ struct TrialBlock {
   }
 };
 
-// P of every particle of the set and, when A is given, its tangent dP/dH.
+// P of every particle of the set and, when A is given, its tangent dP/dH; dc as for TrialBlock.
 template <class Model>
 void evaluateTrialStress(ParticleSet& p, const InterpolationWeights& W, const Model& model,
-                         const std::vector<Vec3>& u, double dt, std::vector<Mat3>& P,
-                         std::vector<Mat9>* A) {
+                         const std::vector<Vec3>& u, const double* dc, double dt,
+                         std::vector<Mat3>& P, std::vector<Mat9>* A) {
   const auto arrays = model.stateArrays(p);
   const long n = static_cast<long>(p.count());
   constexpr int lanes = static_cast<int>(Pack::size());
@@ -104,7 +110,7 @@ void evaluateTrialStress(ParticleSet& p, const InterpolationWeights& W, const Mo
   if (A) A->resize(n);
 #pragma omp parallel for schedule(static)
   for (long block = 0; block < (n + lanes - 1) / lanes; ++block) {
-    const TrialBlock<Model> t(p, arrays, W, u, block * lanes);
+    const TrialBlock<Model> t(p, arrays, W, u, dc, block * lanes);
     const Mat3Pack P0 = t.piola(model, t.H, dt);
     for (int l = 0; l < lanes && block * lanes + l < n; ++l) P[block * lanes + l] = lane(P0, l);
     if (!A) continue;
@@ -124,18 +130,18 @@ void evaluateTrialStress(ParticleSet& p, const InterpolationWeights& W, const Mo
 
 // The particles after the step with the converged u (Eq. 8's counterpart): position and
 // displacement by sum S u, velocity u/dt interpolated, F, volume, stress and the model's state.
-// Returns the first particle whose det F is not positive (n if none).
+// dc as for TrialBlock. Returns the first particle whose det F is not positive (n if none).
 template <class Model>
 long updateParticlesFromDisplacement(ParticleSet& p, const InterpolationWeights& W,
                                      const Model& model, double density, const std::vector<Vec3>& u,
-                                     double dt) {
+                                     const double* dc, double dt) {
   const auto arrays = model.stateArrays(p);
   const long n = static_cast<long>(p.count());
   constexpr int lanes = static_cast<int>(Pack::size());
   long firstInverted = n;
 #pragma omp parallel for schedule(static) reduction(min : firstInverted)
   for (long block = 0; block < (n + lanes - 1) / lanes; ++block) {
-    const TrialBlock<Model> t(p, arrays, W, u, block * lanes);
+    const TrialBlock<Model> t(p, arrays, W, u, dc, block * lanes);
     typename Model::template State<Pack> after;
     const Mat3Pack sigma = t.cauchy(model, t.H, dt, after);
     for (int l = 0; l < lanes; ++l) {
