@@ -50,6 +50,10 @@ class MPM {
     int lastIterations = 0, lastKrylov = 0;
     long iterations = 0, krylov = 0, retakes = 0, diffusionSubsteps = 0;
     std::vector<std::pair<double, double>> lastRatios;  // NewtonReport::ratios of the last step
+    // "Newton 4, Krylov 31": the last step, for the progress line.
+    std::string lastStep() const;
+    // The totals over `steps` steps, for the end summary.
+    std::string summary(long steps) const;
   };
   const NewtonCounts& newtonCounts() const { return newton_; }
   // Largest stable dt of the current state before the multiplier: paper Eq. 45, the smallest of

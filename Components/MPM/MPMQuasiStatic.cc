@@ -3,7 +3,9 @@
 // that configuration, Newton for the equilibrium at t + dt with the swelling of the new
 // concentration (Implicit/EquilibriumSolver.h; retaken with a smaller dt when it fails), then the
 // particles moved and their stresses set by the converged displacement increments.
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <sstream>
 #include <variant>
@@ -21,6 +23,21 @@ namespace anode {
 namespace {
 constexpr int kMaxRetakes = 20;  // of one step
 }  // namespace
+
+std::string MPM::NewtonCounts::lastStep() const {
+  return "Newton " + std::to_string(lastIterations) + ", Krylov " + std::to_string(lastKrylov);
+}
+
+std::string MPM::NewtonCounts::summary(long steps) const {
+  char line[320];
+  std::snprintf(line, sizeof line,
+                "Newton iterations %ld (%.2f per step), Krylov iterations %ld (%.1f per Newton "
+                "iteration), steps retaken with a smaller dt %ld, diffusion sub-steps %ld",
+                iterations, static_cast<double>(iterations) / std::max(steps, 1L), krylov,
+                iterations > 0 ? static_cast<double>(krylov) / iterations : 0.0, retakes,
+                diffusionSubsteps);
+  return line;
+}
 
 void MPM::checkImplicitSetup(const PSNode& root) const {
   const PSNode mpm = root.requireChild("MPM");

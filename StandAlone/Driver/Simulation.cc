@@ -120,7 +120,9 @@ void Simulation::run() {
     else if (rebalanced || anyRank.stop || anyRank.replayCheckpoint)
       writeCheckpoint(Collective{}, CheckpointKind::Automatic);
     if (progress_)
-      progress_->update(step_, t_, stepDt, stepReport(stepLimit).c_str(),
+      progress_->update(step_, t_, stepDt,
+                        mpm_.flags().implicit ? mpm_.newtonCounts().lastStep().c_str()
+                                              : StableTimestep::name(stepLimit),
                         particleStepsOfThisProcess_, done);
     if (done || stoppedOnRequest_) break;
   }
@@ -135,12 +137,6 @@ void Simulation::run() {
     removeAutomaticCheckpoints(archiver_.directory());
   }
   wallSeconds_ = wallTime();
-}
-
-std::string Simulation::stepReport(StableTimestep::Limit limit) const {
-  if (!mpm_.flags().implicit) return StableTimestep::name(limit);
-  const MPM::NewtonCounts& n = mpm_.newtonCounts();
-  return "Newton " + std::to_string(n.lastIterations) + ", Krylov " + std::to_string(n.lastKrylov);
 }
 
 void Simulation::start(Collective, bool restart) {
@@ -419,16 +415,9 @@ void Simulation::printTimings() const {
                 std::string(StableTimestep::name(static_cast<StableTimestep::Limit>(l))) + " " +
                 std::to_string(stepsLimitedBy_[l]);
   if (!limits.empty()) std::fprintf(stderr, "  steps whose dt the limit set: %s\n", limits.c_str());
-  if (mpm_.flags().implicit) {
-    const MPM::NewtonCounts& n = mpm_.newtonCounts();
-    const long steps = std::max(step_ - firstStepOfThisProcess_, 1L);
-    std::fprintf(stderr,
-                 "  Newton iterations %ld (%.2f per step), Krylov iterations %ld (%.1f per Newton "
-                 "iteration), steps retaken with a smaller dt %ld, diffusion sub-steps %ld\n",
-                 n.iterations, static_cast<double>(n.iterations) / steps, n.krylov,
-                 n.iterations > 0 ? static_cast<double>(n.krylov) / n.iterations : 0.0, n.retakes,
-                 n.diffusionSubsteps);
-  }
+  if (mpm_.flags().implicit)
+    std::fprintf(stderr, "  %s\n",
+                 mpm_.newtonCounts().summary(step_ - firstStepOfThisProcess_).c_str());
   std::fprintf(stderr, "  instruction set: %s\n", instructionSet().c_str());
   // This process's steps over its wall time; after a restart also the whole run's (the time
   // of each earlier process up to its last checkpoint, as the steps).

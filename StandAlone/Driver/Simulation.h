@@ -79,9 +79,6 @@ class Simulation {
   size_t recordHistoryRow(double stepDt);
   // Writes the output of step_; `afterStep`: the grid labels hold the last step's nodal values.
   void writeOutput(bool afterStep);
-  // What set the step's dt, for the progress line (an implicit step: its Newton and Krylov
-  // iterations).
-  std::string stepReport(StableTimestep::Limit limit) const;
   // Prints the symmetry-face warnings of the step just taken.
   void reportSymmetryFaces();
   // At an output step of a distributed run: draws the boxes anew from the particle counts when
