@@ -3,7 +3,7 @@
 
 #include <optional>
 
-#include "Components/MPM/Implicit/ImplicitOptions.h"
+#include "Components/MPM/ImplicitOptions.h"
 #include "Components/MPM/Interpolator.h"
 #include "Core/ProblemSpec/ProblemSpec.h"
 

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "Components/MPM/Implicit/BlockMatrix.h"
-#include "Components/MPM/Implicit/ImplicitOptions.h"
+#include "Components/MPM/ImplicitOptions.h"
 #include "Components/MPM/Interpolator.h"
 #include "Components/MPM/Materials/MPMMaterial.h"
 #include "Core/Grid/Grid.h"

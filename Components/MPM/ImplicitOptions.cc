@@ -1,4 +1,4 @@
-#include "Components/MPM/Implicit/ImplicitOptions.h"
+#include "Components/MPM/ImplicitOptions.h"
 
 #include <string>
 
