@@ -101,7 +101,8 @@ void addGeomObject(const PSNode& geom, const Grid& grid, const MPMFlags& flags, 
         "<geom_object> places no particle: its pieces contain no particle position of the grid");
 
   const size_t first = p.count();
-  MaterialSeeds::Object object{geom, piece, first, seeds.size(), dxp, smooth != nullptr};
+  MaterialSeeds::Object object{geom,         piece, first, seeds.size(), dxp, smooth != nullptr,
+                               Vec3::Zero(), {}};
   if (smooth)
     for (const SmoothParticle& s : seeds) object.smoothFaceAreas.push_back(s.faceArea);
   else
