@@ -134,6 +134,19 @@ TEST(QuasiStatic, RejectsWhatItDoesNotSupport) {
   c.mpmFlags =
       "<dynamic>false</dynamic><num_iters_to_increase_delT>12</num_iters_to_increase_delT>";
   expectInputError(c, "must be below <num_iters_to_decrease_delT>");
+  c.mpmFlags = "<dynamic>false</dynamic><convergence_criteria_disp>0</convergence_criteria_disp>";
+  expectInputError(c, "<convergence_criteria_disp> must be positive");
+  c.mpmFlags =
+      "<dynamic>false</dynamic><convergence_criteria_energy>-1</convergence_criteria_energy>";
+  expectInputError(c, "<convergence_criteria_energy> must be positive");
+  c.mpmFlags =
+      "<dynamic>false</dynamic><iters_before_timestep_restart>0</iters_before_timestep_restart>";
+  expectInputError(c, "<iters_before_timestep_restart> must be positive");
+  c.mpmFlags =
+      "<dynamic>false</dynamic><num_iters_to_increase_delT>-1</num_iters_to_increase_delT>";
+  expectInputError(c, "<num_iters_to_increase_delT> must be >= 0");
+  c.mpmFlags = "<dynamic>false</dynamic><delT_increase_factor>0.5</delT_increase_factor>";
+  expectInputError(c, "<delT_increase_factor> must be >= 1");
   c.mpmFlags =
       "<dynamic>false</dynamic><boundary_traction_faces>[zminus]</boundary_traction_faces>";
   expectInputError(c, "boundary_traction_faces");
