@@ -25,7 +25,7 @@ struct CompressionCase {
   // Inside <constitutive_model>, after it, inside <geom_object>.
   std::string modelExtra, materialExtra, geomExtra;
   double K = 60e6, G = 6e6, v = 0.2;
-  int steps = 1;
+  int steps = 1, particlesPerCell = 2;
 
   std::string text() const {
     std::ostringstream s;
@@ -41,7 +41,8 @@ struct CompressionCase {
       << "</bulk_modulus><shear_modulus>" << G << "</shear_modulus>" << modelExtra
       << "</constitutive_model>" << materialExtra
       << "<geom_object><box label=\"c\"><min>[0,0,0]</min><max>[1,1,1]</max></box>"
-      << "<res>[2,2,2]</res><velocity>[0,0,0]</velocity><temperature>0</temperature>" << geomExtra
+      << "<res>[" << particlesPerCell << "," << particlesPerCell << "," << particlesPerCell
+      << "]</res><velocity>[0,0,0]</velocity><temperature>0</temperature>" << geomExtra
       << "</geom_object></material></MPM></MaterialProperties>"
       << "<Grid><Level><Box label=\"1\"><lower>[0,0,0]</lower><upper>[1,1,1]</upper>"
       << "<resolution>[4,4,4]</resolution></Box></Level><BoundaryConditions>";
@@ -91,6 +92,18 @@ TEST(QuasiStatic, NeoHookeanUniaxialStrainMatchesClosedForm) {
   ASSERT_GE(r.size(), 3u);
   for (size_t k = r.size() - 2; k < r.size(); ++k)
     EXPECT_LE(r[k].first, r[k - 1].first * r[k - 1].first) << "iteration " << k + 1;
+}
+
+// One particle per cell (the paper's inputs) takes the hourglass stabilization, which sees no
+// part of a uniform strain: the closed form holds as at 2 per cell.
+TEST(QuasiStatic, OneParticlePerCellKeepsTheUniformStrain) {
+  CompressionCase c;
+  c.particlesPerCell = 1;
+  auto sim = runToEnd(c);
+  const double lambda = 1 - c.v;
+  const ParticleSet& p = sim->mpm().materials()[0].particles;
+  ASSERT_EQ(p.count(), 64u);
+  for (size_t i = 0; i < p.count(); ++i) EXPECT_NEAR(p.F[i](2, 2), lambda, 1e-9) << i;
 }
 
 // rf_elastic_plastic (elastic) sees the midpoint rule's rate of deformation, D dt =
@@ -147,6 +160,8 @@ TEST(QuasiStatic, RejectsWhatItDoesNotSupport) {
   expectInputError(c, "<num_iters_to_increase_delT> must be >= 0");
   c.mpmFlags = "<dynamic>false</dynamic><delT_increase_factor>0.5</delT_increase_factor>";
   expectInputError(c, "<delT_increase_factor> must be >= 1");
+  c.mpmFlags = "<dynamic>false</dynamic><hourglass_stabilization>-0.1</hourglass_stabilization>";
+  expectInputError(c, "<hourglass_stabilization> must be >= 0");
   c.mpmFlags =
       "<dynamic>false</dynamic><boundary_traction_faces>[zminus]</boundary_traction_faces>";
   expectInputError(c, "boundary_traction_faces");

@@ -42,6 +42,9 @@ ImplicitOptions ImplicitOptions::fromInput(const PSNode& mpm) {
   readPositive(mpm, "delT_increase_factor", o.increaseFactor);
   if (!(o.increaseFactor >= 1))
     mpm.requireChild("delT_increase_factor").fail("<delT_increase_factor> must be >= 1");
+  o.hourglassStabilization = mpm.get<double>("hourglass_stabilization", o.hourglassStabilization);
+  if (!(o.hourglassStabilization >= 0))
+    mpm.requireChild("hourglass_stabilization").fail("<hourglass_stabilization> must be >= 0");
   if (const PSNode solver = mpm.child("solver")) {
     const std::string name = solver.value<std::string>();
     if (name == "simple")

@@ -19,6 +19,9 @@ struct ImplicitOptions {
   // dt x increaseFactor after one of at most itersToIncrease.
   int itersToDecrease = 12, itersToIncrease = 4;
   double decreaseFactor = 0.6, increaseFactor = 2;
+  // <hourglass_stabilization> (ours, not ImpMPM's): epsilon of Implicit/HourglassStabilization.h,
+  // the stiffness of each particle's non-affine displacement relative to its own; 0 turns it off.
+  double hourglassStabilization = 0.1;
 
   // Reads the ImpMPM tags of <MPM> (only with <time_integrator>implicit).
   static ImplicitOptions fromInput(const PSNode& mpm);

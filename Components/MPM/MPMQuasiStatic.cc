@@ -180,6 +180,15 @@ double MPM::advanceQuasiStatic(Collective, double t, double dt, double dtMin,
       throw SimulationError(s.str());
     }
     ++newton_.retakes;
+    std::ostringstream last;
+    last.precision(2);
+    for (size_t k = report.ratios.size() > 3 ? report.ratios.size() - 3 : 0;
+         k < report.ratios.size(); ++k)
+      last << " (" << report.ratios[k].first << ", " << report.ratios[k].second << ")";
+    std::fprintf(stderr,
+                 "sus: the step from t = %.6g retaken with dt = %.4g: %s; Newton %d, last "
+                 "ratios%s\n",
+                 t, smaller, report.failure.c_str(), report.iterations, last.str().c_str());
     dt = smaller;
     for (size_t m = 0; m < start.size(); ++m) materials_[m].particles = start[m];
     if (diffusion_) diffusion_->updateDiffusionState(Collective{}, materials_, t);

@@ -26,7 +26,7 @@ run() {  # name steps input
 for f in $(cd "$root/inputs" && find . -name '*.ups' | sort); do
   name=$(echo "${f#./}" | tr / _ | sed 's/\.ups$//')
   case $name in
-    Benchmarks_*|Paper_Cycle_LargePillar|Paper_Substrate_*) steps=5 ;;
+    Benchmarks_*|Paper_Cycle_LargePillar|Paper_Substrate_*|Paper_QuasiStatic_*) steps=5 ;;
     *) steps=40 ;;
   esac
   run "$name" $steps "$root/inputs/$f"

@@ -5,6 +5,7 @@
 #include <optional>
 #include <variant>
 
+#include "Components/MPM/Implicit/HourglassStabilization.h"
 #include "Components/MPM/Implicit/LinearSolver.h"
 #include "Components/MPM/Implicit/ParticleEquilibrium.h"
 #include "Components/MPM/Materials/ConstitutiveModels/ConcreteModels.h"
@@ -13,9 +14,11 @@ namespace anode {
 
 namespace {
 
-// Newton's linear solves: residual reduced by this factor (an inexact Newton step well below
-// ImpMPM's default criteria).
-constexpr double kLinearTolerance = 1e-9;
+// Newton's linear solves are inexact (Eisenstat and Walker's second choice): the relative residual
+// of iteration k's solve is 0.9 (|r_k| / |r_k-1|)^2, within [kLinearToleranceLeast,
+// kLinearToleranceMost], and kLinearToleranceMost in the first iteration. Early iterations, far
+// from the equilibrium, need no accurate correction; the last ones are solved to 1e-9.
+constexpr double kLinearToleranceMost = 1e-1, kLinearToleranceLeast = 1e-9;
 // The free body's rigid modes: alpha m I added to each node's diagonal block, alpha this fraction
 // of the mean diagonal stiffness per unit nodal mass. It changes Newton's path, not the
 // equilibrium it converges to (the residual is exact).
@@ -26,6 +29,11 @@ constexpr double kRigidModeRegularization = 1e-10;
 // displacement would be set by stiffness at round-off level, so it is left out with the particle
 // entries that reach it, as an explicit step gives a massless node no acceleration.
 constexpr double kUnknownNodeMass = 1e-9;
+
+// Newton's line search: the fractions 1, 1/2, ... of the correction tried (this many) until the
+// residual's norm falls below the last iterate's. When none lowers it (round-off near
+// convergence) the full correction is taken, as without a line search.
+constexpr int kLineSearchTrials = 5;
 
 }  // namespace
 
@@ -83,8 +91,12 @@ void EquilibriumSolver::numberUnknowns(const EquilibriumProblem& problem) {
   }
 }
 
-void EquilibriumSolver::assemble(const EquilibriumProblem& problem, double dt) {
-  K_.clearValues();
+void EquilibriumSolver::assemble(const EquilibriumProblem& problem, double dt, double stabilization,
+                                 bool withTangent) {
+  if (withTangent) K_.clearValues();
+  const double h2 = problem.grid.dx.squaredNorm() / 3;
+  const bool firstOfStep = hourglassStiffness_.empty();
+  if (firstOfStep) hourglassStiffness_.resize(problem.materials.size());
   residual_.assign(3 * unknown_.size(), 0.0);
   std::vector<Mat3> P;
   std::vector<Mat9> A;
@@ -94,7 +106,8 @@ void EquilibriumSolver::assemble(const EquilibriumProblem& problem, double dt) {
     const int f = problem.fieldOf[m];
     std::visit(
         [&](const auto* model) {
-          evaluateTrialStress(p, W, *model, u_[f], problem.concentrationChange[m], dt, P, &A);
+          evaluateTrialStress(p, W, *model, u_[f], problem.concentrationChange[m], dt, P,
+                              withTangent ? &A : nullptr);
         },
         problem.materials[m].model->concrete().model);
     const std::vector<int>& row = row_[f];
@@ -108,6 +121,7 @@ void EquilibriumSolver::assemble(const EquilibriumProblem& problem, double dt) {
         const Vec3& ge = W.gradient[b + e];
         const Vec3 force = V * P[i] * ge;  // f_int of this particle at node e
         for (int a = 0; a < 3; ++a) residual_[3 * r + a] -= force[a];
+        if (!withTangent) continue;
         // T(a, 3 b + g) = V sum_d ge_d A(3 a + d, 3 b + g)
         for (int a = 0; a < 3; ++a)
           T.row(a) = V * (ge[0] * A[i].row(3 * a) + ge[1] * A[i].row(3 * a + 1) +
@@ -122,6 +136,11 @@ void EquilibriumSolver::assemble(const EquilibriumProblem& problem, double dt) {
           K_.at(r, row[W.node[b + g]]) += k;
         }
       }
+      // The stabilization's stiffness is fixed in the step's first assembly (at u = 0): its
+      // energy stays quadratic in u, and Newton's Jacobian exact.
+      if (stabilization <= 0) continue;
+      if (firstOfStep) hourglassStiffness_[m].push_back(stabilization * V * A[i].trace() / 9 / h2);
+      addHourglassStiffness(problem, W, i, p.x[i], hourglassStiffness_[m][i], f, withTangent);
     }
   }
   // Gravity, the fixed components' rows, and the rigid-mode regularization.
@@ -133,12 +152,55 @@ void EquilibriumSolver::assemble(const EquilibriumProblem& problem, double dt) {
     mass += 3 * problem.mass[f][k];
   }
   for (int i : fixed_) residual_[i] = 0;
+  if (!withTangent) return;
   const double alpha = mass > 0 ? kRigidModeRegularization * diagonal / mass : 0;
   for (size_t r = 0; r < unknown_.size(); ++r) {
     const auto [f, k] = unknown_[r];
     K_.at(static_cast<int>(r), static_cast<int>(r)) +=
         alpha * problem.mass[f][k] * Mat3::Identity();
   }
+}
+
+void EquilibriumSolver::addHourglassStiffness(const EquilibriumProblem& problem,
+                                              const InterpolationWeights& W, long i, const Vec3& xp,
+                                              double stiffness, int field, bool withTangent) {
+  const Eigen::MatrixXd M = hourglassMatrix(problem.grid, W, i, xp);
+  const std::vector<int>& row = row_[field];
+  const size_t b = W.offset[i];
+  for (int j = 0; j < W.count[i]; ++j) {
+    const int r = row[W.node[b + j]];
+    if (r < 0) continue;
+    for (int k = 0; k < W.count[i]; ++k) {
+      const double s = stiffness * M(j, k);
+      const Vec3 force = s * u_[field][W.node[b + k]];
+      for (int a = 0; a < 3; ++a) residual_[3 * r + a] -= force[a];
+      if (withTangent && row[W.node[b + k]] >= 0)
+        K_.at(r, row[W.node[b + k]]) += s * Mat3::Identity();
+    }
+  }
+}
+
+void EquilibriumSolver::addToDisplacement(const std::vector<double>& du, double scale) {
+  for (size_t r = 0; r < unknown_.size(); ++r) {
+    const auto [f, k] = unknown_[r];
+    u_[f][k] += scale * Vec3(du[3 * r], du[3 * r + 1], du[3 * r + 2]);
+  }
+}
+
+void EquilibriumSolver::takeStep(const EquilibriumProblem& problem, double dt, double stabilization,
+                                 const std::vector<double>& du, double residualNorm) {
+  std::optional<ScopedTimer> s;
+  if (timers_) s.emplace(*timers_, assemblyTask_);
+  for (int halvings = 0; halvings < kLineSearchTrials; ++halvings) {
+    const double step = std::ldexp(1.0, -halvings);
+    addToDisplacement(du, step);
+    assemble(problem, dt, stabilization, false);
+    double norm = 0;
+    for (double r : residual_) norm += r * r;
+    if (norm < residualNorm) return;  // false for NaN
+    addToDisplacement(du, -step);
+  }
+  addToDisplacement(du, 1.0);
 }
 
 NewtonReport EquilibriumSolver::solve(const EquilibriumProblem& problem, double dt,
@@ -149,8 +211,9 @@ NewtonReport EquilibriumSolver::solve(const EquilibriumProblem& problem, double 
     for (int k = 0; k < problem.grid.numNodes(); ++k)
       for (int a = 0; a < 3; ++a)
         if (!std::isnan(problem.prescribed[f][k][a])) u_[f][k][a] = problem.prescribed[f][k][a];
+  hourglassStiffness_.clear();
   NewtonReport report;
-  double normMax = 0, qNorm0 = 0;
+  double normMax = 0, qNorm0 = 0, lastResidualNorm = 0;
   std::vector<double> du;
   while (true) {
     if (report.iterations >= options.maxIterations) {
@@ -162,13 +225,20 @@ NewtonReport EquilibriumSolver::solve(const EquilibriumProblem& problem, double 
     {
       std::optional<ScopedTimer> s;
       if (timers_) s.emplace(*timers_, assemblyTask_);
-      assemble(problem, dt);
+      assemble(problem, dt, options.hourglassStabilization, true);
     }
+    double residualNorm = 0;
+    for (double r : residual_) residualNorm += r * r;
+    const double tolerance = report.iterations == 1
+                                 ? kLinearToleranceMost
+                                 : std::clamp(0.9 * residualNorm / lastResidualNorm,
+                                              kLinearToleranceLeast, kLinearToleranceMost);
+    lastResidualNorm = residualNorm;
     LinearSolve linear;
     {
       std::optional<ScopedTimer> s;
       if (timers_) s.emplace(*timers_, solveTask_);
-      linear = solveLinearSystem(K_, residual_, fixed_, coordinates_, kLinearTolerance, du);
+      linear = solveLinearSystem(K_, residual_, fixed_, coordinates_, tolerance, du);
     }
     report.krylovIterations += linear.iterations;
     if (!linear.converged) {
@@ -176,15 +246,17 @@ NewtonReport EquilibriumSolver::solve(const EquilibriumProblem& problem, double 
                        std::to_string(linear.iterations) + " iterations)";
       return report;
     }
+    // Fixed components keep their prescribed value: an inexact solve leaves round-off of its
+    // tolerance on their (decoupled) rows.
+    for (int i : fixed_) du[i] = 0;
     double norm = 0, qNorm = 0;
     for (size_t i = 0; i < du.size(); ++i) {
       norm += du[i] * du[i];
       qNorm += du[i] * residual_[i];
     }
-    for (size_t r = 0; r < unknown_.size(); ++r) {
-      const auto [f, k] = unknown_[r];
-      u_[f][k] += Vec3(du[3 * r], du[3 * r + 1], du[3 * r + 2]);
-    }
+    // The ratios measure the whole correction, the distance Newton still sees to the
+    // equilibrium, whatever fraction of it the line search takes.
+    takeStep(problem, dt, options.hourglassStabilization, du, residualNorm);
     normMax = std::max(normMax, norm);
     if (report.iterations == 1) qNorm0 = qNorm;
     const double dispRatio = norm / (normMax + 1e-100), energyRatio = qNorm / (qNorm0 + 1e-100);

@@ -56,7 +56,18 @@ class EquilibriumSolver {
   // The unknown nodes (block rows) and the pattern of their couplings, from the weights.
   void numberUnknowns(const EquilibriumProblem& problem);
   // K and the residual r = f_ext - f_int at the current u (fixed components of r zeroed).
-  void assemble(const EquilibriumProblem& problem, double dt);
+  // `stabilization`: epsilon of Implicit/HourglassStabilization.h. Without the tangent: the
+  // residual only (the line search's trials).
+  void assemble(const EquilibriumProblem& problem, double dt, double stabilization,
+                bool withTangent);
+  // u += scale du (du by block row).
+  void addToDisplacement(const std::vector<double>& du, double scale);
+  // Newton's update u += step du with the line search's step; `residualNorm` is |r|^2 at u.
+  void takeStep(const EquilibriumProblem& problem, double dt, double stabilization,
+                const std::vector<double>& du, double residualNorm);
+  // Particle i's hourglass energy (stiffness kappa V) into K and the residual of field `field`.
+  void addHourglassStiffness(const EquilibriumProblem& problem, const InterpolationWeights& W,
+                             long i, const Vec3& xp, double stiffness, int field, bool withTangent);
 
   std::vector<std::vector<Vec3>> u_;          // per field, by node
   std::vector<std::vector<int>> row_;         // per field, by node: block row, or -1
@@ -64,6 +75,8 @@ class EquilibriumSolver {
   BlockMatrix K_;
   std::vector<double> residual_, coordinates_;
   std::vector<int> fixed_;
+  // Per material and particle: kappa V of the hourglass stabilization, fixed for the step.
+  std::vector<std::vector<double>> hourglassStiffness_;
   TaskTimers* timers_ = nullptr;
   int assemblyTask_ = -1, solveTask_ = -1;
 };
