@@ -162,6 +162,8 @@ TEST(QuasiStatic, RejectsWhatItDoesNotSupport) {
   expectInputError(c, "<delT_increase_factor> must be >= 1");
   c.mpmFlags = "<dynamic>false</dynamic><hourglass_stabilization>-0.1</hourglass_stabilization>";
   expectInputError(c, "<hourglass_stabilization> must be >= 0");
+  c.mpmFlags = "<dynamic>false</dynamic><max_concentration_change>0</max_concentration_change>";
+  expectInputError(c, "<max_concentration_change> must be in (0, 1]");
   c.mpmFlags =
       "<dynamic>false</dynamic><boundary_traction_faces>[zminus]</boundary_traction_faces>";
   expectInputError(c, "boundary_traction_faces");
@@ -174,34 +176,43 @@ TEST(QuasiStatic, RejectsWhatItDoesNotSupport) {
 // is stress-free when its midpoint rate 2 tanh(x/2) (x = ln of a step's stretch) equals the
 // swelling eta dc of the step, so its J is exp(3 N 2 atanh(eta dc / 2)) after N steps: 8.4e-6
 // above exp(3 eta c) here.
+// An octant of a cube, CPDI, 2 particles per cell and axis, symmetry planes x-, y-, z-; its
+// concentration rises uniformly at rate 1 (constant_rate), dt at most 0.05.
+std::string swellingInput(const std::string& model, const std::string& extraMPM) {
+  std::ostringstream s;
+  s << "<Uintah_specification><SimulationComponent type=\"impm\"/><Time><maxTime>0.5</maxTime>"
+       "<initTime>0</initTime><delt_min>0</delt_min><delt_max>0.05</delt_max>"
+       "<timestep_multiplier>0.3</timestep_multiplier><max_Timesteps>10</max_Timesteps></Time>"
+       "<DataArchiver><filebase>fs.uda</filebase><outputTimestepInterval>1000</"
+       "outputTimestepInterval></DataArchiver><MPM><interpolator>cpdi</interpolator>"
+       "<do_scalar_diffusion>true</do_scalar_diffusion><time_integrator>implicit</"
+       "time_integrator><dynamic>false</dynamic>"
+    << extraMPM
+    << "</MPM><MaterialProperties><MPM><material><density>1000</density><constitutive_model "
+       "type=\""
+    << model
+    << "\"><bulk_modulus>1e6</bulk_modulus><shear_modulus>5e5</shear_modulus>"
+       "<volume_expansion_coeff>0.3</volume_expansion_coeff></constitutive_model>"
+       "<diffusion_model type=\"constant_rate\"><diffusivity>0</diffusivity>"
+       "<max_concentration>1</max_concentration><constant_rate>1</constant_rate>"
+       "</diffusion_model><geom_object><box><min>[0,0,0]</min><max>[0.5,0.5,0.5]</max></box>"
+       "<res>[2,2,2]</res><velocity>[0,0,0]</velocity><concentration>0</concentration>"
+       "</geom_object></material></MPM></MaterialProperties><Grid><Level><Box><lower>[0,0,0]"
+       "</lower><upper>[1,1,1]</upper><resolution>[10,10,10]</resolution><extraCells>[1,1,1]"
+       "</extraCells></Box></Level><BoundaryConditions>";
+  for (const char* side : {"x-", "y-", "z-"})
+    s << "<Face side=\"" << side
+      << "\"><BCType id=\"all\" label=\"Symmetric\" var=\"symmetry\"/></Face>";
+  s << "</BoundaryConditions></Grid></Uintah_specification>";
+  return s.str();
+}
+
 TEST(QuasiStatic, FreeSwellingFromTheDiffusionSubsteps) {
   for (const char* model : {"comp_neo_hook", "rf_elastic_plastic"}) {
-    std::ostringstream s;
-    s << "<Uintah_specification><SimulationComponent type=\"impm\"/><Time><maxTime>0.5</maxTime>"
-         "<initTime>0</initTime><delt_min>0</delt_min><delt_max>0.05</delt_max>"
-         "<timestep_multiplier>0.3</timestep_multiplier><max_Timesteps>10</max_Timesteps></Time>"
-         "<DataArchiver><filebase>fs.uda</filebase><outputTimestepInterval>1000</"
-         "outputTimestepInterval></DataArchiver><MPM><interpolator>cpdi</interpolator>"
-         "<do_scalar_diffusion>true</do_scalar_diffusion><time_integrator>implicit</"
-         "time_integrator><dynamic>false</dynamic></MPM><MaterialProperties><MPM><material>"
-         "<density>1000</density><constitutive_model type=\""
-      << model
-      << "\"><bulk_modulus>1e6</bulk_modulus><shear_modulus>5e5</shear_modulus>"
-         "<volume_expansion_coeff>0.3</volume_expansion_coeff></constitutive_model>"
-         "<diffusion_model type=\"constant_rate\"><diffusivity>0</diffusivity>"
-         "<max_concentration>1</max_concentration><constant_rate>1</constant_rate>"
-         "</diffusion_model><geom_object><box><min>[0,0,0]</min><max>[0.5,0.5,0.5]</max></box>"
-         "<res>[2,2,2]</res><velocity>[0,0,0]</velocity><concentration>0</concentration>"
-         "</geom_object></material></MPM></MaterialProperties><Grid><Level><Box><lower>[0,0,0]"
-         "</lower><upper>[1,1,1]</upper><resolution>[10,10,10]</resolution><extraCells>[1,1,1]"
-         "</extraCells></Box></Level><BoundaryConditions>";
-    for (const char* side : {"x-", "y-", "z-"})
-      s << "<Face side=\"" << side
-        << "\"><BCType id=\"all\" label=\"Symmetric\" var=\"symmetry\"/></Face>";
-    s << "</BoundaryConditions></Grid></Uintah_specification>";
+    const std::string input = swellingInput(model, "");
     RunOptions o;
     o.progress = false;
-    Simulation sim(s.str(), "swell.ups", o);
+    Simulation sim(input, "swell.ups", o);
     while (sim.step() < 10) sim.advance();
     ASSERT_NEAR(sim.time(), 0.5, 1e-12) << model;
     const ParticleSet& p = sim.mpm().materials()[0].particles;
@@ -213,6 +224,22 @@ TEST(QuasiStatic, FreeSwellingFromTheDiffusionSubsteps) {
       EXPECT_LT(p.stress[i].norm(), 1e-8 * 1e6) << model << " particle " << i;
     }
   }
+}
+
+// <max_concentration_change> 0.01 against c rising 0.05 in the first step (dt = delt_max): that
+// step is retaken at dt x 0.01/0.05, and the next ones keep the dt whose change is the bound.
+TEST(QuasiStatic, ConcentrationChangeBoundsTheStep) {
+  RunOptions o;
+  o.progress = false;
+  Simulation sim(
+      swellingInput("comp_neo_hook", "<max_concentration_change>0.01</max_concentration_change>"),
+      "swell.ups", o);
+  while (sim.step() < 3) sim.advance();
+  EXPECT_NEAR(sim.time(), 0.03, 1e-12);
+  EXPECT_EQ(sim.mpm().newtonCounts().retakes, 1);
+  const ParticleSet& p = sim.mpm().materials()[0].particles;
+  for (size_t i = 0; i < p.count(); ++i)
+    EXPECT_NEAR(p.F[i].determinant(), std::exp(3 * 0.3 * 0.03), 1e-8) << "particle " << i;
 }
 
 TEST(QuasiStatic, ImpmNeedsTheImplicitIntegrator) {

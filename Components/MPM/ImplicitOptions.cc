@@ -45,6 +45,10 @@ ImplicitOptions ImplicitOptions::fromInput(const PSNode& mpm) {
   o.hourglassStabilization = mpm.get<double>("hourglass_stabilization", o.hourglassStabilization);
   if (!(o.hourglassStabilization >= 0))
     mpm.requireChild("hourglass_stabilization").fail("<hourglass_stabilization> must be >= 0");
+  o.maxConcentrationChange = mpm.get<double>("max_concentration_change", o.maxConcentrationChange);
+  if (!(o.maxConcentrationChange > 0 && o.maxConcentrationChange <= 1))
+    mpm.requireChild("max_concentration_change")
+        .fail("<max_concentration_change> must be in (0, 1]");
   if (const PSNode solver = mpm.child("solver")) {
     const std::string name = solver.value<std::string>();
     if (name == "simple")

@@ -22,6 +22,9 @@ struct ImplicitOptions {
   // <hourglass_stabilization> (ours, not ImpMPM's): epsilon of Implicit/HourglassStabilization.h,
   // the stiffness of each particle's non-affine displacement relative to its own; 0 turns it off.
   double hourglassStabilization = 0.1;
+  // <max_concentration_change> (ours): with diffusion, the next dt is at most the one whose
+  // largest change of a particle's c would be this (the last step's change scaled linearly).
+  double maxConcentrationChange = 0.05;
 
   // Reads the ImpMPM tags of <MPM> (only with <time_integrator>implicit).
   static ImplicitOptions fromInput(const PSNode& mpm);

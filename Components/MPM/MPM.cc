@@ -329,6 +329,9 @@ StableTimestep MPM::computeStableTimestep(Collective) const {
         lastQuasiStaticDt_ > 0
             ? flags_.implicit->nextTimestep(lastQuasiStaticDt_, newton_.lastIterations)
             : std::numeric_limits<double>::max();
+    if (maxConcentrationChange_ > 0)  // the accuracy bound on c (docs/quasi-static.md)
+      limits.bound[StableTimestep::ConcentrationChange] =
+          lastQuasiStaticDt_ * flags_.implicit->maxConcentrationChange / maxConcentrationChange_;
     return limits;
   }
   double& dt = limits.bound[StableTimestep::Mechanics];

@@ -166,6 +166,8 @@ class MPM {
   // Diffusion over the quasi-static step in explicit sub-steps on its start-of-step configuration;
   // concentrationChange_ receives each particle's change.
   void diffuseOverStep(double t, double dt, double substepMultiplier);
+  // The largest |dc| of a particle over the diffusion of the step.
+  double largestConcentrationChange() const;
   // The particles after the converged step (positions, F, stress, the models' state).
   void updateParticlesFromEquilibrium(double dt);
   // The setup checks of an implicit run: what it does not support is an input error.
@@ -206,6 +208,8 @@ class MPM {
   std::vector<int> fieldOf_;
   std::vector<std::vector<double>> concentrationChange_;  // per material: dc of the step
   double lastQuasiStaticDt_ = 0;
+  // The largest |dc| of a particle in the last quasi-static step (with diffusion).
+  double maxConcentrationChange_ = 0;
   NewtonCounts newton_;
   TaskTimers timers_;
   struct StepTasks {  // timer indices of the step's tasks

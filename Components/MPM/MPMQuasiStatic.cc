@@ -22,7 +22,17 @@ namespace anode {
 
 namespace {
 constexpr int kMaxRetakes = 20;  // of one step
+// A step whose largest change of c exceeds <max_concentration_change> by this factor is retaken,
+// at dt x bound / change, but no less than dt x kSmallestConcentrationRetake.
+constexpr double kConcentrationChangeRetake = 2, kSmallestConcentrationRetake = 0.1;
 }  // namespace
+
+double MPM::largestConcentrationChange() const {
+  double largest = 0;
+  for (const std::vector<double>& dc : concentrationChange_)
+    for (double d : dc) largest = std::max(largest, std::abs(d));
+  return largest;
+}
 
 std::string MPM::NewtonCounts::lastStep() const {
   return "Newton " + std::to_string(lastIterations) + ", Krylov " + std::to_string(lastKrylov);
@@ -154,18 +164,35 @@ double MPM::advanceQuasiStatic(Collective, double t, double dt, double dtMin,
       ScopedTimer s(timers_, tasks_.particlesToGrid);
       interpolateParticlesToGrid();  // the nodal masses (and the concentration's sums)
     }
-    if (diffusion_) diffuseOverStep(t, dt, substepMultiplier);  // 2: c over dt
-    // 3: Newton, retaken with a smaller dt until it converges
-    const NewtonReport report = equilibrium_.solve(equilibriumProblem(dt), dt, *flags_.implicit);
-    newton_.iterations += report.iterations;
-    newton_.krylov += report.krylovIterations;
-    if (report.converged) {
-      newton_.lastIterations = report.iterations;
-      newton_.lastKrylov = report.krylovIterations;
-      newton_.lastRatios = report.ratios;
-      break;
+    // 2: c over dt; a step in which c changed by more than twice the bound of
+    // <max_concentration_change> somewhere is retaken at the dt that bound allows.
+    NewtonReport report;
+    double smaller = dt * flags_.implicit->decreaseFactor;
+    if (diffusion_) {
+      diffuseOverStep(t, dt, substepMultiplier);
+      const double bound = flags_.implicit->maxConcentrationChange;
+      maxConcentrationChange_ = largestConcentrationChange();
+      if (maxConcentrationChange_ > kConcentrationChangeRetake * bound) {
+        std::ostringstream s;
+        s.precision(3);
+        s << "c changed by " << maxConcentrationChange_ << " in a particle, above twice "
+          << "<max_concentration_change> " << bound;
+        report.failure = s.str();
+        smaller = dt * std::max(bound / maxConcentrationChange_, kSmallestConcentrationRetake);
+      }
     }
-    const double smaller = dt * flags_.implicit->decreaseFactor;
+    if (report.failure.empty()) {
+      // 3: Newton, retaken with a smaller dt until it converges
+      report = equilibrium_.solve(equilibriumProblem(dt), dt, *flags_.implicit);
+      newton_.iterations += report.iterations;
+      newton_.krylov += report.krylovIterations;
+      if (report.converged) {
+        newton_.lastIterations = report.iterations;
+        newton_.lastKrylov = report.krylovIterations;
+        newton_.lastRatios = report.ratios;
+        break;
+      }
+    }
     // With <delt_min> 0 the retakes end after kMaxRetakes (0.6^20: 4e-5 of the first dt).
     if (smaller < dtMin || ++retakes > kMaxRetakes) {
       std::ostringstream s;
@@ -180,15 +207,17 @@ double MPM::advanceQuasiStatic(Collective, double t, double dt, double dtMin,
       throw SimulationError(s.str());
     }
     ++newton_.retakes;
-    std::ostringstream last;
-    last.precision(2);
-    for (size_t k = report.ratios.size() > 3 ? report.ratios.size() - 3 : 0;
-         k < report.ratios.size(); ++k)
-      last << " (" << report.ratios[k].first << ", " << report.ratios[k].second << ")";
-    std::fprintf(stderr,
-                 "sus: the step from t = %.6g retaken with dt = %.4g: %s; Newton %d, last "
-                 "ratios%s\n",
-                 t, smaller, report.failure.c_str(), report.iterations, last.str().c_str());
+    std::ostringstream note;
+    note.precision(2);
+    note << "sus: the step from t = " << t << " retaken with dt = " << smaller << ": "
+         << report.failure;
+    if (report.iterations > 0) {
+      note << "; Newton " << report.iterations << ", last ratios";
+      for (size_t k = report.ratios.size() > 3 ? report.ratios.size() - 3 : 0;
+           k < report.ratios.size(); ++k)
+        note << " (" << report.ratios[k].first << ", " << report.ratios[k].second << ")";
+    }
+    std::fprintf(stderr, "%s\n", note.str().c_str());
     dt = smaller;
     for (size_t m = 0; m < start.size(); ++m) materials_[m].particles = start[m];
     if (diffusion_) diffusion_->updateDiffusionState(Collective{}, materials_, t);

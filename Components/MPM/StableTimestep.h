@@ -1,7 +1,8 @@
 // The stable time step of the current state before the multiplier (paper Eq. 45): the smallest
 // of the mechanical limit (Eq. 43), the diffusion limit (Eq. 44) and the flux limit
 // (docs/diffusion.md, "Time step"), each over all ranks, and which of them sets it. An implicit
-// run has one limit, the last dt grown or shrunk by its Newton iterations (ImpMPM's rule).
+// run has two: the last dt grown or shrunk by its Newton iterations (ImpMPM's rule), and with
+// diffusion the dt whose largest change of c would be <max_concentration_change>.
 #pragma once
 
 #include <algorithm>
@@ -11,11 +12,12 @@
 namespace anode {
 
 struct StableTimestep {
-  enum Limit { Mechanics, Diffusion, Flux, Newton, kLimits };
+  enum Limit { Mechanics, Diffusion, Flux, Newton, ConcentrationChange, kLimits };
   // Each limit's dt; infinity where it does not apply.
   std::array<double, kLimits> bound{
       std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
-      std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+      std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
+      std::numeric_limits<double>::infinity()};
 
   double dt() const { return *std::min_element(bound.begin(), bound.end()); }
   Limit binding() const {
@@ -23,7 +25,8 @@ struct StableTimestep {
   }
   static const char* name(Limit limit) {
     constexpr const char* names[kLimits] = {"mechanics (Eq. 43)", "diffusion (Eq. 44)",
-                                            "flux restriction", "Newton iterations"};
+                                            "flux restriction", "Newton iterations",
+                                            "concentration change per step"};
     return names[limit];
   }
 };
