@@ -8,13 +8,16 @@ pillar (inputs/Paper/QuasiStatic_Fig4.ups, density 2.33e3 kg/m^3) against the ex
 The explicit runs come from DIR/NAME, or from the carry folder (paper_carry.py) when DIR lacks
 them: Density_2.33e18 took 29 hours here. The quasi-static run is made in DIR/QuasiStatic_Fig4
 when it is not there. Prints a markdown table; the metrics are paper_numbers.py's (its docstring
-defines them), and "axis c" is the mean c of the rings' innermost (the pillar's core).
+defines them); "axis c" is the mean c of the rings' innermost, and "c of the core's lowest
+quarter" the mean c of the inner third of the radius in the lowest quarter of the height.
 """
 import argparse
 import os
 import subprocess
 import sys
 import time
+
+import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import paper_carry  # noqa: E402
@@ -47,9 +50,20 @@ def make_implicit_run(sus, runs, threads):
     print("%s: %.0f s" % (IMPLICIT, time.time() - start), file=sys.stderr)
 
 
+def foot_core_c(state):
+    """Mean c of the silicon in the inner third of the radius and the lowest quarter of the
+    height (by reference position): docs/paper/README.md's "core near the foot"."""
+    X0 = state.X0[state.silicon]
+    r = np.hypot(X0[:, 0], X0[:, 1])
+    z = (X0[:, 2] - state.base) / (state.top - state.base)
+    core = (r <= r.max() / 3) & (z <= 0.25)
+    return state.c[state.silicon][core].mean()
+
+
 def row(run_dir, t, reference=None):
     s = paper_numbers.shape(run_dir, t)
-    rings = paper_numbers.state_of(run_dir, t).ring_profile()
+    state = paper_numbers.state_of(run_dir, t)
+    rings = state.ring_profile()
     cells = ""
     if reference:
         d = paper_numbers.pair_difference(run_dir, reference, t)
@@ -61,6 +75,7 @@ def row(run_dir, t, reference=None):
         "%.1f%%" % (100 * s["top_rise"]),
         "%.1f%%" % (100 * s["top_growth"]),
         "%.3f" % rings[0],
+        "%.3f" % foot_core_c(state),
         "%.2f" % s["ep_max"],
         cells,
     ]
@@ -85,6 +100,7 @@ def main():
         "top layer's mean height growth",
         "top layer's radial growth",
         "axis c",
+        "c of the core's lowest quarter",
         "largest plastic strain",
         "largest / mean abs(c - quasi-static)",
     ]
