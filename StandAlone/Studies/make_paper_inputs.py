@@ -492,29 +492,6 @@ SCENARIOS.append(
 )
 SCENARIOS[-1]["pillar"] = dict(LARGE, top=0.24)
 
-# Figure 4's pillar at the real density, quasi-static (docs/quasi-static.md): no density enters
-# the equilibrium, dt follows Newton's iterations up to delt_max (1 s).
-SCENARIOS.append(
-    dict(
-        next(s for s in SCENARIOS if s["name"] == "Density_2.33e18"),
-        name="QuasiStatic_Fig4",
-        title="Quasi-static: 2.33e3 kg/m^3",
-        notes=describe(
-            COMMON
-            + [
-                "Linear isotropic hardening, yield 1.4 GPa, modulus 1.15 GPa.",
-                "Density 2.33e3 kg/m^3 (real silicon), D0 = 1e-17 m^2/s, flux 1e-9 m/s, quasi-static",
-                "(implicit) steps of at most 1 s; compare with Density_2.33e18 and Density_2.33e24.",
-                "dt by Newton's iterations alone (max_concentration_change 1: 0.6 s here);",
-                "docs/quasi-static.md shows how the answer moves with dt.",
-            ]
-        ),
-        density=2.33e3,
-        implicit=True,
-        delt_max=1e6,
-        implicit_extra="\n    <max_concentration_change>1</max_concentration_change>",
-    )
-)
 SCENARIOS.append(
     dict(
         name="Cycle_LargePillar",
