@@ -24,20 +24,26 @@ namespace anode {
 
 // The scalar matrix of particle i's stabilizing energy over its support entries (n x n, n =
 // W.count[i]): M = A^T diag(S) A, A_ij = delta_ij - S_j - grad S_j . (x_i - x_p). The nodal
-// stiffness between entries j and k is kappa V M_jk times the 3 x 3 identity.
+// stiffness between entries j and k is kappa V M_jk times the 3 x 3 identity. A = I - B C^T with
+// the rows B_i = [1, x_i - x_p] and C_j = [S_j, grad S_j], so M is formed in O(n^2):
+// M = W - W B C^T - C B^T W + C (B^T W B) C^T, W = diag(S).
 inline Eigen::MatrixXd hourglassMatrix(const Grid& grid, const InterpolationWeights& W, long i,
                                        const Vec3& xp) {
   const int n = W.count[i];
   const size_t b = W.offset[i];
-  Eigen::MatrixXd A = Eigen::MatrixXd::Identity(n, n);
+  Eigen::MatrixX4d B(n, 4), C(n, 4);
   Eigen::VectorXd S(n);
   for (int a = 0; a < n; ++a) {
     const Vec3i ijk = grid.nodeOf(W.node[b + a]);
-    const Vec3 d = grid.nodePosition(ijk.x(), ijk.y(), ijk.z()) - xp;
     S[a] = W.weight[b + a];
-    for (int c = 0; c < n; ++c) A(a, c) -= W.weight[b + c] + W.gradient[b + c].dot(d);
+    B.row(a) << 1, (grid.nodePosition(ijk.x(), ijk.y(), ijk.z()) - xp).transpose();
+    C.row(a) << S[a], W.gradient[b + a].transpose();
   }
-  return A.transpose() * S.asDiagonal() * A;
+  const Eigen::MatrixX4d WB = S.asDiagonal() * B;
+  const Eigen::MatrixXd WBC = WB * C.transpose();
+  Eigen::MatrixXd M = C * (B.transpose() * WB) * C.transpose() - WBC - WBC.transpose();
+  M.diagonal() += S;
+  return M;
 }
 
 }  // namespace anode
