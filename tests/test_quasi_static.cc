@@ -136,6 +136,7 @@ void expectInputError(const CompressionCase& c, const std::string& words) {
     FAIL() << "accepted; expected an error with \"" << words << "\"";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("bad.ups:1:"), std::string::npos) << e.what();
   }
 }
 
@@ -146,28 +147,22 @@ TEST(QuasiStatic, RejectsWhatItDoesNotSupport) {
   c.mpmFlags = "<dynamic>false</dynamic><solver>hypre</solver>";
   expectInputError(c, "<solver> must be petsc or simple");
 
-  c.mpmFlags = "<dynamic>false</dynamic><delT_decrease_factor>1.5</delT_decrease_factor>";
-  expectInputError(c, "<delT_decrease_factor> must be in (0, 1)");
-  c.mpmFlags =
-      "<dynamic>false</dynamic><num_iters_to_increase_delT>12</num_iters_to_increase_delT>";
-  expectInputError(c, "must be below <num_iters_to_decrease_delT>");
-  c.mpmFlags = "<dynamic>false</dynamic><convergence_criteria_disp>0</convergence_criteria_disp>";
-  expectInputError(c, "<convergence_criteria_disp> must be positive");
-  c.mpmFlags =
-      "<dynamic>false</dynamic><convergence_criteria_energy>-1</convergence_criteria_energy>";
-  expectInputError(c, "<convergence_criteria_energy> must be positive");
-  c.mpmFlags =
-      "<dynamic>false</dynamic><iters_before_timestep_restart>0</iters_before_timestep_restart>";
-  expectInputError(c, "<iters_before_timestep_restart> must be positive");
-  c.mpmFlags =
-      "<dynamic>false</dynamic><num_iters_to_increase_delT>-1</num_iters_to_increase_delT>";
-  expectInputError(c, "<num_iters_to_increase_delT> must be >= 0");
-  c.mpmFlags = "<dynamic>false</dynamic><delT_increase_factor>0.5</delT_increase_factor>";
-  expectInputError(c, "<delT_increase_factor> must be >= 1");
-  c.mpmFlags = "<dynamic>false</dynamic><hourglass_stabilization>-0.1</hourglass_stabilization>";
-  expectInputError(c, "<hourglass_stabilization> must be >= 0");
-  c.mpmFlags = "<dynamic>false</dynamic><max_concentration_change>0</max_concentration_change>";
-  expectInputError(c, "<max_concentration_change> must be in (0, 1]");
+  // A bad value of each tag: (tag, value, the error's words).
+  const char* bad[][3] = {
+      {"delT_decrease_factor", "1.5", "<delT_decrease_factor> must be in (0, 1)"},
+      {"num_iters_to_increase_delT", "12", "must be below <num_iters_to_decrease_delT>"},
+      {"convergence_criteria_disp", "0", "<convergence_criteria_disp> must be positive"},
+      {"convergence_criteria_energy", "-1", "<convergence_criteria_energy> must be positive"},
+      {"iters_before_timestep_restart", "0", "<iters_before_timestep_restart> must be positive"},
+      {"num_iters_to_increase_delT", "-1", "<num_iters_to_increase_delT> must be >= 0"},
+      {"delT_increase_factor", "0.5", "<delT_increase_factor> must be >= 1"},
+      {"hourglass_stabilization", "-0.1", "<hourglass_stabilization> must be >= 0"},
+      {"max_concentration_change", "0", "<max_concentration_change> must be in (0, 1]"},
+  };
+  for (const auto& [tag, value, words] : bad) {
+    c.mpmFlags = std::string("<dynamic>false</dynamic><") + tag + ">" + value + "</" + tag + ">";
+    expectInputError(c, words);
+  }
   c.mpmFlags =
       "<dynamic>false</dynamic><boundary_traction_faces>[zminus]</boundary_traction_faces>";
   expectInputError(c, "boundary_traction_faces");
