@@ -55,12 +55,16 @@ void Simulation::takeStableTimestep(double previousDt) {
   dtLimit_ = stable.binding();
 }
 
+void Simulation::stepMPM() {
+  if (mpm_.flags().implicit)
+    dt_ = mpm_.advanceQuasiStatic(Collective{}, t_, dt_, time_.deltMin, substepMultiplier_);
+  else
+    mpm_.timeAdvance(Collective{}, t_, dt_);
+}
+
 void Simulation::advance() {
   try {
-    if (mpm_.flags().implicit)
-      dt_ = mpm_.advanceQuasiStatic(Collective{}, t_, dt_, time_.deltMin, substepMultiplier_);
-    else
-      mpm_.timeAdvance(Collective{}, t_, dt_);
+    stepMPM();
     ScopedTimer timer(mpm_.timers(), mpm_.timers().task("stateChecks"));
     checks_.afterStep(Collective{}, mpm_, dt_);
   } catch (const StoppedOnAnotherRank&) {
@@ -287,7 +291,7 @@ void Simulation::replayToLastGoodState() {
     std::fprintf(stderr, "sus: replaying steps %ld to %ld from %s for the last good state\n",
                  step_ + 1, lastGood, newestCheckpoint_.c_str());
   while (step_ < lastGood) {
-    mpm_.timeAdvance(Collective{}, t_, dt_);
+    stepMPM();
     finishStep();
   }
   // The replayed state must be the one the run had: its history row says what it was.

@@ -57,6 +57,9 @@ class Simulation {
 
  private:
   void setup();
+  // The MPM's step from t_ over dt_: explicit, or quasi-static (which may retake it with a
+  // smaller dt_).
+  void stepMPM();
   // The end of a step: time, step count and the next dt.
   void finishStep();
   // dt_ for the step from t_: the multiplier times the state's stable dt, then <Time>'s clamps.
