@@ -36,6 +36,10 @@ TEST(TimeControl, ClampsInUintahsOrder) {
   EXPECT_DOUBLE_EQ(tc.nextTimestep(0.1, 0.002, 0.5), 0.003);  // at most 1.5 x the previous step
   EXPECT_EQ(tc.nextTimestep(0.1, 0, 0.1), 0.004);             // delt_init within the initial range
   EXPECT_EQ(tc.nextTimestep(0.1, 0, 0.99), 1 - 0.99);         // ends at maxTime
+  // A round-off remainder joins the step before it.
+  const double almost = 1 - 0.05 - 1e-15;
+  EXPECT_EQ(tc.nextTimestep(0.1, 0, almost), 1 - almost);
+  EXPECT_EQ(tc.nextTimestep(0.1, 0, 1 - 0.05 - 1e-6), 0.05);
 }
 
 TEST(TimeControl, InitialRangeEndsAtAnAbsoluteTimeAndZeroDeltInitCapsNothing) {

@@ -58,7 +58,10 @@ double TimeControl::nextTimestep(double stableDt, double previousDt, double t) c
   dt = std::min(dt, deltMax);
   // The initial range ends at an absolute time, not initTime + range (Uintah).
   if (deltInit && t <= initialDeltRange) dt = std::min(dt, *deltInit);
-  if (endAtMaxTimeExactly && t + dt > maxTime) dt = maxTime - t;
+  // A remainder below 1e-9 of the step (round-off in the sum of earlier steps) joins it: alone
+  // it would be a step of round-off size, in which an implicit step's Newton has nothing to solve
+  // but the last step's residual and fails.
+  if (endAtMaxTimeExactly && t + dt * (1 + 1e-9) > maxTime) dt = maxTime - t;
   return dt;
 }
 
