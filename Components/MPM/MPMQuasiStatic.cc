@@ -59,6 +59,7 @@ void MPM::checkImplicitSetup(const PSNode& root) const {
     root.requireChild("MaterialProperties")
         .requireChild("MPM")
         .requireChild("contact")
+        .requireChild("ExcludeMaterial")
         .fail("<ExcludeMaterial> with <time_integrator>implicit is not supported");
 }
 
