@@ -92,6 +92,15 @@ void energyBelowInitial(const std::vector<std::map<std::string, double>>& h) {
   EXPECT_LE(column(h, "max_J", true), 1.01);
 }
 
+// The implicit cases' silicon swells uniformly to c = 0.5 (e^(3 x 0.56 x 0.5) = 2.32 free).
+void swollenToHalf(const std::vector<std::map<std::string, double>>& h) {
+  cInRange(h);
+  EXPECT_NEAR(h.back().at("max_c"), 0.5, 1e-9);
+  EXPECT_GT(h.back().at("max_J"), 1.8);
+  EXPECT_LT(column(h, "max_J", true), 3.0);
+  EXPECT_GT(column(h, "min_J", false), 0.5);
+}
+
 const std::map<std::string, Expectation>& expectations() {
   static const std::map<std::string, Expectation> e = {
       {"Density_2.33e3",
@@ -205,6 +214,43 @@ const std::map<std::string, Expectation>& expectations() {
         }}},
       {"Elastic_compression_12km_s",
        {0, 3, "has J = V rho0 / m = [0-9.e-]+, below 1e-05", 66, nullptr}},
+      // Quasi-static (implicit) variants; each completed run also reports its Newton iterations
+      // (QuickVersionEndsAsExpected).
+      {"Implicit_swelling_eta_0.56",
+       {0, 0, "", 0,
+        [](const auto& h) {
+          // c reaches 1 everywhere at maxTime (the last step ends there); J about free swelling's
+          // e^(3 eta) = 5.37.
+          cInRange(h);
+          EXPECT_NEAR(h.back().at("min_c"), 1.0, 1e-9);
+          EXPECT_GT(h.back().at("min_J"), 4.5);
+          EXPECT_LT(column(h, "max_J", true), 6.5);
+        }}},
+      {"Implicit_swelling_eta_0.56_past_c_1",
+       {0, 3, "has concentration 1\\.[0-9]+ at t = .*outside \\[0, 1\\]", 2,
+        [](const auto& h) {
+          cInRange(h);
+          EXPECT_NEAR(h.back().at("max_c"), 0.95, 1e-9);
+        }}},
+      {"Implicit_yield_0.14_walls", {0, 0, "", 0, swollenToHalf}},
+      {"Implicit_hardening_11.5_walls", {0, 0, "", 0, swollenToHalf}},
+      {"Implicit_contact_single_velocity",
+       {0, 0, "", 0,
+        [](const auto& h) {
+          swollenToHalf(h);
+          // The bonded substrate (no lithium) is strained by the silicon.
+          EXPECT_LT(h.back().at("min_J"), 0.99);
+        }}},
+      {"Implicit_contact_null",
+       {0, 0, "", 0,
+        [](const auto& h) {
+          swollenToHalf(h);
+          // Separate bodies: nothing strains the substrate.
+          EXPECT_NEAR(column(h, "min_J", false), 1.0, 1e-9);
+          EXPECT_NEAR(h.back().at("min_J"), 1.0, 1e-9);
+        }}},
+      {"Implicit_contact_exclude",
+       {0, 2, "<ExcludeMaterial> with <time_integrator>implicit is not supported", 0, nullptr}},
   };
   return e;
 }
@@ -222,6 +268,11 @@ std::string testName(const ::testing::TestParamInfo<std::string>& info) {
   for (char& c : name)
     if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
   return name;
+}
+
+std::string readInput(const std::string& name) {
+  std::ifstream in(kDir + "/" + name + ".ups");
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
 }
 
 double readMaxTime(const std::string& name) {
@@ -303,6 +354,15 @@ TEST_P(StabilityCase, QuickVersionEndsAsExpected) {
     } else {
       EXPECT_GE(history.back().at("time"), readMaxTime(GetParam()));
     }
+    if (readInput(GetParam()).find("<time_integrator>implicit") != std::string::npos) {
+      // Every step's Newton converged within ImpMPM's default 25 iterations.
+      std::smatch m;
+      ASSERT_TRUE(std::regex_search(
+          r.output, m, std::regex("Newton iterations ([0-9]+) \\(([0-9.]+) per step\\)")))
+          << r.output;
+      EXPECT_GE(std::stol(m[1]), static_cast<long>(history.back().at("step"))) << r.output;
+      EXPECT_LE(std::stod(m[2]), 25.0) << r.output;
+    }
   }
   if (e.check) e.check(history);
   if (!::testing::Test::HasFailure()) fs::remove_all(r.dir);
@@ -320,11 +380,6 @@ RunOptions quiet() {
   RunOptions o;
   o.progress = false;
   return o;
-}
-
-std::string readInput(const std::string& name) {
-  std::ifstream in(kDir + "/" + name + ".ups");
-  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
 }
 
 TEST(BetaBeyondPmax, TheClampHoldsTheDiffusivityWherePressureExceedsPmax) {

@@ -6,6 +6,9 @@ All share one small plane-strain body so each runs in seconds: a silicon block 0
 CPDI), its base (y-) fixed, lithiated through its top (y+) and right side (x+). Silicon as in the
 paper: K = 67 GPa, G = 31 GPa, eta = 0.56, D = D0 exp(alpha c - beta clamp(p, 0, p_max)) with
 p_max = 3 GPa; linear hardening, yield 1.4 GPa, modulus 1.15 GPa. Each case changes one thing.
+Implicit variants (issue 40, docs/quasi-static.md): <SimulationComponent type="impm"/> with
+<time_integrator>implicit</time_integrator> and <dynamic>false</dynamic>, the ImpMPM tags of `impm`;
+some add a substrate under the silicon (single_velocity or null contact).
 Units: um, us, pg (1 GPa = 1e6, 1 kg/m^3 = 1e-3 pg/um^3, 1 m^2/s = 1e6 um^2/us, 1 m/s = 1 um/us).
 Run: python3 StandAlone/Studies/make_stability_inputs.py; tests/test_stability.cc runs the quick versions.
 """
@@ -43,7 +46,19 @@ BASE = dict(
     confined=False,
     grid=(0.2, 0.25),
     steps=0,
+    sigmaY=SILICON["sigmaY"],
+    H=SILICON["H"],
+    implicit=False,
+    impm={},
+    delt_max="1.0e12",
+    walls="",
+    substrate="",
+    res="[2,2,1]",
 )
+
+# The substrate of the contact cases: an elastic block 0.1 x 0.05 um under the silicon (which then
+# spans y = 0.05 to 0.15), stiffer than silicon (K = 180 GPa, G = 76 GPa), taking up no lithium.
+SUBSTRATE_TOP = 0.05
 
 
 def diffusion_model(s):
@@ -86,6 +101,63 @@ def flux_bcs(s):
     )
 
 
+def implicit_flags(s):
+    """The quasi-static integrator and the ImpMPM tags of s["impm"] (docs/quasi-static.md)."""
+    if not s["implicit"]:
+        return ""
+    return (
+        "\n    <time_integrator>implicit</time_integrator>\n    <dynamic>false</dynamic>"
+        + "".join("\n    <%s>%s</%s>" % (tag, value, tag) for tag, value in s["impm"].items())
+    )
+
+
+def substrate(s):
+    """The substrate material under the silicon (none unless s["substrate"])."""
+    if not s["substrate"]:
+        return ""
+    return """
+      <material name="substrate">
+        <density>%g</density>
+        <constitutive_model type="rf_elastic_plastic">
+          <bulk_modulus>%g</bulk_modulus>
+          <shear_modulus>%g</shear_modulus>
+          <volume_expansion_coeff>0.0</volume_expansion_coeff>
+          <equation_of_state type="default_hypo"/>
+        </constitutive_model>
+        <diffusion_model type="jg">
+          <diffusivity>0.0</diffusivity>
+          <max_concentration>1.0</max_concentration>
+        </diffusion_model>
+        <geom_object>
+          <box label="substrate"><min>[0.0, 0.0, 0.0]</min><max>[0.1, %g, 0.01]</max></box>
+          <res>[2,2,1]</res>
+          <velocity>[0.0, 0.0, 0.0]</velocity>
+          <concentration>0</concentration>
+        </geom_object>
+      </material>""" % (
+        s["density"] * 1e-3,
+        180.4 * GPA,
+        76.0 * GPA,
+        SUBSTRATE_TOP,
+    )
+
+
+def contact(s):
+    """<contact>: null for one material; with a substrate s["substrate"] names the type ("exclude":
+    single_velocity with <ExcludeMaterial>, which implicit runs refuse)."""
+    if not s["substrate"]:
+        return "<contact><type>null</type></contact>"
+    kind = "single_velocity" if s["substrate"] == "exclude" else s["substrate"]
+    return (
+        "<contact>\n        <type>%s</type>\n        <materials>[0,1]</materials>%s\n      </contact>"
+        % (
+            kind,
+            "\n        <ExcludeMaterial>1</ExcludeMaterial>" if s["substrate"] == "exclude" else "",
+        )
+        + "\n      <diffusion_interface><type>null</type></diffusion_interface>"
+    )
+
+
 def write(name, notes, quick, **changes):
     s = dict(BASE)
     s.update(changes)
@@ -93,11 +165,16 @@ def write(name, notes, quick, **changes):
     fixed = (
         '<BCType id="all" label="Velocity" var="Dirichlet"><value>[0.0, 0.0, 0.0]</value></BCType>'
     )
-    # Confined: the block fills the grid's x extent and top, every face holds it.
+    # Confined: the block fills the grid's x extent and top, every face holds it. Walls "sides":
+    # it fills the x extent, x+ holds it (no slip), the top is free.
     width, top = (0.1, 0.15) if s["confined"] else s["grid"]
+    if s["walls"] == "sides":
+        width = 0.1
     faces = {
         "x-": '<BCType id="all" label="Symmetric" var="symmetry"/>',
-        "x+": fixed if s["confined"] else '<BCType id="all" label="Symmetric" var="symmetry"/>',
+        "x+": fixed
+        if s["confined"] or s["walls"]
+        else '<BCType id="all" label="Symmetric" var="symmetry"/>',
         "y-": fixed,
         "y+": fixed if s["confined"] else '<BCType id="all" label="Symmetric" var="symmetry"/>',
         "z-": '<BCType id="all" label="Symmetric" var="symmetry"/>',
@@ -113,12 +190,12 @@ def write(name, notes, quick, **changes):
 -->
 <Uintah_specification>
   <Meta><title>Stability: %s</title></Meta>
-  <SimulationComponent type="mpm"/>
+  <SimulationComponent type="%s"/>
   <Time>
     <maxTime>%g</maxTime>
     <initTime>0.0</initTime>
     <delt_min>0.0</delt_min>
-    <delt_max>1.0e12</delt_max>
+    <delt_max>%s</delt_max>
     <timestep_multiplier>%g</timestep_multiplier>%s
   </Time>
 %s
@@ -138,12 +215,12 @@ def write(name, notes, quick, **changes):
         </constitutive_model>
         %s
         <geom_object>
-          <box label="block"><min>[0.0, 0.0, 0.0]</min><max>[0.1, 0.15, 0.01]</max></box>
-          <res>[2,2,1]</res>
+          <box label="block"><min>[0.0, %s, 0.0]</min><max>[0.1, 0.15, 0.01]</max></box>
+          <res>%s</res>
           <velocity>[0.0, %g, 0.0]</velocity>%s
         </geom_object>
-      </material>
-      <contact><type>null</type></contact>
+      </material>%s
+      %s
     </MPM>
   </MaterialProperties>%s
   <Grid>
@@ -164,16 +241,25 @@ def write(name, notes, quick, **changes):
         "\n".join("  " + l for l in notes),
         quick,
         name,
+        "impm" if s["implicit"] else "mpm",
         s["maxTime"],
+        s["delt_max"],
         s["multiplier"],
-        max_timesteps(s["steps"]),
+        max_timesteps(s["steps"])
+        + (
+            # The last quasi-static step ends at maxTime: c reaches rate x maxTime exactly.
+            "\n    <end_at_max_time_exactly>true</end_at_max_time_exactly>"
+            if s["implicit"]
+            else ""
+        ),
         data_archiver(
             name,
             s["maxTime"] / 10,
             ["p.x", "p.particleID", "p.volume", "p.velocity", "p.stress"]
             + (["p.concentration", "p.diffusivity"] if diffusion else []),
         ),
-        (
+        implicit_flags(s)
+        + (
             "\n    <do_scalar_diffusion>true</do_scalar_diffusion>"
             + ("\n    <use_load_curves>true</use_load_curves>" if flux_bcs(s) else "")
         )
@@ -185,10 +271,14 @@ def write(name, notes, quick, **changes):
         "\n          <volume_expansion_coeff>%g</volume_expansion_coeff>" % s["eta"]
         if diffusion
         else "",
-        flow_model(s["model"], SILICON),
+        flow_model(s["model"], dict(SILICON, sigmaY=s["sigmaY"], H=s["H"])),
         diffusion_model(s),
+        SUBSTRATE_TOP if s["substrate"] else "0.0",
+        s["res"],
         s["velocity"],
         "\n          <concentration>%g</concentration>" % s["c0"] if diffusion else "",
+        substrate(s),
+        contact(s),
         flux_bcs(s),
         width,
         top,
@@ -438,6 +528,124 @@ for v, outcome in [
         model="elastic",
         velocity=-1000.0 * v,
         maxTime=1e-4,
+    )
+
+# Implicit (quasi-static) variants: c rises uniformly (constant_rate, no flux), dt is Newton's and
+# <max_concentration_change>'s (docs/quasi-static.md); real density, which no equation uses.
+IMPLICIT = dict(
+    implicit=True,
+    diffusion="constant_rate",
+    density=2.33e3,
+    delt_max="10",
+    impm={"max_concentration_change": 0.1},
+)
+for name, maxTime, notes, outcome in [
+    (
+        "Implicit_swelling_eta_0.56",
+        100,
+        ["The last step ends at maxTime, where c = 1 exactly."],
+        "runs to maxTime (9 steps, 2 retaken after a negative du.r); c = 1 everywhere at the"
+        " end; J up to 5.4 (free swelling: e^(3 x 0.56) = 5.37).",
+    ),
+    (
+        "Implicit_swelling_eta_0.56_past_c_1",
+        60,
+        [
+            "Here c starts at 0.7 (stress-free) and is left to run past c = 1 (maxTime 60 us):",
+            "constant_rate takes c beyond <max_concentration> and the range diagnostic stops the",
+            "run at the step that passes it; the last good state is rebuilt by replaying the",
+            "quasi-static steps.",
+        ],
+        "stops at step 2 (exit 3, t = 50 us): concentration 1.2 above 1 (the range diagnostic);"
+        " the last good state (step 1) has c = 0.95.",
+    ),
+]:
+    case(
+        name,
+        [
+            "Quasi-static (impm, implicit, dynamic false), large swelling: eta = 0.56 and c rising",
+            "uniformly from 0 (constant_rate 0.01 per us), base fixed: the free block would grow",
+            "e^0.56 = 1.75-fold per axis; held at its base and in z (plane strain) it yields.",
+            "<max_concentration_change> 0.25 and delt_max 25 us: steps of at most 25 us.",
+        ]
+        + notes,
+        outcome,
+        rate=0.01,
+        c0=0.7 if maxTime == 60 else 0.0,
+        maxTime=maxTime,
+        grid=(0.3, 0.4),
+        **dict(IMPLICIT, delt_max="25", impm={"max_concentration_change": 0.25})
+    )
+for label, sigmaY, H, outcome in [
+    (
+        "yield_0.14",
+        0.14,
+        SILICON["H"],
+        "runs to maxTime (7 steps, none retaken); c = 0.5; J in [1, 2.5].",
+    ),
+    (
+        "hardening_11.5",
+        1.4,
+        11.5,
+        "runs to maxTime (5 steps, none retaken); c = 0.5; J in [0.9, 2.6].",
+    ),
+]:
+    case(
+        "Implicit_%s_walls" % label,
+        [
+            "Quasi-static, heavy plasticity: yield %g GPa, hardening modulus %g GPa; the block"
+            % (sigmaY, H),
+            "fills a channel (x- symmetry plane, x+ and the base no-slip walls, plane strain in z)",
+            "and c rises uniformly to 0.5 (constant_rate 0.01 per us to 50 us): all its swelling",
+            "must go up, so it flows plastically, sheared along the walls.",
+        ],
+        outcome,
+        rate=0.01,
+        maxTime=50,
+        grid=(0.1, 0.4),
+        walls="sides",
+        sigmaY=sigmaY,
+        H=H,
+        **IMPLICIT
+    )
+for kind, notes, outcome in [
+    (
+        "single_velocity",
+        ["single_velocity contact: both materials share one set of unknowns (bonded)."],
+        "runs to maxTime (5 steps); the bonded substrate is strained (its J leaves 1).",
+    ),
+    (
+        "null",
+        [
+            "null contact: each material has its own unknowns, the silicon is a free body (no",
+            "face holds it; the regularisation alpha m I removes its rigid modes).",
+        ],
+        "runs to maxTime (5 steps); the substrate is untouched (J = 1 there).",
+    ),
+    (
+        "exclude",
+        [
+            "single_velocity contact with <ExcludeMaterial>, which the implicit path does not",
+            "support: setup refuses it.",
+        ],
+        "refused at setup (exit 2, nothing written): <ExcludeMaterial> with <time_integrator>"
+        "implicit is not supported.",
+    ),
+]:
+    case(
+        "Implicit_contact_%s" % kind,
+        [
+            "Quasi-static, two materials: an elastic substrate 0.1 x 0.05 um (K = 180 GPa,",
+            "G = 76 GPa, no lithium) fixed at its base, the silicon block 0.1 x 0.1 um on it; c",
+            "rises uniformly to 0.5 in the silicon (constant_rate 0.01 per us to 50 us).",
+        ]
+        + notes,
+        outcome,
+        rate=0.01,
+        maxTime=50,
+        grid=(0.2, 0.3),
+        substrate=kind,
+        **IMPLICIT
     )
 
 
