@@ -52,7 +52,8 @@ ImplicitOptions ImplicitOptions::fromInput(const PSNode& mpm) {
   if (const PSNode solver = mpm.child("solver")) {
     const std::string name = solver.value<std::string>();
     if (name == "simple")
-      solver.warn("<solver>simple: the linear systems are solved by PETSc (CG, GAMG) all the same");
+      solver.warn(
+          "<solver>simple: the linear systems are solved by PETSc (GMRES, GAMG) all the same");
     else if (name != "petsc")
       solver.fail("<solver> must be petsc or simple, found \"" + name + "\"");
   }
