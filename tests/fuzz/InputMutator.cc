@@ -218,7 +218,15 @@ const std::vector<std::string> kAttributeValues = {"",
                                                    "vonMises",
                                                    "default_hypo",
                                                    "perfect_plasticity",
-                                                   "pie_slices"};
+                                                   "pie_slices",
+                                                   "impm",
+                                                   "implicit"};
+// Values of the ImpMPM tags: negative, zero, huge, not a number, text, empty, and valid ones.
+const std::vector<std::string> kImplicitValues = {
+    "-1",          "0",      "-0",  "1e300", "1e400", "nan",   "inf",      "2147483648",
+    "-2147483649", "1e-300", "abc", "",      "true",  "false", "implicit", "explicit",
+    "petsc",       "simple", "0.5", "1",     "12",    "25",    "[1,2,3]"};
+const std::vector<std::string> kComponents = {"impm", "mpm", "amrmpm", "implicit", "", "IMPM"};
 const std::vector<std::string> kHugeVectors = {"[100000,100000,100000]",
                                                "[2147483647,1,1]",
                                                "[2147483647,2147483647,2147483647]",
@@ -323,13 +331,64 @@ std::vector<ElementSpan> scanElements(const std::string& t) {
   return out;
 }
 
+const std::vector<std::string>& implicitTags() {
+  static const std::vector<std::string> tags = {"time_integrator",
+                                                "dynamic",
+                                                "convergence_criteria_disp",
+                                                "convergence_criteria_energy",
+                                                "iters_before_timestep_restart",
+                                                "num_iters_to_decrease_delT",
+                                                "num_iters_to_increase_delT",
+                                                "delT_decrease_factor",
+                                                "delT_increase_factor",
+                                                "solver",
+                                                "hourglass_stabilization",
+                                                "max_concentration_change"};
+  return tags;
+}
+
+bool editTag(std::string& t, const std::string& parent, const std::string& tag, TagEdit edit,
+             const std::string& value) {
+  const std::vector<ElementSpan> elements = scanElements(t);
+  const ElementSpan* block = nullptr;
+  for (const ElementSpan& e : elements)
+    if (!e.selfClosing && name(t, e) == parent) {
+      block = &e;
+      break;
+    }
+  if (!block) return false;
+  // The <tag> children of the block (a leaf or self-closing element directly inside it).
+  std::vector<ElementSpan> found;
+  for (const ElementSpan& e : elements)
+    if (e.begin >= block->contentBegin && e.end <= block->contentEnd && name(t, e) == tag)
+      found.push_back(e);
+  const std::string element = "<" + tag + ">" + value + "</" + tag + ">";
+  switch (edit) {
+    case TagEdit::Set:
+      if (found.empty())
+        t.insert(block->contentBegin, element);
+      else
+        t.replace(found[0].begin, found[0].end - found[0].begin, element);
+      return true;
+    case TagEdit::Remove:
+      if (found.empty()) return false;
+      for (auto e = found.rbegin(); e != found.rend(); ++e) t.erase(e->begin, e->end - e->begin);
+      return true;
+    case TagEdit::Duplicate:
+      if (found.empty()) return false;
+      t.insert(found[0].end, t.substr(found[0].begin, found[0].end - found[0].begin));
+      return true;
+  }
+  return false;
+}
+
 const char* InputMutator::operatorName(int op) {
   static const char* names[] = {
       "flip-bit",       "replace-byte",     "insert-token",        "delete-bytes",
       "truncate",       "delete-element",   "duplicate-element",   "move-element",
       "rename-element", "delete-attribute", "duplicate-attribute", "corrupt-attribute",
       "corrupt-number", "huge-resolution",  "vector-length",       "swap-values",
-      "empty-value"};
+      "empty-value",    "implicit-option"};
   static_assert(sizeof(names) / sizeof(names[0]) == kOperatorCount, "a name per operator");
   return op >= 0 && op < kOperatorCount ? names[op] : "?";
 }
@@ -532,6 +591,33 @@ bool InputMutator::apply(int op, std::string& t, std::string* what) {
       t.erase(e.contentBegin, e.contentEnd - e.contentBegin);
       return true;
     }
+    case ImplicitOption: {
+      if (pick(8) == 0) {
+        const std::string key = "<SimulationComponent type=\"";
+        const size_t at = t.find(key);
+        if (at == std::string::npos) return false;
+        const size_t end = t.find('"', at + key.size());
+        if (end == std::string::npos) return false;
+        const std::string& v = pickFrom(kComponents);
+        say("<SimulationComponent> type to '" + v + "'");
+        t.replace(at + key.size(), end - at - key.size(), v);
+        return true;
+      }
+      const std::string& tag = pickFrom(implicitTags());
+      const size_t choice = pick(4);
+      if (choice == 1 && editTag(t, "MPM", tag, TagEdit::Remove)) {
+        say("<" + tag + "> removed");
+        return true;
+      }
+      if (choice == 2 && editTag(t, "MPM", tag, TagEdit::Duplicate)) {
+        say("<" + tag + "> duplicated");
+        return true;
+      }
+      const std::string& v = pickFrom(kImplicitValues);
+      if (!editTag(t, "MPM", tag, TagEdit::Set, v)) return false;
+      say("<" + tag + "> set to '" + shorten(v) + "'");
+      return true;
+    }
     default:
       return false;
   }
@@ -540,7 +626,7 @@ bool InputMutator::apply(int op, std::string& t, std::string* what) {
 std::string InputMutator::mutate(std::string& text, std::vector<int>* operatorsUsed) {
   // Byte-level operators break the XML almost always; structural and value operators reach the
   // validation behind the parser, so they are drawn more often.
-  static const int weights[kOperatorCount] = {2, 2, 2, 2, 1, 4, 4, 3, 3, 2, 2, 4, 8, 4, 4, 4, 3};
+  static const int weights[kOperatorCount] = {2, 2, 2, 2, 1, 4, 4, 3, 3, 2, 2, 4, 8, 4, 4, 4, 3, 3};
   std::discrete_distribution<int> choose(std::begin(weights), std::end(weights));
   const int count = 1 + static_cast<int>(pick(3));
   std::string description;

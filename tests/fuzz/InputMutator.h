@@ -24,6 +24,17 @@ struct ElementSpan {
 // tags end the scan (what was matched so far is returned).
 std::vector<ElementSpan> scanElements(const std::string& text);
 
+// The ImpMPM tags of <MPM> (docs/quasi-static.md) the implicit-option operator edits.
+const std::vector<std::string>& implicitTags();
+
+enum class TagEdit { Set, Remove, Duplicate };
+// Edits <tag> in the first <parent> element (not self-closing) of `text`: Set gives it `value`
+// (inserting it first in <parent> when absent), Remove deletes every <tag> there, Duplicate
+// repeats the first one. Returns false, text unchanged, when there is no <parent>, or no <tag> to
+// remove or duplicate.
+bool editTag(std::string& text, const std::string& parent, const std::string& tag, TagEdit edit,
+             const std::string& value = "");
+
 class InputMutator {
  public:
   enum Operator {
@@ -44,6 +55,8 @@ class InputMutator {
     VectorLength,
     SwapValues,
     EmptyValue,
+    ImplicitOption,  // an ImpMPM tag of <MPM> set to a bad value, removed or duplicated, or the
+                     // <SimulationComponent> type changed
     kOperatorCount
   };
   static const char* operatorName(int op);

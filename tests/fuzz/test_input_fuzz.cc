@@ -3,6 +3,7 @@
 // exception, no hang, nothing written.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -102,6 +103,67 @@ TEST(InputFuzz, QuickRunEndsEveryCaseInSuccessOrAFileLineInputError) {
   EXPECT_GT(r.rejected, r.tried / 2);
   for (int op = 0; op < InputMutator::kOperatorCount; ++op)
     EXPECT_GT(r.perOperator[op], 0) << InputMutator::operatorName(op);
+}
+
+// The implicit inputs among the seeds (<time_integrator>implicit).
+std::vector<std::string> implicitCorpus() {
+  std::vector<std::string> out;
+  for (const std::string& f : defaultCorpus(ANODE_SOURCE_DIR))
+    if (readFile(f).find("<time_integrator>implicit") != std::string::npos) out.push_back(f);
+  return out;
+}
+
+TEST(ImplicitOptions, EveryEditOfAnImpMPMTagEndsInSuccessOrAFileLineInputError) {
+  const std::string seed =
+      readFile(std::string(ANODE_SOURCE_DIR) + "/inputs/Stability/Implicit_contact_null.ups");
+  ASSERT_NE(seed.find("<time_integrator>implicit"), std::string::npos);
+  bool accepted = false;
+  ASSERT_EQ(checkSetup(seed, "implicit.ups", &accepted), "");
+  ASSERT_TRUE(accepted);
+  const std::vector<std::string> values = {
+      "-1",         "0",           "-0",     "1e300",  "1e400", "nan",  "inf",
+      "2147483648", "-2147483649", "1e-300", "abc",    "",      "true", "false",
+      "implicit",   "explicit",    "petsc",  "simple", "0.5",   "25"};
+  // Not a number or not a finite one, or negative: every numeric tag refuses these.
+  const std::vector<std::string> refused = {"-1", "1e400", "nan", "inf", "abc", ""};
+  for (const std::string& tag : implicitTags()) {
+    const bool numeric = tag != "time_integrator" && tag != "dynamic" && tag != "solver";
+    for (const std::string& v : values) {
+      std::string text = seed;
+      ASSERT_TRUE(editTag(text, "MPM", tag, TagEdit::Set, v));
+      EXPECT_EQ(checkSetup(text, "implicit.ups", &accepted), "") << "<" << tag << ">" << v;
+      if (numeric && std::find(refused.begin(), refused.end(), v) != refused.end()) {
+        EXPECT_FALSE(accepted) << "<" << tag << ">" << v << " was accepted";
+      }
+      ASSERT_TRUE(editTag(text, "MPM", tag, TagEdit::Duplicate));
+      EXPECT_EQ(checkSetup(text, "implicit.ups", &accepted), "") << "<" << tag << "> twice";
+      ASSERT_TRUE(editTag(text, "MPM", tag, TagEdit::Remove));
+      EXPECT_EQ(checkSetup(text, "implicit.ups", &accepted), "") << "<" << tag << "> removed";
+    }
+  }
+}
+
+TEST(InputFuzz, QuickRunOnTheImplicitInputsReachesTheImpMPMTags) {
+  FuzzOptions options;
+  options.corpus = implicitCorpus();
+  ASSERT_GE(options.corpus.size(), 5u);
+  options.cases = 600;
+  options.seed = 11;
+  options.memoryBudget = size_t(256) << 20;
+  options.caseTimeLimit = 60;
+  const FuzzReport r = runFuzz(options);
+  std::printf(
+      "fuzz (implicit seeds): %ld cases in %.1f s over %zu seed inputs: %ld accepted, %ld refused "
+      "with file:line, %zu failures, %ld ImpMPM tag edits\n",
+      r.tried, r.seconds, options.corpus.size(), r.accepted, r.rejected, r.failures.size(),
+      r.perOperator[InputMutator::ImplicitOption]);
+  EXPECT_EQ(r.tried, options.cases);
+  for (size_t k = 0; k < r.failures.size() && k < 20; ++k)
+    ADD_FAILURE() << "case " << r.failures[k].index << " of " << r.failures[k].seed << " ("
+                  << r.failures[k].mutations << "): " << r.failures[k].problem;
+  EXPECT_GT(r.accepted, r.tried / 50);
+  EXPECT_GT(r.rejected, r.tried / 2);
+  EXPECT_GT(r.perOperator[InputMutator::ImplicitOption], r.tried / 20);
 }
 
 }  // namespace
