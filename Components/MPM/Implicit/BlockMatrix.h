@@ -15,11 +15,12 @@ struct BlockMatrix {
   std::vector<Mat3> block;
 
   int rows() const { return static_cast<int>(rowStart.size()) - 1; }
-  // The block (r, c), which the pattern must hold.
-  Mat3& at(int r, int c) {
+  // The index of the block (r, c), which the pattern must hold.
+  int indexOf(int r, int c) const {
     const auto first = column.begin() + rowStart[r], last = column.begin() + rowStart[r + 1];
-    return block[std::lower_bound(first, last, c) - column.begin()];
+    return static_cast<int>(std::lower_bound(first, last, c) - column.begin());
   }
+  Mat3& at(int r, int c) { return block[indexOf(r, c)]; }
   void clearValues() { std::fill(block.begin(), block.end(), Mat3::Zero()); }
 };
 

@@ -1,5 +1,7 @@
 #include "Components/MPM/Implicit/EquilibriumSolver.h"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
 #include <optional>
@@ -94,54 +96,36 @@ void EquilibriumSolver::numberUnknowns(const EquilibriumProblem& problem) {
 void EquilibriumSolver::assemble(const EquilibriumProblem& problem, double dt, double stabilization,
                                  bool withTangent) {
   if (withTangent) K_.clearValues();
-  const double h2 = problem.grid.dx.squaredNorm() / 3;
-  const bool firstOfStep = hourglassStiffness_.empty();
-  if (firstOfStep) hourglassStiffness_.resize(problem.materials.size());
-  residual_.assign(3 * unknown_.size(), 0.0);
-  std::vector<Mat3> P;
-  std::vector<Mat9> A;
-  for (size_t m = 0; m < problem.materials.size(); ++m) {
-    ParticleSet& p = problem.materials[m].particles;
-    const InterpolationWeights& W = problem.weights[m];
-    const int f = problem.fieldOf[m];
+  const size_t materials = problem.materials.size();
+  P_.resize(materials);
+  A_.resize(materials);
+  for (size_t m = 0; m < materials; ++m)
     std::visit(
         [&](const auto* model) {
-          evaluateTrialStress(p, W, *model, u_[f], problem.concentrationChange[m], dt, P,
-                              withTangent ? &A : nullptr);
+          evaluateTrialStress(problem.materials[m].particles, problem.weights[m], *model,
+                              u_[problem.fieldOf[m]], problem.concentrationChange[m], dt, P_[m],
+                              withTangent ? &A_[m] : nullptr);
         },
         problem.materials[m].model->concrete().model);
-    const std::vector<int>& row = row_[f];
-    Eigen::Matrix<double, 3, 9> T;
-    for (size_t i = 0; i < p.count(); ++i) {
-      const double V = p.volume[i];
-      const size_t b = W.offset[i];
-      for (int e = 0; e < W.count[i]; ++e) {
-        const int r = row[W.node[b + e]];
-        if (r < 0) continue;
-        const Vec3& ge = W.gradient[b + e];
-        const Vec3 force = V * P[i] * ge;  // f_int of this particle at node e
-        for (int a = 0; a < 3; ++a) residual_[3 * r + a] -= force[a];
-        if (!withTangent) continue;
-        // T(a, 3 b + g) = V sum_d ge_d A(3 a + d, 3 b + g)
-        for (int a = 0; a < 3; ++a)
-          T.row(a) = V * (ge[0] * A[i].row(3 * a) + ge[1] * A[i].row(3 * a + 1) +
-                          ge[2] * A[i].row(3 * a + 2));
-        for (int g = 0; g < W.count[i]; ++g) {
-          if (row[W.node[b + g]] < 0) continue;
-          const Vec3& gg = W.gradient[b + g];
-          Mat3 k;
-          for (int a = 0; a < 3; ++a)
-            for (int c = 0; c < 3; ++c)
-              k(a, c) = T(a, 3 * c) * gg[0] + T(a, 3 * c + 1) * gg[1] + T(a, 3 * c + 2) * gg[2];
-          K_.at(r, row[W.node[b + g]]) += k;
-        }
-      }
-      // The stabilization's stiffness is fixed in the step's first assembly (at u = 0): its
-      // energy stays quadratic in u, and Newton's Jacobian exact.
-      if (stabilization <= 0) continue;
-      if (firstOfStep) hourglassStiffness_[m].push_back(stabilization * V * A[i].trace() / 9 / h2);
-      addHourglassStiffness(problem, W, i, p.x[i], hourglassStiffness_[m][i], f, withTangent);
+  const bool firstOfStep = stabilization > 0 && hourglass_.empty();
+  if (firstOfStep) {
+    hourglass_.assign(K_.column.size(), 0.0);
+    hourglassLoad_.assign(3 * unknown_.size(), 0.0);
+  }
+  residual_.assign(3 * unknown_.size(), 0.0);
+  // Each thread sums the rows of one range of block rows, particle by particle: every row's sum
+  // has the order of one thread's, whatever the number of threads.
+  const int rows = static_cast<int>(unknown_.size());
+#pragma omp parallel
+  {
+    const int t = omp_get_thread_num(), threads = omp_get_num_threads();
+    const int first = static_cast<int>(static_cast<long>(rows) * t / threads);
+    const int last = static_cast<int>(static_cast<long>(rows) * (t + 1) / threads);
+    for (size_t m = 0; m < materials; ++m) {
+      addInternalForce(problem, m, first, last, withTangent);
+      if (firstOfStep) addHourglassStiffness(problem, m, stabilization, first, last);
     }
+    if (stabilization > 0) applyHourglassStiffness(first, last, withTangent);
   }
   // Gravity, the fixed components' rows, and the rigid-mode regularization.
   double diagonal = 0, mass = 0;
@@ -161,22 +145,83 @@ void EquilibriumSolver::assemble(const EquilibriumProblem& problem, double dt, d
   }
 }
 
-void EquilibriumSolver::addHourglassStiffness(const EquilibriumProblem& problem,
-                                              const InterpolationWeights& W, long i, const Vec3& xp,
-                                              double stiffness, int field, bool withTangent) {
-  const Eigen::MatrixXd M = hourglassMatrix(problem.grid, W, i, xp);
-  const std::vector<int>& row = row_[field];
-  const size_t b = W.offset[i];
-  for (int j = 0; j < W.count[i]; ++j) {
-    const int r = row[W.node[b + j]];
-    if (r < 0) continue;
-    for (int k = 0; k < W.count[i]; ++k) {
-      const double s = stiffness * M(j, k);
-      const Vec3 force = s * u_[field][W.node[b + k]];
+void EquilibriumSolver::addInternalForce(const EquilibriumProblem& problem, size_t m, int first,
+                                         int last, bool withTangent) {
+  const ParticleSet& p = problem.materials[m].particles;
+  const InterpolationWeights& W = problem.weights[m];
+  const std::vector<int>& row = row_[problem.fieldOf[m]];
+  Eigen::Matrix<double, 3, 9> T;
+  for (size_t i = 0; i < p.count(); ++i) {
+    const double V = p.volume[i];
+    const size_t b = W.offset[i];
+    for (int e = 0; e < W.count[i]; ++e) {
+      const int r = row[W.node[b + e]];
+      if (r < first || r >= last) continue;
+      const Vec3& ge = W.gradient[b + e];
+      const Vec3 force = V * P_[m][i] * ge;  // f_int of this particle at node e
       for (int a = 0; a < 3; ++a) residual_[3 * r + a] -= force[a];
-      if (withTangent && row[W.node[b + k]] >= 0)
-        K_.at(r, row[W.node[b + k]]) += s * Mat3::Identity();
+      if (!withTangent) continue;
+      // T(a, 3 b + g) = V sum_d ge_d A(3 a + d, 3 b + g)
+      const Mat9& A = A_[m][i];
+      for (int a = 0; a < 3; ++a)
+        T.row(a) = V * (ge[0] * A.row(3 * a) + ge[1] * A.row(3 * a + 1) + ge[2] * A.row(3 * a + 2));
+      for (int g = 0; g < W.count[i]; ++g) {
+        if (row[W.node[b + g]] < 0) continue;
+        const Vec3& gg = W.gradient[b + g];
+        Mat3 k;
+        for (int a = 0; a < 3; ++a)
+          for (int c = 0; c < 3; ++c)
+            k(a, c) = T(a, 3 * c) * gg[0] + T(a, 3 * c + 1) * gg[1] + T(a, 3 * c + 2) * gg[2];
+        K_.at(r, row[W.node[b + g]]) += k;
+      }
     }
+  }
+}
+
+void EquilibriumSolver::addHourglassStiffness(const EquilibriumProblem& problem, size_t m,
+                                              double stabilization, int first, int last) {
+  const ParticleSet& p = problem.materials[m].particles;
+  const InterpolationWeights& W = problem.weights[m];
+  const int f = problem.fieldOf[m];
+  const std::vector<int>& row = row_[f];
+  const double h2 = problem.grid.dx.squaredNorm() / 3;
+  for (size_t i = 0; i < p.count(); ++i) {
+    const size_t b = W.offset[i];
+    const int n = W.count[i];
+    bool reaches = false;
+    for (int j = 0; j < n && !reaches; ++j)
+      reaches = row[W.node[b + j]] >= first && row[W.node[b + j]] < last;
+    if (!reaches) continue;
+    // kappa V, fixed in the step's first assembly (at the first iterate): the energy stays
+    // quadratic in u, and Newton's Jacobian exact.
+    const double stiffness = stabilization * p.volume[i] * A_[m][i].trace() / 9 / h2;
+    const Eigen::MatrixXd M = hourglassMatrix(problem.grid, W, static_cast<long>(i), p.x[i]);
+    for (int j = 0; j < n; ++j) {
+      const int r = row[W.node[b + j]];
+      if (r < first || r >= last) continue;
+      for (int k = 0; k < n; ++k) {
+        const int c = row[W.node[b + k]];
+        const double s = stiffness * M(j, k);
+        if (c >= 0) {
+          hourglass_[K_.indexOf(r, c)] += s;
+        } else {  // a node left out: its u stays as set at the start
+          const Vec3 force = s * u_[f][W.node[b + k]];
+          for (int a = 0; a < 3; ++a) hourglassLoad_[3 * r + a] += force[a];
+        }
+      }
+    }
+  }
+}
+
+void EquilibriumSolver::applyHourglassStiffness(int first, int last, bool withTangent) {
+  for (int r = first; r < last; ++r) {
+    Vec3 force(hourglassLoad_[3 * r], hourglassLoad_[3 * r + 1], hourglassLoad_[3 * r + 2]);
+    for (int j = K_.rowStart[r]; j < K_.rowStart[r + 1]; ++j) {
+      const auto [f, k] = unknown_[K_.column[j]];
+      force += hourglass_[j] * u_[f][k];
+      if (withTangent) K_.block[j].diagonal().array() += hourglass_[j];
+    }
+    for (int a = 0; a < 3; ++a) residual_[3 * r + a] -= force[a];
   }
 }
 
@@ -211,7 +256,8 @@ NewtonReport EquilibriumSolver::solve(const EquilibriumProblem& problem, double 
     for (int k = 0; k < problem.grid.numNodes(); ++k)
       for (int a = 0; a < 3; ++a)
         if (!std::isnan(problem.prescribed[f][k][a])) u_[f][k][a] = problem.prescribed[f][k][a];
-  hourglassStiffness_.clear();
+  hourglass_.clear();
+  LinearSolver linearSolver(K_, fixed_, coordinates_);
   NewtonReport report;
   double normMax = 0, qNorm0 = 0, lastResidualNorm = 0;
   std::vector<double> du;
@@ -238,7 +284,7 @@ NewtonReport EquilibriumSolver::solve(const EquilibriumProblem& problem, double 
     {
       std::optional<ScopedTimer> s;
       if (timers_) s.emplace(*timers_, solveTask_);
-      linear = solveLinearSystem(K_, residual_, fixed_, coordinates_, tolerance, du);
+      linear = linearSolver.solve(K_, residual_, tolerance, du);
     }
     report.krylovIterations += linear.iterations;
     if (!linear.converged) {
@@ -246,9 +292,6 @@ NewtonReport EquilibriumSolver::solve(const EquilibriumProblem& problem, double 
                        std::to_string(linear.iterations) + " iterations)";
       return report;
     }
-    // Fixed components keep their prescribed value: an inexact solve leaves round-off of its
-    // tolerance on their (decoupled) rows.
-    for (int i : fixed_) du[i] = 0;
     double norm = 0, qNorm = 0;
     for (size_t i = 0; i < du.size(); ++i) {
       norm += du[i] * du[i];

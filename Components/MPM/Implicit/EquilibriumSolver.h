@@ -65,9 +65,17 @@ class EquilibriumSolver {
   // Newton's update u += step du with the line search's step; `residualNorm` is |r|^2 at u.
   void takeStep(const EquilibriumProblem& problem, double dt, double stabilization,
                 const std::vector<double>& du, double residualNorm);
-  // Particle i's hourglass energy (stiffness kappa V) into K and the residual of field `field`.
-  void addHourglassStiffness(const EquilibriumProblem& problem, const InterpolationWeights& W,
-                             long i, const Vec3& xp, double stiffness, int field, bool withTangent);
+  // Material m's particles' internal forces (and their stiffness) into the block rows [first,
+  // last) of the residual (and K).
+  void addInternalForce(const EquilibriumProblem& problem, size_t m, int first, int last,
+                        bool withTangent);
+  // Material m's hourglass energies (Implicit/HourglassStabilization.h) into the rows [first,
+  // last) of hourglass_ and hourglassLoad_.
+  void addHourglassStiffness(const EquilibriumProblem& problem, size_t m, double stabilization,
+                             int first, int last);
+  // The hourglass forces -(hourglass_ u + hourglassLoad_) into the rows [first, last) of the
+  // residual (and hourglass_ I into K).
+  void applyHourglassStiffness(int first, int last, bool withTangent);
 
   std::vector<std::vector<Vec3>> u_;          // per field, by node
   std::vector<std::vector<int>> row_;         // per field, by node: block row, or -1
@@ -75,8 +83,12 @@ class EquilibriumSolver {
   BlockMatrix K_;
   std::vector<double> residual_, coordinates_;
   std::vector<int> fixed_;
-  // Per material and particle: kappa V of the hourglass stabilization, fixed for the step.
-  std::vector<std::vector<double>> hourglassStiffness_;
+  // Per material and particle: the trial stress P and its tangent dP/dH.
+  std::vector<std::vector<Mat3>> P_;
+  std::vector<std::vector<Mat9>> A_;
+  // The hourglass stiffness, fixed for the step: a scalar per block entry of K_ (times the 3 x 3
+  // identity), and the constant force of the nodes left out of the unknowns (3 per block row).
+  std::vector<double> hourglass_, hourglassLoad_;
   TaskTimers* timers_ = nullptr;
   int assemblyTask_ = -1, solveTask_ = -1;
 };

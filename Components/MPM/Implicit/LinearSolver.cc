@@ -2,6 +2,8 @@
 
 #include <petscksp.h>
 
+#include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 #include "Core/Parallel/Communicator.h"
@@ -9,6 +11,14 @@
 namespace anode {
 
 namespace {
+
+// A solve with the preconditioner of an earlier matrix stops after this many Krylov iterations;
+// then the preconditioner is built for the current matrix and the system solved again.
+constexpr int kReusedPreconditionerIterations = 100;
+// The preconditioner is also built anew for the next solve when the last one needed more than
+// this many times the iterations of the last solve with a new preconditioner.
+constexpr int kReusedPreconditionerSlowdown = 4;
+constexpr int kMaxIterations = 2000;
 
 void check(PetscErrorCode code, const char* what) {
   if (code != 0)
@@ -29,113 +39,198 @@ void startPetsc() {
   Communicator::beforeStop(endPetsc);
 }
 
-// Owns one PETSc object of each kind the solve makes.
-struct Objects {
+}  // namespace
+
+// One PETSc object of each kind the solves use.
+struct LinearSolver::Objects {
   Mat A = nullptr;
-  Vec x = nullptr, b = nullptr, coordinates = nullptr;
-  MatNullSpace rigid = nullptr;
+  Vec x = nullptr, b = nullptr;
   KSP ksp = nullptr;
   ~Objects() {
     KSPDestroy(&ksp);
-    MatNullSpaceDestroy(&rigid);
-    VecDestroy(&coordinates);
     VecDestroy(&b);
     VecDestroy(&x);
     MatDestroy(&A);
   }
 };
 
-void assemble(const BlockMatrix& K, Mat A) {
-  const int n = K.rows();
-  std::vector<PetscInt> perRow(3 * static_cast<size_t>(n));
-  for (int r = 0; r < n; ++r)
-    for (int a = 0; a < 3; ++a) perRow[3 * r + a] = 3 * (K.rowStart[r + 1] - K.rowStart[r]);
-  check(MatSeqAIJSetPreallocation(A, 0, perRow.data()), "MatSeqAIJSetPreallocation");
+LinearSolver::LinearSolver(const BlockMatrix& pattern, std::vector<int> fixed,
+                           std::vector<double> coordinates)
+    : o_(std::make_unique<Objects>()),
+      fixed_(std::move(fixed)),
+      coordinates_(std::move(coordinates)) {
+  static_assert(sizeof(PetscInt) == sizeof(int), "PETSc with 32-bit indices");
+  startPetsc();
+  const int blocks = pattern.rows();
+  const PetscInt n = 3 * blocks;
+  check(MatCreate(PETSC_COMM_SELF, &o_->A), "MatCreate");
+  check(MatSetSizes(o_->A, n, n, n, n), "MatSetSizes");
+  check(MatSetType(o_->A, MATSEQAIJ), "MatSetType");
+  check(MatSetBlockSize(o_->A, 3), "MatSetBlockSize");
+  std::vector<PetscInt> perRow(static_cast<size_t>(n));
+  for (int r = 0; r < blocks; ++r)
+    for (int a = 0; a < 3; ++a)
+      perRow[3 * r + a] = 3 * (pattern.rowStart[r + 1] - pattern.rowStart[r]);
+  check(MatSeqAIJSetPreallocation(o_->A, 0, perRow.data()), "MatSeqAIJSetPreallocation");
+  check(VecCreateSeq(PETSC_COMM_SELF, n, &o_->b), "VecCreateSeq");
+  check(VecDuplicate(o_->b, &o_->x), "VecDuplicate");
+  check(KSPCreate(PETSC_COMM_SELF, &o_->ksp), "KSPCreate");
+  check(KSPSetType(o_->ksp, KSPGMRES), "KSPSetType");
+  check(KSPGMRESSetRestart(o_->ksp, 200), "KSPGMRESSetRestart");
+  // Right preconditioning: GMRES minimizes the residual of the system itself, which is what the
+  // tolerance of an inexact Newton step bounds (left preconditioning bounds the preconditioned
+  // residual, whose relation to it changes as the preconditioner ages).
+  check(KSPSetPCSide(o_->ksp, PC_RIGHT), "KSPSetPCSide");
+  PC pc = nullptr;
+  check(KSPGetPC(o_->ksp, &pc), "KSPGetPC");
+  check(PCSetType(pc, PCGAMG), "PCSetType");
+  check(KSPSetFromOptions(o_->ksp), "KSPSetFromOptions");
+}
+
+LinearSolver::~LinearSolver() = default;
+
+void LinearSolver::setMatrix(const BlockMatrix& K) {
+  // Symmetric diagonal scaling, D K D with D = |diag K|^-1/2: nodes a particle's corner just
+  // reaches have stiffness 1e-8 of the others', which breaks GMRES down on the unscaled system.
+  const int blocks = K.rows();
+  scale_.assign(3 * static_cast<size_t>(blocks), 1.0);
+  for (int r = 0; r < blocks; ++r)
+    for (int j = K.rowStart[r]; j < K.rowStart[r + 1]; ++j)
+      if (K.column[j] == r)
+        for (int a = 0; a < 3; ++a)
+          if (K.block[j](a, a) != 0) scale_[3 * r + a] = 1 / std::sqrt(std::abs(K.block[j](a, a)));
+  std::vector<char> isFixed(scale_.size(), 0);
+  for (int i : fixed_) isFixed[i] = 1;
   std::vector<PetscScalar> values;
-  for (int r = 0; r < n; ++r) {
+  for (int r = 0; r < blocks; ++r) {
     const int begin = K.rowStart[r], count = K.rowStart[r + 1] - begin;
     values.resize(9 * static_cast<size_t>(count));
     // One block row, row-major: (3 x 3 count).
-    for (int j = 0; j < count; ++j)
+    for (int j = 0; j < count; ++j) {
+      const int c = K.column[begin + j];
       for (int a = 0; a < 3; ++a)
-        for (int c = 0; c < 3; ++c) values[a * 3 * count + 3 * j + c] = K.block[begin + j](a, c);
+        for (int g = 0; g < 3; ++g) {
+          const int row = 3 * r + a, column = 3 * c + g;
+          double& v = values[a * 3 * count + 3 * j + g];
+          if (isFixed[row] || isFixed[column])
+            v = row == column ? 1.0 : 0.0;
+          else
+            v = scale_[row] * K.block[begin + j](a, g) * scale_[column];
+        }
+    }
     const PetscInt row = r;
-    check(MatSetValuesBlocked(A, 1, &row, count, K.column.data() + begin, values.data(),
+    check(MatSetValuesBlocked(o_->A, 1, &row, count, K.column.data() + begin, values.data(),
                               INSERT_VALUES),
           "MatSetValuesBlocked");
   }
-  check(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
-  check(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+  check(MatAssemblyBegin(o_->A, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
+  check(MatAssemblyEnd(o_->A, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+  // Every later solve fills the first one's pattern.
+  check(MatSetOption(o_->A, MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE), "MatSetOption");
 }
 
-}  // namespace
+void LinearSolver::setNearNullSpace() {
+  const size_t n = scale_.size(), blocks = n / 3;
+  Vec3 centre = Vec3::Zero();
+  for (size_t r = 0; r < blocks; ++r)
+    centre += Vec3(coordinates_[3 * r], coordinates_[3 * r + 1], coordinates_[3 * r + 2]);
+  if (blocks > 0) centre /= static_cast<double>(blocks);
+  // Rigid modes m of K are modes D^-1 m of D K D; fixed components are decoupled rows.
+  std::vector<std::vector<double>> modes;
+  for (int k = 0; k < 6; ++k) {
+    std::vector<double> m(n);
+    for (size_t r = 0; r < blocks; ++r) {
+      const Vec3 x =
+          Vec3(coordinates_[3 * r], coordinates_[3 * r + 1], coordinates_[3 * r + 2]) - centre;
+      Vec3 v = Vec3::Zero();
+      if (k < 3)
+        v[k] = 1;
+      else
+        v = Vec3::Unit(k - 3).cross(x);
+      for (int a = 0; a < 3; ++a) m[3 * r + a] = v[a] / scale_[3 * r + a];
+    }
+    for (int i : fixed_) m[i] = 0;
+    double before = 0;
+    for (double v : m) before += v * v;
+    // Modified Gram-Schmidt; a mode the fixed components remove is dropped.
+    for (const std::vector<double>& q : modes) {
+      double dot = 0;
+      for (size_t i = 0; i < n; ++i) dot += q[i] * m[i];
+      for (size_t i = 0; i < n; ++i) m[i] -= dot * q[i];
+    }
+    double norm = 0;
+    for (double v : m) norm += v * v;
+    if (!(norm > 1e-20 * before)) continue;
+    for (double& v : m) v /= std::sqrt(norm);
+    modes.push_back(std::move(m));
+  }
+  std::vector<Vec> vectors(modes.size(), nullptr);
+  for (size_t k = 0; k < modes.size(); ++k) {
+    check(VecDuplicate(o_->b, &vectors[k]), "VecDuplicate");
+    double* v = nullptr;
+    check(VecGetArray(vectors[k], &v), "VecGetArray");
+    std::copy(modes[k].begin(), modes[k].end(), v);
+    check(VecRestoreArray(vectors[k], &v), "VecRestoreArray");
+  }
+  MatNullSpace space = nullptr;
+  check(MatNullSpaceCreate(PETSC_COMM_SELF, PETSC_FALSE, static_cast<PetscInt>(vectors.size()),
+                           vectors.data(), &space),
+        "MatNullSpaceCreate");
+  check(MatSetNearNullSpace(o_->A, space), "MatSetNearNullSpace");
+  MatNullSpaceDestroy(&space);
+  for (Vec& v : vectors) VecDestroy(&v);
+}
 
-LinearSolve solveLinearSystem(const BlockMatrix& K, const std::vector<double>& b,
-                              const std::vector<int>& fixed, const std::vector<double>& coordinates,
-                              double relativeTolerance, std::vector<double>& x) {
-  static_assert(sizeof(PetscInt) == sizeof(int), "PETSc with 32-bit indices");
-  startPetsc();
-  const PetscInt n = 3 * K.rows();
-  Objects o;
-  check(MatCreate(PETSC_COMM_SELF, &o.A), "MatCreate");
-  check(MatSetSizes(o.A, n, n, n, n), "MatSetSizes");
-  check(MatSetType(o.A, MATSEQAIJ), "MatSetType");
-  check(MatSetBlockSize(o.A, 3), "MatSetBlockSize");
-  assemble(K, o.A);
-
-  check(VecCreateSeq(PETSC_COMM_SELF, n, &o.b), "VecCreateSeq");
-  check(VecDuplicate(o.b, &o.x), "VecDuplicate");
+LinearSolve LinearSolver::run(const std::vector<double>& b, double relativeTolerance,
+                              bool newPreconditioner, std::vector<double>& x) {
+  if (newPreconditioner) setNearNullSpace();
+  check(KSPSetReusePreconditioner(o_->ksp, newPreconditioner ? PETSC_FALSE : PETSC_TRUE),
+        "KSPSetReusePreconditioner");
+  check(KSPSetOperators(o_->ksp, o_->A, o_->A), "KSPSetOperators");
+  check(KSPSetTolerances(o_->ksp, relativeTolerance, 0.0, PETSC_DEFAULT,
+                         newPreconditioner ? kMaxIterations : kReusedPreconditionerIterations),
+        "KSPSetTolerances");
   double* bb = nullptr;
-  check(VecGetArray(o.b, &bb), "VecGetArray");
-  std::copy(b.begin(), b.end(), bb);
-  for (int i : fixed) bb[i] = 0;
-  check(VecRestoreArray(o.b, &bb), "VecRestoreArray");
-  // Fixed components: identity rows and columns scaled like the matrix's diagonal.
-  double diagonal = 0;
-  for (int r = 0; r < K.rows(); ++r)
-    for (int j = K.rowStart[r]; j < K.rowStart[r + 1]; ++j)
-      if (K.column[j] == r) diagonal += K.block[j].trace();
-  diagonal = n > 0 ? diagonal / n : 1;
-  check(MatZeroRowsColumns(o.A, static_cast<PetscInt>(fixed.size()), fixed.data(), diagonal,
-                           nullptr, nullptr),
-        "MatZeroRowsColumns");
-
-  check(VecCreateSeq(PETSC_COMM_SELF, n, &o.coordinates), "VecCreateSeq");
-  check(VecSetBlockSize(o.coordinates, 3), "VecSetBlockSize");
-  double* xc = nullptr;
-  check(VecGetArray(o.coordinates, &xc), "VecGetArray");
-  std::copy(coordinates.begin(), coordinates.end(), xc);
-  check(VecRestoreArray(o.coordinates, &xc), "VecRestoreArray");
-  check(MatNullSpaceCreateRigidBody(o.coordinates, &o.rigid), "MatNullSpaceCreateRigidBody");
-  check(MatSetNearNullSpace(o.A, o.rigid), "MatSetNearNullSpace");
-
-  check(KSPCreate(PETSC_COMM_SELF, &o.ksp), "KSPCreate");
-  check(KSPSetOperators(o.ksp, o.A, o.A), "KSPSetOperators");
-  check(KSPSetType(o.ksp, KSPGMRES), "KSPSetType");
-  check(KSPGMRESSetRestart(o.ksp, 200), "KSPGMRESSetRestart");
-  PC pc = nullptr;
-  check(KSPGetPC(o.ksp, &pc), "KSPGetPC");
-  check(PCSetType(pc, PCGAMG), "PCSetType");
-  check(KSPSetTolerances(o.ksp, relativeTolerance, 0.0, PETSC_DEFAULT, 2000), "KSPSetTolerances");
-  // Symmetric diagonal scaling: nodes a particle's corner just reaches have stiffness 1e-8 of
-  // the others', which breaks GMRES down on the unscaled system.
-  check(KSPSetDiagonalScale(o.ksp, PETSC_TRUE), "KSPSetDiagonalScale");
-  check(KSPSetDiagonalScaleFix(o.ksp, PETSC_TRUE), "KSPSetDiagonalScaleFix");
-  check(KSPSetFromOptions(o.ksp), "KSPSetFromOptions");
-  check(KSPSolve(o.ksp, o.b, o.x), "KSPSolve");
+  check(VecGetArray(o_->b, &bb), "VecGetArray");
+  for (size_t i = 0; i < scale_.size(); ++i) bb[i] = scale_[i] * b[i];
+  for (int i : fixed_) bb[i] = 0;
+  check(VecRestoreArray(o_->b, &bb), "VecRestoreArray");
+  check(KSPSolve(o_->ksp, o_->b, o_->x), "KSPSolve");
 
   LinearSolve s;
+  s.newPreconditioner = newPreconditioner;
   PetscInt iterations = 0;
-  check(KSPGetIterationNumber(o.ksp, &iterations), "KSPGetIterationNumber");
+  check(KSPGetIterationNumber(o_->ksp, &iterations), "KSPGetIterationNumber");
   s.iterations = static_cast<int>(iterations);
   KSPConvergedReason reason;
-  check(KSPGetConvergedReason(o.ksp, &reason), "KSPGetConvergedReason");
+  check(KSPGetConvergedReason(o_->ksp, &reason), "KSPGetConvergedReason");
   s.converged = reason > 0;
   s.reason = KSPConvergedReasons[reason];
   const double* xs = nullptr;
-  check(VecGetArrayRead(o.x, &xs), "VecGetArrayRead");
-  x.assign(xs, xs + n);
-  check(VecRestoreArrayRead(o.x, &xs), "VecRestoreArrayRead");
+  check(VecGetArrayRead(o_->x, &xs), "VecGetArrayRead");
+  x.resize(scale_.size());
+  for (size_t i = 0; i < scale_.size(); ++i) x[i] = scale_[i] * xs[i];
+  check(VecRestoreArrayRead(o_->x, &xs), "VecRestoreArrayRead");
+  // The fixed components' rows are decoupled, but an inexact solve leaves round-off of its
+  // tolerance on them.
+  for (int i : fixed_) x[i] = 0;
+  return s;
+}
+
+LinearSolve LinearSolver::solve(const BlockMatrix& K, const std::vector<double>& b,
+                                double relativeTolerance, std::vector<double>& x) {
+  setMatrix(K);
+  LinearSolve s = run(b, relativeTolerance, freshIterations_ < 0, x);
+  if (s.newPreconditioner) {
+    freshIterations_ = s.iterations;
+  } else if (!s.converged) {
+    const int spent = s.iterations;
+    s = run(b, relativeTolerance, true, x);
+    freshIterations_ = s.iterations;
+    s.iterations += spent;
+  } else if (s.iterations > kReusedPreconditionerSlowdown * std::max(freshIterations_, 5)) {
+    freshIterations_ = -1;
+  }
   return s;
 }
 

@@ -23,8 +23,6 @@
 
 namespace anode {
 
-using Mat9 = Eigen::Matrix<double, 9, 9>;
-
 constexpr double kTangentStep = 1e-6;
 
 template <class S>
