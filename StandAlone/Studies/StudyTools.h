@@ -3,6 +3,8 @@
 // resolutions and the files they write.
 #pragma once
 
+#include <omp.h>
+
 #include <cstdio>
 #include <fstream>
 #include <functional>
@@ -12,6 +14,23 @@
 #include <vector>
 
 namespace anode {
+
+// Sets the OpenMP thread count for a scope (n = 0: unchanged).
+class ThreadScope {
+ public:
+  explicit ThreadScope(int n) : saved_(omp_get_max_threads()), set_(n > 0) {
+    if (set_) omp_set_num_threads(n);
+  }
+  ~ThreadScope() {
+    if (set_) omp_set_num_threads(saved_);
+  }
+  ThreadScope(const ThreadScope&) = delete;
+  ThreadScope& operator=(const ThreadScope&) = delete;
+
+ private:
+  int saved_;
+  bool set_;
+};
 
 // Reads a study tool's arguments in order: flags, options taking the next argument, --help/-h.
 class StudyCommandLine {
