@@ -1,6 +1,6 @@
-// What the study tools (vibrating_bar_study, flux_slab_study, diffusion_1d_study) share: reading
-// their command line, running a case at each resolution, the convergence order between
-// resolutions and the files they write.
+// What the study tools (vibrating_bar_study, flux_slab_study, diffusion_1d_study,
+// swelling_sphere_study) share: their thread count, reading their command line, running a case at
+// each resolution, the convergence order between resolutions and the files they write.
 #pragma once
 
 #include <omp.h>

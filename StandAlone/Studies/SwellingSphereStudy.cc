@@ -1,11 +1,12 @@
-// swelling_sphere_study [--quick] [--csv FILE] [--interpolator I] [--threads N]
-// [--explicit CELLS] [--damping A] [--settle T]: convergence of the quasi-static (implicit) step on
+// swelling_sphere_study [--quick] [--csv FILE] [--profile FILE] [--radius B]
+// [--particles-per-cell P] [--hourglass E] [--interpolator I] [--threads N] [--explicit CELLS]
+// [--damping A] [--settle T]: convergence of the quasi-static (implicit) step on
 // the swelling sphere (StandAlone/Studies/SwellingSphere.h, Timoshenko & Goodier): per
 // resolution the particles, h, the L2 errors of u_r, sigma_rr and sigma_tt with their orders,
 // the wall time and Newton's and the Krylov iterations. Writes a CSV (default
 // verification/swelling_sphere.csv). --explicit CELLS also runs the explicit path at that
-// resolution (grid damping A, to the time T in units of b/c) and compares it with the implicit
-// run and the closed form.
+// resolution (grid damping A c/b, to the times T b/c) and compares it with the implicit run
+// and the closed form.
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
@@ -21,12 +22,15 @@ namespace {
 void usage(FILE* out) {
   std::fprintf(
       out,
-      "usage: swelling_sphere_study [--quick] [--csv FILE] [--profile FILE] [--interpolator I]\n"
+      "usage: swelling_sphere_study [--quick] [--csv FILE] [--profile FILE] [--radius B]\n"
+      "                             [--particles-per-cell P] [--hourglass E] [--interpolator I]\n"
       "                             [--threads N] [--explicit CELLS] [--damping A] [--settle T]\n"
-      "  --quick            the test's resolutions (4, 8 cells per radius) only\n"
+      "  --quick            the test's resolutions (4, 8, 16 cells per radius) only\n"
       "  --csv FILE         where to write the results (default verification/swelling_sphere.csv)\n"
-      "  --profile FILE     also write every particle's r, u_r, sigma_rr, sigma_tt and exact "
-      "values\n"
+      "  --profile FILE     also write each particle's r, u_r, sigma_rr, sigma_tt, exact values\n"
+      "  --radius B         the sphere's radius (default 1000)\n"
+      "  --particles-per-cell P  per cell and axis (default 2)\n"
+      "  --hourglass E      <hourglass_stabilization> of the implicit runs (default 0.1)\n"
       "  --interpolator I   linear (default), gimp or cpdi\n"
       "  --threads N        OpenMP threads per run (default 1; 0: OpenMP's default)\n"
       "  --explicit CELLS   also run the explicit path at CELLS cells per radius\n"
@@ -57,7 +61,7 @@ void printRow(const anode::SwellingSphereResult& r, const anode::SwellingSphereR
   };
   const std::string ou = order(&R::radialDisplacementError), orr = order(&R::radialStressError),
                     ott = order(&R::hoopStressError);
-  std::printf("%5d %7.2f %8zu | %9.3e %5s | %9.3e %5s | %9.3e %5s | %8.1e | %8.3f | %6ld %7ld\n",
+  std::printf("%5d %7.4g %8zu | %9.3e %5s | %9.3e %5s | %9.3e %5s | %8.1e | %8.3f | %6ld %7ld\n",
               r.cells, r.h, r.particles, r.radialDisplacementError, ou.c_str(), r.radialStressError,
               orr.c_str(), r.hoopStressError, ott.c_str(), r.tangentialDisplacement, r.wallSeconds,
               r.newtonIterations, r.krylovIterations);
@@ -85,6 +89,7 @@ int main(int argc, char** argv) {
   });
   args.positiveInteger("--explicit", explicitCells);
   args.positiveInteger("--particles-per-cell", base.particlesPerCell);
+  args.positiveNumber("--radius", base.radius);
   args.option("--hourglass", [&](const char* v) {
     base.hourglassStabilization = std::atof(v);
     if (!(base.hourglassStabilization >= 0)) args.fail("--hourglass needs a number >= 0");
