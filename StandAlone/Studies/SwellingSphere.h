@@ -35,8 +35,8 @@ struct SwellingSphereCase {
   // orders of magnitude above, so that the relative tests decide.
   double radius = 1000, bulkModulus = 67, shearModulus = 31;
   double surfaceStrain = 1e-6;  // beta = eta c_s: small, so that linear theory holds
-  // Explicit only: density, grid damping a -= coeff v, run length and timestep multiplier. The
-  // defaults damp the breathing mode near critically (coeff ~ 2 omega_1, omega_1 ~ 2.7 c/b).
+  // Explicit only: density, grid damping a -= coeff v (<artificial_damping_coeff>; the study
+  // and the test take 5 c/b), run length (needed) and timestep multiplier.
   double density = 1, damping = 0, endTime = 0, timestepMultiplier = 0.5;
   int threads = 0;  // OpenMP threads for the run (0: the OpenMP default)
 
