@@ -1,7 +1,5 @@
 #include "StandAlone/Studies/FluxSlab.h"
 
-#include <omp.h>
-
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -9,6 +7,7 @@
 #include "Components/MPM/ReactiveFlow/DiffusionParticles.h"
 #include "Components/MPM/ReactiveFlow/FluxRestriction.h"
 #include "StandAlone/Studies/StudyInput.h"
+#include "StandAlone/Studies/StudyTools.h"
 #include "StandAlone/Studies/VerificationRun.h"
 
 namespace anode {
@@ -31,23 +30,6 @@ double lithium(const ParticleSet& p) {
   for (size_t i = 0; i < p.count(); ++i) s += p.mass[i] * d.concentration[i];
   return s;
 }
-
-// Sets the OpenMP thread count for a scope (n = 0: unchanged).
-class ThreadScope {
- public:
-  explicit ThreadScope(int n) : saved_(omp_get_max_threads()), set_(n > 0) {
-    if (set_) omp_set_num_threads(n);
-  }
-  ~ThreadScope() {
-    if (set_) omp_set_num_threads(saved_);
-  }
-  ThreadScope(const ThreadScope&) = delete;
-  ThreadScope& operator=(const ThreadScope&) = delete;
-
- private:
-  int saved_;
-  bool set_;
-};
 
 }  // namespace
 

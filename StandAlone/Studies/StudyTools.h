@@ -1,7 +1,9 @@
-// What the study tools (vibrating_bar_study, flux_slab_study, diffusion_1d_study) share: reading
-// their command line, running a case at each resolution, the convergence order between
-// resolutions and the files they write.
+// What the study tools (vibrating_bar_study, flux_slab_study, diffusion_1d_study,
+// swelling_sphere_study) share: their thread count, reading their command line, running a case at
+// each resolution, the convergence order between resolutions and the files they write.
 #pragma once
+
+#include <omp.h>
 
 #include <cstdio>
 #include <fstream>
@@ -12,6 +14,23 @@
 #include <vector>
 
 namespace anode {
+
+// Sets the OpenMP thread count for a scope (n = 0: unchanged).
+class ThreadScope {
+ public:
+  explicit ThreadScope(int n) : saved_(omp_get_max_threads()), set_(n > 0) {
+    if (set_) omp_set_num_threads(n);
+  }
+  ~ThreadScope() {
+    if (set_) omp_set_num_threads(saved_);
+  }
+  ThreadScope(const ThreadScope&) = delete;
+  ThreadScope& operator=(const ThreadScope&) = delete;
+
+ private:
+  int saved_;
+  bool set_;
+};
 
 // Reads a study tool's arguments in order: flags, options taking the next argument, --help/-h.
 class StudyCommandLine {
