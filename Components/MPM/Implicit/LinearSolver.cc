@@ -18,7 +18,10 @@ constexpr int kReusedPreconditionerIterations = 100;
 // The preconditioner is also built anew for the next solve when the last one needed more than
 // this many times the iterations of the last solve with a new preconditioner.
 constexpr int kReusedPreconditionerSlowdown = 4;
-constexpr int kMaxIterations = 2000;
+// A solve with a new preconditioner fails after this many: the ones that converge take at most
+// a few hundred (Figure 4's pillar: 197 in all 9 solves of its first step), and a failing one costs
+// Newton a retake at a smaller dt anyway.
+constexpr int kMaxIterations = 500;
 
 void check(PetscErrorCode code, const char* what) {
   if (code != 0)
@@ -72,6 +75,19 @@ LinearSolver::LinearSolver(const BlockMatrix& pattern, std::vector<int> fixed,
     for (int a = 0; a < 3; ++a)
       perRow[3 * r + a] = 3 * (pattern.rowStart[r + 1] - pattern.rowStart[r]);
   check(MatSeqAIJSetPreallocation(o_->A, 0, perRow.data()), "MatSeqAIJSetPreallocation");
+  // The pattern: every 3 x 3 block of K, zeros included.
+  std::vector<PetscScalar> zeros;
+  for (int r = 0; r < blocks; ++r) {
+    const int begin = pattern.rowStart[r], count = pattern.rowStart[r + 1] - begin;
+    zeros.assign(9 * static_cast<size_t>(count), 0.0);
+    const PetscInt row = r;
+    check(MatSetValuesBlocked(o_->A, 1, &row, count, pattern.column.data() + begin, zeros.data(),
+                              INSERT_VALUES),
+          "MatSetValuesBlocked");
+  }
+  check(MatAssemblyBegin(o_->A, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
+  check(MatAssemblyEnd(o_->A, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+  checkLayout(pattern);
   check(VecCreateSeq(PETSC_COMM_SELF, n, &o_->b), "VecCreateSeq");
   check(VecDuplicate(o_->b, &o_->x), "VecDuplicate");
   check(KSPCreate(PETSC_COMM_SELF, &o_->ksp), "KSPCreate");
@@ -101,32 +117,51 @@ void LinearSolver::setMatrix(const BlockMatrix& K) {
           if (K.block[j](a, a) != 0) scale_[3 * r + a] = 1 / std::sqrt(std::abs(K.block[j](a, a)));
   std::vector<char> isFixed(scale_.size(), 0);
   for (int i : fixed_) isFixed[i] = 1;
-  std::vector<PetscScalar> values;
+  PetscScalar* values = nullptr;
+  check(MatSeqAIJGetArray(o_->A, &values), "MatSeqAIJGetArray");
+#pragma omp parallel for schedule(static)
   for (int r = 0; r < blocks; ++r) {
     const int begin = K.rowStart[r], count = K.rowStart[r + 1] - begin;
-    values.resize(9 * static_cast<size_t>(count));
-    // One block row, row-major: (3 x 3 count).
-    for (int j = 0; j < count; ++j) {
-      const int c = K.column[begin + j];
-      for (int a = 0; a < 3; ++a)
+    for (int a = 0; a < 3; ++a) {
+      const int row = 3 * r + a;
+      PetscScalar* v = values + valueOffset(K, r, a);  // (row, 3 K.column[begin] + 0), ...
+      for (int j = 0; j < count; ++j)
         for (int g = 0; g < 3; ++g) {
-          const int row = 3 * r + a, column = 3 * c + g;
-          double& v = values[a * 3 * count + 3 * j + g];
+          const int column = 3 * K.column[begin + j] + g;
           if (isFixed[row] || isFixed[column])
-            v = row == column ? 1.0 : 0.0;
+            v[3 * j + g] = row == column ? 1.0 : 0.0;
           else
-            v = scale_[row] * K.block[begin + j](a, g) * scale_[column];
+            v[3 * j + g] = scale_[row] * K.block[begin + j](a, g) * scale_[column];
         }
     }
-    const PetscInt row = r;
-    check(MatSetValuesBlocked(o_->A, 1, &row, count, K.column.data() + begin, values.data(),
-                              INSERT_VALUES),
-          "MatSetValuesBlocked");
   }
-  check(MatAssemblyBegin(o_->A, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
-  check(MatAssemblyEnd(o_->A, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
-  // Every later solve fills the first one's pattern.
-  check(MatSetOption(o_->A, MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE), "MatSetOption");
+  check(MatSeqAIJRestoreArray(o_->A, &values), "MatSeqAIJRestoreArray");
+}
+
+size_t LinearSolver::valueOffset(const BlockMatrix& K, int r, int a) {
+  const size_t count = K.rowStart[r + 1] - K.rowStart[r];
+  return 9 * static_cast<size_t>(K.rowStart[r]) + 3 * count * a;
+}
+
+void LinearSolver::checkLayout(const BlockMatrix& pattern) {
+  PetscInt n = 0;
+  const PetscInt *start = nullptr, *column = nullptr;
+  PetscBool done = PETSC_FALSE;
+  check(MatGetRowIJ(o_->A, 0, PETSC_FALSE, PETSC_FALSE, &n, &start, &column, &done), "MatGetRowIJ");
+  bool same = done && n == 3 * pattern.rows();
+  for (int r = 0; same && r < pattern.rows(); ++r)
+    for (int a = 0; a < 3 && same; ++a) {
+      const size_t offset = valueOffset(pattern, r, a);
+      same = static_cast<size_t>(start[3 * r + a]) == offset;
+      for (int j = pattern.rowStart[r]; same && j < pattern.rowStart[r + 1]; ++j)
+        for (int g = 0; g < 3; ++g)
+          same = same &&
+                 column[offset + 3 * (j - pattern.rowStart[r]) + g] == 3 * pattern.column[j] + g;
+    }
+  check(MatRestoreRowIJ(o_->A, 0, PETSC_FALSE, PETSC_FALSE, &n, &start, &column, &done),
+        "MatRestoreRowIJ");
+  if (!same)
+    throw std::runtime_error("PETSc: the AIJ matrix does not hold K's blocks in K's order");
 }
 
 void LinearSolver::setNearNullSpace() {

@@ -37,8 +37,13 @@ class LinearSolver {
 
  private:
   struct Objects;
-  // Scales K into the PETSc matrix (fixed rows and columns: identity) and sets scale_.
+  // Scales K into the PETSc matrix's values (fixed rows and columns: identity) and sets scale_.
   void setMatrix(const BlockMatrix& K);
+  // Where the values of scalar row 3 r + a start in the AIJ matrix: each block row's 3 rows hold
+  // its blocks' columns in K's order.
+  static size_t valueOffset(const BlockMatrix& K, int r, int a);
+  // Throws unless the PETSc matrix is laid out as valueOffset says.
+  void checkLayout(const BlockMatrix& pattern);
   // GAMG's near-null space: the rigid modes of the scaled system, orthonormal.
   void setNearNullSpace();
   // One KSPSolve with the preconditioner built anew or reused.
