@@ -10,16 +10,17 @@ import os
 from ups_blocks import (
     GPA,
     SILICON,
+    SUBSTRATE,
     data_archiver,
     flow_model,
     max_timesteps,
     non_linear1_diffusion,
     scalar_flux,
+    substrate_material,
 )
 
 OUT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "inputs", "Paper")
 
-SUBSTRATE = dict(K=180.4, G=76.0, sigmaY=0.7, H=1.15)  # GPa
 SMALL = dict(
     radius=0.05,
     height=0.1,
@@ -115,39 +116,13 @@ def scenario(s):
     contact = "<contact><type>null</type></contact>"
     if base > 0:
         w = s["substrate_width"]
-        substrate = """
-      <material name="substrate">
-        <density>%g</density>
-        <constitutive_model type="rf_elastic_plastic">
-          <bulk_modulus>%g</bulk_modulus>
-          <shear_modulus>%g</shear_modulus>
-          <volume_expansion_coeff>0.0</volume_expansion_coeff>
-          <equation_of_state type="default_hypo"/>
-          %s
-        </constitutive_model>
-        <diffusion_model type="jg">
-          <diffusivity>0.0</diffusivity>
-          <max_concentration>1.0</max_concentration>
-        </diffusion_model>
-        <geom_object>
-          <box label="substrate">
-            <min>[%g, %g, 0.0]</min>
-            <max>[%g, %g, %g]</max>
-          </box>
-          <res>[2,2,2]</res>
-          <velocity>[0.0, 0.0, 0.0]</velocity>
-          <concentration>0</concentration>
-        </geom_object>
-      </material>""" % (
+        substrate = substrate_material(
             density,
-            SUBSTRATE["K"] * GPA,
-            SUBSTRATE["G"] * GPA,
             flow_model("hardening", SUBSTRATE),
-            -w / 2,
-            -w / 2,
-            w / 2,
-            w / 2,
-            base,
+            '<box label="substrate">\n            <min>[%g, %g, 0.0]</min>\n'
+            "            <max>[%g, %g, %g]</max>\n          </box>"
+            % (-w / 2, -w / 2, w / 2, w / 2, base),
+            "[2,2,2]",
         )
         contact = "<contact><type>single_velocity</type><materials>[0,1]</materials></contact>"
     L = p["lateral"]

@@ -22,6 +22,7 @@ from ups_blocks import (
     max_timesteps,
     non_linear1_diffusion,
     scalar_flux,
+    substrate_material,
 )
 
 OUT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "inputs", "Stability")
@@ -115,30 +116,12 @@ def substrate(s):
     """The substrate material under the silicon (none unless s["substrate"])."""
     if not s["substrate"]:
         return ""
-    return """
-      <material name="substrate">
-        <density>%g</density>
-        <constitutive_model type="rf_elastic_plastic">
-          <bulk_modulus>%g</bulk_modulus>
-          <shear_modulus>%g</shear_modulus>
-          <volume_expansion_coeff>0.0</volume_expansion_coeff>
-          <equation_of_state type="default_hypo"/>
-        </constitutive_model>
-        <diffusion_model type="jg">
-          <diffusivity>0.0</diffusivity>
-          <max_concentration>1.0</max_concentration>
-        </diffusion_model>
-        <geom_object>
-          <box label="substrate"><min>[0.0, 0.0, 0.0]</min><max>[0.1, %g, 0.01]</max></box>
-          <res>[2,2,1]</res>
-          <velocity>[0.0, 0.0, 0.0]</velocity>
-          <concentration>0</concentration>
-        </geom_object>
-      </material>""" % (
+    return substrate_material(
         s["density"] * 1e-3,
-        180.4 * GPA,
-        76.0 * GPA,
-        SUBSTRATE_TOP,
+        "",
+        '<box label="substrate"><min>[0.0, 0.0, 0.0]</min><max>[0.1, %g, 0.01]</max></box>'
+        % SUBSTRATE_TOP,
+        "[2,2,1]",
     )
 
 

@@ -7,6 +7,7 @@ Imported by make_paper_inputs.py and make_stability_inputs.py. Units: um, us, pg
 GPA = 1e6
 
 SILICON = dict(K=67.0, G=31.0, sigmaY=1.4, H=1.15)  # GPa
+SUBSTRATE = dict(K=180.4, G=76.0, sigmaY=0.7, H=1.15)  # GPa
 
 
 def flow_model(kind, m):
@@ -73,4 +74,36 @@ def scalar_flux(curve_id, geometry, time_points):
         geometry,
         curve_id,
         time_points,
+    )
+
+
+def substrate_material(density, flow, box, res):
+    """The substrate: SUBSTRATE's moduli, no swelling, no lithium. `flow` is its flow model's
+    lines ("" for none), `box` its geometry piece, `res` its particles per cell."""
+    return """
+      <material name="substrate">
+        <density>%g</density>
+        <constitutive_model type="rf_elastic_plastic">
+          <bulk_modulus>%g</bulk_modulus>
+          <shear_modulus>%g</shear_modulus>
+          <volume_expansion_coeff>0.0</volume_expansion_coeff>
+          <equation_of_state type="default_hypo"/>%s
+        </constitutive_model>
+        <diffusion_model type="jg">
+          <diffusivity>0.0</diffusivity>
+          <max_concentration>1.0</max_concentration>
+        </diffusion_model>
+        <geom_object>
+          %s
+          <res>%s</res>
+          <velocity>[0.0, 0.0, 0.0]</velocity>
+          <concentration>0</concentration>
+        </geom_object>
+      </material>""" % (
+        density,
+        SUBSTRATE["K"] * GPA,
+        SUBSTRATE["G"] * GPA,
+        "\n          " + flow if flow else "",
+        box,
+        res,
     )

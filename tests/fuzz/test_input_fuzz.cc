@@ -81,26 +81,34 @@ TEST(CheckSetup, RefusesAnAbsurdGridWithinTheBudgetInsteadOfAllocating) {
   EXPECT_FALSE(accepted);
 }
 
-TEST(InputFuzz, QuickRunEndsEveryCaseInSuccessOrAFileLineInputError) {
+// A quick fuzz run over `corpus`: every case tried ends in success or a file:line input error,
+// and both outcomes occur (the mutations reach past the parser into setup).
+FuzzReport quickRun(const std::vector<std::string>& corpus, long cases, uint64_t seed,
+                    const char* label) {
   FuzzOptions options;
-  options.corpus = defaultCorpus(ANODE_SOURCE_DIR);
-  ASSERT_GE(options.corpus.size(), 10u);
-  options.cases = 3000;
-  options.seed = 7;
+  options.corpus = corpus;
+  options.cases = cases;
+  options.seed = seed;
   options.memoryBudget = size_t(256) << 20;
   options.caseTimeLimit = 60;
   const FuzzReport r = runFuzz(options);
   std::printf(
-      "fuzz: %ld cases in %.1f s over %zu seed inputs: %ld accepted, %ld refused with file:line, "
-      "%zu failures\n",
-      r.tried, r.seconds, options.corpus.size(), r.accepted, r.rejected, r.failures.size());
+      "fuzz (%s): %ld cases in %.1f s over %zu seed inputs: %ld accepted, %ld refused with "
+      "file:line, %zu failures\n",
+      label, r.tried, r.seconds, corpus.size(), r.accepted, r.rejected, r.failures.size());
   EXPECT_EQ(r.tried, options.cases);
   for (size_t k = 0; k < r.failures.size() && k < 20; ++k)
     ADD_FAILURE() << "case " << r.failures[k].index << " of " << r.failures[k].seed << " ("
                   << r.failures[k].mutations << "): " << r.failures[k].problem;
-  // Both outcomes occur: the mutations reach past the parser into setup.
   EXPECT_GT(r.accepted, r.tried / 50);
   EXPECT_GT(r.rejected, r.tried / 2);
+  return r;
+}
+
+TEST(InputFuzz, QuickRunEndsEveryCaseInSuccessOrAFileLineInputError) {
+  const std::vector<std::string> corpus = defaultCorpus(ANODE_SOURCE_DIR);
+  ASSERT_GE(corpus.size(), 10u);
+  const FuzzReport r = quickRun(corpus, 3000, 7, "all seeds");
   for (int op = 0; op < InputMutator::kOperatorCount; ++op)
     EXPECT_GT(r.perOperator[op], 0) << InputMutator::operatorName(op);
 }
@@ -144,25 +152,11 @@ TEST(ImplicitOptions, EveryEditOfAnImpMPMTagEndsInSuccessOrAFileLineInputError) 
 }
 
 TEST(InputFuzz, QuickRunOnTheImplicitInputsReachesTheImpMPMTags) {
-  FuzzOptions options;
-  options.corpus = implicitCorpus();
-  ASSERT_GE(options.corpus.size(), 5u);
-  options.cases = 600;
-  options.seed = 11;
-  options.memoryBudget = size_t(256) << 20;
-  options.caseTimeLimit = 60;
-  const FuzzReport r = runFuzz(options);
-  std::printf(
-      "fuzz (implicit seeds): %ld cases in %.1f s over %zu seed inputs: %ld accepted, %ld refused "
-      "with file:line, %zu failures, %ld ImpMPM tag edits\n",
-      r.tried, r.seconds, options.corpus.size(), r.accepted, r.rejected, r.failures.size(),
-      r.perOperator[InputMutator::ImplicitOption]);
-  EXPECT_EQ(r.tried, options.cases);
-  for (size_t k = 0; k < r.failures.size() && k < 20; ++k)
-    ADD_FAILURE() << "case " << r.failures[k].index << " of " << r.failures[k].seed << " ("
-                  << r.failures[k].mutations << "): " << r.failures[k].problem;
-  EXPECT_GT(r.accepted, r.tried / 50);
-  EXPECT_GT(r.rejected, r.tried / 2);
+  const std::vector<std::string> corpus = implicitCorpus();
+  ASSERT_GE(corpus.size(), 5u);
+  const FuzzReport r = quickRun(corpus, 600, 11, "implicit seeds");
+  std::printf("fuzz (implicit seeds): %ld ImpMPM tag edits\n",
+              r.perOperator[InputMutator::ImplicitOption]);
   EXPECT_GT(r.perOperator[InputMutator::ImplicitOption], r.tried / 20);
 }
 
