@@ -154,7 +154,14 @@ INSTANTIATE_TEST_SUITE_P(
         // Auto-cycled flux, checkpoint after the first flip.
         RestartCase{"autocycle", kSource + "/tests/checkpoint/AutoCycleSlab.ups", "", 1000, {}},
         // A <diff_curve> past its second switch at the checkpoint: the curve's interval is state.
-        RestartCase{"diffcurve", kSource + "/tests/checkpoint/DiffCurveSlab.ups", "", 800, {}}),
+        RestartCase{"diffcurve", kSource + "/tests/checkpoint/DiffCurveSlab.ups", "", 800, {}},
+        // Quasi-static steps: dt 10 us four times, then 6 and 4 by Newton's iteration counts;
+        // the restart at step 5 must take step 6 with the dt of the run that was interrupted.
+        RestartCase{"implicit",
+                    kSource + "/inputs/Stability/Implicit_yield_0.14_walls.ups",
+                    "<checkpoint cycle=\"2\" timestepInterval=\"1\"/>",
+                    5,
+                    {}}),
     [](const ::testing::TestParamInfo<RestartCase>& info) { return info.param.name; });
 
 TEST(Restart, SkipsADamagedNewestCheckpoint) {
