@@ -66,6 +66,8 @@ LinearSolver::LinearSolver(const BlockMatrix& pattern, std::vector<int> fixed,
   startPetsc();
   const int blocks = pattern.rows();
   const PetscInt n = 3 * blocks;
+  isFixed_.assign(static_cast<size_t>(n), 0);
+  for (int i : fixed_) isFixed_[i] = 1;
   check(MatCreate(PETSC_COMM_SELF, &o_->A), "MatCreate");
   check(MatSetSizes(o_->A, n, n, n, n), "MatSetSizes");
   check(MatSetType(o_->A, MATSEQAIJ), "MatSetType");
@@ -115,8 +117,6 @@ void LinearSolver::setMatrix(const BlockMatrix& K) {
       if (K.column[j] == r)
         for (int a = 0; a < 3; ++a)
           if (K.block[j](a, a) != 0) scale_[3 * r + a] = 1 / std::sqrt(std::abs(K.block[j](a, a)));
-  std::vector<char> isFixed(scale_.size(), 0);
-  for (int i : fixed_) isFixed[i] = 1;
   PetscScalar* values = nullptr;
   check(MatSeqAIJGetArray(o_->A, &values), "MatSeqAIJGetArray");
 #pragma omp parallel for schedule(static)
@@ -128,7 +128,7 @@ void LinearSolver::setMatrix(const BlockMatrix& K) {
       for (int j = 0; j < count; ++j)
         for (int g = 0; g < 3; ++g) {
           const int column = 3 * K.column[begin + j] + g;
-          if (isFixed[row] || isFixed[column])
+          if (isFixed_[row] || isFixed_[column])
             v[3 * j + g] = row == column ? 1.0 : 0.0;
           else
             v[3 * j + g] = scale_[row] * K.block[begin + j](a, g) * scale_[column];

@@ -52,6 +52,7 @@ class LinearSolver {
 
   std::unique_ptr<Objects> o_;
   std::vector<int> fixed_;
+  std::vector<char> isFixed_;  // by component: 1 where fixed
   std::vector<double> coordinates_, scale_;
   int freshIterations_ = -1;  // Krylov iterations of the last solve with a new preconditioner
 };
