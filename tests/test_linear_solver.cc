@@ -81,7 +81,10 @@ TEST(LinearSolver, SolvesTheLatticeAndReusesItsPreconditioner) {
     b[i] = std::sin(1.7 * static_cast<double>(i)) + 0.3;
     if (coordinates[3 * (i / 3) + 2] == 0) fixed.push_back(static_cast<int>(i)), isFixed[i] = 1;
   }
-  LinearSolver solver(K, fixed, coordinates);
+  RowLayout rows;  // one rank owns every row
+  rows.owned = K.rows();
+  for (int r = 0; r < K.rows(); ++r) rows.globalRow.push_back(r);
+  LinearSolver solver(K, rows, fixed, coordinates);
   const double tolerance = 1e-8;
   std::vector<double> x;
   const LinearSolve first = solver.solve(K, b, tolerance, x);

@@ -163,6 +163,8 @@ class MPM {
   // The equilibrium problem of the step: fields, nodal masses, the displacement increments the
   // Velocity and Symmetric faces prescribe over dt.
   EquilibriumProblem equilibriumProblem(double dt);
+  // P2G and, distributed, its sums completed on the shared nodes.
+  void interpolateAndSumOverRanks();
   // Diffusion over the quasi-static step in explicit sub-steps on its start-of-step configuration;
   // concentrationChange_ receives each particle's change.
   void diffuseOverStep(double t, double dt, double substepMultiplier);

@@ -16,6 +16,7 @@
 #include "Components/MPM/Materials/ConstitutiveModels/ConcreteModels.h"
 #include "Components/MPM/ParticleLoops.h"
 #include "Core/Parallel/Communicator.h"
+#include "Core/Parallel/StopTogether.h"
 #include "Core/Util/Errors.h"
 
 namespace anode {
@@ -50,11 +51,6 @@ std::string MPM::NewtonCounts::summary(long steps) const {
 }
 
 void MPM::checkImplicitSetup(const PSNode& root) const {
-  const PSNode mpm = root.requireChild("MPM");
-  if (Communicator::size() > 1)
-    mpm.requireChild("time_integrator")
-        .fail("<time_integrator>implicit runs on one rank only so far, not " +
-              std::to_string(Communicator::size()) + " (docs/quasi-static.md)");
   if (contact_.excluded >= 0)
     root.requireChild("MaterialProperties")
         .requireChild("MPM")
@@ -66,7 +62,16 @@ void MPM::checkImplicitSetup(const PSNode& root) const {
 EquilibriumProblem MPM::equilibriumProblem(double dt) {
   const int nodes = grid_.numNodes();
   const int fields = 1 + *std::max_element(fieldOf_.begin(), fieldOf_.end());
-  EquilibriumProblem problem{grid_, materials_, weights_, fieldOf_, {}, {}, flags_.gravity, {}};
+  EquilibriumProblem problem{grid_, materials_,     weights_, fieldOf_, {},
+                             {},    flags_.gravity, {},       nullptr,  {}};
+  if (distributed_) {
+    // A node's unknowns belong to the rank owning the cell of the node's index.
+    problem.ghosts = &ghosts_;
+    problem.owned.resize(nodes);
+    const int me = Communicator::rank();
+    for (int k = 0; k < nodes; ++k)
+      problem.owned[k] = decomposition_.ownerOfCell(grid_.nodeOf(k)) == me;
+  }
   for (size_t m = 0; m < materials_.size(); ++m)
     problem.concentrationChange.push_back(
         diffusion_ && materials_[m].model->swells() ? concentrationChange_[m].data() : nullptr);
@@ -109,6 +114,17 @@ void MPM::updateParticlesFromEquilibrium(double dt) {
   }
 }
 
+void MPM::interpolateAndSumOverRanks() {
+  {
+    ScopedTimer s(timers_, tasks_.particlesToGrid);
+    interpolateParticlesToGrid();
+  }
+  if (distributed_) {
+    ScopedTimer s(timers_, tasks_.communication);
+    sumGhostNodes();
+  }
+}
+
 void MPM::diffuseOverStep(double t, double dt, double substepMultiplier) {
   concentrationChange_.resize(materials_.size());
   for (size_t m = 0; m < materials_.size(); ++m)
@@ -121,10 +137,8 @@ void MPM::diffuseOverStep(double t, double dt, double substepMultiplier) {
     // The last sub-step ends at t + dt exactly (a remainder below 1e-12 dt joins the one before).
     double h = std::min(limit, dt - done);
     if (dt - done - h < 1e-12 * dt) h = dt - done;
-    if (done > 0) {
-      ScopedTimer s(timers_, tasks_.particlesToGrid);
-      interpolateParticlesToGrid();  // the concentration's sums of the start-of-step particles
-    }
+    if (done > 0)
+      interpolateAndSumOverRanks();  // the concentration's sums of the start-of-step particles
     {
       ScopedTimer s(timers_, tasks_.particlesToGrid);
       computeNodalVelocityAndConcentration();  // Eq. 5 and the diffusion interface
@@ -161,10 +175,7 @@ double MPM::advanceQuasiStatic(Collective, double t, double dt, double dtMin,
   if (diffusion_)
     for (const MPMMaterial& mat : materials_) start.push_back(mat.particles);
   while (true) {
-    {
-      ScopedTimer s(timers_, tasks_.particlesToGrid);
-      interpolateParticlesToGrid();  // the nodal masses (and the concentration's sums)
-    }
+    interpolateAndSumOverRanks();  // the nodal masses (and the concentration's sums)
     // 2: c over dt; a step in which c changed by more than twice the bound of
     // <max_concentration_change> somewhere is retaken at the dt that bound allows.
     NewtonReport report;
@@ -172,7 +183,7 @@ double MPM::advanceQuasiStatic(Collective, double t, double dt, double dtMin,
     if (diffusion_) {
       diffuseOverStep(t, dt, substepMultiplier);
       const double bound = flags_.implicit->maxConcentrationChange;
-      maxConcentrationChange_ = largestConcentrationChange();
+      maxConcentrationChange_ = collective::maximum(largestConcentrationChange());
       if (maxConcentrationChange_ > kConcentrationChangeRetake * bound) {
         std::ostringstream s;
         s.precision(3);
@@ -218,18 +229,23 @@ double MPM::advanceQuasiStatic(Collective, double t, double dt, double dtMin,
            k < report.ratios.size(); ++k)
         note << " (" << report.ratios[k].first << ", " << report.ratios[k].second << ")";
     }
-    std::fprintf(stderr, "%s\n", note.str().c_str());
+    if (Communicator::isRoot()) std::fprintf(stderr, "%s\n", note.str().c_str());
     dt = smaller;
     for (size_t m = 0; m < start.size(); ++m) materials_[m].particles = start[m];
     if (diffusion_) diffusion_->updateDiffusionState(Collective{}, materials_, t);
   }
   {
     ScopedTimer s(timers_, tasks_.particleUpdate);
-    updateParticlesFromEquilibrium(dt);  // 5: x, F, stress and the models' state
+    // 5: x, F, stress and the models' state
+    collective::stopTogether([&] { updateParticlesFromEquilibrium(dt); });
   }
   if (flags_.refineParticles) {
     ScopedTimer s(timers_, tasks_.splitting);
     splitParticles();
+  }
+  if (distributed_) {
+    ScopedTimer s(timers_, tasks_.communication);
+    migrateParticles();  // particles that left the rank's box go to its owner
   }
   lastQuasiStaticDt_ = dt;
   return dt;

@@ -18,8 +18,13 @@ void MPM::computeWeightsAndActiveNodes() {
   // The ghost nodes get the other ranks' parts: a stored node takes part in the step where any
   // rank's particles reach it (outside the ranks' stopTogether, as it is collective).
   previous_ = active_.box;
-  active_ =
-      ActiveNodes::of(grid_, distributed_ ? ghosts_.setReach(Collective{}, reached) : reached);
+  NodeBox all = distributed_ ? ghosts_.setReach(Collective{}, reached) : reached;
+  // An implicit run shares its owned unknowns' corrections (Implicit/EquilibriumSolver.h) on
+  // shared nodes its own particles may not reach: its reach is its window within all of theirs.
+  if (distributed_ && flags_.implicit)
+    all = ghosts_.setReach(Collective{},
+                           NodeBox{grid_.firstNode(), grid_.lastNode()}.intersection(all));
+  active_ = ActiveNodes::of(grid_, all);
 }
 
 NodeBox MPM::computeInterpolationWeights() {

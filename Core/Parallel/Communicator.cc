@@ -138,6 +138,15 @@ int64_t sum(int64_t v) {
   return v;
 }
 
+int64_t exclusiveSum(int64_t v) {
+  if (!started) return 0;
+  CommunicationTimer t;
+  bytes += 8;
+  int64_t before = 0;
+  check(MPI_Exscan(&v, &before, 1, MPI_INT64_T, MPI_SUM, MPI_COMM_WORLD), "MPI_Exscan");
+  return worldRank == 0 ? 0 : before;  // MPI leaves rank 0's undefined
+}
+
 bool any(bool v) {
   return firstRankWith(v) >= 0;
 }

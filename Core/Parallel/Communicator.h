@@ -51,6 +51,8 @@ double sum(double v);
 double minimum(double v);
 double maximum(double v);
 int64_t sum(int64_t v);
+// The sum of v over the ranks before this one (0 on rank 0).
+int64_t exclusiveSum(int64_t v);
 bool any(bool v);
 // The lowest rank on which `flag` holds, or -1 if it holds on none.
 int firstRankWith(bool flag);

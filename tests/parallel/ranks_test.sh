@@ -17,12 +17,13 @@
 #                                most 0.1% of the pixels differ)
 #   rebalance INPUT STEPS        2 ranks draw their boxes anew as the particles drift, and agree
 #                                with one rank
+# TOLERANCE (environment) replaces compare_runs.py's 1e-9 of each array's scale.
 set -uo pipefail
 mode=$1
 sus=$2
 shift 2
 here=$(cd "$(dirname "$0")" && pwd)
-compare="/usr/bin/python3 $here/compare_runs.py"
+compare="/usr/bin/python3 $here/compare_runs.py --tolerance ${TOLERANCE:-1e-9}"
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
 export OMP_WAIT_POLICY=passive
 work=$(mktemp -d)

@@ -5,10 +5,10 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <stdexcept>
 #include <variant>
 
 #include "Components/MPM/Implicit/HourglassStabilization.h"
-#include "Components/MPM/Implicit/LinearSolver.h"
 #include "Components/MPM/Implicit/ParticleEquilibrium.h"
 #include "Components/MPM/Materials/ConstitutiveModels/ConcreteModels.h"
 
@@ -48,19 +48,38 @@ void EquilibriumSolver::useTimers(TaskTimers& timers) {
 void EquilibriumSolver::numberUnknowns(const EquilibriumProblem& problem) {
   const int fields = 1 + *std::max_element(problem.fieldOf.begin(), problem.fieldOf.end());
   const int nodes = problem.grid.numNodes();
-  row_.assign(fields, std::vector<int>(nodes, -1));
-  unknown_.clear();
-  // Block rows in (field, node) order.
+  const auto owns = [&](int k) { return problem.owned.empty() || problem.owned[k] != 0; };
+  std::vector<double> least(fields);
   for (int f = 0; f < fields; ++f) {
     const std::vector<double>& mass = problem.mass[f];
-    const double least = kUnknownNodeMass * *std::max_element(mass.begin(), mass.end());
-    for (int k = 0; k < nodes; ++k)
-      if (mass[k] > least) {
-        row_[f][k] = static_cast<int>(unknown_.size());
-        unknown_.emplace_back(f, k);
-      }
+    least[f] = *std::max_element(mass.begin(), mass.end());
+  }
+  collective::maximum(least.data(), fields);
+  row_.assign(fields, std::vector<int>(nodes, -1));
+  unknown_.clear();
+  // Block rows in (field, node) order, this rank's own nodes first.
+  for (bool own : {true, false}) {
+    for (int f = 0; f < fields; ++f)
+      for (int k = 0; k < nodes; ++k)
+        if (problem.mass[f][k] > kUnknownNodeMass * least[f] && owns(k) == own) {
+          row_[f][k] = static_cast<int>(unknown_.size());
+          unknown_.emplace_back(f, k);
+        }
+    if (own) rows_.owned = static_cast<int>(unknown_.size());
+  }
+  // Global rows: the ranks' own rows in rank order; a shared node's from its owner.
+  const int first = static_cast<int>(collective::exclusiveSum(rows_.owned));
+  std::vector<double> global(unknown_.size(), -1.0);
+  for (int r = 0; r < rows_.owned; ++r) global[r] = first + r;
+  completeOverRanks(problem, global, 1, true);
+  rows_.globalRow.resize(unknown_.size());
+  for (size_t r = 0; r < unknown_.size(); ++r) {
+    if (global[r] < 0)
+      throw std::logic_error("a shared unknown node without its owner's row (GhostNodes reach)");
+    rows_.globalRow[r] = static_cast<int>(global[r]);
   }
   std::vector<std::vector<int>> columns(unknown_.size());
+  for (int r = 0; r < rows_.owned; ++r) columns[r].push_back(r);  // the owner's diagonal
   for (size_t m = 0; m < problem.materials.size(); ++m) {
     const InterpolationWeights& W = problem.weights[m];
     const std::vector<int>& row = row_[problem.fieldOf[m]];
@@ -80,17 +99,44 @@ void EquilibriumSolver::numberUnknowns(const EquilibriumProblem& problem) {
     K_.rowStart.push_back(static_cast<int>(K_.column.size()));
   }
   K_.block.assign(K_.column.size(), Mat3::Zero());
-  coordinates_.resize(3 * unknown_.size());
+  coordinates_.resize(3 * static_cast<size_t>(rows_.owned));
   fixed_.clear();
   for (size_t r = 0; r < unknown_.size(); ++r) {
     const auto [f, k] = unknown_[r];
     const Vec3i ijk = problem.grid.nodeOf(k);
     const Vec3 x = problem.grid.nodePosition(ijk.x(), ijk.y(), ijk.z());
     for (int a = 0; a < 3; ++a) {
-      coordinates_[3 * r + a] = x[a];
+      if (static_cast<int>(r) < rows_.owned) coordinates_[3 * r + a] = x[a];
       if (!std::isnan(problem.prescribed[f][k][a])) fixed_.push_back(static_cast<int>(3 * r + a));
     }
   }
+}
+
+void EquilibriumSolver::completeOverRanks(const EquilibriumProblem& problem,
+                                          std::vector<double>& values, int width,
+                                          bool fromOwners) const {
+  if (!problem.ghosts) return;
+  const int rows = static_cast<int>(unknown_.size());
+  const size_t nodes = static_cast<size_t>(problem.grid.numNodes());
+  std::vector<std::vector<double>> byNode(row_.size(), std::vector<double>(width * nodes, 0.0));
+  for (int r = 0; r < (fromOwners ? rows_.owned : rows); ++r) {
+    const auto [f, k] = unknown_[r];
+    for (int a = 0; a < width; ++a) byNode[f][width * k + a] = values[width * r + a];
+  }
+  std::vector<NodeArray> arrays;
+  for (std::vector<double>& a : byNode) arrays.push_back({a.data(), width});
+  problem.ghosts->sumOverRanks(Collective{}, arrays);
+  for (int r = fromOwners ? rows_.owned : 0; r < rows; ++r) {
+    const auto [f, k] = unknown_[r];
+    for (int a = 0; a < width; ++a) values[width * r + a] = byNode[f][width * k + a];
+  }
+}
+
+double EquilibriumSolver::ownedDot(const std::vector<double>& a,
+                                   const std::vector<double>& b) const {
+  double d = 0;
+  for (size_t i = 0; i < 3 * static_cast<size_t>(rows_.owned); ++i) d += a[i] * b[i];
+  return collective::sum(d);
 }
 
 void EquilibriumSolver::assemble(const EquilibriumProblem& problem, double dt, double stabilization,
@@ -127,21 +173,26 @@ void EquilibriumSolver::assemble(const EquilibriumProblem& problem, double dt, d
     }
     if (stabilization > 0) applyHourglassStiffness(first, last, withTangent);
   }
-  // Gravity, the fixed components' rows, and the rigid-mode regularization.
-  double diagonal = 0, mass = 0;
+  completeOverRanks(problem, residual_, 3, false);
+  // Gravity (the nodal masses are complete on every rank), the fixed components' rows.
   for (size_t r = 0; r < unknown_.size(); ++r) {
     const auto [f, k] = unknown_[r];
     for (int a = 0; a < 3; ++a) residual_[3 * r + a] += problem.mass[f][k] * problem.gravity[a];
-    diagonal += K_.at(static_cast<int>(r), static_cast<int>(r)).trace();
-    mass += 3 * problem.mass[f][k];
   }
   for (int i : fixed_) residual_[i] = 0;
   if (!withTangent) return;
-  const double alpha = mass > 0 ? kRigidModeRegularization * diagonal / mass : 0;
-  for (size_t r = 0; r < unknown_.size(); ++r) {
+  // The rigid-mode regularization, on the owner's rows (each rank's K holds its particles' parts).
+  double sums[2] = {0, 0};  // diagonal, mass
+  for (int r = 0; r < static_cast<int>(unknown_.size()); ++r) {
     const auto [f, k] = unknown_[r];
-    K_.at(static_cast<int>(r), static_cast<int>(r)) +=
-        alpha * problem.mass[f][k] * Mat3::Identity();
+    if (K_.rowStart[r + 1] > K_.rowStart[r]) sums[0] += K_.at(r, r).trace();
+    if (r < rows_.owned) sums[1] += 3 * problem.mass[f][k];
+  }
+  collective::sum(sums, 2);
+  const double alpha = sums[1] > 0 ? kRigidModeRegularization * sums[0] / sums[1] : 0;
+  for (int r = 0; r < rows_.owned; ++r) {
+    const auto [f, k] = unknown_[r];
+    K_.at(r, r) += alpha * problem.mass[f][k] * Mat3::Identity();
   }
 }
 
@@ -240,9 +291,7 @@ void EquilibriumSolver::takeStep(const EquilibriumProblem& problem, double dt, d
     const double step = std::ldexp(1.0, -halvings);
     addToDisplacement(du, step);
     assemble(problem, dt, stabilization, false);
-    double norm = 0;
-    for (double r : residual_) norm += r * r;
-    if (norm < residualNorm) return;  // false for NaN
+    if (ownedDot(residual_, residual_) < residualNorm) return;  // false for NaN
     addToDisplacement(du, -step);
   }
   addToDisplacement(du, 1.0);
@@ -257,7 +306,7 @@ NewtonReport EquilibriumSolver::solve(const EquilibriumProblem& problem, double 
       for (int a = 0; a < 3; ++a)
         if (!std::isnan(problem.prescribed[f][k][a])) u_[f][k][a] = problem.prescribed[f][k][a];
   hourglass_.clear();
-  LinearSolver linearSolver(K_, fixed_, coordinates_);
+  LinearSolver linearSolver(K_, rows_, fixed_, coordinates_);
   NewtonReport report;
   double normMax = 0, qNorm0 = 0, lastResidualNorm = 0;
   std::vector<double> du;
@@ -273,8 +322,7 @@ NewtonReport EquilibriumSolver::solve(const EquilibriumProblem& problem, double 
       if (timers_) s.emplace(*timers_, assemblyTask_);
       assemble(problem, dt, options.hourglassStabilization, true);
     }
-    double residualNorm = 0;
-    for (double r : residual_) residualNorm += r * r;
+    const double residualNorm = ownedDot(residual_, residual_);
     const double tolerance = report.iterations == 1
                                  ? kLinearToleranceMost
                                  : std::clamp(0.9 * residualNorm / lastResidualNorm,
@@ -285,6 +333,8 @@ NewtonReport EquilibriumSolver::solve(const EquilibriumProblem& problem, double 
       std::optional<ScopedTimer> s;
       if (timers_) s.emplace(*timers_, solveTask_);
       linear = linearSolver.solve(K_, residual_, tolerance, du);
+      du.resize(residual_.size());
+      completeOverRanks(problem, du, 3, true);
     }
     report.krylovIterations += linear.iterations;
     if (!linear.converged) {
@@ -292,11 +342,7 @@ NewtonReport EquilibriumSolver::solve(const EquilibriumProblem& problem, double 
                        std::to_string(linear.iterations) + " iterations)";
       return report;
     }
-    double norm = 0, qNorm = 0;
-    for (size_t i = 0; i < du.size(); ++i) {
-      norm += du[i] * du[i];
-      qNorm += du[i] * residual_[i];
-    }
+    const double norm = ownedDot(du, du), qNorm = ownedDot(du, residual_);
     // The ratios measure the whole correction, the distance Newton still sees to the
     // equilibrium, whatever fraction of it the line search takes.
     takeStep(problem, dt, options.hourglassStabilization, du, residualNorm);

@@ -9,7 +9,9 @@
 #include <string>
 #include <vector>
 
+#include "Components/MPM/GhostNodes.h"
 #include "Components/MPM/Implicit/BlockMatrix.h"
+#include "Components/MPM/Implicit/LinearSolver.h"
 #include "Components/MPM/ImplicitOptions.h"
 #include "Components/MPM/Interpolator.h"
 #include "Components/MPM/Materials/MPMMaterial.h"
@@ -32,6 +34,11 @@ struct EquilibriumProblem {
   // Per material: the particles' concentration change over the step (the swelling the stress
   // update sees), or null.
   std::vector<const double*> concentrationChange;
+  // A distributed run: the nodes shared with other ranks (null on one rank), this step's reach
+  // covering every shared node this rank owns, and by node 1 where this rank owns the node's
+  // unknowns (empty: every node).
+  GhostNodes* ghosts = nullptr;
+  std::vector<char> owned;
 };
 
 // How Newton went in one attempt at a step.
@@ -43,6 +50,10 @@ struct NewtonReport {
   std::string failure;  // why it did not converge
 };
 
+// In a distributed run every rank solves together (the functions are collective): each owns the
+// unknowns of the nodes in its box (Decomposition::ownerOfCell of the node's index), sums its
+// particles' parts into the rows of every node they reach, and the ranks complete the residual
+// and share the corrections on the nodes they share (GhostNodes).
 class EquilibriumSolver {
  public:
   // Task timers: assembly (trial stresses, tangents, forces), linear solve.
@@ -53,8 +64,16 @@ class EquilibriumSolver {
   const std::vector<Vec3>& displacement(int field) const { return u_[field]; }
 
  private:
-  // The unknown nodes (block rows) and the pattern of their couplings, from the weights.
+  // The unknown nodes (block rows: this rank's own first, then the ones it shares with their
+  // owners), their global rows, and the pattern of their couplings, from the weights.
   void numberUnknowns(const EquilibriumProblem& problem);
+  // values (`width` per block row): on a distributed run, every rank's parts summed on the shared
+  // rows; with `fromOwners`, the owned rows' values copied to the other ranks' rows of the same
+  // nodes (the others' parts set to zero first).
+  void completeOverRanks(const EquilibriumProblem& problem, std::vector<double>& values, int width,
+                         bool fromOwners) const;
+  // sum of a_i b_i over the owned rows' components, over all ranks.
+  double ownedDot(const std::vector<double>& a, const std::vector<double>& b) const;
   // K and the residual r = f_ext - f_int at the current u (fixed components of r zeroed).
   // `stabilization`: epsilon of Implicit/HourglassStabilization.h. Without the tangent: the
   // residual only (the line search's trials).
@@ -80,9 +99,10 @@ class EquilibriumSolver {
   std::vector<std::vector<Vec3>> u_;          // per field, by node
   std::vector<std::vector<int>> row_;         // per field, by node: block row, or -1
   std::vector<std::pair<int, int>> unknown_;  // block row -> (field, node)
+  RowLayout rows_;                            // which rows this rank owns; global rows
   BlockMatrix K_;
-  std::vector<double> residual_, coordinates_;
-  std::vector<int> fixed_;
+  std::vector<double> residual_, coordinates_;  // coordinates: of the owned rows
+  std::vector<int> fixed_;                      // fixed components of the rows
   // Per material and particle: the trial stress P and its tangent dP/dH.
   std::vector<std::vector<Mat3>> P_;
   std::vector<std::vector<Mat9>> A_;

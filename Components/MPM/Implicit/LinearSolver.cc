@@ -47,52 +47,55 @@ void startPetsc() {
 // One PETSc object of each kind the solves use.
 struct LinearSolver::Objects {
   Mat A = nullptr;
-  Vec x = nullptr, b = nullptr;
+  Vec x = nullptr, b = nullptr, scale = nullptr;
   KSP ksp = nullptr;
   ~Objects() {
     KSPDestroy(&ksp);
+    VecDestroy(&scale);
     VecDestroy(&b);
     VecDestroy(&x);
     MatDestroy(&A);
   }
 };
 
-LinearSolver::LinearSolver(const BlockMatrix& pattern, std::vector<int> fixed,
-                           std::vector<double> coordinates)
+LinearSolver::LinearSolver(const BlockMatrix& pattern, RowLayout rows,
+                           const std::vector<int>& fixed, std::vector<double> coordinates)
     : o_(std::make_unique<Objects>()),
-      fixed_(std::move(fixed)),
+      rows_(std::move(rows)),
       coordinates_(std::move(coordinates)) {
   static_assert(sizeof(PetscInt) == sizeof(int), "PETSc with 32-bit indices");
+  static_assert(sizeof(PetscScalar) == sizeof(PetscValue), "PETSc with real double scalars");
   startPetsc();
-  const int blocks = pattern.rows();
-  const PetscInt n = 3 * blocks;
-  isFixed_.assign(static_cast<size_t>(n), 0);
-  for (int i : fixed_) isFixed_[i] = 1;
-  check(MatCreate(PETSC_COMM_SELF, &o_->A), "MatCreate");
-  check(MatSetSizes(o_->A, n, n, n, n), "MatSetSizes");
-  check(MatSetType(o_->A, MATSEQAIJ), "MatSetType");
-  check(MatSetBlockSize(o_->A, 3), "MatSetBlockSize");
-  std::vector<PetscInt> perRow(static_cast<size_t>(n));
-  for (int r = 0; r < blocks; ++r)
-    for (int a = 0; a < 3; ++a)
-      perRow[3 * r + a] = 3 * (pattern.rowStart[r + 1] - pattern.rowStart[r]);
-  check(MatSeqAIJSetPreallocation(o_->A, 0, perRow.data()), "MatSeqAIJSetPreallocation");
-  // The pattern: every 3 x 3 block of K, zeros included.
-  std::vector<PetscScalar> zeros;
-  for (int r = 0; r < blocks; ++r) {
-    const int begin = pattern.rowStart[r], count = pattern.rowStart[r + 1] - begin;
-    zeros.assign(9 * static_cast<size_t>(count), 0.0);
-    const PetscInt row = r;
-    check(MatSetValuesBlocked(o_->A, 1, &row, count, pattern.column.data() + begin, zeros.data(),
-                              INSERT_VALUES),
-          "MatSetValuesBlocked");
+  const PetscInt n = 3 * rows_.owned;
+  isFixed_.assign(3 * static_cast<size_t>(pattern.rows()), 0);
+  for (int i : fixed) {
+    isFixed_[i] = 1;
+    if (i < n) fixedOwned_.push_back(i);
   }
-  check(MatAssemblyBegin(o_->A, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
-  check(MatAssemblyEnd(o_->A, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
-  checkLayout(pattern);
-  check(VecCreateSeq(PETSC_COMM_SELF, n, &o_->b), "VecCreateSeq");
-  check(VecDuplicate(o_->b, &o_->x), "VecDuplicate");
-  check(KSPCreate(PETSC_COMM_SELF, &o_->ksp), "KSPCreate");
+  // The pattern: every 3 x 3 block of every rank's K, zeros included, counted by PETSc's
+  // preallocator (rows of other ranks included), then laid out in the matrix.
+  Mat counter = nullptr;
+  check(MatCreate(PETSC_COMM_WORLD, &counter), "MatCreate");
+  check(MatSetType(counter, MATPREALLOCATOR), "MatSetType");
+  check(MatSetSizes(counter, n, n, PETSC_DETERMINE, PETSC_DETERMINE), "MatSetSizes");
+  check(MatSetBlockSize(counter, 3), "MatSetBlockSize");
+  check(MatSetUp(counter), "MatSetUp");
+  std::swap(o_->A, counter);
+  for (int r = 0; r < pattern.rows(); ++r) addRow(pattern, r);
+  std::swap(o_->A, counter);
+  check(MatAssemblyBegin(counter, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
+  check(MatAssemblyEnd(counter, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+  check(MatCreate(PETSC_COMM_WORLD, &o_->A), "MatCreate");
+  check(MatSetSizes(o_->A, n, n, PETSC_DETERMINE, PETSC_DETERMINE), "MatSetSizes");
+  check(MatSetType(o_->A, MATAIJ), "MatSetType");
+  check(MatSetBlockSize(o_->A, 3), "MatSetBlockSize");
+  check(MatPreallocatorPreallocate(counter, PETSC_TRUE, o_->A), "MatPreallocatorPreallocate");
+  MatDestroy(&counter);
+  // Every later assembly sends the same rows to the same ranks.
+  check(MatSetOption(o_->A, MAT_SUBSET_OFF_PROC_ENTRIES, PETSC_TRUE), "MatSetOption");
+  check(MatCreateVecs(o_->A, &o_->x, &o_->b), "MatCreateVecs");
+  check(VecDuplicate(o_->b, &o_->scale), "VecDuplicate");
+  check(KSPCreate(PETSC_COMM_WORLD, &o_->ksp), "KSPCreate");
   check(KSPSetType(o_->ksp, KSPGMRES), "KSPSetType");
   check(KSPGMRESSetRestart(o_->ksp, 200), "KSPGMRESSetRestart");
   // Right preconditioning: GMRES minimizes the residual of the system itself, which is what the
@@ -107,69 +110,60 @@ LinearSolver::LinearSolver(const BlockMatrix& pattern, std::vector<int> fixed,
 
 LinearSolver::~LinearSolver() = default;
 
+void LinearSolver::addRow(const BlockMatrix& K, int r) {
+  const int begin = K.rowStart[r], count = K.rowStart[r + 1] - begin;
+  if (count == 0) return;
+  const bool owned = r < rows_.owned;
+  // Row-major, as PETSc reads a block row: scalar row a holds (a, 3 j + g) for block j.
+  rowValues_.resize(9 * static_cast<size_t>(count));
+  rowColumns_.resize(count);
+  for (int j = 0; j < count; ++j) {
+    const int c = K.column[begin + j];
+    rowColumns_[j] = rows_.globalRow[c];
+    for (int a = 0; a < 3; ++a)
+      for (int g = 0; g < 3; ++g) {
+        const int row = 3 * r + a, column = 3 * c + g;
+        PetscValue& v = rowValues_[3 * count * a + 3 * j + g];
+        if (isFixed_[row] || isFixed_[column])  // the owner's 1 on the diagonal
+          v = owned && row == column ? 1.0 : 0.0;
+        else
+          v = K.block[begin + j](a, g);
+      }
+  }
+  const PetscInt row = rows_.globalRow[r];
+  check(
+      MatSetValuesBlocked(o_->A, 1, &row, count, rowColumns_.data(), rowValues_.data(), ADD_VALUES),
+      "MatSetValuesBlocked");
+}
+
 void LinearSolver::setMatrix(const BlockMatrix& K) {
+  check(MatZeroEntries(o_->A), "MatZeroEntries");
+  for (int r = 0; r < K.rows(); ++r) addRow(K, r);
+  check(MatAssemblyBegin(o_->A, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
+  check(MatAssemblyEnd(o_->A, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
   // Symmetric diagonal scaling, D K D with D = |diag K|^-1/2: nodes a particle's corner just
   // reaches have stiffness 1e-8 of the others', which breaks GMRES down on the unscaled system.
-  const int blocks = K.rows();
-  scale_.assign(3 * static_cast<size_t>(blocks), 1.0);
-  for (int r = 0; r < blocks; ++r)
-    for (int j = K.rowStart[r]; j < K.rowStart[r + 1]; ++j)
-      if (K.column[j] == r)
-        for (int a = 0; a < 3; ++a)
-          if (K.block[j](a, a) != 0) scale_[3 * r + a] = 1 / std::sqrt(std::abs(K.block[j](a, a)));
-  PetscScalar* values = nullptr;
-  check(MatSeqAIJGetArray(o_->A, &values), "MatSeqAIJGetArray");
-#pragma omp parallel for schedule(static)
-  for (int r = 0; r < blocks; ++r) {
-    const int begin = K.rowStart[r], count = K.rowStart[r + 1] - begin;
-    for (int a = 0; a < 3; ++a) {
-      const int row = 3 * r + a;
-      PetscScalar* v = values + valueOffset(K, r, a);  // (row, 3 K.column[begin] + 0), ...
-      for (int j = 0; j < count; ++j)
-        for (int g = 0; g < 3; ++g) {
-          const int column = 3 * K.column[begin + j] + g;
-          if (isFixed_[row] || isFixed_[column])
-            v[3 * j + g] = row == column ? 1.0 : 0.0;
-          else
-            v[3 * j + g] = scale_[row] * K.block[begin + j](a, g) * scale_[column];
-        }
-    }
+  check(MatGetDiagonal(o_->A, o_->scale), "MatGetDiagonal");
+  PetscScalar* d = nullptr;
+  check(VecGetArray(o_->scale, &d), "VecGetArray");
+  scale_.resize(3 * static_cast<size_t>(rows_.owned));
+  for (size_t i = 0; i < scale_.size(); ++i) {
+    scale_[i] = d[i] != 0 ? 1 / std::sqrt(std::abs(d[i])) : 1.0;
+    d[i] = scale_[i];
   }
-  check(MatSeqAIJRestoreArray(o_->A, &values), "MatSeqAIJRestoreArray");
-}
-
-size_t LinearSolver::valueOffset(const BlockMatrix& K, int r, int a) {
-  const size_t count = K.rowStart[r + 1] - K.rowStart[r];
-  return 9 * static_cast<size_t>(K.rowStart[r]) + 3 * count * a;
-}
-
-void LinearSolver::checkLayout(const BlockMatrix& pattern) {
-  PetscInt n = 0;
-  const PetscInt *start = nullptr, *column = nullptr;
-  PetscBool done = PETSC_FALSE;
-  check(MatGetRowIJ(o_->A, 0, PETSC_FALSE, PETSC_FALSE, &n, &start, &column, &done), "MatGetRowIJ");
-  bool same = done && n == 3 * pattern.rows();
-  for (int r = 0; same && r < pattern.rows(); ++r)
-    for (int a = 0; a < 3 && same; ++a) {
-      const size_t offset = valueOffset(pattern, r, a);
-      same = static_cast<size_t>(start[3 * r + a]) == offset;
-      for (int j = pattern.rowStart[r]; same && j < pattern.rowStart[r + 1]; ++j)
-        for (int g = 0; g < 3; ++g)
-          same = same &&
-                 column[offset + 3 * (j - pattern.rowStart[r]) + g] == 3 * pattern.column[j] + g;
-    }
-  check(MatRestoreRowIJ(o_->A, 0, PETSC_FALSE, PETSC_FALSE, &n, &start, &column, &done),
-        "MatRestoreRowIJ");
-  if (!same)
-    throw std::runtime_error("PETSc: the AIJ matrix does not hold K's blocks in K's order");
+  check(VecRestoreArray(o_->scale, &d), "VecRestoreArray");
+  check(MatDiagonalScale(o_->A, o_->scale, o_->scale), "MatDiagonalScale");
 }
 
 void LinearSolver::setNearNullSpace() {
   const size_t n = scale_.size(), blocks = n / 3;
-  Vec3 centre = Vec3::Zero();
+  // The centre of every rank's nodes.
+  double sums[4] = {0, 0, 0, static_cast<double>(blocks)};
   for (size_t r = 0; r < blocks; ++r)
-    centre += Vec3(coordinates_[3 * r], coordinates_[3 * r + 1], coordinates_[3 * r + 2]);
-  if (blocks > 0) centre /= static_cast<double>(blocks);
+    for (int a = 0; a < 3; ++a) sums[a] += coordinates_[3 * r + a];
+  collective::sum(sums, 4);
+  Vec3 centre(sums[0], sums[1], sums[2]);
+  if (sums[3] > 0) centre /= sums[3];
   // Rigid modes m of K are modes D^-1 m of D K D; fixed components are decoupled rows.
   std::vector<std::vector<double>> modes;
   for (int k = 0; k < 6; ++k) {
@@ -184,17 +178,19 @@ void LinearSolver::setNearNullSpace() {
         v = Vec3::Unit(k - 3).cross(x);
       for (int a = 0; a < 3; ++a) m[3 * r + a] = v[a] / scale_[3 * r + a];
     }
-    for (int i : fixed_) m[i] = 0;
-    double before = 0;
-    for (double v : m) before += v * v;
+    for (int i : fixedOwned_) m[i] = 0;
+    const auto dot = [n](const std::vector<double>& a, const std::vector<double>& b) {
+      double d = 0;
+      for (size_t i = 0; i < n; ++i) d += a[i] * b[i];
+      return collective::sum(d);
+    };
+    const double before = dot(m, m);
     // Modified Gram-Schmidt; a mode the fixed components remove is dropped.
     for (const std::vector<double>& q : modes) {
-      double dot = 0;
-      for (size_t i = 0; i < n; ++i) dot += q[i] * m[i];
-      for (size_t i = 0; i < n; ++i) m[i] -= dot * q[i];
+      const double projection = dot(q, m);
+      for (size_t i = 0; i < n; ++i) m[i] -= projection * q[i];
     }
-    double norm = 0;
-    for (double v : m) norm += v * v;
+    const double norm = dot(m, m);
     if (!(norm > 1e-20 * before)) continue;
     for (double& v : m) v /= std::sqrt(norm);
     modes.push_back(std::move(m));
@@ -208,7 +204,7 @@ void LinearSolver::setNearNullSpace() {
     check(VecRestoreArray(vectors[k], &v), "VecRestoreArray");
   }
   MatNullSpace space = nullptr;
-  check(MatNullSpaceCreate(PETSC_COMM_SELF, PETSC_FALSE, static_cast<PetscInt>(vectors.size()),
+  check(MatNullSpaceCreate(PETSC_COMM_WORLD, PETSC_FALSE, static_cast<PetscInt>(vectors.size()),
                            vectors.data(), &space),
         "MatNullSpaceCreate");
   check(MatSetNearNullSpace(o_->A, space), "MatSetNearNullSpace");
@@ -228,7 +224,7 @@ LinearSolve LinearSolver::run(const std::vector<double>& b, double relativeToler
   double* bb = nullptr;
   check(VecGetArray(o_->b, &bb), "VecGetArray");
   for (size_t i = 0; i < scale_.size(); ++i) bb[i] = scale_[i] * b[i];
-  for (int i : fixed_) bb[i] = 0;
+  for (int i : fixedOwned_) bb[i] = 0;
   check(VecRestoreArray(o_->b, &bb), "VecRestoreArray");
   check(KSPSolve(o_->ksp, o_->b, o_->x), "KSPSolve");
 
@@ -248,7 +244,7 @@ LinearSolve LinearSolver::run(const std::vector<double>& b, double relativeToler
   check(VecRestoreArrayRead(o_->x, &xs), "VecRestoreArrayRead");
   // The fixed components' rows are decoupled, but an inexact solve leaves round-off of its
   // tolerance on them.
-  for (int i : fixed_) x[i] = 0;
+  for (int i : fixedOwned_) x[i] = 0;
   return s;
 }
 

@@ -3,6 +3,8 @@
 // (scaled alike) as GAMG's near-null space. The matrix keeps one pattern for all the solves, and
 // the preconditioner built in the first solve serves the later ones while it keeps the Krylov
 // iterations low (docs/quasi-static.md). PETSC_OPTIONS (the environment) may change any of it.
+// In a distributed run the system is PETSc's over all ranks: each rank owns a range of block
+// rows and adds its particles' parts of the rows of other ranks' nodes too.
 #pragma once
 
 #include <memory>
@@ -13,6 +15,8 @@
 
 namespace anode {
 
+using PetscValue = double;  // PETSc's scalar (real, double precision)
+
 struct LinearSolve {
   int iterations = 0;
   bool converged = false;
@@ -20,30 +24,39 @@ struct LinearSolve {
   bool newPreconditioner = false;  // the preconditioner was built for this solve
 };
 
+// This rank's block rows of the system: the first `owned` rows of its matrices are the global
+// rows firstRow, firstRow + 1, ... of this rank; the others (the nodes it shares with ranks that
+// own them) carry its parts of other ranks' rows. globalRow: every local row's global row.
+struct RowLayout {
+  int owned = 0;
+  std::vector<int> globalRow;
+};
+
 class LinearSolver {
  public:
-  // For systems with the pattern of `pattern`; x_i = 0 and the row and column of i removed for
-  // each i of `fixed` (a component 3 r + a of block row r); `coordinates` (3 per block row) give
-  // the rigid-body modes.
-  LinearSolver(const BlockMatrix& pattern, std::vector<int> fixed, std::vector<double> coordinates);
+  // Collective (every rank of the run). For systems with the pattern of `pattern` (local rows and
+  // columns); x_i = 0 and the row and column of i removed for each i of `fixed` (a component
+  // 3 r + a of local block row r, owned or not); `coordinates` (3 per owned block row) give the
+  // rigid-body modes.
+  LinearSolver(const BlockMatrix& pattern, RowLayout rows, const std::vector<int>& fixed,
+               std::vector<double> coordinates);
   ~LinearSolver();
   LinearSolver(const LinearSolver&) = delete;
   LinearSolver& operator=(const LinearSolver&) = delete;
 
-  // Solves K x = b, K with the constructor's pattern; `relativeTolerance` bounds the scaled
-  // residual relative to the scaled b's norm. The fixed components of x are exactly zero.
+  // Collective. Solves K x = b, K (this rank's parts, local rows) with the constructor's pattern,
+  // b and x on the owned rows (b may hold more); `relativeTolerance` bounds the scaled residual
+  // relative to the scaled b's norm. The fixed components of x are exactly zero.
   LinearSolve solve(const BlockMatrix& K, const std::vector<double>& b, double relativeTolerance,
                     std::vector<double>& x);
 
  private:
   struct Objects;
-  // Scales K into the PETSc matrix's values (fixed rows and columns: identity) and sets scale_.
+  // The PETSc matrix (every rank's parts of K added; fixed rows and columns: identity) scaled
+  // symmetrically by its diagonal; sets scale_.
   void setMatrix(const BlockMatrix& K);
-  // Where the values of scalar row 3 r + a start in the AIJ matrix: each block row's 3 rows hold
-  // its blocks' columns in K's order.
-  static size_t valueOffset(const BlockMatrix& K, int r, int a);
-  // Throws unless the PETSc matrix is laid out as valueOffset says.
-  void checkLayout(const BlockMatrix& pattern);
+  // Block row r of K into the PETSc matrix (the pattern's zeros when `K` is the pattern).
+  void addRow(const BlockMatrix& K, int r);
   // GAMG's near-null space: the rigid modes of the scaled system, orthonormal.
   void setNearNullSpace();
   // One KSPSolve with the preconditioner built anew or reused.
@@ -51,9 +64,12 @@ class LinearSolver {
                   std::vector<double>& x);
 
   std::unique_ptr<Objects> o_;
-  std::vector<int> fixed_;
-  std::vector<char> isFixed_;  // by component: 1 where fixed
-  std::vector<double> coordinates_, scale_;
+  RowLayout rows_;
+  std::vector<int> fixedOwned_;              // the fixed components of owned rows
+  std::vector<char> isFixed_;                // by local component: 1 where fixed
+  std::vector<double> coordinates_, scale_;  // of the owned rows' components
+  std::vector<PetscValue> rowValues_;
+  std::vector<int> rowColumns_;
   int freshIterations_ = -1;  // Krylov iterations of the last solve with a new preconditioner
 };
 
