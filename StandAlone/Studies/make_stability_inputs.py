@@ -527,7 +527,7 @@ for name, maxTime, notes, outcome in [
         "Implicit_swelling_eta_0.56",
         100,
         ["The last step ends at maxTime, where c = 1 exactly."],
-        "runs to maxTime (9 steps, 2 retaken after a negative du.r); c = 1 everywhere at the"
+        "runs to maxTime (4 steps of 25 us, none retaken); c = 1 everywhere at the"
         " end; J up to 5.4 (free swelling: e^(3 x 0.56) = 5.37).",
     ),
     (

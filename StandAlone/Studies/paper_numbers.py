@@ -50,12 +50,14 @@ def last_output_time(run_dir):
 
 def read_output(run_dir, time, arrays):
     """The arrays (and "time", "points") of the output nearest to `time`, as numpy arrays: a value
-    per particle, or a row per particle for an array of several components."""
+    per particle, or a row per particle for an array of several components. A distributed run's
+    .pvtu is read whole (its pieces in rank order)."""
     from vtkmodules.util.numpy_support import vtk_to_numpy
-    from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridReader
+    from vtkmodules.vtkIOXML import vtkXMLPUnstructuredGridReader, vtkXMLUnstructuredGridReader
 
     t, path = min(outputs(run_dir), key=lambda e: abs(e[0] - time))
-    reader = vtkXMLUnstructuredGridReader()
+    parallel = path.endswith(".pvtu")
+    reader = vtkXMLPUnstructuredGridReader() if parallel else vtkXMLUnstructuredGridReader()
     reader.SetFileName(path)
     reader.Update()
     grid = reader.GetOutput()

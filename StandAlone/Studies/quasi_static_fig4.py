@@ -3,11 +3,11 @@ pillar (inputs/Paper/QuasiStatic_Fig4.ups, density 2.33e3 kg/m^3) against the ex
 2.33e18 and 2.33e24 kg/m^3 (Density_2.33e18, Density_2.33e24), at Figure 4's times 4, 16 and 28 s.
 
     python3 StandAlone/Studies/quasi_static_fig4.py --runs DIR [--sus build/StandAlone/sus]
-        [--carry docs/paper/carry] [--threads 2]
+        [--carry docs/paper/carry] [--threads 2 | --ranks 2]
 
 The explicit runs come from DIR/NAME, or from the carry folder (paper_carry.py) when DIR lacks
 them: Density_2.33e18 took 29 hours here. The quasi-static run is made in DIR/QuasiStatic_Fig4
-when it is not there. Prints a markdown table; the metrics are paper_numbers.py's (its docstring
+when it is not there (with --ranks N > 1: `mpirun -np N`, one thread per rank). Prints a markdown table; the metrics are paper_numbers.py's (its docstring
 defines them); "axis c" is the mean c of the rings' innermost, and "c of the core's lowest
 quarter" the mean c of the inner third of the radius in the lowest quarter of the height.
 """
@@ -29,24 +29,19 @@ EXPLICIT = ["Density_2.33e18", "Density_2.33e24"]
 TIMES = [4e6, 16e6, 28e6]  # us
 
 
-def make_implicit_run(sus, runs, threads):
+def make_implicit_run(sus, runs, threads, ranks):
     run_dir = os.path.join(runs, IMPLICIT)
     if os.path.exists(os.path.join(run_dir, "particles.pvd")):
         last = paper_numbers.last_output_time(run_dir)
         if last is not None and last >= TIMES[-1] * (1 - 1e-9):
             return
     start = time.time()
-    subprocess.run(
-        [
-            sus,
-            "--threads",
-            str(threads),
-            "-o",
-            run_dir,
-            os.path.join(ROOT, "inputs", "Paper", IMPLICIT + ".ups"),
-        ],
-        check=True,
-    )
+    command = [sus, "--threads", str(threads), "-o", run_dir]
+    command.append(os.path.join(ROOT, "inputs", "Paper", IMPLICIT + ".ups"))
+    if ranks > 1:
+        command = ["mpirun", "-np", str(ranks)] + command
+        command[command.index("--threads") + 1] = "1"
+    subprocess.run(command, check=True)
     print("%s: %.0f s" % (IMPLICIT, time.time() - start), file=sys.stderr)
 
 
@@ -87,11 +82,12 @@ def main():
     ap.add_argument("--sus", default=os.path.join(ROOT, "build", "StandAlone", "sus"))
     ap.add_argument("--carry", default=os.path.join(ROOT, "docs", "paper", "carry"))
     ap.add_argument("--threads", type=int, default=2)
+    ap.add_argument("--ranks", type=int, default=1, help="MPI ranks of the quasi-static run")
     a = ap.parse_args()
     os.makedirs(a.runs, exist_ok=True)
     for name in EXPLICIT:
         paper_carry.restore(name, a.runs, a.carry)
-    make_implicit_run(a.sus, a.runs, a.threads)
+    make_implicit_run(a.sus, a.runs, a.threads, a.ranks)
     header = [
         "run",
         "t (s)",

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <stdexcept>
 #include <variant>
@@ -33,8 +34,9 @@ constexpr double kRigidModeRegularization = 1e-10;
 constexpr double kUnknownNodeMass = 1e-9;
 
 // Newton's line search: the fractions 1, 1/2, ... of the correction tried (this many) until the
-// residual's norm falls below the last iterate's. When none lowers it (round-off near
-// convergence) the full correction is taken, as without a line search.
+// residual's norm falls below the last iterate's. When none lowers it, the fraction with the
+// lowest residual is taken (near convergence, where round-off hides the descent, any of them
+// is within Newton's tolerance of the others).
 constexpr int kLineSearchTrials = 5;
 
 }  // namespace
@@ -287,14 +289,17 @@ void EquilibriumSolver::takeStep(const EquilibriumProblem& problem, double dt, d
                                  const std::vector<double>& du, double residualNorm) {
   std::optional<ScopedTimer> s;
   if (timers_) s.emplace(*timers_, assemblyTask_);
+  double lowest = std::numeric_limits<double>::infinity(), best = 1.0;
   for (int halvings = 0; halvings < kLineSearchTrials; ++halvings) {
     const double step = std::ldexp(1.0, -halvings);
     addToDisplacement(du, step);
     assemble(problem, dt, stabilization, false);
-    if (ownedDot(residual_, residual_) < residualNorm) return;  // false for NaN
+    const double norm = ownedDot(residual_, residual_);
+    if (norm < residualNorm) return;  // false for NaN
+    if (norm < lowest) lowest = norm, best = step;
     addToDisplacement(du, -step);
   }
-  addToDisplacement(du, 1.0);
+  addToDisplacement(du, best);
 }
 
 NewtonReport EquilibriumSolver::solve(const EquilibriumProblem& problem, double dt,
@@ -343,25 +348,27 @@ NewtonReport EquilibriumSolver::solve(const EquilibriumProblem& problem, double 
       return report;
     }
     const double norm = ownedDot(du, du), qNorm = ownedDot(du, residual_);
+    normMax = std::max(normMax, norm);
+    if (report.iterations == 1) qNorm0 = std::abs(qNorm);
     // The ratios measure the whole correction, the distance Newton still sees to the
     // equilibrium, whatever fraction of it the line search takes.
-    takeStep(problem, dt, options.hourglassStabilization, du, residualNorm);
-    normMax = std::max(normMax, norm);
-    if (report.iterations == 1) qNorm0 = qNorm;
     const double dispRatio = norm / (normMax + 1e-100), energyRatio = qNorm / (qNorm0 + 1e-100);
     report.ratios.emplace_back(dispRatio, energyRatio);
     if (!std::isfinite(dispRatio) || !std::isfinite(energyRatio)) {
       report.failure = "a residual that is not a number";
       return report;
     }
-    if (dispRatio < 0 || energyRatio < 0) {
+    // du.r = du.K du up to the linear solve's error: a negative du.r beyond that error shows K
+    // is not positive along du; within it, |du.r| is what the energy test measures.
+    if (qNorm < -linear.energySlack) {
       report.failure = "a negative energy norm du.r (the Jacobian is not positive there)";
       return report;
     }
+    takeStep(problem, dt, options.hourglassStabilization, du, residualNorm);
     const bool dispDone =
         dispRatio <= options.convergenceDisp || normMax <= options.convergenceDisp;
     const bool energyDone =
-        energyRatio <= options.convergenceEnergy || qNorm0 <= options.convergenceEnergy;
+        std::abs(energyRatio) <= options.convergenceEnergy || qNorm0 <= options.convergenceEnergy;
     if (dispDone && energyDone) {
       report.converged = true;
       return report;

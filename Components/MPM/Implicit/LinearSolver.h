@@ -22,6 +22,9 @@ struct LinearSolve {
   bool converged = false;
   std::string reason;              // PETSc's KSPConvergedReason
   bool newPreconditioner = false;  // the preconditioner was built for this solve
+  // |x| |K x - b| (over all ranks): x.b - x.K x lies within +-energySlack (Cauchy-Schwarz), so
+  // x.b < -energySlack shows x.K x < 0, and a smaller negative x.b is the inexact solve's.
+  double energySlack = 0;
 };
 
 // This rank's block rows of the system: the first `owned` rows of its matrices are the global
