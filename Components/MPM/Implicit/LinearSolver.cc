@@ -22,8 +22,6 @@ constexpr int kReusedPreconditionerSlowdown = 4;
 // a few hundred (Figure 4's pillar: 197 in all 9 solves of its first step), and a failing one costs
 // Newton a retake at a smaller dt anyway.
 constexpr int kMaxIterations = 500;
-// GAMG's aggregation drops the graph's edges weaker than this (of the scaled matrix).
-constexpr double kAggregationThreshold = 0.02;
 
 void check(PetscErrorCode code, const char* what) {
   if (code != 0)
@@ -109,12 +107,6 @@ LinearSolver::LinearSolver(const BlockMatrix& pattern, RowLayout rows,
   PC pc = nullptr;
   check(KSPGetPC(o_->ksp, &pc), "KSPGetPC");
   check(PCSetType(pc, PCGAMG), "PCSetType");
-  // Plain (unsmoothed) aggregation, and graph edges below 0.02 of the diagonal dropped: on
-  // Figure 4's pillar fewer Krylov iterations, each cheaper, than GAMG's smoothed aggregation
-  // (docs/performance.md, "Quasi-static").
-  check(PCGAMGSetNSmooths(pc, 0), "PCGAMGSetNSmooths");
-  PetscReal threshold = kAggregationThreshold;
-  check(PCGAMGSetThreshold(pc, &threshold, 1), "PCGAMGSetThreshold");
   check(KSPSetFromOptions(o_->ksp), "KSPSetFromOptions");
 }
 
