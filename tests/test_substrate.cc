@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <omp.h>
 
+#include <algorithm>
 #include <sstream>
 #include <string>
 
@@ -14,10 +15,12 @@ namespace anode {
 namespace {
 
 // `saves`: <save> tags; `materialsExtra`: tags after the materials (an interface); `faces`: more
-// <Face> blocks.
+// <Face> blocks; `pillarConcentration`: the pillar's initial c (the substrate's is 0).
 std::string pillarOnSubstrate(const std::string& saves = "", const std::string& materialsExtra = "",
-                              const std::string& faces = "") {
-  auto material = [](const char* name, double K, double D0, const char* geom) {
+                              const std::string& faces = "",
+                              const std::string& pillarConcentration = "0") {
+  auto material = [](const char* name, double K, double D0, const char* geom,
+                     const std::string& c0) {
     std::ostringstream s;
     s << "<material name=\"" << name << "\"><density>2.33e21</density>"
       << "<constitutive_model type=\"rf_elastic_plastic\"><bulk_modulus>" << K << "</bulk_modulus>"
@@ -27,7 +30,7 @@ std::string pillarOnSubstrate(const std::string& saves = "", const std::string& 
       << "</diffusivity><max_concentration>1</max_concentration>"
       << "</diffusion_model><geom_object>" << geom
       << "<res>[2,2,2]</res><velocity>[0,0,0]</velocity>"
-      << "<concentration>0</concentration></geom_object></material>";
+      << "<concentration>" << c0 << "</concentration></geom_object></material>";
     return s.str();
   };
   std::ostringstream s;
@@ -43,9 +46,10 @@ std::string pillarOnSubstrate(const std::string& saves = "", const std::string& 
     << "<MaterialProperties><MPM>"
     << material("pillar", 67e6, 1e-7,
                 "<cylinder><bottom>[0,0,0.04]</bottom><top>[0,0,0.1]</top><radius>0.03</radius></"
-                "cylinder>")
+                "cylinder>",
+                pillarConcentration)
     << material("substrate", 180e6, 0.0,
-                "<box><min>[-0.08,-0.08,0]</min><max>[0.08,0.08,0.04]</max></box>")
+                "<box><min>[-0.08,-0.08,0]</min><max>[0.08,0.08,0.04]</max></box>", "0")
     << materialsExtra
     << "<contact><type>single_velocity</type><materials>[0,1]</materials></contact></MPM></"
        "MaterialProperties>"
@@ -95,6 +99,23 @@ TEST(Substrate, BondedSubstrateReceivesNoLithium) {
       ++shared;
     }
   EXPECT_GT(shared, 0);
+}
+
+// history.csv's min_c and max_c are of the pillar, which takes up lithium: the substrate's fixed
+// c = 0 does not pin min_c.
+TEST(Substrate, ConcentrationRangeIsOfTheMaterialsThatTakeUpLithium) {
+  omp_set_num_threads(2);
+  RunOptions o;
+  o.progress = false;
+  Simulation sim(pillarOnSubstrate("", "", "", "0.2"), "substrate.ups", o);
+  for (int s = 0; s < 5; ++s) sim.advance();
+  const std::vector<double>& c =
+      diffusionParticles(sim.mpm().materials()[0].particles).concentration;
+  const StepSummary summary = sim.mpm().summarize(Collective{});
+  EXPECT_EQ(summary.minConcentration, *std::min_element(c.begin(), c.end()));
+  EXPECT_EQ(summary.maxConcentration, *std::max_element(c.begin(), c.end()));
+  EXPECT_GE(summary.minConcentration, 0.2 - 1e-9);
+  EXPECT_GT(summary.maxConcentration, 0.2);  // the flux has raised the surface
 }
 
 // The substrate takes up no lithium: its concentration is not computed (NoConcentration kernels,

@@ -272,11 +272,16 @@ double ReactiveFlow::diffusionTimestep(const Grid& grid) const {
 
 void ReactiveFlow::summarize(const std::vector<MPMMaterial>& materials, StepSummary& s) const {
   s.diffusion = true;
-  for (const MPMMaterial& mat : materials) {
-    const ParticleSet& p = mat.particles;
+  // The range is of the materials whose concentration can change (a substrate's fixed c would
+  // pin it), of every material when none can.
+  const bool anyChanges = std::find(changes_.begin(), changes_.end(), true) != changes_.end();
+  for (size_t m = 0; m < materials.size(); ++m) {
+    const ParticleSet& p = materials[m].particles;
     const std::vector<double>& c = diffusionParticles(p).concentration;
+    const bool inRange = changes_[m] || !anyChanges;
     for (size_t i = 0; i < p.count(); ++i) {
       s.totalLithium += p.mass[i] * c[i];
+      if (!inRange) continue;
       s.minConcentration = std::min(s.minConcentration, c[i]);
       s.maxConcentration = std::max(s.maxConcentration, c[i]);
     }

@@ -92,7 +92,9 @@ class ReactiveFlow {
   // Material m's diffusivity model.
   const ScalarDiffusionModel& model(size_t m) const { return *materials_[m].model; }
 
-  // Adds the total lithium and the concentration range (initialised by the caller).
+  // Adds the total lithium and the concentration range (initialised by the caller): the range
+  // of the materials whose concentration can change (computesConcentration without output's
+  // request), of every material when none can.
   void summarize(const std::vector<MPMMaterial>& materials, StepSummary& s) const;
   void saveState(BinaryWriter& out) const;
   void loadState(BinaryReader& in);
