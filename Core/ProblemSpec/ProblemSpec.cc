@@ -123,10 +123,48 @@ PSNode PSNode::child(const char* tag) const {
   return PSNode(c, spec_);
 }
 
+namespace {
+
+// The number of single-character insertions, deletions and substitutions turning a into b.
+size_t editDistance(const std::string& a, const std::string& b) {
+  std::vector<size_t> row(b.size() + 1);
+  for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (size_t i = 1; i <= a.size(); ++i) {
+    size_t diagonal = row[0];
+    row[0] = i;
+    for (size_t j = 1; j <= b.size(); ++j) {
+      const size_t above = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] != b[j - 1])});
+      diagonal = above;
+    }
+  }
+  return row[b.size()];
+}
+
+// A tag this many edits from a required one is taken for it misspelt.
+constexpr size_t kMisspelling = 2;
+
+}  // namespace
+
 PSNode PSNode::requireChild(const char* tag) const {
   PSNode c = child(tag);
-  if (!c) fail("<" + name() + "> requires a <" + std::string(tag) + "> tag");
-  return c;
+  if (c) return c;
+  // A child nothing has read whose tag is close to the required one: name it, at its line.
+  for (const auto* e = e_->FirstChildElement(); e; e = e->NextSiblingElement())
+    if (!spec_->isUsed(e) && editDistance(e->Name(), tag) <= kMisspelling)
+      throw InputError(file(), e->GetLineNum(),
+                       "unknown tag <" + std::string(e->Name()) + "> in <" + name() + ">: <" +
+                           name() + "> requires a <" + std::string(tag) + "> tag");
+  fail("<" + name() + "> requires a <" + std::string(tag) + "> tag");
+}
+
+void PSNode::requireEverythingRead() const {
+  for (const auto* e = e_->FirstChildElement(); e; e = e->NextSiblingElement()) {
+    if (!spec_->isUsed(e))
+      throw InputError(file(), e->GetLineNum(),
+                       "unknown tag <" + std::string(e->Name()) + "> in <" + name() + ">");
+    PSNode(e, spec_).requireEverythingRead();
+  }
 }
 
 std::vector<PSNode> PSNode::children(const char* tag) const {

@@ -63,6 +63,10 @@ class PSNode {
   void acceptInert(const char* tag) const;
   // Mark this element and everything inside it as read.
   void markSubtreeUsed() const;
+  // For an element whose reading is complete: an error naming the first element inside it that
+  // nothing has read (as checkAllUsed() would after setup), so that a check depending on the
+  // element is not the first error a misspelt tag in it gives.
+  void requireEverythingRead() const;
 
   [[noreturn]] void fail(const std::string& message) const;
   // A feature the input asks for but this code does not support: an error, or a warning when the
@@ -92,6 +96,7 @@ class ProblemSpec {
   const std::vector<std::string>& warnings() const { return warnings_; }
 
   void markUsed(const tinyxml2::XMLElement* e) { used_.insert(e); }
+  bool isUsed(const tinyxml2::XMLElement* e) const { return used_.count(e) != 0; }
   void warn(const std::string& message) { warnings_.push_back(message); }
   // Throws an InputError naming every element that no part of setup read.
   void checkAllUsed() const;

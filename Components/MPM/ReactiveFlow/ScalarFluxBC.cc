@@ -87,6 +87,9 @@ std::vector<ScalarFluxBC> ScalarFluxBC::fromInput(const std::vector<PSNode>& blo
       curve.requireChild("id").fail("load curve <id> must be " + std::to_string(out.size() + 1) +
                                     ": ids number the <scalar_flux> blocks 1..N in file order");
     bc.load = LoadCurve::fromInput(curve);
+    // A misspelt tag (<cylinder_ends>) is reported as such, before setup finds that the
+    // geometry, read without it, flags no particle.
+    block.requireEverythingRead();
     out.push_back(std::move(bc));
   }
   return out;
