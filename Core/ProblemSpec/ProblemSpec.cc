@@ -141,21 +141,32 @@ size_t editDistance(const std::string& a, const std::string& b) {
   return row[b.size()];
 }
 
-// A tag this many edits from a required one is taken for it misspelt.
+// A tag this many edits from a required one may be it misspelt.
 constexpr size_t kMisspelling = 2;
+
+// Tags that differ only in their digits (<tuning1>, <tuning2>) are a family, not misspellings.
+std::string withoutDigits(std::string tag) {
+  tag.erase(std::remove_if(tag.begin(), tag.end(), [](char c) { return std::isdigit(c) != 0; }),
+            tag.end());
+  return tag;
+}
 
 }  // namespace
 
 PSNode PSNode::requireChild(const char* tag) const {
   PSNode c = child(tag);
   if (c) return c;
-  // A child nothing has read whose tag is close to the required one: name it, at its line.
+  std::string message = "<" + name() + "> requires a <" + std::string(tag) + "> tag";
+  // A child nothing has read so far whose tag is close to the required one: named as a likely
+  // misspelling (it may yet be read later, so this is a question, not a verdict).
   for (const auto* e = e_->FirstChildElement(); e; e = e->NextSiblingElement())
-    if (!spec_->isUsed(e) && editDistance(e->Name(), tag) <= kMisspelling)
-      throw InputError(file(), e->GetLineNum(),
-                       "unknown tag <" + std::string(e->Name()) + "> in <" + name() + ">: <" +
-                           name() + "> requires a <" + std::string(tag) + "> tag");
-  fail("<" + name() + "> requires a <" + std::string(tag) + "> tag");
+    if (!spec_->isUsed(e) && editDistance(e->Name(), tag) <= kMisspelling &&
+        withoutDigits(e->Name()) != withoutDigits(tag)) {
+      message +=
+          " (line " + std::to_string(e->GetLineNum()) + " has <" + e->Name() + ">: misspelt?)";
+      break;
+    }
+  fail(message);
 }
 
 void PSNode::requireEverythingRead() const {
