@@ -216,6 +216,8 @@ double MPM::advanceQuasiStatic(Collective, double t, double dt, double dtMin,
                             : std::to_string(kMaxRetakes) + " retakes with a smaller dt failed")
         << ". Newton's ratios |du|^2/max, du.r/first by iteration:";
       for (const auto& [disp, energy] : report.ratios) s << " (" << disp << ", " << energy << ")";
+      // Every rank decides this alike (Newton's tests are sums over all ranks): rank 0 reports.
+      if (!Communicator::isRoot()) throw StoppedOnAnotherRank(0);
       throw SimulationError(s.str());
     }
     ++newton_.retakes;
