@@ -1,8 +1,8 @@
 // sus: runs a Uintah-style .ups input, on one process or, under mpirun/srun, on every rank of
 // the job (docs/parallel.md). Exit codes: 0 done, 1 I/O or internal error, 2 bad input (nothing
-// written), 3 the simulation went bad (diagnostic printed), 4 stopped on request (SIGTERM or
-// SIGINT; a checkpoint written); a distributed run ends with the same code on every rank and
-// prints each message once.
+// written), 3 the simulation went bad (diagnostic printed), 4 stopped on request (SIGTERM,
+// SIGINT or SIGUSR1, the one to send mpirun; a checkpoint written); a distributed run ends with the
+// same code on every rank and prints each message once.
 #include <malloc.h>
 #include <omp.h>
 #include <sched.h>

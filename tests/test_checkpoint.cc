@@ -127,8 +127,12 @@ TEST_P(Restart, ContinuesBitForBit) {
                  input.string()})
                 .exitCode,
             0);
+  // The stop at --max-timesteps leaves a checkpoint at its step: the restart takes no step twice.
   const std::vector<std::string> checkpoints = listCheckpoints((s.dir / "parts").string());
   ASSERT_FALSE(checkpoints.empty()) << "the interrupted run wrote no checkpoint";
+  char name[32];
+  std::snprintf(name, sizeof name, "step_%06ld.ckpt", c.interruptAt);
+  EXPECT_NE(checkpoints.front().find(name), std::string::npos) << checkpoints.front();
   const testing::SusResult second = sus({"-restart", (s.dir / "parts").string()}, c.steps);
   ASSERT_EQ(second.exitCode, 0) << second.output;
   EXPECT_NE(second.output.find("restarting from " + checkpoints.front()), std::string::npos)
@@ -170,10 +174,12 @@ TEST(Restart, SkipsADamagedNewestCheckpoint) {
   ASSERT_EQ(sus({"-o", (s.dir / "whole").string(), input}).exitCode, 0);
   ASSERT_EQ(sus({"--max-timesteps", "1000", "-o", (s.dir / "parts").string(), input}).exitCode, 0);
   const std::vector<std::string> checkpoints = listCheckpoints((s.dir / "parts").string());
-  ASSERT_EQ(checkpoints.size(), 2u);  // steps 900 and 600, cycle = 2
+  // The stop's at step 1000, then the schedule's at 900 and 600 (cycle = 2).
+  ASSERT_EQ(checkpoints.size(), 3u);
+  EXPECT_NE(checkpoints[0].find("auto_step_001000.ckpt"), std::string::npos) << checkpoints[0];
   // The history is in history.csv, not in the checkpoints: 300 steps more add only the .pvd
   // entries of their outputs, far less than 300 rows.
-  EXPECT_LT(fs::file_size(checkpoints[0]), fs::file_size(checkpoints[1]) + 300 * 40);
+  EXPECT_LT(fs::file_size(checkpoints[1]), fs::file_size(checkpoints[2]) + 300 * 40);
   EXPECT_TRUE(hasIntactHash(checkpoints[0]));
   fs::resize_file(checkpoints[0], fs::file_size(checkpoints[0]) / 2);
   EXPECT_FALSE(hasIntactHash(checkpoints[0]));
@@ -201,7 +207,10 @@ TEST(Restart, SummaryRateCountsTheStepsOfThisRun) {
   static const std::regex from(R"rx(restarting from \S+ \(step (\d+),)rx");
   ASSERT_TRUE(std::regex_search(restart.output, m, from)) << restart.output;
   const long first = std::stol(m[1]);
-  EXPECT_LE(first, 1000);
+  EXPECT_EQ(first, 1000);  // the stop's own checkpoint
+  // At the input's end the run's own checkpoints are removed (the schedule's stay).
+  for (const std::string& c : listCheckpoints(run))
+    EXPECT_EQ(c.find("auto_step"), std::string::npos) << c;
   static const std::regex summary(
       R"rx(sus: 2000 steps, t = \S+, (\d+) particles, wall (\S+) s \(after the restart: (\d+) steps, from step (\d+)\))rx");
   ASSERT_TRUE(std::regex_search(restart.output, m, summary)) << restart.output;
@@ -286,6 +295,10 @@ TEST(Restart, WithoutACheckpointIsAnError) {
                  kSource + "/inputs/Pillar/PillarImpact.ups"})
                 .exitCode,
             0);
+  // The stop left its own checkpoint; without it (removed, or a run to the input's end without
+  // a schedule) there is none.
+  ASSERT_EQ(listCheckpoints((s.dir / "run").string()).size(), 1u);
+  fs::remove_all(s.dir / "run" / "checkpoints");
   const testing::SusResult restart = sus({"-restart", (s.dir / "run").string()});
   EXPECT_EQ(restart.exitCode, 1);
   EXPECT_NE(restart.output.find("no checkpoint in"), std::string::npos) << restart.output;

@@ -354,12 +354,17 @@ void DataArchiver::removeOutputsAfter(long step) {
     for (const char* folder : {"particles", "grid"}) {
       const fs::path path = fs::path(dir_) / folder;
       if (!fs::is_directory(path)) continue;
+      const PVDSeries& series = std::string(folder) == "grid" ? gridSeries_ : particleSeries_;
+      const bool seriesHasStep =
+          !series.entries().empty() &&
+          fs::path(series.entries().back().second).stem() == stepName("step_", step);
       std::vector<fs::path> later;
       for (const fs::directory_entry& e : fs::directory_iterator(path)) {
         std::smatch m;
         const std::string name = e.path().filename().string();
-        if (std::regex_match(name, m, output) && std::stol(m[1].str()) > step)
-          later.push_back(e.path());
+        if (!std::regex_match(name, m, output)) continue;
+        const long fileStep = std::stol(m[1].str());
+        if (fileStep > step || (fileStep == step && !seriesHasStep)) later.push_back(e.path());
       }
       for (const fs::path& p : later) fs::remove(p);
     }

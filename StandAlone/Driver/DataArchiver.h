@@ -69,8 +69,9 @@ class DataArchiver {
   // the checkpoint to another machine), with a note of how many.
   void writeIndexFiles();
   // Removes what an interrupted run wrote beyond its checkpoint at `step`: the particle and grid
-  // files of later steps and the history rows after `step` (history.csv is rewritten whole,
-  // atomically, once).
+  // files of later steps, those of `step` itself that the checkpoint's series lacks (a stop's
+  // output, written after its checkpoint) and the history rows after `step` (history.csv is
+  // rewritten whole, atomically, once).
   void removeOutputsAfter(long step);
 
  private:

@@ -41,6 +41,7 @@ void Simulation::setup() {
   if (archiver_.savesConcentrationFields() || scenes_.draws("p.concentrationGradient"))
     mpm_.computeConcentrationOfEveryMaterial();
   spec_->checkAllUsed();
+  inputMaxTimesteps_ = time_.maxTimesteps;
   if (options_.maxTimesteps > 0 &&
       (time_.maxTimesteps == 0 || options_.maxTimesteps < time_.maxTimesteps))
     time_.maxTimesteps = options_.maxTimesteps;
@@ -109,20 +110,27 @@ void Simulation::run() {
     particleStepsOfThisProcess_ += particles;
     reportSymmetryFaces();
     const bool done = finished(Collective{});
+    const bool atInputEnd = done && reachedInputEnd();
     // A rebalance is followed by a checkpoint, so a replay to the last good state never
     // crosses one (it takes the same steps with the same boxes).
     bool rebalanced = false;
-    if (done || archiver_.isOutputStep(step_, t_)) {
+    if (atInputEnd || archiver_.isOutputStep(step_, t_)) {
       writeOutput(true);
       rebalanced = !done && rebalance(Collective{});
     }
     scenes_.renderDue(t_, mpm_, archiver_.directory());
     const Requests anyRank = requestsOfAnyRank(Collective{}, done);
     stoppedOnRequest_ = anyRank.stop;
+    // A stop before the input's end (a signal, --max-timesteps, <max_wall_time>) leaves a
+    // checkpoint at its step, so a restart takes no step twice.
+    const bool stopping = anyRank.stop || (done && !atInputEnd);
     if (checkpoints_.isDue(step_, t_, lastCheckpointTime_))
       writeCheckpoint(Collective{}, CheckpointKind::Scheduled);
-    else if (rebalanced || anyRank.stop || anyRank.replayCheckpoint)
+    else if (rebalanced || stopping || anyRank.replayCheckpoint)
       writeCheckpoint(Collective{}, CheckpointKind::Automatic);
+    // The stopped state as the series' last entry, after the checkpoint: a restart from it
+    // removes this output, so the continued series is the uninterrupted run's.
+    if (stopping && archiver_.lastOutputStep() != step_) writeOutput(true);
     if (progress_)
       progress_->update(step_, t_, stepDt,
                         mpm_.flags().implicit ? mpm_.newtonCounts().lastStep().c_str()
@@ -131,14 +139,22 @@ void Simulation::run() {
     if (done || stoppedOnRequest_) break;
   }
   if (progress_) progress_->finish();
-  if (stoppedOnRequest_) {
-    if (Communicator::isRoot())
+  if (Communicator::isRoot()) {
+    if (stoppedOnRequest_)
       std::fprintf(stderr,
-                   "sus: stopped on request (SIGTERM or SIGINT) after step %ld, t = %.6e: "
-                   "checkpoint %s; continue with sus -restart %s\n",
+                   "sus: stopped on request (SIGTERM, SIGINT or SIGUSR1) after step %ld, t = "
+                   "%.6e: checkpoint %s; continue with sus -restart %s\n",
                    step_, t_, newestCheckpoint_.c_str(), archiver_.directory().c_str());
-  } else if (Communicator::isRoot()) {
-    removeAutomaticCheckpoints(archiver_.directory());
+    else if (!reachedInputEnd())
+      std::fprintf(stderr,
+                   "sus: stopped after step %ld, t = %.6e, before the input's end (%s): "
+                   "checkpoint %s; continue with sus -restart %s\n",
+                   step_, t_,
+                   time_.maxTimesteps > 0 && step_ >= time_.maxTimesteps ? "--max-timesteps"
+                                                                         : "<max_wall_time>",
+                   newestCheckpoint_.c_str(), archiver_.directory().c_str());
+    else
+      removeAutomaticCheckpoints(archiver_.directory());
   }
   wallSeconds_ = wallTime();
 }
@@ -173,6 +189,10 @@ void Simulation::start(Collective, bool restart) {
 
 double Simulation::wallTime() const {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - runStart_).count();
+}
+
+bool Simulation::reachedInputEnd() const {
+  return t_ >= time_.maxTime || (inputMaxTimesteps_ > 0 && step_ >= inputMaxTimesteps_);
 }
 
 bool Simulation::finished(Collective) const {

@@ -39,7 +39,7 @@ class Simulation {
   Simulation(const std::string& text, const std::string& name, const RunOptions& options);
 
   // Runs to the end, writing output; throws SimulationError if the state goes bad. Returns early,
-  // after a checkpoint at the end of a step, when SIGTERM or SIGINT asked it to stop
+  // after a checkpoint at the end of a step, when SIGTERM, SIGINT or SIGUSR1 asked it to stop
   // (stoppedOnRequest()).
   void run();
   bool stoppedOnRequest() const { return stoppedOnRequest_; }
@@ -73,6 +73,9 @@ class Simulation {
   // Whether the run has reached the end <Time> sets (time, steps or wall time). Collective
   // when a wall time is set.
   bool finished(Collective) const;
+  // Whether the run reached the end the input sets (maxTime or <max_Timesteps>), not a limit of
+  // this process (--max-timesteps, <max_wall_time>) after which a restart continues.
+  bool reachedInputEnd() const;
   // Continues the run of the restart directory from its newest complete checkpoint; returns its
   // path.
   std::string restartFromNewestCheckpoint(Collective);
@@ -118,13 +121,12 @@ class Simulation {
   CheckpointSchedule checkpoints_;
   std::string newestCheckpoint_;  // of either kind: where a replay to the last good state starts
   double t_ = 0, dt_ = 0;
-  double lastStepDt_ = 0;
-  double substepMultiplier_ =
-      1;  // <timestep_multiplier>: an implicit run's diffusion sub-steps  // the dt the last step
-          // took (an implicit one may retake it smaller)
+  double lastStepDt_ = 0;  // the dt the last step took (an implicit one may retake it smaller)
+  double substepMultiplier_ = 1;  // <timestep_multiplier>: an implicit run's diffusion sub-steps
   StableTimestep::Limit dtLimit_ = StableTimestep::Mechanics;   // the limit that set dt_
   std::array<long, StableTimestep::kLimits> stepsLimitedBy_{};  // steps of this process's run
   long step_ = 0;
+  long inputMaxTimesteps_ = 0;  // <max_Timesteps> (0: none), before --max-timesteps
   // Particle-steps of every rank: since step 0, restarts included (as of the state: checkpoints
   // hold it), and of this process's steps.
   double particleSteps_ = 0, particleStepsOfThisProcess_ = 0;

@@ -17,6 +17,7 @@ extern "C" void requestStop(int) {
 void catchStopSignals() {
   std::signal(SIGTERM, requestStop);
   std::signal(SIGINT, requestStop);
+  std::signal(SIGUSR1, requestStop);
 }
 
 bool stopRequested() {

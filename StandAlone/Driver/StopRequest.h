@@ -1,13 +1,15 @@
-// SIGTERM and SIGINT ask a run to stop: the time loop finishes its step, writes a checkpoint and
-// returns, so `sus -restart` continues with nothing lost (SIGKILL still loses the work since the
-// newest checkpoint).
+// SIGTERM, SIGINT and SIGUSR1 ask a run to stop: the time loop finishes its step, writes a
+// checkpoint and returns, so `sus -restart` continues with nothing lost (SIGKILL still loses the
+// work since the newest checkpoint). SIGUSR1 is the one for mpirun: Open MPI passes it on to
+// every rank and does nothing else, while a SIGTERM or SIGINT to mpirun makes it kill the ranks
+// (SIGTERM, then SIGKILL a second later).
 #pragma once
 
 namespace anode {
 
-// Installs the handlers (from then on the two signals only set the request).
+// Installs the handlers (from then on the three signals only set the request).
 void catchStopSignals();
-// True once SIGTERM or SIGINT has arrived.
+// True once SIGTERM, SIGINT or SIGUSR1 has arrived.
 bool stopRequested();
 
 }  // namespace anode

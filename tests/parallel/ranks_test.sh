@@ -17,6 +17,10 @@
 #                                most 0.1% of the pixels differ)
 #   rebalance INPUT STEPS        2 ranks draw their boxes anew as the particles drift, and agree
 #                                with one rank
+#   signal INPUT STEPS           SIGUSR1 to mpirun (2 ranks), then SIGTERM to the rank processes
+#                                themselves: exit code 4 from mpirun, the message once, a
+#                                checkpoint and the last output at the last step; the first stop's
+#                                2-rank restart agrees with one rank after STEPS more steps
 # TOLERANCE (environment) replaces compare_runs.py's 1e-9 of each array's scale.
 set -uo pipefail
 mode=$1
@@ -125,6 +129,41 @@ EOF
     else
       echo "killed before the first checkpoint"
     fi
+    ;;
+  signal)
+    input=$1 steps=$2
+    # stopRun SIGNAL DIR: a 2-rank run stopped by SIGNAL ("mpirun": SIGUSR1 to mpirun, "ranks":
+    # SIGTERM to its rank processes) a second into its steps; prints the step it stopped after.
+    stopRun() {
+      mpirun -np 2 "$sus" --threads 1 -o "$2" "$input" > "$2.log" 2>&1 &
+      local job=$!
+      for _ in $(seq 300); do ls "$2"/checkpoints/*.ckpt > /dev/null 2>&1 && break; sleep 0.1; done
+      sleep 1
+      if [ "$1" = mpirun ]; then kill -USR1 $job; else pkill -TERM -P $job; fi
+      wait $job
+      local code=$?
+      [ $code = 4 ] || fail "$1: exit code $code, not 4 ($(tail -3 "$2.log"))"
+      [ "$(grep -c "stopped on request" "$2.log")" = 1 ] || fail "$1: the stop reported $(grep -c "stopped on request" "$2.log") times"
+      local last
+      last=$(tail -1 "$2/history.csv" | cut -d, -f1)
+      ls "$2"/checkpoints/*step_$(printf %06d "$last").ckpt > /dev/null 2>&1 ||
+        fail "$1: no checkpoint at the last step $last ($(ls "$2"/checkpoints))"
+      grep -q "step_$(printf %06d "$last").pvtu" "$2/particles.pvd" || fail "$1: no output of the last step $last"
+      echo "$last"
+    }
+    stopped=$(stopRun mpirun "$work/r") || fail "$stopped"
+    echo "SIGUSR1 to mpirun: every rank stopped after step $stopped, exit 4"
+    again=$(stopRun ranks "$work/t") || fail "$again"
+    echo "SIGTERM to the ranks: stopped after step $again, exit 4"
+    end=$((stopped + steps))
+    run 1 "$work/reference" --max-timesteps "$end" "$input" || fail "reference: exit $?"
+    restartRun 2 "$work/r" --max-timesteps "$end" || fail "restart: exit $?"
+    grep -q "restarting from .*step_$(printf %06d "$stopped").ckpt" "$work/r.restart.log" ||
+      fail "the restart did not start at step $stopped: $(grep restarting "$work/r.restart.log")"
+    [ -e "$work/r/particles/step_$(printf %06d "$stopped").pvtu" ] && ! /usr/bin/python3 -c "import sys; sys.exit(0 if 'step_$(printf %06d "$stopped").pvtu' in open('$work/r/particles.pvd').read() else 1)" &&
+      fail "the stop's output is left out of the series but not removed"
+    $compare "$(stepFile "$work/reference" "$end")" "$(stepFile "$work/r" "$end")" | tail -1 ||
+      fail "the restart after the stop differs from 1 rank"
     ;;
   badinput)
     input=$1
