@@ -278,6 +278,7 @@ TEST(Checkpoint, HistoryRowPaddingIsStoredAsZeros) {
     row->time = row->dt = row->kineticEnergy = row->minJ = row->maxJ = row->wallSeconds = 1;
     row->diffusion = true;
     row->totalLithium = row->minConcentration = row->maxConcentration = 0.5;
+    row->lithiumRate = row->stateOfCharge = 0.5;
     DataArchiver archiver;
     archiver.recordHistory(*row);
     const fs::path path = s.dir / ("state_" + std::to_string(fill));

@@ -101,8 +101,8 @@ TEST(Substrate, BondedSubstrateReceivesNoLithium) {
   EXPECT_GT(shared, 0);
 }
 
-// history.csv's min_c and max_c are of the pillar, which takes up lithium: the substrate's fixed
-// c = 0 does not pin min_c.
+// history.csv's min_c, max_c and state of charge are of the pillar, which takes up lithium: the
+// substrate's fixed c = 0 pins neither min_c nor the charge.
 TEST(Substrate, ConcentrationRangeIsOfTheMaterialsThatTakeUpLithium) {
   omp_set_num_threads(2);
   RunOptions o;
@@ -116,6 +116,15 @@ TEST(Substrate, ConcentrationRangeIsOfTheMaterialsThatTakeUpLithium) {
   EXPECT_EQ(summary.maxConcentration, *std::max_element(c.begin(), c.end()));
   EXPECT_GE(summary.minConcentration, 0.2 - 1e-9);
   EXPECT_GT(summary.maxConcentration, 0.2);  // the flux has raised the surface
+  // The state of charge is the pillar's too (its max_concentration is 1).
+  const ParticleSet& pillar = sim.mpm().materials()[0].particles;
+  double lithium = 0, mass = 0;
+  for (size_t i = 0; i < pillar.count(); ++i) {
+    lithium += pillar.mass[i] * c[i];
+    mass += pillar.mass[i];
+  }
+  EXPECT_NEAR(summary.chargeableLithium / summary.lithiumCapacity, lithium / mass,
+              1e-12 * lithium / mass);
 }
 
 // The substrate takes up no lithium: its concentration is not computed (NoConcentration kernels,

@@ -386,12 +386,14 @@ StepSummary MPM::summarize(Collective) const {
   }
   if (diffusion_) diffusion_->summarize(materials_, s);
   if (distributed_) {
-    double sums[3] = {s.kineticEnergy, s.totalLithium, static_cast<double>(s.particles)};
+    double sums[5] = {s.kineticEnergy, s.totalLithium, static_cast<double>(s.particles),
+                      s.chargeableLithium, s.lithiumCapacity};
     double lows[2] = {s.minJ, s.minConcentration}, highs[2] = {s.maxJ, s.maxConcentration};
-    collective::sum(sums, 3);
+    collective::sum(sums, 5);
     collective::minimum(lows, 2);
     collective::maximum(highs, 2);
     s.kineticEnergy = sums[0], s.totalLithium = sums[1], s.particles = static_cast<size_t>(sums[2]);
+    s.chargeableLithium = sums[3], s.lithiumCapacity = sums[4];
     s.minJ = lows[0], s.minConcentration = lows[1], s.maxJ = highs[0],
     s.maxConcentration = highs[1];
   }

@@ -120,6 +120,7 @@ class MPM {
   const GridBoundaryConditions& gridBCs() const { return gridBCs_; }
   // The diffusion subcomponent; null without <do_scalar_diffusion>true.
   const ReactiveFlow* diffusion() const { return diffusion_.get(); }
+  ReactiveFlow* diffusion() { return diffusion_.get(); }
   // For an output that saves them: the concentration fields of every material, also of those
   // whose concentration cannot change (ReactiveFlow::computesConcentration).
   void computeConcentrationOfEveryMaterial() { diffusion_->computeEveryMaterial(); }

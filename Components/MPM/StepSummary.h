@@ -11,6 +11,9 @@ struct StepSummary {
   size_t particles = 0;
   bool diffusion = false;
   double totalLithium = 0;  // sum m c over all materials
+  // Over the materials whose c can change (of every material when none can): sum m c and
+  // sum m c_max, whose ratio is the state of charge.
+  double chargeableLithium = 0, lithiumCapacity = 0;
   double minConcentration = 0, maxConcentration = 0;
 };
 

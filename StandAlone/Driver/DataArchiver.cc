@@ -263,13 +263,18 @@ void DataArchiver::writeHistory() {
   std::ostringstream s;
   if (!historyStarted_)
     s << "step,time,dt,particles,kinetic_energy,min_J,max_J,"
-      << (unwritten_.front().diffusion ? "total_lithium,min_c,max_c," : "") << "wall_seconds\n";
+      << (unwritten_.front().diffusion
+              ? "total_lithium,min_c,max_c,lithium_rate,state_of_charge,capacity_mAh_g,"
+              : "")
+      << "wall_seconds\n";
   s << std::setprecision(10);
   for (const HistoryRow& r : unwritten_) {
     s << r.step << ',' << r.time << ',' << r.dt << ',' << r.particles << ',' << r.kineticEnergy
       << ',' << r.minJ << ',' << r.maxJ << ',';
     if (r.diffusion)
-      s << r.totalLithium << ',' << r.minConcentration << ',' << r.maxConcentration << ',';
+      s << r.totalLithium << ',' << r.minConcentration << ',' << r.maxConcentration << ','
+        << r.lithiumRate << ',' << r.stateOfCharge << ','
+        << r.stateOfCharge * kSiliconCapacityAtFull << ',';
     s << r.wallSeconds << '\n';
   }
   const std::string path = (fs::path(dir_) / "history.csv").string();

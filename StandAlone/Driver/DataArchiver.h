@@ -17,7 +17,14 @@ struct HistoryRow {
   double time, dt, kineticEnergy, minJ, maxJ, wallSeconds;
   bool diffusion;
   double totalLithium, minConcentration, maxConcentration;
+  // d(total lithium)/dt over the step (the current, in lithium per time), and the state of
+  // charge: sum m c / sum m c_max over the materials whose c can change.
+  double lithiumRate, stateOfCharge;
 };
+
+// The specific capacity at c = max_concentration of silicon normalised as the paper (c = 1 at
+// Li15Si4, 3.75 Li per Si): 3.75 F / M_Si, in mAh per gram of silicon.
+constexpr double kSiliconCapacityAtFull = 3.75 * 96485.33212 / 28.0855 / 3.6;
 
 class DataArchiver {
  public:

@@ -131,11 +131,17 @@ void Simulation::run() {
     // The stopped state as the series' last entry, after the checkpoint: a restart from it
     // removes this output, so the continued series is the uninterrupted run's.
     if (stopping && archiver_.lastOutputStep() != step_) writeOutput(true);
-    if (progress_)
-      progress_->update(step_, t_, stepDt,
-                        mpm_.flags().implicit ? mpm_.newtonCounts().lastStep().c_str()
-                                              : StableTimestep::name(stepLimit),
-                        particleStepsOfThisProcess_, done);
+    if (progress_) {
+      std::string limit =
+          mpm_.flags().implicit ? mpm_.newtonCounts().lastStep() : StableTimestep::name(stepLimit);
+      if (mpm_.diffusion()) {
+        char charge[64];
+        std::snprintf(charge, sizeof charge, ", SOC %.2f%% = %.0f mAh/g", 100 * stateOfCharge_,
+                      stateOfCharge_ * kSiliconCapacityAtFull);
+        limit += charge;
+      }
+      progress_->update(step_, t_, stepDt, limit.c_str(), particleStepsOfThisProcess_, done);
+    }
     if (done || stoppedOnRequest_) break;
   }
   if (progress_) progress_->finish();
@@ -236,9 +242,18 @@ void Simulation::reportSetup(Collective) {
 
 size_t Simulation::recordHistoryRow(double stepDt) {
   const StepSummary s = mpm_.summarize(Collective{});
+  const double lithiumRate =
+      stepDt > 0 ? (s.totalLithium - archiver_.lastHistoryRow().totalLithium) / stepDt : 0.0;
+  stateOfCharge_ = s.lithiumCapacity > 0 ? s.chargeableLithium / s.lithiumCapacity : 0.0;
   archiver_.recordHistory({step_, s.particles, t_, stepDt, s.kineticEnergy, s.minJ, s.maxJ,
                            earlierWallSeconds_ + wallTime(), s.diffusion, s.totalLithium,
-                           s.minConcentration, s.maxConcentration});
+                           s.minConcentration, s.maxConcentration, lithiumRate, stateOfCharge_});
+  if (mpm_.diffusion())
+    for (const std::string& note : mpm_.diffusion()->takeRunNotes()) {
+      if (!Communicator::isRoot()) continue;
+      if (progress_) progress_->finish();
+      std::fprintf(stderr, "note: %s\n", note.c_str());
+    }
   return s.particles;
 }
 

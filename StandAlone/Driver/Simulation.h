@@ -127,6 +127,7 @@ class Simulation {
   std::array<long, StableTimestep::kLimits> stepsLimitedBy_{};  // steps of this process's run
   long step_ = 0;
   long inputMaxTimesteps_ = 0;  // <max_Timesteps> (0: none), before --max-timesteps
+  double stateOfCharge_ = 0;    // of the last history row
   // Particle-steps of every rank: since step 0, restarts included (as of the state: checkpoints
   // hold it), and of this process's steps.
   double particleSteps_ = 0, particleStepsOfThisProcess_ = 0;

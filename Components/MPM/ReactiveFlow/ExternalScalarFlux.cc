@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <sstream>
 
 #include "Components/MPM/ReactiveFlow/FluxRestriction.h"
 #include "Components/MPM/ReactiveFlow/FluxSurfaceArea.h"
@@ -104,13 +105,71 @@ std::vector<ExternalScalarFlux::Flagged> ExternalScalarFlux::assignToParticles(
   return report;
 }
 
+std::vector<double> ExternalScalarFlux::fluxes(const std::vector<MPMMaterial>& materials,
+                                               const std::vector<DiffusionMaterial>& diffusion,
+                                               double t, bool overRanks) {
+  const size_t n = bcs_.size();
+  std::vector<double> J(n);
+  bool galvanostatic = false;
+  for (size_t b = 0; b < n; ++b) {
+    J[b] = sign_ * bcs_[b].load.at(t);
+    galvanostatic = galvanostatic || bcs_[b].mode == ScalarFluxBC::Mode::Galvanostatic;
+  }
+  if (!galvanostatic) return J;
+  ended_.resize(n, 0);
+  // Per BC: sum m R(c) A / V cmax (the lithium rate per unit J) and sum m A / V cmax (the same
+  // unrestricted), in particle order (the same bits run to run).
+  std::vector<double> sums(2 * n, 0.0);
+  for (size_t m = 0; m < materials.size(); ++m) {
+    const ParticleSet& p = materials[m].particles;
+    const ConstDiffusionParticles d(p);
+    if (d.loadCurveID.empty()) continue;
+    const double cmax = diffusion[m].model->maxConcentration;
+    for (size_t i = 0; i < p.count(); ++i)
+      for (int s = 0; s < 3 && d.loadCurveID[i][s] > 0; ++s) {
+        const size_t b = d.loadCurveID[i][s] - 1;
+        if (bcs_[b].mode != ScalarFluxBC::Mode::Galvanostatic) continue;
+        const double area =
+            bcs_[b].deformedArea
+                ? d.area[i][s] * bcs_[b].areaStretch(p.F[i], p.x[i] - p.displacement[i])
+                : d.area[i][s];
+        const double unrestricted = p.mass[i] * area / p.volume[i] * cmax;
+        sums[b] += unrestricted * fluxRestriction(d.concentration[i] / cmax, J[b] >= 0);
+        sums[n + b] += unrestricted;
+      }
+  }
+  if (overRanks) collective::sum(sums.data(), static_cast<int>(sums.size()));
+  for (size_t b = 0; b < n; ++b) {
+    const ScalarFluxBC& bc = bcs_[b];
+    if (bc.mode != ScalarFluxBC::Mode::Galvanostatic) continue;
+    // The flagged surface's mean restriction (weighted as the flux shares the rate).
+    const double meanRestriction = sums[n + b] > 0 ? sums[b] / sums[n + b] : 0.0;
+    if (!ended_[b] && meanRestriction <= bc.cutoff) {
+      ended_[b] = 1;
+      std::ostringstream s;
+      s << "<scalar_flux> " << b + 1 << " (line " << bc.line << ", galvanostatic): its current "
+        << "ends at t = " << t << ": the flagged surface's mean restriction R is "
+        << meanRestriction << ", at or below <cutoff> " << bc.cutoff
+        << " (the surface is nearly full)";
+      notes_.push_back(s.str());
+    }
+    J[b] = ended_[b] ? 0.0 : J[b] / sums[b];
+  }
+  return J;
+}
+
+std::vector<std::string> ExternalScalarFlux::takeNotes() {
+  std::vector<std::string> notes;
+  notes.swap(notes_);
+  return notes;
+}
+
 void ExternalScalarFlux::computeFluxRates(std::vector<MPMMaterial>& materials,
-                                          const std::vector<DiffusionMaterial>& diffusion,
-                                          double t) {
+                                          const std::vector<DiffusionMaterial>& diffusion, double t,
+                                          bool overRanks) {
   maxInflowRate_ = maxOutflowRate_ = 0;
   if (bcs_.empty()) return;
-  std::vector<double> J(bcs_.size());
-  for (size_t b = 0; b < bcs_.size(); ++b) J[b] = sign_ * bcs_[b].load.at(t);
+  const std::vector<double> J = fluxes(materials, diffusion, t, overRanks);
   for (size_t m = 0; m < materials.size(); ++m) {
     ParticleSet& p = materials[m].particles;
     const DiffusionParticles d(p);
@@ -205,12 +264,16 @@ void ExternalScalarFlux::saveState(BinaryWriter& out) const {
   out.value(sign_);
   out.value(maxInflowRate_);
   out.value(maxOutflowRate_);
+  out.value<uint64_t>(ended_.size());
+  for (char e : ended_) out.value(e);
 }
 
 void ExternalScalarFlux::loadState(BinaryReader& in) {
   sign_ = in.value<double>();
   maxInflowRate_ = in.value<double>();
   maxOutflowRate_ = in.value<double>();
+  ended_.resize(in.value<uint64_t>());
+  for (char& e : ended_) e = in.value<char>();
 }
 
 void markSourceNodes(const ParticleSet& p, const InterpolationWeights& W,

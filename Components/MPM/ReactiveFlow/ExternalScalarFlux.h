@@ -3,6 +3,7 @@
 // their sources reach, and the sign flips of <do_auto_cycle_bc>.
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "Components/MPM/ActiveNodes.h"
@@ -41,9 +42,14 @@ class ExternalScalarFlux {
                                          const Grid& grid) const;
   // Eqs. 16-17: rate_p = R(c_p) sum_k J_k(t) A_k / V_p, the restriction applied once; also the
   // largest unrestricted inflow and outflow rates, sum J A / V over the BCs of either sign, for
-  // the time-step limit.
+  // the time-step limit. A galvanostatic BC's J_k is its lithium rate Q_k(t) over
+  // sum_p m_p R(c_p) A_pk / V_p (its flagged particles, over every rank when `overRanks`; at
+  // setup each rank holds them all): its particles take up Q_k in all, shared as a uniform flux
+  // would share it.
   void computeFluxRates(std::vector<MPMMaterial>& materials,
-                        const std::vector<DiffusionMaterial>& diffusion, double t);
+                        const std::vector<DiffusionMaterial>& diffusion, double t, bool overRanks);
+  // The notes of galvanostatic BCs whose current ended since the last call (rank 0 prints them).
+  std::vector<std::string> takeNotes();
   // The flux limit (docs/diffusion.md, "Time step"): the longest step in which no particle of a
   // material the fluxes reach passes the restriction's root, taken at the fullest particle below
   // the root (the emptiest above the mirrored root for an outflow), as every particle's source
@@ -63,7 +69,15 @@ class ExternalScalarFlux {
   void loadState(BinaryReader& in);
 
  private:
+  // The flux J_k of each BC at time t: its load (times the auto-cycle sign), or for a
+  // galvanostatic BC the J that delivers its lithium rate (0 once its current ended).
+  std::vector<double> fluxes(const std::vector<MPMMaterial>& materials,
+                             const std::vector<DiffusionMaterial>& diffusion, double t,
+                             bool overRanks);
+
   std::vector<ScalarFluxBC> bcs_;
+  std::vector<char> ended_;  // per BC: a galvanostatic BC whose surface reached its cutoff
+  std::vector<std::string> notes_;
   double sign_ = 1;            // do_auto_cycle_bc: +1 lithiates, -1 delithiates
   double maxInflowRate_ = 0;   // max over particles of sum J A / V over the BCs with J > 0
   double maxOutflowRate_ = 0;  // the same for |J|, J < 0

@@ -110,6 +110,15 @@ void ReactiveFlow::initialize(const PSNode& root, const Grid& grid,
       s << " (its surface " << f.surfaceArea << ", of which on the body " << f.bodyArea << ")";
     else
       s << " (their particle faces)";
+    if (flux_.bcs()[f.bc].mode == ScalarFluxBC::Mode::Galvanostatic) {
+      const ParticleSet& p = materials[f.material].particles;
+      double capacity = 0;
+      for (size_t i = 0; i < p.count(); ++i) capacity += p.mass[i];
+      s << "; galvanostatic: its load is the lithium rate into them in all, and the material "
+           "holds "
+        << capacity * model(f.material).maxConcentration
+        << " of lithium (sum m c) at max_concentration";
+    }
     setupReport_.push_back(s.str());
   }
   if (flags_.autoCycle && std::none_of(materials_.begin(), materials_.end(),
@@ -129,7 +138,8 @@ void ReactiveFlow::initialize(const PSNode& root, const Grid& grid,
     if (!changes_.back()) noUptake_.push_back(describeMaterial(materials[m], m));
   }
   computeDiffusivity(materials, initTime);
-  flux_.computeFluxRates(materials, materials_, initTime);
+  // Setup: every rank holds every particle, so the galvanostatic sums are local.
+  flux_.computeFluxRates(materials, materials_, initTime, false);
 }
 
 void ReactiveFlow::layOutGrid(const Grid& grid, const GhostNodes* ghosts) {
@@ -231,7 +241,7 @@ void ReactiveFlow::updateDiffusionState(Collective, std::vector<MPMMaterial>& ma
   collective::stopTogether([&] { checkConcentrationRange(materials, t); });
   if (flags_.autoCycle) flux_.updateAutoCycle(Collective{}, materials, materials_, flags_);
   computeDiffusivity(materials, t);
-  flux_.computeFluxRates(materials, materials_, t);
+  flux_.computeFluxRates(materials, materials_, t, true);
 }
 
 void ReactiveFlow::computeDiffusivity(std::vector<MPMMaterial>& materials, double t) {
@@ -282,6 +292,8 @@ void ReactiveFlow::summarize(const std::vector<MPMMaterial>& materials, StepSumm
     for (size_t i = 0; i < p.count(); ++i) {
       s.totalLithium += p.mass[i] * c[i];
       if (!inRange) continue;
+      s.chargeableLithium += p.mass[i] * c[i];
+      s.lithiumCapacity += p.mass[i] * model(m).maxConcentration;
       s.minConcentration = std::min(s.minConcentration, c[i]);
       s.maxConcentration = std::max(s.maxConcentration, c[i]);
     }

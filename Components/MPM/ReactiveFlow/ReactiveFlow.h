@@ -113,6 +113,9 @@ class ReactiveFlow {
   // Lines for the user at setup: per flux BC and material, the particles flagged and their area,
   // and the materials that take up no lithium.
   std::vector<std::string> setupReport() const;
+  // What happened in the steps since the last call that the user should know (a galvanostatic
+  // BC's current ending); the same on every rank.
+  std::vector<std::string> takeRunNotes() { return flux_.takeNotes(); }
   // After particle splitting: the flux faces of the split particles shared among their children.
   void shareFluxFaces(ParticleSet& p, const std::vector<SplitParticle>& splits) const {
     flux_.shareFacesOnSplit(p, splits);

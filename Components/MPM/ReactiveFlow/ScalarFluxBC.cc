@@ -77,6 +77,26 @@ std::vector<ScalarFluxBC> ScalarFluxBC::fromInput(const std::vector<PSNode>& blo
     bc.particleFaceArea = readRule(block, "area_rule", "surface",
                                    "the area of the BC surface, shared among the flagged particles",
                                    "particle_face", "Uintah's face of each particle");
+    if (const PSNode mode = block.child("mode")) {
+      const std::string value = mode.value<std::string>();
+      if (value == "galvanostatic")
+        bc.mode = Mode::Galvanostatic;
+      else if (value != "flux")
+        mode.fail(
+            "<mode> must be flux (the load is the flux J through the surface, Eq. 16) or "
+            "galvanostatic (the load is the total lithium rate into the flagged particles), "
+            "found \"" +
+            value + "\"");
+    }
+    if (const PSNode cutoff = block.child("cutoff")) {
+      if (bc.mode != Mode::Galvanostatic)
+        cutoff.fail("<cutoff> belongs to <mode>galvanostatic</mode>");
+      bc.cutoff = cutoff.value<double>();
+      if (!(bc.cutoff > 0 && bc.cutoff < 1))
+        cutoff.fail(
+            "<cutoff> (the flagged surface's mean restriction R at which the current "
+            "ends) must lie in (0, 1)");
+    }
     block.acceptInert("outward_normal");
     block.acceptInert("auto_cycle");
     block.acceptInert("numberOfParticlesOnLoadSurface");

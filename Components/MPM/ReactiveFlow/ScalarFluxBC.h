@@ -2,7 +2,8 @@
 // flux J(t) through the surface particles a geometry piece selects. Surface particles are found
 // once at the start; each flagged particle records, per load curve (at most 3), the area of the
 // face that BC names. The rate of a particle is sum_k J_k(t) A_k / V_p times the restriction
-// R(c) (applied once per particle).
+// R(c) (applied once per particle). A galvanostatic BC prescribes instead the total lithium rate
+// into its particles, and J_k follows from it each step (ExternalScalarFlux.h).
 #pragma once
 
 #include <memory>
@@ -21,6 +22,12 @@ struct ScalarFluxBC {
   double radius = 0;    // cylinder, sphere
   Vec3 center;          // sphere
   LoadCurve load{{0.0}, {0.0}};
+  // <mode>flux (default, Eq. 16): the load is J, the flux through the surface. galvanostatic:
+  // the load is the total lithium rate into the particles the BC flags, in history.csv's
+  // lithium per time (mass x concentration / time), held until the flagged surface's mean
+  // restriction falls to `cutoff` (a full surface takes no more: the BC's current ends there).
+  enum class Mode { Flux, Galvanostatic } mode = Mode::Flux;
+  double cutoff = 0.05;  // <cutoff>, galvanostatic only
   // <area_update>deformed: a flagged particle's face area follows its deformation (Nanson);
   // constant (default, as Uintah): the area it was given at the start.
   bool deformedArea = false;

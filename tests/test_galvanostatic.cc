@@ -1,0 +1,122 @@
+// Pins <scalar_flux><mode>galvanostatic: the lithium entering equals the prescribed rate times
+// the time to round-off while the flagged surface can take it, and the current ends (nothing
+// more enters) once the surface's mean restriction reaches <cutoff>; the state of charge follows.
+#include <gtest/gtest.h>
+#include <omp.h>
+
+#include <cmath>
+#include <regex>
+#include <sstream>
+#include <string>
+
+#include "Components/MPM/ReactiveFlow/DiffusionParticles.h"
+#include "Core/Util/Errors.h"
+#include "StandAlone/Driver/Simulation.h"
+#include "tests/TestFiles.h"
+
+namespace anode {
+namespace {
+
+RunOptions quiet() {
+  omp_set_num_threads(1);
+  RunOptions o;
+  o.progress = false;
+  return o;
+}
+
+std::string readInput(const std::string& path) {
+  return testing::readFile(std::string(ANODE_SOURCE_DIR) + "/" + path);
+}
+
+// `text` with every <scalar_flux> galvanostatic, its loads replaced by `rate` (the input's
+// loads are constant in time), and `extra` tags in each block.
+std::string galvanostatic(std::string text, const std::string& rate,
+                          const std::string& extra = "") {
+  text = std::regex_replace(text, std::regex("<load>[^<]*</load>"), "<load>" + rate + "</load>");
+  return std::regex_replace(text, std::regex("<scalar_flux>"),
+                            "<scalar_flux><mode>galvanostatic</mode>" + extra);
+}
+
+double totalLithium(Simulation& sim) {
+  return sim.mpm().summarize(Collective{}).totalLithium;
+}
+
+bool anyFluxRate(Simulation& sim) {
+  for (const MPMMaterial& mat : sim.mpm().materials()) {
+    const ConstDiffusionParticles d(mat.particles);
+    for (double rate : d.externalScalarFlux)
+      if (rate != 0) return true;
+  }
+  return false;
+}
+
+// Runs until the current ends or `maxSteps`; returns the largest |L - L0 - Q t| / (Q t) on the
+// way, and leaves the simulation where the current ended.
+double worstUptakeError(Simulation& sim, double rate, long maxSteps) {
+  const double start = totalLithium(sim), t0 = sim.time();
+  double worst = 0;
+  while (anyFluxRate(sim) && sim.step() < maxSteps) {
+    sim.advance();
+    const double expected = rate * (sim.time() - t0);
+    worst = std::max(worst, std::abs(totalLithium(sim) - start - expected) / expected);
+  }
+  return worst;
+}
+
+// The octant of a silicon nanosphere (its whole curved surface under one BC; 20^3 cells), at
+// ten times the lithium rate a flux of 1e-8 m/s gives at the start (rho J A = 4.575e10 pg/us).
+TEST(Galvanostatic, SphereTakesUpRateTimesTimeThenStopsAtTheCutoff) {
+  std::string text =
+      galvanostatic(readInput("inputs/Particles/SiliconSphereOctant.ups"), "4.575e11");
+  text = std::regex_replace(text, std::regex("\\[40, 40, 40\\]"), "[20, 20, 20]");
+  Simulation sim(text, "sphere.ups", quiet());
+  const double rate = 4.575e11;
+  EXPECT_LT(worstUptakeError(sim, rate, 100000), 1e-9);
+  ASSERT_FALSE(anyFluxRate(sim)) << "the current did not end by step " << sim.step();
+  // The cutoff: the flagged particles' mean restriction reached 0.05, so the surface is nearly
+  // full (R = 0.05 at c = 0.978) while the inside is not.
+  const StepSummary atEnd = sim.mpm().summarize(Collective{});
+  EXPECT_GT(atEnd.maxConcentration, 0.95);
+  const double charge = atEnd.chargeableLithium / atEnd.lithiumCapacity;
+  EXPECT_GT(charge, 0.05);
+  EXPECT_LT(charge, 0.9);
+  // From then on nothing enters: the lithium stays (diffusion moves it inside).
+  for (int i = 0; i < 50; ++i) sim.advance();
+  EXPECT_NEAR(totalLithium(sim), atEnd.totalLithium, 1e-12 * atEnd.totalLithium);
+}
+
+// The CPDI pillar, side and top each under its own galvanostatic BC (corner particles take
+// both): the uptake is the two rates together.
+TEST(Galvanostatic, PillarTakesUpTheSumOfItsBCsRates) {
+  // Side 3e9, top 1e9 lithium per us (the top's block is the last).
+  const std::string text = readInput("inputs/Pillar/PillarLithiation.ups");
+  const size_t top = text.find("<id>2</id>");
+  ASSERT_NE(top, std::string::npos);
+  const std::string both =
+      galvanostatic(text.substr(0, top), "3e9") +
+      std::regex_replace(text.substr(top), std::regex("<load>[^<]*</load>"), "<load>1e9</load>");
+  Simulation sim(both, "pillar.ups", quiet());
+  EXPECT_LT(worstUptakeError(sim, 4e9, 300), 1e-9);
+  EXPECT_EQ(sim.step(), 300) << "the current ended early";
+}
+
+TEST(Galvanostatic, UnknownModeAndMisplacedCutoffAreInputErrors) {
+  const std::string text = readInput("inputs/Particles/SiliconSphereOctant.ups");
+  for (const auto& [edited, message] :
+       {std::pair{std::regex_replace(text, std::regex("<scalar_flux>"),
+                                     "<scalar_flux><mode>galvanostatc</mode>"),
+                  "<mode> must be flux"},
+        {std::regex_replace(text, std::regex("<scalar_flux>"), "<scalar_flux><cutoff>0.1</cutoff>"),
+         "<cutoff> belongs to <mode>galvanostatic</mode>"},
+        {galvanostatic(text, "1e10", "<cutoff>1</cutoff>"), "must lie in (0, 1)"}}) {
+    try {
+      Simulation sim(edited, "bad.ups", quiet());
+      ADD_FAILURE() << "expected an InputError: " << message;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(message), std::string::npos) << e.what();
+    }
+  }
+}
+
+}  // namespace
+}  // namespace anode
