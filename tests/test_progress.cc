@@ -1,10 +1,12 @@
 // Pins the progress line's fraction done (StandAlone/Driver/Progress.h), which its ETA
 // extrapolates: by simulated time or by steps, whichever limit ends the run first, counted from
 // this run's start (a restart's checkpoint), not from the simulation's; and its pace, that of the
-// last minutes rather than the run's average.
+// last minutes rather than the run's average; long ETAs in days and years; and the setup's
+// forecast of the steps (StepForecast.h) with its guess at a density typed in kg/m^3.
 #include <gtest/gtest.h>
 
 #include "StandAlone/Driver/Progress.h"
+#include "StandAlone/Driver/StepForecast.h"
 
 namespace anode {
 namespace {
@@ -50,6 +52,53 @@ TEST(Progress, FirstMinuteIsMeasuredFromTheStart) {
   const ProgressReporter::Estimate pace = run.estimate(30, 0.05, 6000);
   EXPECT_DOUBLE_EQ(pace.particleStepsPerSecond, 200);
   EXPECT_NEAR(pace.secondsLeft, 30 * 0.95 / 0.05, 1e-9);
+}
+
+// A run of 1e11 steps shows an ETA in years, not "?" (the ETA of a step that moves the run by
+// 1e-11 of its time).
+TEST(Progress, LongEtasAreShownInDaysAndYears) {
+  EXPECT_EQ(durationText(-1), "?");
+  EXPECT_EQ(durationText(42), "42s");
+  EXPECT_EQ(durationText(185), "3m05s");
+  EXPECT_EQ(durationText(5 * 3600 + 7 * 60), "5h07m");
+  EXPECT_EQ(durationText(12 * 86400), "12 days");
+  EXPECT_EQ(durationText(3.4e3 * 365.25 * 86400), "3.4e+03 years");
+}
+
+StepForecastInput sphere(double density, double dt) {
+  StepForecastInput in;
+  in.maxTime = 2e6;
+  in.dt = dt;
+  in.limit = "mechanics (Eq. 43)";
+  in.mechanicsLimited = true;
+  in.cellSize = 0.0025;  // um
+  in.densities = {{"material 0 (silicon)", density}};
+  return in;
+}
+
+// The silicon sphere with its density typed in kg/m^3 (2330): dt 2.3e-6 us, 8.6e11 steps; the
+// note names the guess. At the raised density of the input, no note.
+TEST(StepForecast, OutOfReachStepsNameTheDensityGuess) {
+  const std::vector<std::string> typed = forecastSteps(sphere(2330, 2.319e-6));
+  ASSERT_EQ(typed.size(), 2u);
+  EXPECT_NE(typed[0].find("about 8.62e+11 steps to maxTime 2e+06"), std::string::npos) << typed[0];
+  EXPECT_NE(typed[1].find("density 2330 of material 0 (silicon) looks like kg/m^3"),
+            std::string::npos)
+      << typed[1];
+  EXPECT_NE(typed[1].find("2.33 pg/um^3"), std::string::npos) << typed[1];
+  const std::vector<std::string> raised = forecastSteps(sphere(2.33e21, 370));
+  ASSERT_EQ(raised.size(), 1u);
+  EXPECT_NE(raised[0].find("about 5.41e+03 steps"), std::string::npos) << raised[0];
+  // Out of reach at a density that is no kg/m^3 value: the note, without the guess.
+  const std::vector<std::string> real = forecastSteps(sphere(2.33, 7e-8));
+  ASSERT_EQ(real.size(), 2u);
+  EXPECT_EQ(real[1].find("a guess"), std::string::npos) << real[1];
+  // A step limit that ends the run first: no note.
+  StepForecastInput limited = sphere(2330, 2.319e-6);
+  limited.maxTimesteps = 100;
+  const std::vector<std::string> stopped = forecastSteps(limited);
+  ASSERT_EQ(stopped.size(), 1u);
+  EXPECT_NE(stopped[0].find("the step limit 100 ends the run first"), std::string::npos);
 }
 
 }  // namespace

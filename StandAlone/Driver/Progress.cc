@@ -7,21 +7,21 @@
 
 namespace anode {
 
-namespace {
-
-std::string duration(double s) {
+std::string durationText(double s) {
   char buf[64];
-  if (s < 0 || s > 1e8) return "?";
+  if (!(s >= 0)) return "?";
   if (s < 60)
     std::snprintf(buf, sizeof buf, "%.0fs", s);
   else if (s < 3600)
     std::snprintf(buf, sizeof buf, "%dm%02ds", int(s) / 60, int(s) % 60);
-  else
+  else if (s < 48 * 3600)
     std::snprintf(buf, sizeof buf, "%dh%02dm", int(s) / 3600, (int(s) % 3600) / 60);
+  else if (s < 365.25 * 86400)
+    std::snprintf(buf, sizeof buf, "%.0f days", s / 86400);
+  else
+    std::snprintf(buf, sizeof buf, "%.2g years", s / (365.25 * 86400));
   return buf;
 }
-
-}  // namespace
 
 ProgressReporter::ProgressReporter(double startTime, double maxTime, long startStep, long maxSteps)
     : startTime_(startTime),
@@ -66,7 +66,7 @@ void ProgressReporter::update(long step, double time, double dt, const char* lim
   std::snprintf(line, sizeof line,
                 "step %ld  t = %.4e / %.4e  dt = %.3e (%s)  %.3e particle-steps/s  ETA %s", step,
                 time, maxTime_, dt, limit, pace.particleStepsPerSecond,
-                duration(pace.secondsLeft).c_str());
+                durationText(pace.secondsLeft).c_str());
   if (terminal_) {
     std::fprintf(stderr, "\r%-100s", line);
     pending_ = true;

@@ -3,8 +3,12 @@
 
 #include <chrono>
 #include <cstdio>
+#include <string>
 
 namespace anode {
+
+// Seconds as the ETA shows them: 42s, 3m05s, 5h07m, 12 days, 3.4e+03 years; "?" if negative.
+std::string durationText(double seconds);
 
 class ProgressReporter {
  public:

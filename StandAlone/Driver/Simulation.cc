@@ -10,6 +10,7 @@
 #include "Core/Parallel/Communicator.h"
 #include "Core/Parallel/StopTogether.h"
 #include "Core/Util/InstructionSet.h"
+#include "StandAlone/Driver/StepForecast.h"
 #include "StandAlone/Driver/StopRequest.h"
 
 namespace anode {
@@ -235,9 +236,27 @@ void Simulation::reportSetup(Collective) {
     if (mpm_.diffusion())
       for (const std::string& line : mpm_.diffusion()->setupReport())
         std::fprintf(stderr, "sus: %s\n", line.c_str());
+    for (const std::string& line : forecastSteps(stepForecastInput()))
+      std::fprintf(stderr, "%s%s\n", line.rfind("note:", 0) == 0 ? "" : "sus: ", line.c_str());
   }
   for (const std::string& note : symmetryFaces_.start(Collective{}, mpm_))
     if (Communicator::isRoot()) std::fprintf(stderr, "%s\n", note.c_str());
+}
+
+StepForecastInput Simulation::stepForecastInput() const {
+  StepForecastInput in;
+  in.startTime = t_;
+  in.maxTime = time_.maxTime;
+  in.maxTimesteps = time_.maxTimesteps > 0 ? time_.maxTimesteps - step_ : 0;
+  in.dt = dt_;
+  in.limit = StableTimestep::name(dtLimit_);
+  in.mechanicsLimited = dtLimit_ == StableTimestep::Mechanics;
+  in.implicit = mpm_.flags().implicit.has_value();
+  in.cellSize = mpm_.grid().dx.minCoeff();
+  for (size_t m = 0; m < mpm_.materials().size(); ++m)
+    in.densities.emplace_back(describeMaterial(mpm_.materials()[m], m),
+                              mpm_.materials()[m].density);
+  return in;
 }
 
 size_t Simulation::recordHistoryRow(double stepDt) {

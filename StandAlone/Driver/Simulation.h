@@ -79,8 +79,11 @@ class Simulation {
   // Continues the run of the restart directory from its newest complete checkpoint; returns its
   // path.
   std::string restartFromNewestCheckpoint(Collective);
-  // The lines on the run's setup: particles, grid, ranks, diffusion, symmetry faces.
+  // The lines on the run's setup: particles, grid, ranks, diffusion, the steps forecast,
+  // symmetry faces.
   void reportSetup(Collective);
+  // What the forecast of the run's steps needs (StepForecast.h), from its state now.
+  struct StepForecastInput stepForecastInput() const;
   // Appends the state's row (after a step of `stepDt`) to the history; returns the particle count.
   size_t recordHistoryRow(double stepDt);
   // Writes the output of step_; `afterStep`: the grid labels hold the last step's nodal values.
