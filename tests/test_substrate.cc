@@ -5,6 +5,8 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <cmath>
+#include <regex>
 #include <sstream>
 #include <string>
 
@@ -99,6 +101,36 @@ TEST(Substrate, BondedSubstrateReceivesNoLithium) {
       ++shared;
     }
   EXPECT_GT(shared, 0);
+}
+
+// A pillar sunk 0.02 into its substrate: setup warns, naming both materials, and the overlap's
+// volume (the pillar's 0.02 below the substrate's top, pi r^2 h on the particle lattice) from
+// each side.
+TEST(Substrate, OverlappingMaterialsAreAWarning) {
+  RunOptions o;
+  o.progress = false;
+  Simulation apart(pillarOnSubstrate(), "apart.ups", o);
+  for (const std::string& w : apart.warnings())
+    EXPECT_EQ(w.find("overlaps"), std::string::npos) << w;
+  std::string text = pillarOnSubstrate();
+  const std::string bottom = "<bottom>[0,0,0.04]</bottom>";
+  text.replace(text.find(bottom), bottom.size(), "<bottom>[0,0,0.02]</bottom>");
+  Simulation sunk(text, "sunk.ups", o);
+  std::string warning;
+  for (const std::string& w : sunk.warnings())
+    if (w.find("overlaps") != std::string::npos) warning = w;
+  ASSERT_FALSE(warning.empty());
+  EXPECT_NE(warning.find("material 1 (substrate) overlaps material 0 (pillar)"), std::string::npos)
+      << warning;
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(
+      warning, m,
+      std::regex(R"((\d+) of its particles \(volume (\S+)\).* (\d+) of .*\(volume (\S+)\))")))
+      << warning;
+  EXPECT_EQ(m[1], m[3]) << "the same lattice places both materials' particles alike";
+  const double cylinder = M_PI * 0.03 * 0.03 * 0.02;
+  EXPECT_NEAR(std::stod(m[2]), cylinder, 0.05 * cylinder) << warning;
+  EXPECT_NEAR(std::stod(m[4]), cylinder, 0.05 * cylinder) << warning;
 }
 
 // history.csv's min_c, max_c and state of charge are of the pillar, which takes up lithium: the

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "Components/MPM/Materials/ConstitutiveModels/ConcreteModels.h"
+#include "Components/MPM/Materials/MaterialOverlap.h"
 #include "Components/MPM/ParticleLoops.h"
 #include "Components/MPM/ParticleSplitting.h"
 #include "Components/MPM/PhysicalBCs.h"
@@ -62,6 +63,7 @@ void MPM::problemSetup(const PSNode& root, double initTime, double maxTime) {
                                         });
   for (size_t m = 0; m < materials_.size(); ++m)
     seeds[m].checkPiecesInsideGrid(grid_, gridBCs_.symmetryPlanes(static_cast<int>(m)));
+  warnOfOverlaps(materials_, seeds);
 
   if (flags_.implicit) {
     checkImplicitSetup(root);
