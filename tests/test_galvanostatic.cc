@@ -73,8 +73,8 @@ TEST(Galvanostatic, SphereTakesUpRateTimesTimeThenStopsAtTheCutoff) {
   const double rate = 4.575e11;
   EXPECT_LT(worstUptakeError(sim, rate, 100000), 1e-9);
   ASSERT_FALSE(anyFluxRate(sim)) << "the current did not end by step " << sim.step();
-  // The cutoff: the flagged particles' mean restriction reached 0.05, so the surface is nearly
-  // full (R = 0.05 at c = 0.978) while the inside is not.
+  // The cutoff: the flagged particles' mean restriction reached 0.25, so the surface is nearly
+  // full (R = 0.25 at c = 0.950) while the inside is not.
   const StepSummary atEnd = sim.mpm().summarize(Collective{});
   EXPECT_GT(atEnd.maxConcentration, 0.95);
   const double charge = atEnd.chargeableLithium / atEnd.lithiumCapacity;

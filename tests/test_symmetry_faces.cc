@@ -7,6 +7,7 @@
 
 #include "Components/MPM/SymmetryFaceWatch.h"
 #include "StandAlone/Driver/Simulation.h"
+#include "tests/TestFiles.h"
 
 namespace anode {
 namespace {
@@ -82,6 +83,32 @@ TEST(SymmetryFaceWatch, SilentWithRoomToGrow) {
   const Watched w = runWatched(0.6, 0.9);
   EXPECT_TRUE(w.notes.empty()) << w.notes[0];
   EXPECT_TRUE(w.warnings.empty()) << w.warnings[0];
+}
+
+// The 2x2 pillar array on its substrate (inputs/Pillar/PillarArray.ups): each pillar swells about
+// its own axis (the gaps take the growth, no x or y face is reached) and up from the substrate it
+// rests on, so with the grid's top lowered from 0.45 to 0.3 every pillar would reach z+, which a
+// note says, naming the four bodies; with the input's grid, no note.
+TEST(SwellingRoom, EachBodyOfAnArrayGrowsFromWhatItRestsOn) {
+  const std::string text =
+      testing::readFile(std::string(ANODE_SOURCE_DIR) + "/inputs/Pillar/PillarArray.ups");
+  RunOptions quiet;
+  quiet.progress = false;
+  Simulation roomy(text, "array.ups", quiet);
+  EXPECT_TRUE(roomy.mpm().swellingNotes().empty()) << roomy.mpm().swellingNotes()[0];
+  std::string low = text;
+  for (const auto& [from, to] :
+       {std::pair<std::string, std::string>{"[0.4, 0.4, 0.45]", "[0.4, 0.4, 0.3]"},
+        {"[40, 40, 45]", "[40, 40, 30]"}})
+    low.replace(low.find(from), from.size(), to);
+  Simulation tight(low, "low.ups", quiet);
+  const std::vector<std::string>& notes = tight.mpm().swellingNotes();
+  ASSERT_EQ(notes.size(), 1u);
+  EXPECT_NE(notes[0].find("each of its 4 bodies"), std::string::npos) << notes[0];
+  EXPECT_NE(notes[0].find("bodies 1 (centre [0.1, 0.1, 0.14]), 2"), std::string::npos) << notes[0];
+  EXPECT_NE(notes[0].find("would reach z+"), std::string::npos) << notes[0];
+  for (const char* face : {"x-", "x+", "y-", "y+"})
+    EXPECT_EQ(notes[0].find(face), std::string::npos) << face << ": " << notes[0];
 }
 
 }  // namespace

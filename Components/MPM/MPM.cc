@@ -14,6 +14,7 @@
 #include "Components/MPM/ParticleSplitting.h"
 #include "Components/MPM/PhysicalBCs.h"
 #include "Components/MPM/ProblemSize.h"
+#include "Components/MPM/SwellingRoom.h"
 #include "Core/Parallel/StopTogether.h"
 #include "Core/Util/Errors.h"
 
@@ -81,6 +82,7 @@ void MPM::problemSetup(const PSNode& root, double initTime, double maxTime) {
   checkProblemSize(gridNode, grid_, flags_, materials_.size(), numParticles(),
                    omp_get_max_threads());
   if (diffusion_) diffusion_->initialize(root, grid_, materials_, seeds, initTime);
+  swellingNotes_ = swellingRoomNotes(grid_, gridBCs_, materials_, diffusion_.get());
   whole_ = grid_;
   distributed_ = Communicator::size() > 1;
   reordering_.resize(materials_.size());

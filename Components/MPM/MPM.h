@@ -118,6 +118,8 @@ class MPM {
   std::vector<MPMMaterial>& materials() { return materials_; }
   const std::vector<GridFields>& gridFields() const { return fields_; }
   const GridBoundaryConditions& gridBCs() const { return gridBCs_; }
+  // Setup's notes on bodies that would swell into a Symmetric face (SwellingRoom.h).
+  const std::vector<std::string>& swellingNotes() const { return swellingNotes_; }
   // The diffusion subcomponent; null without <do_scalar_diffusion>true.
   const ReactiveFlow* diffusion() const { return diffusion_.get(); }
   ReactiveFlow* diffusion() { return diffusion_.get(); }
@@ -187,6 +189,7 @@ class MPM {
   bool distributed_ = false;  // more than one rank
   std::vector<Reordering> reordering_;
   int layoutGeneration_ = 0;
+  std::vector<std::string> swellingNotes_;
   GridBoundaryConditions gridBCs_;
   Contact contact_;
   std::vector<MPMMaterial> materials_;

@@ -20,18 +20,10 @@ double distanceToFace(const Grid& g, const Vec3& x, int axis, int side) {
   return side == 0 ? x[axis] - g.lower[axis] : g.upper[axis] - x[axis];
 }
 
-std::string materialName(const MPMMaterial& mat, size_t m) {
-  std::ostringstream s;
-  s << "material " << m;
-  if (!mat.name.empty()) s << " (" << mat.name << ")";
-  return s.str();
-}
-
 }  // namespace
 
 std::vector<std::string> SymmetryFaceWatch::start(Collective, const MPM& mpm) {
   const Grid& g = mpm.grid();
-  std::vector<std::string> notes;
   watched_.clear();
   for (size_t m = 0; m < mpm.materials().size(); ++m) {
     const MPMMaterial& mat = mpm.materials()[m];
@@ -45,38 +37,11 @@ std::vector<std::string> SymmetryFaceWatch::start(Collective, const MPM& mpm) {
       if (bc.appliesTo(static_cast<int>(m)))
         startsOn[bc.axis][bc.side] =
             distanceToFace(g, bc.side == 0 ? lo : hi, bc.axis, bc.side) < g.dx[bc.axis];
-    const double eta = mat.model->swellingCoefficient(),
-                 growth = std::exp(eta);  // per axis, c 0 -> 1
-    std::string reached;
-    for (const BCFace& bc : mpm.gridBCs().symmetric) {
-      if (!bc.appliesTo(static_cast<int>(m)) || startsOn[bc.axis][bc.side]) continue;
-      watched_.push_back({m, bc.axis, bc.side});
-      // Only a material that can take up lithium swells.
-      if (!mpm.diffusion() || growth <= 1 ||
-          !(mpm.diffusion()->model(m).diffuses() || mpm.diffusion()->model(m).constantRate() != 0))
-        continue;
-      // Free growth away from a face the body starts on (a symmetry plane), or about its middle.
-      const int a = bc.axis;
-      const double length = growth * (hi[a] - lo[a]);
-      const double from = startsOn[a][0]   ? lo[a]
-                          : startsOn[a][1] ? hi[a] - length
-                                           : 0.5 * (lo[a] + hi[a] - length);
-      const double to = from + length;
-      Vec3 edge = Vec3::Zero();
-      edge[a] = bc.side == 0 ? from : to;
-      if (distanceToFace(g, edge, a, bc.side) < 0.5 * g.dx[a])
-        reached += std::string(reached.empty() ? "" : ", ") + faceName(a, bc.side);
-    }
-    if (reached.empty()) continue;
-    std::ostringstream s;
-    s << "note: " << materialName(mat, m) << " swelling freely to c = 1 grows " << growth
-      << "-fold along each axis (exp(eta), eta = " << eta
-      << ") and would reach the Symmetric face(s) " << reached
-      << ", which would squash it: the grid leaves less room than that (enlarge it where a face "
-      << "is not a symmetry plane of the body)";
-    notes.push_back(s.str());
+    for (const BCFace& bc : mpm.gridBCs().symmetric)
+      if (bc.appliesTo(static_cast<int>(m)) && !startsOn[bc.axis][bc.side])
+        watched_.push_back({m, bc.axis, bc.side});
   }
-  return notes;
+  return mpm.swellingNotes();
 }
 
 std::vector<std::string> SymmetryFaceWatch::afterStep(Collective, const MPM& mpm, long step,

@@ -27,7 +27,7 @@ struct ScalarFluxBC {
   // lithium per time (mass x concentration / time), held until the flagged surface's mean
   // restriction falls to `cutoff` (a full surface takes no more: the BC's current ends there).
   enum class Mode { Flux, Galvanostatic } mode = Mode::Flux;
-  double cutoff = 0.05;  // <cutoff>, galvanostatic only
+  double cutoff = 0.25;  // <cutoff>, galvanostatic only
   // <area_update>deformed: a flagged particle's face area follows its deformation (Nanson);
   // constant (default, as Uintah): the area it was given at the start.
   bool deformedArea = false;

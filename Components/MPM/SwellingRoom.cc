@@ -1,0 +1,178 @@
+#include "Components/MPM/SwellingRoom.h"
+
+#include <cmath>
+#include <map>
+#include <numeric>
+#include <sstream>
+#include <unordered_map>
+#include <unordered_set>
+
+namespace anode {
+
+namespace {
+
+const char* faceName(int axis, int side) {
+  static const char* names[3][2] = {{"x-", "x+"}, {"y-", "y+"}, {"z-", "z+"}};
+  return names[axis][side];
+}
+
+// Distance of x from the grid face (axis, side), positive inside the grid.
+double distanceToFace(const Grid& g, const Vec3& x, int axis, int side) {
+  return side == 0 ? x[axis] - g.lower[axis] : g.upper[axis] - x[axis];
+}
+
+// The cell holding x (extra cells included, so every particle has one) and its flat key.
+Vec3i cellOf(const Grid& g, const Vec3& x) {
+  Vec3i c;
+  for (int a = 0; a < 3; ++a) c[a] = static_cast<int>(std::floor((x[a] - g.lower[a]) / g.dx[a]));
+  return c;
+}
+
+long long keyOf(const Grid& g, const Vec3i& c) {
+  const Vec3i e = g.extra + Vec3i::Ones();  // a margin of one cell beyond the extra cells
+  const long long nx = g.cells.x() + 2 * e.x(), ny = g.cells.y() + 2 * e.y();
+  return ((static_cast<long long>(c.z()) + e.z()) * ny + (c.y() + e.y())) * nx + (c.x() + e.x());
+}
+
+// Union-find over the occupied cells.
+int root(std::vector<int>& parent, int i) {
+  while (parent[i] != i) i = parent[i] = parent[parent[i]];
+  return i;
+}
+
+bool swells(const MPMMaterial& mat, size_t m, const ReactiveFlow* diffusion) {
+  return diffusion && std::exp(mat.model->swellingCoefficient()) > 1 &&
+         (diffusion->model(m).diffuses() || diffusion->model(m).constantRate() != 0);
+}
+
+// Whether a particle of another material occupies a cell just beyond the body's side (axis,
+// side), across the body's extent on the other axes.
+bool restsOnOther(const Grid& g, const std::unordered_set<long long>& others, const Body& b,
+                  int axis, int side) {
+  const Vec3i lo = cellOf(g, b.lo), hi = cellOf(g, b.hi);
+  Vec3i c = lo;
+  const int beyond = side == 0 ? lo[axis] - 1 : hi[axis] + 1;
+  const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+  c[axis] = beyond;
+  for (c[u] = lo[u]; c[u] <= hi[u]; ++c[u])
+    for (c[v] = lo[v]; c[v] <= hi[v]; ++c[v])
+      if (others.count(keyOf(g, c))) return true;
+  return false;
+}
+
+}  // namespace
+
+std::vector<Body> findBodies(const Grid& g, const std::vector<MPMMaterial>& materials, size_t m) {
+  const ParticleSet& p = materials[m].particles;
+  std::unordered_map<long long, int> cellIndex;
+  std::vector<Vec3i> cells;
+  std::vector<int> particleCell(p.count());
+  for (size_t i = 0; i < p.count(); ++i) {
+    const Vec3i c = cellOf(g, p.x[i]);
+    const auto [it, added] = cellIndex.emplace(keyOf(g, c), static_cast<int>(cells.size()));
+    if (added) cells.push_back(c);
+    particleCell[i] = it->second;
+  }
+  std::vector<int> parent(cells.size());
+  std::iota(parent.begin(), parent.end(), 0);
+  for (size_t k = 0; k < cells.size(); ++k)
+    for (int dz = -1; dz <= 1; ++dz)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const auto it = cellIndex.find(keyOf(g, cells[k] + Vec3i(dx, dy, dz)));
+          if (it == cellIndex.end()) continue;
+          const int a = root(parent, static_cast<int>(k)), b = root(parent, it->second);
+          if (a != b) parent[std::max(a, b)] = std::min(a, b);
+        }
+  std::vector<Body> bodies;
+  std::unordered_map<int, size_t> bodyOfRoot;
+  for (size_t i = 0; i < p.count(); ++i) {
+    const auto [it, added] = bodyOfRoot.emplace(root(parent, particleCell[i]), bodies.size());
+    if (added) bodies.push_back({0, p.x[i], p.x[i], {}});
+    Body& b = bodies[it->second];
+    ++b.particles;
+    b.lo = b.lo.cwiseMin(p.x[i]);
+    b.hi = b.hi.cwiseMax(p.x[i]);
+  }
+  return bodies;
+}
+
+std::vector<std::string> swellingRoomNotes(const Grid& g, const GridBoundaryConditions& bcs,
+                                           const std::vector<MPMMaterial>& materials,
+                                           const ReactiveFlow* diffusion) {
+  std::vector<std::string> notes;
+  for (size_t m = 0; m < materials.size(); ++m) {
+    const MPMMaterial& mat = materials[m];
+    if (!swells(mat, m, diffusion) || mat.particles.count() == 0) continue;
+    std::unordered_set<long long> others;
+    for (size_t o = 0; o < materials.size(); ++o)
+      if (o != m)
+        for (const Vec3& x : materials[o].particles.x) others.insert(keyOf(g, cellOf(g, x)));
+    const double eta = mat.model->swellingCoefficient(), growth = std::exp(eta);
+    std::vector<Body> bodies = findBodies(g, materials, m);
+    // Which faces each body reaches, grouped by the faces: "x+, z+" -> bodies 1, 3.
+    std::map<std::string, std::vector<size_t>> reaching;
+    for (size_t n = 0; n < bodies.size(); ++n) {
+      Body& b = bodies[n];
+      bool anchored[3][2] = {};
+      for (const BCFace& bc : bcs.symmetric)
+        if (bc.appliesTo(static_cast<int>(m)) &&
+            distanceToFace(g, bc.side == 0 ? b.lo : b.hi, bc.axis, bc.side) < g.dx[bc.axis])
+          anchored[bc.axis][bc.side] = true;
+      for (int a = 0; a < 3; ++a)
+        for (int side = 0; side < 2; ++side)
+          anchored[a][side] = anchored[a][side] || restsOnOther(g, others, b, a, side);
+      for (const BCFace& bc : bcs.symmetric) {
+        const int a = bc.axis;
+        if (!bc.appliesTo(static_cast<int>(m)) ||
+            distanceToFace(g, bc.side == 0 ? b.lo : b.hi, a, bc.side) < g.dx[a])
+          continue;
+        // Free growth away from the side it rests on, or about its middle (both or neither).
+        const double length = growth * (b.hi[a] - b.lo[a]);
+        const bool fromLow = anchored[a][0] && !anchored[a][1];
+        const bool fromHigh = anchored[a][1] && !anchored[a][0];
+        const double from = fromLow    ? b.lo[a]
+                            : fromHigh ? b.hi[a] - length
+                                       : 0.5 * (b.lo[a] + b.hi[a] - length);
+        Vec3 edge = Vec3::Zero();
+        edge[a] = bc.side == 0 ? from : from + length;
+        if (distanceToFace(g, edge, a, bc.side) < 0.5 * g.dx[a])
+          b.faces.push_back(faceName(a, bc.side));
+      }
+      std::string faces;
+      for (const std::string& f : b.faces) faces += (faces.empty() ? "" : ", ") + f;
+      if (!faces.empty()) reaching[faces].push_back(n);
+    }
+    if (reaching.empty()) continue;
+    std::ostringstream s;
+    s << "note: " << describeMaterial(mat, m) << " swelling freely to c = 1 grows " << growth
+      << "-fold along each axis (exp(eta), eta = " << eta << ")";
+    if (bodies.size() == 1) {
+      s << " and would reach the Symmetric face(s) " << reaching.begin()->first
+        << ", which would squash it";
+    } else {
+      s << ", each of its " << bodies.size()
+        << " bodies (connected particles) away from what it rests on or about its middle:";
+      bool first = true;
+      for (const auto& [faces, which] : reaching) {
+        s << (first ? " " : "; ") << (which.size() == 1 ? "body" : "bodies");
+        for (size_t k = 0; k < which.size() && k < 8; ++k) {
+          const Body& b = bodies[which[k]];
+          const Vec3 centre = 0.5 * (b.lo + b.hi);
+          s << (k ? ", " : " ") << which[k] + 1 << " (centre [" << centre.x() << ", " << centre.y()
+            << ", " << centre.z() << "])";
+        }
+        if (which.size() > 8) s << " and " << which.size() - 8 << " more";
+        s << " would reach " << faces;
+        first = false;
+      }
+      s << ", which would squash them";
+    }
+    s << ": the grid leaves less room than that (enlarge it where a face is not a symmetry "
+         "plane of the body)";
+    notes.push_back(s.str());
+  }
+  return notes;
+}
+
+}  // namespace anode
