@@ -2,14 +2,17 @@
 // (ReactiveFlow/FluxSurfaceArea.h, docs/diffusion.md "Flux area at the start"): the BC surface's
 // samples add up to its area, a sphere's flagged particles carry its area whatever way the
 // surface faces the grid, and the lithiation front moves in as fast along the diagonals as along
-// the axes.
+// the axes; a <surface> BC's particles carry the free surface of their body, less where another
+// material lies against it.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <sstream>
 
 #include "Components/MPM/ReactiveFlow/FluxSurfaceArea.h"
+#include "Core/Util/Errors.h"
 #include "StandAlone/Driver/Simulation.h"
+#include "tests/TestFiles.h"
 
 namespace anode {
 namespace {
@@ -120,6 +123,65 @@ TEST(FluxSurfaceArea, SphereTakesUpItsAreaAndTheFrontIsRound) {
     ASSERT_GT(along, 0);
     EXPECT_LT(std::abs(along - diagonal), 0.25 * h)
         << "axis " << axis.transpose() << ": " << along << " against " << diagonal;
+  }
+}
+
+// The 2x2 pillar array (inputs/Pillar/PillarArray.ups) with one <surface material="silicon"
+// exclude="substrate"/> BC for its five: the flagged particles carry the four pillars' sides and
+// tops, 4 (2 pi r h + pi r^2), to round-off, not their bottoms on the substrate.
+std::string arrayWithOneSurfaceBC(const std::string& surface) {
+  std::string text =
+      testing::readFile(std::string(ANODE_SOURCE_DIR) + "/inputs/Pillar/PillarArray.ups");
+  const size_t a = text.find("<PhysicalBC>"), b = text.find("</PhysicalBC>");
+  return text.substr(0, a) + "<PhysicalBC><MPM><scalar_flux><mode>galvanostatic</mode>" + surface +
+         "<load_curve><id>1</id><time_point><time>0</time><load>5.15e12</load></time_point>"
+         "</load_curve></scalar_flux></MPM>" +
+         text.substr(b);
+}
+
+TEST(FluxSurfaceArea, SurfaceBCCarriesTheFreeSurfaceOfItsBody) {
+  RunOptions o;
+  o.progress = false;
+  Simulation sim(arrayWithOneSurfaceBC("<surface material=\"silicon\" exclude=\"substrate\"/>"),
+                 "array.ups", o);
+  const ParticleSet& p = sim.mpm().materials()[0].particles;
+  const ConstDiffusionParticles d(p);
+  double area = 0;
+  size_t flagged = 0;
+  for (size_t i = 0; i < p.count(); ++i)
+    if (d.loadCurveID[i][0] > 0) area += d.area[i][0], ++flagged;
+  const double r = 0.04, h = 0.2;
+  EXPECT_NEAR(area, 4 * (2 * M_PI * r * h + M_PI * r * r), 1e-12);
+  EXPECT_GT(flagged, 0u);
+  // The substrate takes up no lithium and is not flagged.
+  EXPECT_TRUE(diffusionParticles(sim.mpm().materials()[1].particles).loadCurveID.empty() ||
+              diffusionParticles(sim.mpm().materials()[1].particles).loadCurveID[0][0] == 0);
+  // Without the exclusion the pillars' bottoms count too.
+  Simulation whole(arrayWithOneSurfaceBC("<surface material=\"silicon\"/>"), "whole.ups", o);
+  const ParticleSet& q = whole.mpm().materials()[0].particles;
+  const ConstDiffusionParticles e(q);
+  double wholeArea = 0;
+  for (size_t i = 0; i < q.count(); ++i)
+    if (e.loadCurveID[i][0] > 0) wholeArea += e.area[i][0];
+  EXPECT_NEAR(wholeArea, 4 * (2 * M_PI * r * h + 2 * M_PI * r * r), 1e-12);
+}
+
+TEST(FluxSurfaceArea, SurfaceBCErrorsNameTheTag) {
+  RunOptions o;
+  o.progress = false;
+  for (const auto& [surface, message] :
+       {std::pair<std::string, std::string>{"<surface material=\"silcon\"/>",
+                                            "<surface material=\"silcon\">: no material has"},
+        {"<surface material=\"silicon\" exclude=\"base\"/>", "<surface exclude=\"base\">"},
+        {"<surface material=\"silicon\" exlude=\"substrate\"/>",
+         "takes the attributes material and exclude, found exlude"},
+        {"<surface/>", "material"}}) {
+    try {
+      Simulation sim(arrayWithOneSurfaceBC(surface), "bad.ups", o);
+      ADD_FAILURE() << "expected an InputError: " << message;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(message), std::string::npos) << e.what();
+    }
   }
 }
 

@@ -100,6 +100,25 @@ TEST(Galvanostatic, PillarTakesUpTheSumOfItsBCsRates) {
   EXPECT_EQ(sim.step(), 300) << "the current ended early";
 }
 
+// The 2x2 pillar array under one <surface> BC for every pillar's free surface: the four take up
+// the rate in all.
+TEST(Galvanostatic, ArrayUnderOneSurfaceBCTakesUpTheRate) {
+  std::string text = readInput("inputs/Pillar/PillarArray.ups");
+  const size_t a = text.find("<PhysicalBC>"), b = text.find("</PhysicalBC>");
+  text = text.substr(0, a) +
+         "<PhysicalBC><MPM><scalar_flux><mode>galvanostatic</mode>"
+         "<surface material=\"silicon\" exclude=\"substrate\"/><load_curve><id>1</id>"
+         "<time_point><time>0</time><load>5.15e12</load></time_point></load_curve></scalar_flux>"
+         "</MPM>" +
+         text.substr(b);
+  omp_set_num_threads(2);
+  RunOptions o;
+  o.progress = false;
+  Simulation sim(text, "array.ups", o);
+  EXPECT_LT(worstUptakeError(sim, 5.15e12, 20), 1e-9);
+  EXPECT_EQ(sim.step(), 20) << "the current ended early";
+}
+
 TEST(Galvanostatic, UnknownModeAndMisplacedCutoffAreInputErrors) {
   const std::string text = readInput("inputs/Particles/SiliconSphereOctant.ups");
   for (const auto& [edited, message] :

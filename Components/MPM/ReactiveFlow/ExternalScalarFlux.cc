@@ -85,10 +85,20 @@ std::vector<ExternalScalarFlux::Flagged> ExternalScalarFlux::assignToParticles(
           ++slot;
         }
       }
+    std::vector<SurfaceShare> bodyShares(bcs_.size());
+    for (size_t b = 0; b < bcs_.size(); ++b)
+      if (bcs_[b].face == ScalarFluxBC::Face::Surface && bcs_[b].surfaceMaterial == mat.name)
+        flagFreeSurface(b, m, materials, seeds, grid, flagged[b], holding[b], slots[b],
+                        bodyShares[b]);
     for (size_t b = 0; b < bcs_.size(); ++b) {
       if (flagged[b] == 0) continue;
       Flagged f{b, m, flagged[b]};
-      if (bcs_[b].face != ScalarFluxBC::Face::Box && !surface.smooth && !bcs_[b].particleFaceArea) {
+      if (bcs_[b].face == ScalarFluxBC::Face::Surface) {
+        f.surfaceArea = bodyShares[b].surfaceArea;
+        f.bodyArea = bodyShares[b].bodyArea;
+      }
+      if (bcs_[b].face != ScalarFluxBC::Face::Box && bcs_[b].face != ScalarFluxBC::Face::Surface &&
+          !surface.smooth && !bcs_[b].particleFaceArea) {
         // A curved face on a body filled on the grid: its own surface shared out.
         std::vector<GeometryPieceP> body;
         for (const MaterialSeeds::FilledPiece& piece : surface.filledPieces)
@@ -162,6 +172,43 @@ std::vector<std::string> ExternalScalarFlux::takeNotes() {
   std::vector<std::string> notes;
   notes.swap(notes_);
   return notes;
+}
+
+void ExternalScalarFlux::flagFreeSurface(size_t b, size_t m, std::vector<MPMMaterial>& materials,
+                                         const std::vector<MaterialSeeds>& seeds, const Grid& grid,
+                                         size_t& count, std::vector<size_t>& holding,
+                                         std::vector<int>& slots, SurfaceShare& share) const {
+  ParticleSet& p = materials[m].particles;
+  const DiffusionParticles d(p);
+  // The material's surface particles (as the geometry BCs find them), the largest spacing.
+  std::vector<size_t> candidates;
+  Vec3 spacing = Vec3::Zero();
+  for (const MaterialSeeds::Object& object : seeds[m].objects) {
+    spacing = spacing.cwiseMax(object.spacing);
+    for (size_t i = object.first; i < object.first + object.count; ++i)
+      if (onSurface(*object.piece, p.x[i], object.spacing, grid.ndim())) candidates.push_back(i);
+  }
+  std::vector<GeometryPieceP> body, excluded;
+  for (const MaterialSeeds::FilledPiece& piece : seeds[m].filledPieces) body.push_back(piece.piece);
+  for (size_t o = 0; o < materials.size(); ++o)
+    if (std::find(bcs_[b].excluded.begin(), bcs_[b].excluded.end(), materials[o].name) !=
+        bcs_[b].excluded.end())
+      for (const MaterialSeeds::FilledPiece& piece : seeds[o].filledPieces)
+        excluded.push_back(piece.piece);
+  std::vector<double> area;
+  shareBodySurface(body, excluded, grid, spacing, candidates, p, area, share);
+  for (size_t k = 0; k < candidates.size(); ++k) {
+    if (area[k] <= 0) continue;
+    const size_t i = candidates[k];
+    ++count;
+    int slot = 0;
+    while (slot < 3 && d.loadCurveID[i][slot] > 0) ++slot;
+    if (slot == 3) continue;  // a particle holds at most 3 load curves
+    d.loadCurveID[i][slot] = static_cast<int>(b) + 1;
+    d.area[i][slot] = area[k];
+    holding.push_back(i);
+    slots.push_back(slot);
+  }
 }
 
 void ExternalScalarFlux::computeFluxRates(std::vector<MPMMaterial>& materials,

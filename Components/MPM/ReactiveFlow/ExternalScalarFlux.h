@@ -11,6 +11,7 @@
 #include "Components/MPM/MPMFlags.h"
 #include "Components/MPM/Materials/MPMMaterial.h"
 #include "Components/MPM/ReactiveFlow/DiffusionParticles.h"
+#include "Components/MPM/ReactiveFlow/FluxSurfaceArea.h"
 #include "Components/MPM/ReactiveFlow/ScalarDiffusionModel.h"
 #include "Components/MPM/ReactiveFlow/ScalarFluxBC.h"
 #include "Components/MPM/SplitParticle.h"
@@ -69,6 +70,13 @@ class ExternalScalarFlux {
   void loadState(BinaryReader& in);
 
  private:
+  // A <surface> BC b on material m: its free-surface particles flagged with their share of the
+  // body's free surface (FluxSurfaceArea.h); adds to count, holding and slots as the geometry
+  // BCs do.
+  void flagFreeSurface(size_t b, size_t m, std::vector<MPMMaterial>& materials,
+                       const std::vector<MaterialSeeds>& seeds, const Grid& grid, size_t& count,
+                       std::vector<size_t>& holding, std::vector<int>& slots,
+                       SurfaceShare& share) const;
   // The flux J_k of each BC at time t: its load (times the auto-cycle sign), or for a
   // galvanostatic BC the J that delivers its lithium rate (0 once its current ended).
   std::vector<double> fluxes(const std::vector<MPMMaterial>& materials,

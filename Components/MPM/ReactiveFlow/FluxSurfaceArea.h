@@ -42,4 +42,15 @@ SurfaceShare shareSurfaceArea(const ScalarFluxBC& bc, const std::vector<Geometry
                               const Grid& grid, const Vec3& dxp, const std::vector<size_t>& flagged,
                               const std::vector<int>& slot, ParticleSet& p);
 
+// The free surface of a material's body (a <surface> BC): the surfaces of its pieces are sampled
+// (points about dxp/4 apart), a sample kept where the body has its surface there, inside the
+// grid and not on a grid face (a symmetry plane is no surface), and not against a piece of
+// `excluded` (another material lying on it); its area goes to the nearest of `candidates` (the
+// material's surface particles) within 1.5 |dxp|. Returns each candidate's area; `share` gets
+// the sums. False if a piece's surface cannot be sampled (a smoothcyl).
+bool shareBodySurface(const std::vector<GeometryPieceP>& body,
+                      const std::vector<GeometryPieceP>& excluded, const Grid& grid,
+                      const Vec3& dxp, const std::vector<size_t>& candidates, const ParticleSet& p,
+                      std::vector<double>& area, SurfaceShare& share);
+
 }  // namespace anode

@@ -85,6 +85,32 @@ void ReactiveFlow::rejectWithoutDiffusion(const PSNode& root, const MPMFlags& fl
   }
 }
 
+void ReactiveFlow::checkSurfaceBCs(const PSNode& root, const std::vector<MPMMaterial>& materials,
+                                   const std::vector<MaterialSeeds>& seeds) const {
+  const auto indexOf = [&](const std::string& name) {
+    for (size_t m = 0; m < materials.size(); ++m)
+      if (materials[m].name == name) return static_cast<long>(m);
+    return -1L;
+  };
+  for (const ScalarFluxBC& bc : flux_.bcs()) {
+    if (bc.face != ScalarFluxBC::Face::Surface) continue;
+    const auto fail = [&](const std::string& message) {
+      throw InputError(root.file(), bc.geomLine, message);
+    };
+    const long m = indexOf(bc.surfaceMaterial);
+    if (m < 0) fail("<surface material=\"" + bc.surfaceMaterial + "\">: no material has that name");
+    for (const std::string& name : bc.excluded)
+      if (indexOf(name) < 0) fail("<surface exclude=\"" + name + "\">: no material has that name");
+    if (seeds[m].smooth)
+      fail("<surface> BCs share out the surface of grid-filled bodies; " + bc.surfaceMaterial +
+           " is laid out by a <smoothcyl>: give it <geom_object> BCs");
+    if (flags_.refineParticles)
+      fail(
+          "<surface> BCs have no normal to share a split particle's faces by: not with "
+          "particle splitting (refine_particles)");
+  }
+}
+
 void ReactiveFlow::rejectConcentrationBC(const BCType& bc) {
   bc.node.fail("label=\"SD-Type\" (concentration) needs <MPM><do_scalar_diffusion>true");
 }
@@ -92,6 +118,7 @@ void ReactiveFlow::rejectConcentrationBC(const BCType& bc) {
 void ReactiveFlow::initialize(const PSNode& root, const Grid& grid,
                               std::vector<MPMMaterial>& materials,
                               const std::vector<MaterialSeeds>& seeds, double initTime) {
+  checkSurfaceBCs(root, materials, seeds);
   const std::vector<ExternalScalarFlux::Flagged> flagged =
       flux_.assignToParticles(materials, materials_, seeds, grid);
   for (size_t b = 0; b < flux_.bcs().size(); ++b)
@@ -106,7 +133,10 @@ void ReactiveFlow::initialize(const PSNode& root, const Grid& grid,
     s << "<scalar_flux> " << f.bc + 1 << " (line " << flux_.bcs()[f.bc].line << ") flags "
       << f.particles << " particles of " << describeMaterial(materials[f.material], f.material)
       << ", flux area " << f.area;
-    if (f.surfaceArea > 0)
+    if (flux_.bcs()[f.bc].face == ScalarFluxBC::Face::Surface)
+      s << " (the free surface of its body: " << f.bodyArea << " of its pieces' " << f.surfaceArea
+        << ")";
+    else if (f.surfaceArea > 0)
       s << " (its surface " << f.surfaceArea << ", of which on the body " << f.bodyArea << ")";
     else
       s << " (their particle faces)";

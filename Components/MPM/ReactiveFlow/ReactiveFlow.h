@@ -125,6 +125,9 @@ class ReactiveFlow {
   void computeDiffusivity(std::vector<MPMMaterial>& materials, double t);
   void checkConcentrationRange(const std::vector<MPMMaterial>& materials, double t) const;
   bool concentrationCanChange(size_t m, const ScalarDiffusionModel& model) const;
+  // The <surface> BCs' material names exist, their bodies are grid-filled, no splitting.
+  void checkSurfaceBCs(const PSNode& root, const std::vector<MPMMaterial>& materials,
+                       const std::vector<MaterialSeeds>& seeds) const;
 
   MPMFlags flags_;
   std::vector<DiffusionMaterial> materials_;  // per material

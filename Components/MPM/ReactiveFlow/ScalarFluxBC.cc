@@ -1,6 +1,7 @@
 #include "Components/MPM/ReactiveFlow/ScalarFluxBC.h"
 
 #include <cmath>
+#include <sstream>
 #include <string>
 
 namespace anode {
@@ -21,6 +22,56 @@ bool readRule(const PSNode& block, const char* tag, const std::string& usual,
   return value == other;
 }
 
+void readGeometry(const PSNode& geom, ScalarFluxBC& bc) {
+  using Face = ScalarFluxBC::Face;
+  bc.geomLine = geom.line();
+  const auto pieces = geom.children();
+  if (pieces.size() != 1)
+    geom.fail("a <scalar_flux> <geom_object> holds exactly one box, cylinder or sphere");
+  const PSNode piece = pieces[0];
+  const std::string type = piece.name();
+  if (type == "box") {
+    bc.face = Face::Box;
+    bc.boxMin = piece.require<Vec3>("min");
+    bc.boxMax = piece.require<Vec3>("max");
+    if ((bc.boxMax.array() < bc.boxMin.array()).any())
+      piece.requireChild("max").fail("<max> must be >= <min>");
+  } else if (type == "cylinder") {
+    bc.bottom = piece.require<Vec3>("bottom");
+    bc.top = piece.require<Vec3>("top");
+    bc.radius = piece.require<double>("radius");
+    if (!(bc.radius > 0)) piece.requireChild("radius").fail("<radius> must be positive");
+    if ((bc.top - bc.bottom).norm() == 0) piece.requireChild("top").fail("<top> equals <bottom>");
+    bc.face = piece.get<bool>("cylinder_end", false) ? Face::CylinderEnd : Face::CylinderSide;
+    if (const PSNode a = piece.child("axisymmetric_end"))
+      if (a.value<bool>()) a.unsupported("axisymmetric flux boundary conditions");
+    if (const PSNode a = piece.child("axisymmetric_side"))
+      if (a.value<bool>()) a.unsupported("axisymmetric flux boundary conditions");
+  } else if (type == "sphere") {
+    bc.face = Face::Sphere;
+    const PSNode origin = piece.child("origin");
+    bc.center = origin ? origin.value<Vec3>() : piece.require<Vec3>("center");
+    bc.radius = piece.require<double>("radius");
+    if (!(bc.radius > 0)) piece.requireChild("radius").fail("<radius> must be positive");
+  } else {
+    piece.fail("a <scalar_flux> geometry must be a box, cylinder or sphere, found <" + type + ">");
+  }
+}
+
+// <surface material="NAME" exclude="NAME1 NAME2"/>: the material's free surface.
+void readSurface(const PSNode& surface, ScalarFluxBC& bc) {
+  bc.face = ScalarFluxBC::Face::Surface;
+  bc.geomLine = surface.line();
+  for (const std::string& a : surface.attributeNames())
+    if (a != "material" && a != "exclude")
+      surface.fail("<surface> takes the attributes material and exclude, found " + a);
+  bc.surfaceMaterial = surface.requireAttribute("material");
+  std::istringstream names(surface.attribute("exclude").value_or(""));
+  for (std::string name; names >> name;) bc.excluded.push_back(name);
+  if (!surface.children().empty())
+    surface.fail("<surface> has no content: its attributes name the material (and exclude)");
+}
+
 }  // namespace
 
 bool onSurface(const GeometryPiece& piece, const Vec3& x, const Vec3& dxp, int ndim) {
@@ -38,42 +89,18 @@ std::vector<ScalarFluxBC> ScalarFluxBC::fromInput(const std::vector<PSNode>& blo
   for (const PSNode& block : blocks) {
     ScalarFluxBC bc;
     bc.line = block.line();
-    const PSNode geom = block.requireChild("geom_object");
-    bc.geomLine = geom.line();
-    const auto pieces = geom.children();
-    if (pieces.size() != 1)
-      geom.fail("a <scalar_flux> <geom_object> holds exactly one box, cylinder or sphere");
-    const PSNode piece = pieces[0];
-    const std::string type = piece.name();
-    if (type == "box") {
-      bc.face = Face::Box;
-      bc.boxMin = piece.require<Vec3>("min");
-      bc.boxMax = piece.require<Vec3>("max");
-      if ((bc.boxMax.array() < bc.boxMin.array()).any())
-        piece.requireChild("max").fail("<max> must be >= <min>");
-    } else if (type == "cylinder") {
-      bc.bottom = piece.require<Vec3>("bottom");
-      bc.top = piece.require<Vec3>("top");
-      bc.radius = piece.require<double>("radius");
-      if (!(bc.radius > 0)) piece.requireChild("radius").fail("<radius> must be positive");
-      if ((bc.top - bc.bottom).norm() == 0) piece.requireChild("top").fail("<top> equals <bottom>");
-      bc.face = piece.get<bool>("cylinder_end", false) ? Face::CylinderEnd : Face::CylinderSide;
-      if (const PSNode a = piece.child("axisymmetric_end"))
-        if (a.value<bool>()) a.unsupported("axisymmetric flux boundary conditions");
-      if (const PSNode a = piece.child("axisymmetric_side"))
-        if (a.value<bool>()) a.unsupported("axisymmetric flux boundary conditions");
-    } else if (type == "sphere") {
-      bc.face = Face::Sphere;
-      const PSNode origin = piece.child("origin");
-      bc.center = origin ? origin.value<Vec3>() : piece.require<Vec3>("center");
-      bc.radius = piece.require<double>("radius");
-      if (!(bc.radius > 0)) piece.requireChild("radius").fail("<radius> must be positive");
+    if (const PSNode surface = block.child("surface")) {
+      if (block.child("geom_object"))
+        surface.fail("a <scalar_flux> takes a <geom_object> or a <surface>, not both");
+      readSurface(surface, bc);
     } else {
-      piece.fail("a <scalar_flux> geometry must be a box, cylinder or sphere, found <" + type +
-                 ">");
+      readGeometry(block.requireChild("geom_object"), bc);
     }
     bc.deformedArea = readRule(block, "area_update", "constant", "Uintah's fixed face area",
                                "deformed", "Nanson");
+    if (bc.deformedArea && bc.face == Face::Surface)
+      block.requireChild("area_update")
+          .fail("<area_update>deformed needs a BC geometry's normal; a <surface> BC has none");
     bc.particleFaceArea = readRule(block, "area_rule", "surface",
                                    "the area of the BC surface, shared among the flagged particles",
                                    "particle_face", "Uintah's face of each particle");
@@ -131,6 +158,8 @@ Vec3 ScalarFluxBC::normalAt(const Vec3& x) const {
       return (top - bottom).normalized();
     case Face::Sphere:
       return (x - center).norm() > 0 ? Vec3((x - center).normalized()) : Vec3::UnitX();
+    case Face::Surface:
+      break;  // no geometry of its own: not with splitting or <area_update>deformed
   }
   return Vec3::UnitX();
 }
@@ -155,6 +184,8 @@ double ScalarFluxBC::distanceToFace(const Vec3& x) const {
     }
     case Face::Sphere:
       return std::abs((x - center).norm() - radius);
+    case Face::Surface:
+      break;
   }
   return 0;
 }
@@ -195,6 +226,8 @@ double ScalarFluxBC::flaggedArea(const Vec3& x, const Vec3& dxp, const Vec3& fac
       if (std::abs(r - radius) > dxp.norm()) return 0;
       return faceAreas.x();
     }
+    case Face::Surface:
+      break;  // flagged by material (ExternalScalarFlux::assignToParticles)
   }
   return 0;
 }

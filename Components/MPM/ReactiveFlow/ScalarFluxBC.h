@@ -7,6 +7,7 @@
 #pragma once
 
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "Core/Geometry/GeometryPiece.h"
@@ -16,11 +17,15 @@
 namespace anode {
 
 struct ScalarFluxBC {
-  enum class Face { Box, CylinderSide, CylinderEnd, Sphere } face = Face::Box;
-  Vec3 boxMin, boxMax;  // box
-  Vec3 bottom, top;     // cylinder
-  double radius = 0;    // cylinder, sphere
-  Vec3 center;          // sphere
+  // Surface: <surface material="..." exclude="..."/>, the free surface of a material's body
+  // (every grid-filled geom_object), less where another material it names lies against it.
+  enum class Face { Box, CylinderSide, CylinderEnd, Sphere, Surface } face = Face::Box;
+  std::string surfaceMaterial;        // Surface: the material's name
+  std::vector<std::string> excluded;  // Surface: names of the materials it lies against
+  Vec3 boxMin, boxMax;                // box
+  Vec3 bottom, top;                   // cylinder
+  double radius = 0;                  // cylinder, sphere
+  Vec3 center;                        // sphere
   LoadCurve load{{0.0}, {0.0}};
   // <mode>flux (default, Eq. 16): the load is J, the flux through the surface. galvanostatic:
   // the load is the total lithium rate into the particles the BC flags, in history.csv's
