@@ -57,7 +57,8 @@ TEST(SceneSpec, ReadsEveryTag) {
   <background>[0, 0, 0.2]</background>
   <title>Cut-away</title>
   <units>kPa</units>
-  <time_unit>us</time_unit>
+  <time_unit>s</time_unit>
+  <time_scale>1e-6</time_scale>
 </scene>)");
   ASSERT_EQ(scenes.size(), 1u);
   const Scene& s = scenes[0];
@@ -88,8 +89,10 @@ TEST(SceneSpec, ReadsEveryTag) {
   EXPECT_EQ(s.background, Vec3(0, 0, 0.2));
   EXPECT_EQ(s.title, "Cut-away");
   EXPECT_EQ(s.units, "kPa");
-  EXPECT_EQ(s.timeUnit, "us");
-  EXPECT_EQ(s.imageFile(2.5), "images/cut_2.5.png");
+  EXPECT_EQ(s.timeUnit, "s");
+  EXPECT_EQ(s.timeScale, 1e-6);
+  EXPECT_EQ(s.imageFile(2.5), "images/cut_2.5.png");    // the file keeps the simulation time
+  EXPECT_EQ(s.titleAt(2.8e7), "Cut-away    t = 28 s");  // 2.8e7 us
 }
 
 TEST(SceneSpec, Defaults) {
@@ -108,6 +111,8 @@ TEST(SceneSpec, Defaults) {
   EXPECT_EQ(a.width, 1024);
   EXPECT_EQ(a.height, 768);
   EXPECT_EQ(a.background, Vec3(1, 1, 1));
+  EXPECT_EQ(a.timeScale, 1);
+  EXPECT_EQ(a.titleAt(2.5), "a    t = 2.5");
   EXPECT_EQ(a.renderTimes(0, 10), (std::vector<double>{0, 2.5, 5, 7.5, 10}));
   EXPECT_EQ(scenes[1].camera.preset, CameraPreset::Top);
   EXPECT_EQ(scenes[1].field.reduce, FieldSpec::Reduce::Magnitude);
@@ -151,6 +156,7 @@ TEST(SceneSpec, ErrorsNameFileAndLine) {
   expect("<background>[2, 0, 0]</background>", "each in [0, 1]");
   expect("<interval>-1</interval>", "positive");
   expect("<scale>0</scale>", "<scale> multiplies the field's values: a finite number, not 0");
+  expect("<time_scale>-1</time_scale>", "<time_scale> multiplies the simulation time");
   expect("<colour>grey</colour>", "unknown tag <colour> in <scene>");
   expect("<clip/>", "<clip> needs <point> and <normal>");
   expect("<title><b>x</b></title>", "takes a value, not tags");

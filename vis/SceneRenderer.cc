@@ -424,9 +424,7 @@ RenderedScene SceneRenderer::render(const Scene& scene, const SpriteSet& sprites
   if (!overlaid) return out;
 
   // Title with the time.
-  std::string title =
-      (scene.title.empty() ? scene.name : scene.title) + "    t = " + formatNumber(time);
-  if (!scene.timeUnit.empty()) title += " " + scene.timeUnit;
+  const std::string title = scene.titleAt(time);
   out.canvas.text(title, titleSize / 2, H - titleSize / 2, titleSize, ink, Canvas::Align::Start,
                   Canvas::Align::End);
 

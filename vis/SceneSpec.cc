@@ -7,6 +7,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "vis/SceneRenderer.h"
+
 namespace anode {
 
 namespace {
@@ -115,6 +117,12 @@ std::string Scene::imageFile(double time) const {
   return "images/" + name + "_" + buffer + ".png";
 }
 
+std::string Scene::titleAt(double time) const {
+  std::string text = (title.empty() ? name : title) + "    t = " + formatNumber(time * timeScale);
+  if (!timeUnit.empty()) text += " " + timeUnit;
+  return text;
+}
+
 const std::vector<std::string>& sceneTags() {
   static const std::vector<std::string> tags = {"times",
                                                 "interval",
@@ -134,7 +142,8 @@ const std::vector<std::string>& sceneTags() {
                                                 "background",
                                                 "title",
                                                 "units",
-                                                "time_unit"};
+                                                "time_unit",
+                                                "time_scale"};
   return tags;
 }
 
@@ -227,6 +236,11 @@ void setSceneValue(Scene& s, const std::string& tag, const std::string& raw) {
     s.units = v;
   } else if (tag == "time_unit") {
     s.timeUnit = v;
+  } else if (tag == "time_scale") {
+    s.timeScale = parseNumber(v);
+    if (!std::isfinite(s.timeScale) || !(s.timeScale > 0))
+      throw std::invalid_argument(
+          "<time_scale> multiplies the simulation time for the title: a positive number");
   } else {
     std::string accepted;
     for (const std::string& t : sceneTags())

@@ -62,6 +62,7 @@ struct Scene {
   std::string title;     // empty: the scene name
   std::string units;     // shown with the field name on the colour bar
   std::string timeUnit;  // shown after the time in the title
+  double timeScale = 1;  // the title's time is the simulation time times this (1e-6: us in s)
 
   bool drawsMaterial(int material) const;
   // False for a point on the cut-away side of the clip plane.
@@ -73,8 +74,10 @@ struct Scene {
   }
   // The times to render within [first, last]: the explicit ones, or every interval from `first`.
   std::vector<double> renderTimes(double first, double last) const;
-  // DIR/images/<name>_<time>.png relative to DIR.
+  // DIR/images/<name>_<time>.png relative to DIR (the simulation time, unscaled).
   std::string imageFile(double time) const;
+  // The title over the picture of simulation time `time`: "<title>    t = <scaled time> <unit>".
+  std::string titleAt(double time) const;
 };
 
 // What the caller knows to check a scene against.
