@@ -95,6 +95,27 @@ TEST(SceneSpec, ReadsEveryTag) {
   EXPECT_EQ(s.titleAt(2.8e7), "Cut-away    t = 28 s");  // 2.8e7 us
 }
 
+// A section: the particles within thickness/2 of the plane, on both sides (an array's row of
+// pillars seen face-on, whatever side of the plane each particle lies).
+TEST(SceneSpec, SectionKeepsASlabAboutThePlane) {
+  const auto scenes = read(R"(<scene name="row">
+  <times>[0]</times>
+  <field>p.volume</field>
+  <clip><point>[0, 0.1, 0]</point><normal>[0, 2, 0]</normal><thickness>0.02</thickness></clip>
+  <camera>front</camera>
+</scene>)");
+  ASSERT_EQ(scenes.size(), 1u);
+  const Scene& s = scenes[0];
+  for (const double y : {0.091, 0.1, 0.109}) {
+    const double x[3] = {5, y, -3};
+    EXPECT_TRUE(s.keeps(x)) << y;
+  }
+  for (const double y : {0.085, 0.115, 0.3, -0.1}) {
+    const double x[3] = {5, y, -3};
+    EXPECT_FALSE(s.keeps(x)) << y;
+  }
+}
+
 TEST(SceneSpec, Defaults) {
   const auto scenes =
       read(R"(<scene name="a"><interval>2.5</interval><field>p.volume</field></scene>
@@ -159,6 +180,8 @@ TEST(SceneSpec, ErrorsNameFileAndLine) {
   expect("<time_scale>-1</time_scale>", "<time_scale> multiplies the simulation time");
   expect("<colour>grey</colour>", "unknown tag <colour> in <scene>");
   expect("<clip/>", "<clip> needs <point> and <normal>");
+  expect("<clip><point>[0,0,0]</point><normal>[0,0,1]</normal><thickness>0</thickness></clip>",
+         "<thickness> is the section's width about the plane");
   expect("<title><b>x</b></title>", "takes a value, not tags");
   expect("<field>p.volume</field>", "given twice");
   expect("<clip><point>[0,0,0]</point><plane>[0,0,1]</plane></clip>", "unknown tag <clip/plane>");

@@ -133,6 +133,7 @@ const std::vector<std::string>& sceneTags() {
                                                 "materials",
                                                 "clip/point",
                                                 "clip/normal",
+                                                "clip/thickness",
                                                 "camera",
                                                 "camera/position",
                                                 "camera/focal_point",
@@ -193,6 +194,12 @@ void setSceneValue(Scene& s, const std::string& tag, const std::string& raw) {
   } else if (tag == "clip/point" || tag == "clip/normal") {
     if (!s.clip) s.clip = ClipPlane();
     (tag == "clip/point" ? s.clip->point : s.clip->normal) = parseValue<Vec3>(v);
+  } else if (tag == "clip/thickness") {
+    if (!s.clip) s.clip = ClipPlane();
+    s.clip->thickness = parseNumber(v);
+    if (!std::isfinite(s.clip->thickness) || !(s.clip->thickness > 0))
+      throw std::invalid_argument(
+          "<thickness> is the section's width about the plane: a positive length");
   } else if (tag == "camera") {
     static const std::pair<const char*, CameraPreset> presets[] = {{"iso", CameraPreset::Iso},
                                                                    {"front", CameraPreset::Front},

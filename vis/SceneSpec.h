@@ -3,6 +3,7 @@
 // tool; every tag is parsed here, in one place.
 #pragma once
 
+#include <cmath>
 #include <functional>
 #include <limits>
 #include <optional>
@@ -40,10 +41,12 @@ struct Camera {
   double viewAngle = 30;  // vertical, degrees
 };
 
-// Particles on the side the normal points to are cut away (ParaView's Clip default).
+// Particles on the side the normal points to are cut away (ParaView's Clip default); with a
+// thickness, a section: only the particles within thickness/2 of the plane are kept.
 struct ClipPlane {
   Vec3 point = Vec3::Zero();
   Vec3 normal = Vec3::Zero();
+  double thickness = 0;  // 0: a cut-away
 };
 
 struct Scene {
@@ -65,12 +68,14 @@ struct Scene {
   double timeScale = 1;  // the title's time is the simulation time times this (1e-6: us in s)
 
   bool drawsMaterial(int material) const;
-  // False for a point on the cut-away side of the clip plane.
+  // False for a point on the cut-away side of the clip plane (of a section: off its slab).
   bool keeps(const double* x) const {
-    return !clip || (x[0] - clip->point[0]) * clip->normal[0] +
-                            (x[1] - clip->point[1]) * clip->normal[1] +
-                            (x[2] - clip->point[2]) * clip->normal[2] <=
-                        0;
+    if (!clip) return true;
+    const double along = (x[0] - clip->point[0]) * clip->normal[0] +
+                         (x[1] - clip->point[1]) * clip->normal[1] +
+                         (x[2] - clip->point[2]) * clip->normal[2];
+    if (clip->thickness > 0) return std::abs(along) <= 0.5 * clip->thickness * clip->normal.norm();
+    return along <= 0;
   }
   // The times to render within [first, last]: the explicit ones, or every interval from `first`.
   std::vector<double> renderTimes(double first, double last) const;
