@@ -90,7 +90,7 @@ TEST(Render, ParticlesCoverTheirProjectedArea) {
   SceneRenderer renderer;
   const RenderedScene r = renderer.render(scene, makeSprites(scene, data), 0.0);
   // The silhouette of the front row of spheres (they reach r - h/2 beyond the block's faces).
-  const double rs = sphereRadius(h * h * h), reach = n * h / 2 - h / 2 + rs,
+  const double rs = spriteRadius(h * h * h), reach = n * h / 2 - h / 2 + rs,
                front = -(n * h / 2 - h / 2);
   const auto a = r.project(Vec3(-reach, front, -reach)), b = r.project(Vec3(reach, front, reach));
   const double faceArea = std::abs((b[0] - a[0]) * (b[1] - a[1]));
@@ -99,6 +99,43 @@ TEST(Render, ParticlesCoverTheirProjectedArea) {
   EXPECT_GT(fraction, 0.2);
   EXPECT_LT(fraction, 0.9);
   EXPECT_NEAR(fraction / expected, 1.0, 0.08) << "covered " << fraction << ", face " << expected;
+}
+
+// A solid block seen face-on, from above and at an angle: no background shows through inside
+// its silhouette (spheres of the particles' own volume left it at every lattice corner).
+TEST(Render, SolidBlockShowsNoSpeckles) {
+  const int n = 16;
+  const double h = 0.01;
+  const ParticleData data = block(n, h);
+  for (const CameraPreset preset : {CameraPreset::Front, CameraPreset::Top, CameraPreset::Iso}) {
+    Scene scene = frontScene();
+    scene.camera.preset = preset;
+    SceneRenderer renderer;
+    const RenderedScene r = renderer.render(scene, makeSprites(scene, data), 0.0);
+    // The projections of the block's inner core (a margin of two particles) are covered.
+    const double inner = n * h / 2 - 2 * h;
+    double lo[2] = {1e30, 1e30}, hi[2] = {-1e30, -1e30};
+    for (int corner = 0; corner < 8; ++corner) {
+      const Vec3 x((corner & 1 ? 1 : -1) * inner, (corner & 2 ? 1 : -1) * inner,
+                   (corner & 4 ? 1 : -1) * inner);
+      const auto p = r.project(x);
+      for (int k = 0; k < 2; ++k) lo[k] = std::min(lo[k], p[k]), hi[k] = std::max(hi[k], p[k]);
+    }
+    // For the oblique view the core's projection is a hexagon: its inscribed box, about the
+    // centre, half the size.
+    const double shrink = preset == CameraPreset::Iso ? 0.25 : 0.0;
+    long holes = 0, pixels = 0;
+    for (int y = static_cast<int>(lo[1] + shrink * (hi[1] - lo[1]));
+         y < static_cast<int>(hi[1] - shrink * (hi[1] - lo[1])); ++y)
+      for (int x = static_cast<int>(lo[0] + shrink * (hi[0] - lo[0]));
+           x < static_cast<int>(hi[0] - shrink * (hi[0] - lo[0])); ++x) {
+        holes += isBackground(r.canvas, x, y, scene.background);
+        ++pixels;
+      }
+    EXPECT_GT(pixels, 1000) << static_cast<int>(preset);
+    EXPECT_EQ(holes, 0) << "camera " << static_cast<int>(preset) << ": " << holes << " of "
+                        << pixels << " pixels show the background";
+  }
 }
 
 TEST(Render, ColourAtParticlesMatchesTheColourMap) {
@@ -188,7 +225,7 @@ TEST(Render, ClipPlaneRemovesOneSide) {
   const SpriteSet kept = makeSprites(scene, data);
   EXPECT_EQ(kept.count(), static_cast<size_t>(n * n * n / 2));
   const RenderedScene clipped = renderer.render(scene, kept, 0.0);
-  const double rs = sphereRadius(h * h * h);
+  const double rs = spriteRadius(h * h * h);
   const double edge =
       clipped.project(Vec3(rs, -n * h / 2, 0))[0];  // the last kept spheres reach here
   long left = 0, right = 0, leftWhole = 0;

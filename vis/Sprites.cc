@@ -32,13 +32,17 @@ double radiusFromBounds(const std::vector<double>& points) {
       : extents[1] > 0 ? std::sqrt(extents[1] * extents[2] / static_cast<double>(n))
       : extents[2] > 0 ? extents[2] / static_cast<double>(n)
                        : 1.0;
-  return sphereRadius(spacing * spacing * spacing);
+  return spriteRadius(spacing * spacing * spacing);
 }
 
 }  // namespace
 
 double sphereRadius(double volume) {
   return std::cbrt(3.0 * std::max(volume, 0.0) / (4.0 * M_PI));
+}
+
+double spriteRadius(double volume) {
+  return 0.5 * std::sqrt(3.0) * std::cbrt(std::max(volume, 0.0));
 }
 
 SpriteSet makeSprites(const Scene& scene, const ParticleData& data) {
@@ -65,7 +69,7 @@ SpriteSet makeSprites(const Scene& scene, const ParticleData& data) {
     if (!scene.keeps(x)) continue;
     s.position.insert(s.position.end(), x, x + 3);
     s.value.push_back(scene.scale * field.evaluate(&values->real[i * field.components]));
-    s.radius.push_back(volume ? sphereRadius(volume->real[i]) : fallbackRadius);
+    s.radius.push_back(volume ? spriteRadius(volume->real[i]) : fallbackRadius);
   }
   return s;
 }

@@ -12,7 +12,7 @@ namespace anode {
 struct SpriteSet {
   std::vector<double> position;  // x0 y0 z0 x1 ...
   std::vector<double> value;     // the scene's field, times the scene's scale
-  std::vector<double> radius;    // of the sphere with the particle's volume
+  std::vector<double> radius;    // spriteRadius of the particle's volume
   size_t count() const { return value.size(); }
 };
 
@@ -25,5 +25,10 @@ SpriteSet makeSprites(const Scene& scene, const ParticleData& data);
 
 // The radius of the sphere of volume v.
 double sphereRadius(double volume);
+// The radius a particle of volume v is drawn with: the sphere around its cube (edge cbrt(v)),
+// half the cube's diagonal, so the spheres of a solid block cover it from any side (the sphere of
+// its own volume, 0.62 of the edge, leaves the background showing through at the lattice's
+// corners where it is seen face-on).
+double spriteRadius(double volume);
 
 }  // namespace anode
