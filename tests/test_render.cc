@@ -138,6 +138,28 @@ TEST(Render, SolidBlockShowsNoSpeckles) {
   }
 }
 
+// A camera close to the data, which then fills the whole view: the colour bar's column and the
+// title band stay clear of it (only the bar and the text are drawn there).
+TEST(Render, DataStaysOutOfTheColourBarAndTitle) {
+  const ParticleData data = block(20, 0.01);
+  Scene scene = frontScene();
+  scene.camera.preset = CameraPreset::Custom;
+  scene.camera.position = Vec3(0.02, -0.15, 0.01);
+  scene.camera.focalPoint = Vec3(0.02, 0, 0.01);
+  SceneRenderer renderer;
+  const RenderedScene r = renderer.render(scene, makeSprites(scene, data), 0.0);
+  const int W = scene.width, H = scene.height;
+  const int right = r.viewport[0] + r.viewport[2], top = r.viewport[1] + r.viewport[3];
+  ASSERT_LT(right, W);
+  long spilled = 0;
+  for (int y = 0; y < r.colourBar[1] / 2; ++y)  // the bar's column, well below the bar
+    for (int x = right; x < W; ++x) spilled += !isBackground(r.canvas, x, y, scene.background);
+  for (int y = top; y < H; ++y)  // the title band's right half
+    for (int x = W / 2; x < right; ++x) spilled += !isBackground(r.canvas, x, y, scene.background);
+  EXPECT_EQ(spilled, 0);
+  EXPECT_GT(coveredFraction(r, scene.background), 0.99);  // the data fills the view
+}
+
 TEST(Render, ColourAtParticlesMatchesTheColourMap) {
   const int n = 10;
   const double h = 0.01;
