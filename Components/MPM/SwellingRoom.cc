@@ -11,16 +11,6 @@ namespace anode {
 
 namespace {
 
-const char* faceName(int axis, int side) {
-  static const char* names[3][2] = {{"x-", "x+"}, {"y-", "y+"}, {"z-", "z+"}};
-  return names[axis][side];
-}
-
-// Distance of x from the grid face (axis, side), positive inside the grid.
-double distanceToFace(const Grid& g, const Vec3& x, int axis, int side) {
-  return side == 0 ? x[axis] - g.lower[axis] : g.upper[axis] - x[axis];
-}
-
 // The cell holding x (extra cells included, so every particle has one) and its flat key.
 Vec3i cellOf(const Grid& g, const Vec3& x) {
   Vec3i c;

@@ -8,20 +8,6 @@
 
 namespace anode {
 
-namespace {
-
-const char* faceName(int axis, int side) {
-  static const char* names[3][2] = {{"x-", "x+"}, {"y-", "y+"}, {"z-", "z+"}};
-  return names[axis][side];
-}
-
-// Distance of x from the grid face (axis, side), positive inside the grid.
-double distanceToFace(const Grid& g, const Vec3& x, int axis, int side) {
-  return side == 0 ? x[axis] - g.lower[axis] : g.upper[axis] - x[axis];
-}
-
-}  // namespace
-
 std::vector<std::string> SymmetryFaceWatch::start(Collective, const MPM& mpm) {
   const Grid& g = mpm.grid();
   watched_.clear();

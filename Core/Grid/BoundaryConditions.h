@@ -22,6 +22,17 @@ struct BCFace {
   bool appliesTo(int matl) const { return material < 0 || material == matl; }
 };
 
+// The name of face (axis, side) as the input writes it: "x-", "x+", ... "z+".
+inline const char* faceName(int axis, int side) {
+  static const char* names[3][2] = {{"x-", "x+"}, {"y-", "y+"}, {"z-", "z+"}};
+  return names[axis][side];
+}
+
+// Distance of x from the grid face (axis, side), positive inside the grid.
+inline double distanceToFace(const Grid& g, const Vec3& x, int axis, int side) {
+  return side == 0 ? x[axis] - g.lower[axis] : g.upper[axis] - x[axis];
+}
+
 // One <BCType>: its element, its face, its label and var.
 struct BCType {
   PSNode node;
