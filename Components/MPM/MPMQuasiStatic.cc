@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <optional>
 #include <sstream>
 #include <variant>
 
@@ -171,9 +172,12 @@ double MPM::advanceQuasiStatic(Collective, double t, double dt, double dtMin,
   }
   // A step retaken with a smaller dt diffuses again from the particles of the step's start.
   std::vector<ParticleSet> start;
+  std::optional<ExternalScalarFlux> fluxAtStart;
   int retakes = 0;
-  if (diffusion_)
+  if (diffusion_) {
     for (const MPMMaterial& mat : materials_) start.push_back(mat.particles);
+    fluxAtStart = diffusion_->fluxState();
+  }
   while (true) {
     interpolateAndSumOverRanks();  // the nodal masses (and the concentration's sums)
     // 2: c over dt; a step in which c changed by more than twice the bound of
@@ -234,7 +238,10 @@ double MPM::advanceQuasiStatic(Collective, double t, double dt, double dtMin,
     if (Communicator::isRoot()) std::fprintf(stderr, "%s\n", note.str().c_str());
     dt = smaller;
     for (size_t m = 0; m < start.size(); ++m) materials_[m].particles = start[m];
-    if (diffusion_) diffusion_->updateDiffusionState(Collective{}, materials_, t);
+    if (diffusion_) {
+      diffusion_->restoreFluxState(*fluxAtStart);
+      diffusion_->updateDiffusionState(Collective{}, materials_, t);
+    }
   }
   {
     ScopedTimer s(timers_, tasks_.particleUpdate);
