@@ -1,5 +1,6 @@
 #include "Components/MPM/SwellingRoom.h"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <numeric>
@@ -11,10 +12,15 @@ namespace anode {
 
 namespace {
 
-// The cell holding x (extra cells included, so every particle has one) and its flat key.
+// The cell holding x, extra cells included (a point beyond them, which setup never leaves, in
+// the outermost), and its flat key.
 Vec3i cellOf(const Grid& g, const Vec3& x) {
   Vec3i c;
-  for (int a = 0; a < 3; ++a) c[a] = static_cast<int>(std::floor((x[a] - g.lower[a]) / g.dx[a]));
+  for (int a = 0; a < 3; ++a) {
+    const double index = std::floor((x[a] - g.lower[a]) / g.dx[a]);
+    const double first = -g.extra[a], last = g.cells[a] + g.extra[a] - 1;
+    c[a] = static_cast<int>(std::isnan(index) ? first : std::clamp(index, first, last));
+  }
   return c;
 }
 
@@ -33,21 +39,6 @@ int root(std::vector<int>& parent, int i) {
 bool swells(const MPMMaterial& mat, size_t m, const ReactiveFlow* diffusion) {
   return diffusion && std::exp(mat.model->swellingCoefficient()) > 1 &&
          (diffusion->model(m).diffuses() || diffusion->model(m).constantRate() != 0);
-}
-
-// Whether a particle of another material occupies a cell just beyond the body's side (axis,
-// side), across the body's extent on the other axes.
-bool restsOnOther(const Grid& g, const std::unordered_set<long long>& others, const Body& b,
-                  int axis, int side) {
-  const Vec3i lo = cellOf(g, b.lo), hi = cellOf(g, b.hi);
-  Vec3i c = lo;
-  const int beyond = side == 0 ? lo[axis] - 1 : hi[axis] + 1;
-  const int u = (axis + 1) % 3, v = (axis + 2) % 3;
-  c[axis] = beyond;
-  for (c[u] = lo[u]; c[u] <= hi[u]; ++c[u])
-    for (c[v] = lo[v]; c[v] <= hi[v]; ++c[v])
-      if (others.count(keyOf(g, c))) return true;
-  return false;
 }
 
 }  // namespace
@@ -78,11 +69,24 @@ std::vector<Body> findBodies(const Grid& g, const std::vector<MPMMaterial>& mate
   std::unordered_map<int, size_t> bodyOfRoot;
   for (size_t i = 0; i < p.count(); ++i) {
     const auto [it, added] = bodyOfRoot.emplace(root(parent, particleCell[i]), bodies.size());
-    if (added) bodies.push_back({0, p.x[i], p.x[i], {}});
+    if (added) bodies.push_back({0, p.x[i], p.x[i], {}, {}});
     Body& b = bodies[it->second];
     ++b.particles;
     b.lo = b.lo.cwiseMin(p.x[i]);
     b.hi = b.hi.cwiseMax(p.x[i]);
+  }
+  // Where another material occupies the cell next to one of the body's cells.
+  std::unordered_set<long long> others;
+  for (size_t o = 0; o < materials.size(); ++o)
+    if (o != m)
+      for (const Vec3& x : materials[o].particles.x) others.insert(keyOf(g, cellOf(g, x)));
+  for (size_t k = 0; k < cells.size(); ++k) {
+    Body& b = bodies[bodyOfRoot.at(root(parent, static_cast<int>(k)))];
+    for (int a = 0; a < 3; ++a)
+      for (int side = 0; side < 2; ++side)
+        if (!b.restsOnOther[a][side] &&
+            others.count(keyOf(g, cells[k] + (side == 0 ? -1 : 1) * Vec3i::Unit(a))))
+          b.restsOnOther[a][side] = true;
   }
   return bodies;
 }
@@ -94,10 +98,6 @@ std::vector<std::string> swellingRoomNotes(const Grid& g, const GridBoundaryCond
   for (size_t m = 0; m < materials.size(); ++m) {
     const MPMMaterial& mat = materials[m];
     if (!swells(mat, m, diffusion) || mat.particles.count() == 0) continue;
-    std::unordered_set<long long> others;
-    for (size_t o = 0; o < materials.size(); ++o)
-      if (o != m)
-        for (const Vec3& x : materials[o].particles.x) others.insert(keyOf(g, cellOf(g, x)));
     const double eta = mat.model->swellingCoefficient(), growth = std::exp(eta);
     std::vector<Body> bodies = findBodies(g, materials, m);
     // Which faces each body reaches, grouped by the faces: "x+, z+" -> bodies 1, 3.
@@ -111,7 +111,7 @@ std::vector<std::string> swellingRoomNotes(const Grid& g, const GridBoundaryCond
           anchored[bc.axis][bc.side] = true;
       for (int a = 0; a < 3; ++a)
         for (int side = 0; side < 2; ++side)
-          anchored[a][side] = anchored[a][side] || restsOnOther(g, others, b, a, side);
+          anchored[a][side] = anchored[a][side] || b.restsOnOther[a][side];
       for (const BCFace& bc : bcs.symmetric) {
         const int a = bc.axis;
         if (!bc.appliesTo(static_cast<int>(m)) ||

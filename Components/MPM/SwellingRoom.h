@@ -19,6 +19,8 @@ struct Body {
   size_t particles = 0;
   Vec3 lo, hi;                     // extent of its particle centres
   std::vector<std::string> faces;  // the Symmetric faces free swelling would carry it into
+  // Per axis and side (0: minus): another material occupies a cell next to one of its cells.
+  bool restsOnOther[3][2] = {};
 };
 
 // The bodies of material m, in the order of their first particle.
