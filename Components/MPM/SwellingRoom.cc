@@ -47,12 +47,9 @@ std::vector<Body> findBodies(const Grid& g, const std::vector<MPMMaterial>& mate
   const ParticleSet& p = materials[m].particles;
   std::unordered_map<long long, int> cellIndex;
   std::vector<Vec3i> cells;
-  std::vector<int> particleCell(p.count());
-  for (size_t i = 0; i < p.count(); ++i) {
-    const Vec3i c = cellOf(g, p.x[i]);
-    const auto [it, added] = cellIndex.emplace(keyOf(g, c), static_cast<int>(cells.size()));
-    if (added) cells.push_back(c);
-    particleCell[i] = it->second;
+  for (const Vec3& x : p.x) {
+    const Vec3i c = cellOf(g, x);
+    if (cellIndex.emplace(keyOf(g, c), static_cast<int>(cells.size())).second) cells.push_back(c);
   }
   std::vector<int> parent(cells.size());
   std::iota(parent.begin(), parent.end(), 0);
@@ -68,7 +65,8 @@ std::vector<Body> findBodies(const Grid& g, const std::vector<MPMMaterial>& mate
   std::vector<Body> bodies;
   std::unordered_map<int, size_t> bodyOfRoot;
   for (size_t i = 0; i < p.count(); ++i) {
-    const auto [it, added] = bodyOfRoot.emplace(root(parent, particleCell[i]), bodies.size());
+    const int cell = cellIndex.at(keyOf(g, cellOf(g, p.x[i])));
+    const auto [it, added] = bodyOfRoot.emplace(root(parent, cell), bodies.size());
     if (added) bodies.push_back({0, p.x[i], p.x[i], {}, {}});
     Body& b = bodies[it->second];
     ++b.particles;
@@ -104,19 +102,17 @@ std::vector<std::string> swellingRoomNotes(const Grid& g, const GridBoundaryCond
     std::map<std::string, std::vector<size_t>> reaching;
     for (size_t n = 0; n < bodies.size(); ++n) {
       Body& b = bodies[n];
-      bool anchored[3][2] = {};
+      bool startsOn[3][2] = {}, anchored[3][2] = {};
       for (const BCFace& bc : bcs.symmetric)
         if (bc.appliesTo(static_cast<int>(m)) &&
             distanceToFace(g, bc.side == 0 ? b.lo : b.hi, bc.axis, bc.side) < g.dx[bc.axis])
-          anchored[bc.axis][bc.side] = true;
+          startsOn[bc.axis][bc.side] = true;
       for (int a = 0; a < 3; ++a)
         for (int side = 0; side < 2; ++side)
-          anchored[a][side] = anchored[a][side] || b.restsOnOther[a][side];
+          anchored[a][side] = startsOn[a][side] || b.restsOnOther[a][side];
       for (const BCFace& bc : bcs.symmetric) {
         const int a = bc.axis;
-        if (!bc.appliesTo(static_cast<int>(m)) ||
-            distanceToFace(g, bc.side == 0 ? b.lo : b.hi, a, bc.side) < g.dx[a])
-          continue;
+        if (!bc.appliesTo(static_cast<int>(m)) || startsOn[a][bc.side]) continue;
         // Free growth away from the side it rests on, or about its middle (both or neither).
         const double length = growth * (b.hi[a] - b.lo[a]);
         const bool fromLow = anchored[a][0] && !anchored[a][1];

@@ -110,6 +110,7 @@ void Simulation::run() {
     particleSteps_ += particles;
     particleStepsOfThisProcess_ += particles;
     reportSymmetryFaces();
+    reportDiffusionNotes();
     const bool done = finished(Collective{});
     const bool atInputEnd = done && reachedInputEnd();
     // A rebalance is followed by a checkpoint, so a replay to the last good state never
@@ -267,12 +268,6 @@ size_t Simulation::recordHistoryRow(double stepDt) {
   archiver_.recordHistory({step_, s.particles, t_, stepDt, s.kineticEnergy, s.minJ, s.maxJ,
                            earlierWallSeconds_ + wallTime(), s.diffusion, s.totalLithium,
                            s.minConcentration, s.maxConcentration, lithiumRate, stateOfCharge_});
-  if (mpm_.diffusion())
-    for (const std::string& note : mpm_.diffusion()->takeRunNotes()) {
-      if (!Communicator::isRoot()) continue;
-      if (progress_) progress_->finish();
-      std::fprintf(stderr, "note: %s\n", note.c_str());
-    }
   return s.particles;
 }
 
@@ -291,6 +286,15 @@ void Simulation::reportSymmetryFaces() {
   for (const std::string& warning : symmetryFaces_.afterStep(Collective{}, mpm_, step_, t_)) {
     if (progress_) progress_->finish();
     std::fprintf(stderr, "%s\n", warning.c_str());
+  }
+}
+
+void Simulation::reportDiffusionNotes() {
+  if (!mpm_.diffusion()) return;
+  for (const std::string& note : mpm_.diffusion()->takeRunNotes()) {
+    if (!Communicator::isRoot()) continue;  // every rank holds the same notes
+    if (progress_) progress_->finish();
+    std::fprintf(stderr, "note: %s\n", note.c_str());
   }
 }
 

@@ -90,6 +90,8 @@ class Simulation {
   void writeOutput(bool afterStep);
   // Prints the symmetry-face warnings of the step just taken.
   void reportSymmetryFaces();
+  // Prints the diffusion's notes of the step just taken (a galvanostatic current ending).
+  void reportDiffusionNotes();
   // At an output step of a distributed run: draws the boxes anew from the particle counts when
   // the particles per rank (max/mean) grew by kRebalanceImbalance since they were drawn; true
   // if it did.

@@ -43,6 +43,14 @@ void shareFluxFaces(ParticleSet& p, const std::vector<ScalarFluxBC>& bcs,
   }
 }
 
+// A_k of Eq. 16 for particle i's slot s: the area it was given, or with <area_update>deformed
+// that area carried by its deformation (Nanson).
+template <class Particles>
+double fluxArea(const ScalarFluxBC& bc, const ParticleSet& p, const Particles& d, long i, int s) {
+  return bc.deformedArea ? d.area[i][s] * bc.areaStretch(p.F[i], p.x[i] - p.displacement[i])
+                         : d.area[i][s];
+}
+
 }  // namespace
 
 std::vector<ExternalScalarFlux::Flagged> ExternalScalarFlux::assignToParticles(
@@ -139,10 +147,7 @@ std::vector<double> ExternalScalarFlux::fluxes(const std::vector<MPMMaterial>& m
       for (int s = 0; s < 3 && d.loadCurveID[i][s] > 0; ++s) {
         const size_t b = d.loadCurveID[i][s] - 1;
         if (bcs_[b].mode != ScalarFluxBC::Mode::Galvanostatic) continue;
-        const double area =
-            bcs_[b].deformedArea
-                ? d.area[i][s] * bcs_[b].areaStretch(p.F[i], p.x[i] - p.displacement[i])
-                : d.area[i][s];
+        const double area = fluxArea(bcs_[b], p, d, i, s);
         const double unrestricted = p.mass[i] * area / p.volume[i] * cmax;
         sums[b] += unrestricted * fluxRestriction(d.concentration[i] / cmax, J[b] >= 0);
         sums[n + b] += unrestricted;
@@ -229,10 +234,7 @@ void ExternalScalarFlux::computeFluxRates(std::vector<MPMMaterial>& materials,
       double rate = 0, in = 0, out = 0;
       for (int s = 0; s < 3 && d.loadCurveID[i][s] > 0; ++s) {
         const int b = d.loadCurveID[i][s] - 1;
-        const double area =
-            bcs_[b].deformedArea
-                ? d.area[i][s] * bcs_[b].areaStretch(p.F[i], p.x[i] - p.displacement[i])
-                : d.area[i][s];
+        const double area = fluxArea(bcs_[b], p, d, i, s);
         rate += J[b] * area;
         (J[b] > 0 ? in : out) += std::abs(J[b]) * area;
       }
