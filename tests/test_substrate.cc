@@ -6,12 +6,19 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <regex>
 #include <sstream>
 #include <string>
+#include <vector>
+
+#include <unistd.h>
 
 #include "Core/Util/Errors.h"
 #include "StandAlone/Driver/Simulation.h"
+
+namespace fs = std::filesystem;
 
 namespace anode {
 namespace {
@@ -157,6 +164,67 @@ TEST(Substrate, ConcentrationRangeIsOfTheMaterialsThatTakeUpLithium) {
   }
   EXPECT_NEAR(summary.chargeableLithium / summary.lithiumCapacity, lithium / mass,
               1e-12 * lithium / mass);
+}
+
+// With a substrate that diffuses too, history.csv gives each material's lithium and range of c
+// (lithium_NAME, min_c_NAME, max_c_NAME), summing to the totals; with a substrate that takes up
+// none, no per-material columns (the totals are the pillar's).
+TEST(Substrate, HistoryHasColumnsPerMaterialThatTakesUpLithium) {
+  omp_set_num_threads(2);
+  RunOptions o;
+  o.progress = false;
+  const auto header = [](const fs::path& dir) {
+    std::ifstream in(dir / "history.csv");
+    std::string line;
+    std::getline(in, line);
+    return line;
+  };
+  const fs::path dir = fs::temp_directory_path() / ("anode_substrate_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const auto inputFile = [&](const std::string& name, const std::string& text) {
+    o.input = (dir / (name + ".ups")).string();
+    o.outputDir = (dir / name).string();
+    std::ofstream(o.input) << text;
+  };
+  inputFile("dry", pillarOnSubstrate("", "", "", "0.2"));
+  Simulation(o).run();
+  EXPECT_EQ(header(o.outputDir).find("_pillar"), std::string::npos) << header(o.outputDir);
+
+  std::string text = pillarOnSubstrate("", "", "", "0.2");
+  const std::string dry = "<diffusivity>0</diffusivity>";
+  ASSERT_NE(text.find(dry), std::string::npos);
+  text.replace(text.find(dry), dry.size(), "<diffusivity>1e-7</diffusivity>");
+  inputFile("wet", text);
+  Simulation wet(o);
+  wet.run();
+  const std::string columns = header(o.outputDir);
+  EXPECT_NE(columns.find(",capacity_mAh_g,lithium_pillar,min_c_pillar,max_c_pillar,"
+                         "lithium_substrate,min_c_substrate,max_c_substrate,wall_seconds"),
+            std::string::npos)
+      << columns;
+  std::ifstream in(fs::path(o.outputDir) / "history.csv");
+  std::string line, last;
+  while (std::getline(in, line)) last = line;
+  std::vector<double> row;
+  std::stringstream cells(last);
+  for (std::string cell; std::getline(cells, cell, ',');) row.push_back(std::stod(cell));
+  ASSERT_EQ(row.size(), 20u) << last;
+  // Each material's sum and range, as its particles have them at the end (10 digits written).
+  for (size_t m = 0; m < 2; ++m) {
+    const ParticleSet& p = wet.mpm().materials()[m].particles;
+    const std::vector<double>& c = diffusionParticles(p).concentration;
+    double lithium = 0;
+    for (size_t i = 0; i < p.count(); ++i) lithium += p.mass[i] * c[i];
+    EXPECT_NEAR(row[13 + 3 * m], lithium, 1e-9 * lithium) << "material " << m;
+    EXPECT_NEAR(row[14 + 3 * m], *std::min_element(c.begin(), c.end()), 1e-9) << m;
+    EXPECT_NEAR(row[15 + 3 * m], *std::max_element(c.begin(), c.end()), 1e-9) << m;
+  }
+  EXPECT_NEAR(row[13] + row[16], row[7], 1e-9 * row[7]);  // total_lithium
+  EXPECT_GT(row[18], 0.0) << "the flux covers the substrate's top: it takes up lithium";
+  EXPECT_EQ(row[8], std::min(row[14], row[17]));
+  EXPECT_EQ(row[9], std::max(row[15], row[18]));
+  fs::remove_all(dir);
 }
 
 // The substrate takes up no lithium: its concentration is not computed (NoConcentration kernels,

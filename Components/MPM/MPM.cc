@@ -390,16 +390,24 @@ StepSummary MPM::summarize(Collective) const {
   }
   if (diffusion_) diffusion_->summarize(materials_, s);
   if (distributed_) {
-    double sums[5] = {s.kineticEnergy, s.totalLithium, static_cast<double>(s.particles),
-                      s.chargeableLithium, s.lithiumCapacity};
-    double lows[2] = {s.minJ, s.minConcentration}, highs[2] = {s.maxJ, s.maxConcentration};
-    collective::sum(sums, 5);
-    collective::minimum(lows, 2);
-    collective::maximum(highs, 2);
+    // One reduction of each kind: the totals, then each material's own.
+    std::vector<double> sums = {s.kineticEnergy, s.totalLithium, static_cast<double>(s.particles),
+                                s.chargeableLithium, s.lithiumCapacity};
+    std::vector<double> lows = {s.minJ, s.minConcentration}, highs = {s.maxJ, s.maxConcentration};
+    for (const StepSummary::MaterialLithium& m : s.perMaterial) {
+      sums.push_back(m.lithium);
+      lows.push_back(m.minConcentration);
+      highs.push_back(m.maxConcentration);
+    }
+    collective::sum(sums.data(), static_cast<int>(sums.size()));
+    collective::minimum(lows.data(), static_cast<int>(lows.size()));
+    collective::maximum(highs.data(), static_cast<int>(highs.size()));
     s.kineticEnergy = sums[0], s.totalLithium = sums[1], s.particles = static_cast<size_t>(sums[2]);
     s.chargeableLithium = sums[3], s.lithiumCapacity = sums[4];
     s.minJ = lows[0], s.minConcentration = lows[1], s.maxJ = highs[0],
     s.maxConcentration = highs[1];
+    for (size_t k = 0; k < s.perMaterial.size(); ++k)
+      s.perMaterial[k] = {sums[5 + k], lows[2 + k], highs[2 + k]};
   }
   return s;
 }

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstddef>
+#include <vector>
 
 namespace anode {
 
@@ -15,6 +16,12 @@ struct StepSummary {
   // sum m c_max, whose ratio is the state of charge.
   double chargeableLithium = 0, lithiumCapacity = 0;
   double minConcentration = 0, maxConcentration = 0;
+  // Per material whose c can change, in material order, when two or more can (history.csv's
+  // per-material columns): its sum m c and its range of c.
+  struct MaterialLithium {
+    double lithium = 0, minConcentration, maxConcentration;
+  };
+  std::vector<MaterialLithium> perMaterial;
 };
 
 }  // namespace anode

@@ -1,6 +1,7 @@
 #include "StandAlone/Driver/DataArchiver.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstddef>
 #include <cstdio>
@@ -255,26 +256,47 @@ std::string DataArchiver::writeFailedState(Collective, long step, const MPM& mpm
   return (fs::path(dir_) / file).string();
 }
 
+void DataArchiver::setMaterialColumns(const std::vector<MPMMaterial>& materials,
+                                      const std::vector<size_t>& which) {
+  materialColumns_.clear();
+  for (size_t m : which) {
+    std::string name = materials[m].name;
+    const bool shared = std::count_if(materials.begin(), materials.end(), [&](const auto& other) {
+                          return other.name == name;
+                        }) > 1;
+    if (name.empty() || shared) name = "material" + std::to_string(m);
+    for (char& ch : name)
+      if (!std::isalnum(static_cast<unsigned char>(ch)) && ch != '-' && ch != '_') ch = '_';
+    materialColumns_.push_back(name);
+  }
+}
+
 void DataArchiver::writeHistory() {
   if (!Communicator::isRoot() || unwritten_.empty()) {
     unwritten_.clear();
     return;
   }
   std::ostringstream s;
-  if (!historyStarted_)
-    s << "step,time,dt,particles,kinetic_energy,min_J,max_J,"
-      << (unwritten_.front().diffusion
-              ? "total_lithium,min_c,max_c,lithium_rate,state_of_charge,capacity_mAh_g,"
-              : "")
-      << "wall_seconds\n";
+  if (!historyStarted_) {
+    s << "step,time,dt,particles,kinetic_energy,min_J,max_J,";
+    if (unwritten_.front().row.diffusion) {
+      s << "total_lithium,min_c,max_c,lithium_rate,state_of_charge,capacity_mAh_g,";
+      for (const std::string& name : materialColumns_)
+        s << "lithium_" << name << ",min_c_" << name << ",max_c_" << name << ',';
+    }
+    s << "wall_seconds\n";
+  }
   s << std::setprecision(10);
-  for (const HistoryRow& r : unwritten_) {
+  for (const auto& [r, perMaterial] : unwritten_) {
     s << r.step << ',' << r.time << ',' << r.dt << ',' << r.particles << ',' << r.kineticEnergy
       << ',' << r.minJ << ',' << r.maxJ << ',';
-    if (r.diffusion)
+    if (r.diffusion) {
       s << r.totalLithium << ',' << r.minConcentration << ',' << r.maxConcentration << ','
         << r.lithiumRate << ',' << r.stateOfCharge << ','
         << r.stateOfCharge * kSiliconCapacityAtFull << ',';
+      for (const StepSummary::MaterialLithium& m : perMaterial)
+        s << m.lithium << ',' << m.minConcentration << ',' << m.maxConcentration << ',';
+    }
     s << r.wallSeconds << '\n';
   }
   const std::string path = (fs::path(dir_) / "history.csv").string();

@@ -55,8 +55,15 @@ class DataArchiver {
   // Writes the particles of a step that failed a check to particles/failed_step_NNNNNN.vtu (or
   // .pvtu), outside the .pvd series; returns that path.
   std::string writeFailedState(Collective, long step, const MPM& mpm) const;
-  void recordHistory(const HistoryRow& row) {
-    unwritten_.push_back(row);
+  // history.csv's per-material columns (lithium_NAME, min_c_NAME, max_c_NAME) for materials
+  // `which`, in the order of each row's perMaterial; none by default. NAME is the material's
+  // name attribute with characters other than letters, digits, '-' and '_' as '_', or
+  // "material<index>" when it has none or shares it with another material.
+  void setMaterialColumns(const std::vector<MPMMaterial>& materials,
+                          const std::vector<size_t>& which);
+  void recordHistory(const HistoryRow& row,
+                     std::vector<StepSummary::MaterialLithium> perMaterial = {}) {
+    unwritten_.push_back({row, std::move(perMaterial)});
     lastRow_ = row;
   }
   // Appends the rows recorded since the last call to history.csv (the header first), so a long
@@ -95,7 +102,12 @@ class DataArchiver {
   double lastOutputTime_ = 0;
   long lastOutputStep_ = -1;
   PVDSeries particleSeries_, gridSeries_;
-  std::vector<HistoryRow> unwritten_;  // recorded, not yet in history.csv
+  struct UnwrittenRow {
+    HistoryRow row;
+    std::vector<StepSummary::MaterialLithium> perMaterial;
+  };
+  std::vector<UnwrittenRow> unwritten_;  // recorded, not yet in history.csv
+  std::vector<std::string> materialColumns_;
   HistoryRow lastRow_{};
   bool historyStarted_ = false;  // history.csv exists with its header
 };

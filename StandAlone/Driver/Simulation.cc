@@ -37,6 +37,8 @@ void Simulation::setup() {
   archiver_ =
       DataArchiver::fromInput(root.requireChild("DataArchiver"), mpm_.flags().doScalarDiffusion,
                               static_cast<int>(mpm_.materials().size()));
+  if (mpm_.diffusion())
+    archiver_.setMaterialColumns(mpm_.materials(), mpm_.diffusion()->lithiumTakingMaterials());
   checkpoints_ = CheckpointSchedule::fromInput(root.requireChild("DataArchiver"));
   scenes_ = SceneOutput::fromInput(root, time_, mpm_);
   if (archiver_.savesConcentrationFields() || scenes_.draws("p.concentrationGradient"))
@@ -267,7 +269,8 @@ size_t Simulation::recordHistoryRow(double stepDt) {
   stateOfCharge_ = s.lithiumCapacity > 0 ? s.chargeableLithium / s.lithiumCapacity : 0.0;
   archiver_.recordHistory({step_, s.particles, t_, stepDt, s.kineticEnergy, s.minJ, s.maxJ,
                            earlierWallSeconds_ + wallTime(), s.diffusion, s.totalLithium,
-                           s.minConcentration, s.maxConcentration, lithiumRate, stateOfCharge_});
+                           s.minConcentration, s.maxConcentration, lithiumRate, stateOfCharge_},
+                          s.perMaterial);
   return s.particles;
 }
 

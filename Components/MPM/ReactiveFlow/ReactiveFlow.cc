@@ -315,10 +315,16 @@ void ReactiveFlow::summarize(const std::vector<MPMMaterial>& materials, StepSumm
   // The range is of the materials whose concentration can change (a substrate's fixed c would
   // pin it), of every material when none can.
   const bool anyChanges = std::find(changes_.begin(), changes_.end(), true) != changes_.end();
+  const std::vector<size_t> separate = lithiumTakingMaterials();
+  s.perMaterial.assign(separate.size(), {0.0, std::numeric_limits<double>::infinity(),
+                                         -std::numeric_limits<double>::infinity()});
   for (size_t m = 0; m < materials.size(); ++m) {
     const ParticleSet& p = materials[m].particles;
     const std::vector<double>& c = diffusionParticles(p).concentration;
     const bool inRange = changes_[m] || !anyChanges;
+    const auto own = std::find(separate.begin(), separate.end(), m);
+    StepSummary::MaterialLithium* material =
+        own == separate.end() ? nullptr : &s.perMaterial[own - separate.begin()];
     for (size_t i = 0; i < p.count(); ++i) {
       s.totalLithium += p.mass[i] * c[i];
       if (!inRange) continue;
@@ -326,8 +332,20 @@ void ReactiveFlow::summarize(const std::vector<MPMMaterial>& materials, StepSumm
       s.lithiumCapacity += p.mass[i] * model(m).maxConcentration;
       s.minConcentration = std::min(s.minConcentration, c[i]);
       s.maxConcentration = std::max(s.maxConcentration, c[i]);
+      if (!material) continue;
+      material->lithium += p.mass[i] * c[i];
+      material->minConcentration = std::min(material->minConcentration, c[i]);
+      material->maxConcentration = std::max(material->maxConcentration, c[i]);
     }
   }
+}
+
+std::vector<size_t> ReactiveFlow::lithiumTakingMaterials() const {
+  std::vector<size_t> which;
+  for (size_t m = 0; m < changes_.size(); ++m)
+    if (changes_[m]) which.push_back(m);
+  if (which.size() < 2) which.clear();
+  return which;
 }
 
 void ReactiveFlow::saveState(BinaryWriter& out) const {

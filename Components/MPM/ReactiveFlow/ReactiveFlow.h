@@ -94,7 +94,8 @@ class ReactiveFlow {
 
   // Adds the total lithium and the concentration range (initialised by the caller): the range
   // of the materials whose concentration can change (computesConcentration without output's
-  // request), of every material when none can.
+  // request), of every material when none can; with two or more such materials, each one's
+  // sum and range (StepSummary::perMaterial, in the order of lithiumTakingMaterials).
   void summarize(const std::vector<MPMMaterial>& materials, StepSummary& s) const;
   void saveState(BinaryWriter& out) const;
   void loadState(BinaryReader& in);
@@ -104,6 +105,9 @@ class ReactiveFlow {
   // "Materials that take up no lithium"). Its P2G and G2P run without concentration, its
   // diffusivity stays 0 and it has no nodal concentration fields, unless the output saves them.
   bool computesConcentration(size_t m) const { return changes_[m] || everyMaterial_; }
+  // The materials whose concentration can change, when two or more can (else empty): the ones
+  // history.csv gives columns of their own.
+  std::vector<size_t> lithiumTakingMaterials() const;
   // Computes every material's nodal concentration and p.concentrationGradient, for an output
   // that saves them (g.concentration*, p.concentrationGradient). Before the first step.
   void computeEveryMaterial();
