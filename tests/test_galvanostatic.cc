@@ -85,6 +85,21 @@ TEST(Galvanostatic, SphereTakesUpRateTimesTimeThenStopsAtTheCutoff) {
   EXPECT_NEAR(totalLithium(sim), atEnd.totalLithium, 1e-12 * atEnd.totalLithium);
 }
 
+// A C-rate load: n C is n times the sphere's lithium at max_concentration (sum m c_max) per
+// hour, an hour being <hour> in the input's time unit.
+TEST(Galvanostatic, CRateIsTheCapacityPerHour) {
+  std::string text = galvanostatic(readInput("inputs/Particles/SiliconSphereOctant.ups"), "2",
+                                   "<rate_unit>C</rate_unit><hour>3.6e9</hour>");
+  text = std::regex_replace(text, std::regex("\\[40, 40, 40\\]"), "[20, 20, 20]");
+  Simulation sim(text, "sphere.ups", quiet());
+  const MPMMaterial& silicon = sim.mpm().materials()[0];
+  double capacity = 0;
+  for (size_t i = 0; i < silicon.particles.count(); ++i)
+    capacity += silicon.particles.mass[i] * sim.mpm().diffusion()->model(0).maxConcentration;
+  EXPECT_LT(worstUptakeError(sim, 2 * capacity / 3.6e9, 30), 1e-9);
+  EXPECT_EQ(sim.step(), 30) << "the current ended early";
+}
+
 // The CPDI pillar, side and top each under its own galvanostatic BC (corner particles take
 // both): the uptake is the two rates together.
 TEST(Galvanostatic, PillarTakesUpTheSumOfItsBCsRates) {
@@ -165,7 +180,7 @@ TEST(Galvanostatic, RetakenQuasiStaticStepRestartsTheCurrent) {
   EXPECT_GE(sim.mpm().newtonCounts().retakes, 1);
 }
 
-TEST(Galvanostatic, UnknownModeAndMisplacedCutoffAreInputErrors) {
+TEST(Galvanostatic, UnknownModeUnitAndMisplacedTagsAreInputErrors) {
   const std::string text = readInput("inputs/Particles/SiliconSphereOctant.ups");
   for (const auto& [edited, message] :
        {std::pair{std::regex_replace(text, std::regex("<scalar_flux>"),
@@ -173,7 +188,16 @@ TEST(Galvanostatic, UnknownModeAndMisplacedCutoffAreInputErrors) {
                   "<mode> must be flux"},
         {std::regex_replace(text, std::regex("<scalar_flux>"), "<scalar_flux><cutoff>0.1</cutoff>"),
          "<cutoff> belongs to <mode>galvanostatic</mode>"},
-        {galvanostatic(text, "1e10", "<cutoff>1</cutoff>"), "must lie in (0, 1)"}}) {
+        {galvanostatic(text, "1e10", "<cutoff>1</cutoff>"), "must lie in (0, 1)"},
+        {std::regex_replace(text, std::regex("<scalar_flux>"),
+                            "<scalar_flux><rate_unit>C</rate_unit><hour>3.6e9</hour>"),
+         "<rate_unit> belongs to <mode>galvanostatic</mode>"},
+        {galvanostatic(text, "1", "<rate_unit>C</rate_unit>"), "needs <hour>"},
+        {galvanostatic(text, "1", "<rate_unit>C</rate_unit><hour>-1</hour>"),
+         "<hour> must be above 0"},
+        {galvanostatic(text, "1", "<hour>3.6e9</hour>"),
+         "<hour> belongs to <rate_unit>C</rate_unit>"},
+        {galvanostatic(text, "1", "<rate_unit>mA</rate_unit>"), "<rate_unit> must be"}}) {
     try {
       Simulation sim(edited, "bad.ups", quiet());
       ADD_FAILURE() << "expected an InputError: " << message;

@@ -168,7 +168,8 @@ std::vector<double> ExternalScalarFlux::fluxes(const std::vector<MPMMaterial>& m
         << " (the surface is nearly full)";
       notes_.push_back(s.str());
     }
-    J[b] = ended_[b] ? 0.0 : J[b] / sums[b];
+    const double lithiumRate = bc.hour > 0 ? J[b] * capacities_[b] / bc.hour : J[b];
+    J[b] = ended_[b] ? 0.0 : lithiumRate / sums[b];
   }
   return J;
 }

@@ -49,6 +49,9 @@ class ExternalScalarFlux {
   // would share it.
   void computeFluxRates(std::vector<MPMMaterial>& materials,
                         const std::vector<DiffusionMaterial>& diffusion, double t, bool overRanks);
+  // Per BC, the lithium its materials hold at max_concentration (sum m c_max over every particle
+  // of each material it flags), to which a C-rate load refers. At setup, before the first rates.
+  void setCapacities(std::vector<double> capacities) { capacities_ = std::move(capacities); }
   // The notes of galvanostatic BCs whose current ended since the last call (rank 0 prints them).
   std::vector<std::string> takeNotes();
   // The flux limit (docs/diffusion.md, "Time step"): the longest step in which no particle of a
@@ -78,13 +81,15 @@ class ExternalScalarFlux {
                        std::vector<size_t>& holding, std::vector<int>& slots,
                        SurfaceShare& share) const;
   // The flux J_k of each BC at time t: its load (times the auto-cycle sign), or for a
-  // galvanostatic BC the J that delivers its lithium rate (0 once its current ended).
+  // galvanostatic BC the J that delivers its lithium rate (its load, or for a C-rate the load
+  // times its capacity per hour; 0 once its current ended).
   std::vector<double> fluxes(const std::vector<MPMMaterial>& materials,
                              const std::vector<DiffusionMaterial>& diffusion, double t,
                              bool overRanks);
 
   std::vector<ScalarFluxBC> bcs_;
   std::vector<char> ended_;  // per BC: a galvanostatic BC whose surface reached its cutoff
+  std::vector<double> capacities_;  // per BC (setCapacities)
   std::vector<std::string> notes_;
   double sign_ = 1;            // do_auto_cycle_bc: +1 lithiates, -1 delithiates
   double maxInflowRate_ = 0;   // max over particles of sum J A / V over the BCs with J > 0

@@ -128,6 +128,13 @@ void ReactiveFlow::initialize(const PSNode& root, const Grid& grid,
           "this <scalar_flux> flags no particle: its geometry selects no surface particle of a "
           "material that diffuses (selection rules in docs/diffusion.md), so its flux would go "
           "nowhere");
+  std::vector<double> capacities(flux_.bcs().size(), 0.0);
+  for (const ExternalScalarFlux::Flagged& f : flagged) {
+    const ParticleSet& p = materials[f.material].particles;
+    double mass = 0;  // setup: every rank holds every particle
+    for (size_t i = 0; i < p.count(); ++i) mass += p.mass[i];
+    capacities[f.bc] += mass * model(f.material).maxConcentration;
+  }
   for (const ExternalScalarFlux::Flagged& f : flagged) {
     std::ostringstream s;
     s << "<scalar_flux> " << f.bc + 1 << " (line " << flux_.bcs()[f.bc].line << ") flags "
@@ -140,17 +147,19 @@ void ReactiveFlow::initialize(const PSNode& root, const Grid& grid,
       s << " (its surface " << f.surfaceArea << ", of which on the body " << f.bodyArea << ")";
     else
       s << " (their particle faces)";
-    if (flux_.bcs()[f.bc].mode == ScalarFluxBC::Mode::Galvanostatic) {
-      const ParticleSet& p = materials[f.material].particles;
-      double capacity = 0;
-      for (size_t i = 0; i < p.count(); ++i) capacity += p.mass[i];
-      s << "; galvanostatic: its load is the lithium rate into them in all, and the material "
-           "holds "
-        << capacity * model(f.material).maxConcentration
+    const ScalarFluxBC& bc = flux_.bcs()[f.bc];
+    if (bc.mode == ScalarFluxBC::Mode::Galvanostatic) {
+      s << "; galvanostatic: its load is ";
+      if (bc.hour > 0)
+        s << "a C-rate (1C: " << capacities[f.bc] / bc.hour << " of lithium per time unit)";
+      else
+        s << "the lithium rate into them in all";
+      s << "; the BC's materials hold " << capacities[f.bc]
         << " of lithium (sum m c) at max_concentration";
     }
     setupReport_.push_back(s.str());
   }
+  flux_.setCapacities(std::move(capacities));
   if (flags_.autoCycle && std::none_of(materials_.begin(), materials_.end(),
                                        [](const auto& mat) { return mat.reducesConcentration; }))
     root.requireChild("MPM")

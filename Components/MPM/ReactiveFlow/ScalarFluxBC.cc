@@ -124,6 +124,28 @@ std::vector<ScalarFluxBC> ScalarFluxBC::fromInput(const std::vector<PSNode>& blo
             "<cutoff> (the flagged surface's mean restriction R at which the current "
             "ends) must lie in (0, 1)");
     }
+    if (const PSNode unit = block.child("rate_unit")) {
+      if (bc.mode != Mode::Galvanostatic)
+        unit.fail("<rate_unit> belongs to <mode>galvanostatic</mode>");
+      const std::string value = unit.value<std::string>();
+      if (value == "C") {
+        const PSNode hour = block.child("hour");
+        if (!hour)
+          unit.fail(
+              "<rate_unit>C</rate_unit> needs <hour>, an hour in the input's time unit (3.6e9 "
+              "for microseconds)");
+        bc.hour = hour.value<double>();
+        if (!(bc.hour > 0 && std::isfinite(bc.hour))) hour.fail("<hour> must be above 0");
+      } else if (value != "lithium_per_time") {
+        unit.fail(
+            "<rate_unit> must be lithium_per_time (default: the load is the lithium rate, sum m c "
+            "per time) or C (the load is a C-rate), found \"" +
+            value + "\"");
+      }
+    }
+    if (bc.hour == 0)
+      if (const PSNode hour = block.child("hour"))
+        hour.fail("<hour> belongs to <rate_unit>C</rate_unit>");
     block.acceptInert("outward_normal");
     block.acceptInert("auto_cycle");
     block.acceptInert("numberOfParticlesOnLoadSurface");

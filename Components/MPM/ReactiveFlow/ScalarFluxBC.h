@@ -33,6 +33,10 @@ struct ScalarFluxBC {
   // restriction falls to `cutoff` (a full surface takes no more: the BC's current ends there).
   enum class Mode { Flux, Galvanostatic } mode = Mode::Flux;
   double cutoff = 0.25;  // <cutoff>, galvanostatic only
+  // <rate_unit>C</rate_unit> (galvanostatic only): the load is a C-rate, n C filling the
+  // materials the BC flags (every particle, to max_concentration) in 1/n of an hour, `hour`
+  // (<hour>) being an hour in the input's time unit; 0: the load is in lithium per time.
+  double hour = 0;
   // <area_update>deformed: a flagged particle's face area follows its deformation (Nanson);
   // constant (default, as Uintah): the area it was given at the start.
   bool deformedArea = false;
