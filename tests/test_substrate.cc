@@ -3,6 +3,7 @@
 // surface, the pillar does, and the bonded interface moves as one.
 #include <gtest/gtest.h>
 #include <omp.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -12,8 +13,6 @@
 #include <sstream>
 #include <string>
 #include <vector>
-
-#include <unistd.h>
 
 #include "Core/Util/Errors.h"
 #include "StandAlone/Driver/Simulation.h"
@@ -179,7 +178,8 @@ TEST(Substrate, HistoryHasColumnsPerMaterialThatTakesUpLithium) {
     std::getline(in, line);
     return line;
   };
-  const fs::path dir = fs::temp_directory_path() / ("anode_substrate_" + std::to_string(::getpid()));
+  const fs::path dir =
+      fs::temp_directory_path() / ("anode_substrate_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir);
   const auto inputFile = [&](const std::string& name, const std::string& text) {

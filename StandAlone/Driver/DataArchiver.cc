@@ -261,9 +261,8 @@ void DataArchiver::setMaterialColumns(const std::vector<MPMMaterial>& materials,
   materialColumns_.clear();
   for (size_t m : which) {
     std::string name = materials[m].name;
-    const bool shared = std::count_if(materials.begin(), materials.end(), [&](const auto& other) {
-                          return other.name == name;
-                        }) > 1;
+    const bool shared = std::count_if(materials.begin(), materials.end(),
+                                      [&](const auto& other) { return other.name == name; }) > 1;
     if (name.empty() || shared) name = "material" + std::to_string(m);
     for (char& ch : name)
       if (!std::isalnum(static_cast<unsigned char>(ch)) && ch != '-' && ch != '_') ch = '_';

@@ -88,7 +88,7 @@ class ExternalScalarFlux {
                              bool overRanks);
 
   std::vector<ScalarFluxBC> bcs_;
-  std::vector<char> ended_;  // per BC: a galvanostatic BC whose surface reached its cutoff
+  std::vector<char> ended_;         // per BC: a galvanostatic BC whose surface reached its cutoff
   std::vector<double> capacities_;  // per BC (setCapacities)
   std::vector<std::string> notes_;
   double sign_ = 1;            // do_auto_cycle_bc: +1 lithiates, -1 delithiates
