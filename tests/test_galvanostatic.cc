@@ -100,6 +100,29 @@ TEST(Galvanostatic, CRateIsTheCapacityPerHour) {
   EXPECT_EQ(sim.step(), 30) << "the current ended early";
 }
 
+// <mode>potentiostatic on the sphere's curved surface, c_s = 0.8 through k = 1e-6 (100 times
+// the input's flux at c_s - c = 1): the lithium rises every step, no particle passes c_s or falls
+// below 0 (by more than round-off), and the surface comes near c_s (0.787 at 2e6 us, 717 steps).
+TEST(Potentiostatic, SphereSurfaceApproachesTheHeldConcentration) {
+  std::string text = readInput("inputs/Particles/SiliconSphereOctant.ups");
+  text = std::regex_replace(text, std::regex("<load>[^<]*</load>"), "<load>0.8</load>");
+  text = std::regex_replace(
+      text, std::regex("<scalar_flux>"),
+      "<scalar_flux><mode>potentiostatic</mode><surface_rate>1e-6</surface_rate>");
+  text = std::regex_replace(text, std::regex("\\[40, 40, 40\\]"), "[20, 20, 20]");
+  Simulation sim(text, "sphere.ups", quiet());
+  double lithium = totalLithium(sim);
+  while (sim.time() < sim.timeControl().maxTime) {
+    sim.advance();
+    const StepSummary s = sim.mpm().summarize(Collective{});
+    ASSERT_GT(s.totalLithium, lithium) << "step " << sim.step();
+    ASSERT_LE(s.maxConcentration, 0.8) << "step " << sim.step();
+    ASSERT_GE(s.minConcentration, -1e-15) << "step " << sim.step();  // round-off: -6e-19
+    lithium = s.totalLithium;
+  }
+  EXPECT_GT(sim.mpm().summarize(Collective{}).maxConcentration, 0.75);
+}
+
 // The CPDI pillar, side and top each under its own galvanostatic BC (corner particles take
 // both): the uptake is the two rates together.
 TEST(Galvanostatic, PillarTakesUpTheSumOfItsBCsRates) {
@@ -197,7 +220,18 @@ TEST(Galvanostatic, UnknownModeUnitAndMisplacedTagsAreInputErrors) {
          "<hour> must be above 0"},
         {galvanostatic(text, "1", "<hour>3.6e9</hour>"),
          "<hour> belongs to <rate_unit>C</rate_unit>"},
-        {galvanostatic(text, "1", "<rate_unit>mA</rate_unit>"), "<rate_unit> must be"}}) {
+        {galvanostatic(text, "1", "<rate_unit>mA</rate_unit>"), "<rate_unit> must be"},
+        {std::regex_replace(text, std::regex("<scalar_flux>"),
+                            "<scalar_flux><mode>potentiostatic</mode>"),
+         "needs <surface_rate>"},
+        {std::regex_replace(text, std::regex("<scalar_flux>"),
+                            "<scalar_flux><surface_rate>1</surface_rate>"),
+         "<surface_rate> belongs to <mode>potentiostatic</mode>"},
+        {std::regex_replace(
+             std::regex_replace(text, std::regex("<load>[^<]*</load>"), "<load>1.5</load>"),
+             std::regex("<scalar_flux>"),
+             "<scalar_flux><mode>potentiostatic</mode><surface_rate>1</surface_rate>"),
+         "outside [min_concentration, max_concentration]"}}) {
     try {
       Simulation sim(edited, "bad.ups", quiet());
       ADD_FAILURE() << "expected an InputError: " << message;

@@ -17,6 +17,7 @@ class LoadCurve {
 
   double at(double t) const;
   const std::vector<double>& times() const { return times_; }
+  const std::vector<double>& loads() const { return loads_; }
 
  private:
   std::vector<double> times_, loads_;

@@ -50,6 +50,26 @@ double fluxSlabAnalytic(double x, double t, double J, double L, double D) {
   return J * t / L + J * L / D * ((3 * x * x - L * L) / (6 * L * L) - 2 / (kPi * kPi) * sum);
 }
 
+double robinSlabAnalytic(double x, double t, double cs, double k, double L, double D) {
+  const double biot = k * L / D, fourier = D * t / (L * L);
+  double sum = 0;
+  for (int n = 0; n < 100000; ++n) {
+    // The root of z sin z - Bi cos z in [n pi, n pi + pi/2], where it changes sign.
+    double lo = n * kPi, hi = n * kPi + 0.5 * kPi;
+    const double atLo = lo * std::sin(lo) - biot * std::cos(lo);
+    for (int i = 0; i < 200 && hi - lo > 1e-15 * hi; ++i) {
+      const double mid = 0.5 * (lo + hi);
+      const double f = mid * std::sin(mid) - biot * std::cos(mid);
+      ((f < 0) == (atLo < 0) ? lo : hi) = mid;
+    }
+    const double z = 0.5 * (lo + hi);
+    const double decay = std::exp(-z * z * fourier);
+    sum += 4 * std::sin(z) / (2 * z + std::sin(2 * z)) * decay * std::cos(z * x / L);
+    if (decay < 1e-20 && n > 2) break;
+  }
+  return cs * (1 - sum);
+}
+
 std::string fluxSlabInput(const FluxSlabCase& c) {
   if (c.cells < 2) throw std::invalid_argument("flux slab: need at least 2 cells along x");
   if (c.thickness < 1) throw std::invalid_argument("flux slab: thickness must be >= 1 cell");
@@ -57,7 +77,7 @@ std::string fluxSlabInput(const FluxSlabCase& c) {
   const double L = c.length, h = L / c.cells, w = c.thickness * h;
   const std::string extra = c.interpolator == "linear" ? "[0,0,0]" : "[1,1,1]";
   std::vector<std::pair<double, double>> curve = c.loadCurve;
-  if (curve.empty()) curve = {{0.0, c.flux}};
+  if (curve.empty()) curve = {{0.0, c.surfaceRate > 0 ? c.heldConcentration : c.flux}};
   std::string material;
   material += "      <material name=\"slab\">\n";
   material += "        <density>" + upsNumber(c.density) + "</density>\n";
@@ -84,6 +104,9 @@ std::string fluxSlabInput(const FluxSlabCase& c) {
   s += "  <PhysicalBC>\n";
   s += "    <MPM>\n";
   s += "      <scalar_flux>\n";
+  if (c.surfaceRate > 0)
+    s += "        <mode>potentiostatic</mode><surface_rate>" + upsNumber(c.surfaceRate) +
+         "</surface_rate>\n";
   s += "        <geom_object><box label=\"x+ face\"><min>" + upsVector(L, 0, 0) + "</min><max>" +
        upsVector(L, w, w) + "</max></box></geom_object>\n";
   s += loadCurve(1, curve);
@@ -139,7 +162,10 @@ FluxSlabResult runFluxSlab(const FluxSlabCase& c) {
   const double t = sim.time();
   double err2 = 0, ref2 = 0, maxErr = 0, maxRef = 0;
   for (size_t i = 0; i < p.count(); ++i) {
-    const double exact = fluxSlabAnalytic(p.x[i].x(), t, c.flux, c.length, c.diffusivity);
+    const double exact = c.surfaceRate > 0
+                             ? robinSlabAnalytic(p.x[i].x(), t, c.heldConcentration, c.surfaceRate,
+                                                 c.length, c.diffusivity)
+                             : fluxSlabAnalytic(p.x[i].x(), t, c.flux, c.length, c.diffusivity);
     const double e = d.concentration[i] - exact;
     err2 += e * e;
     ref2 += exact * exact;
@@ -158,7 +184,7 @@ FluxSlabResult runFluxSlab(const FluxSlabCase& c) {
   r.l2Error = std::sqrt(err2 / ref2);
   r.maxError = maxErr / maxRef;
   r.interiorMaxError /= maxRef;
-  if (c.loadCurve.empty() && c.fluxAtZero == 0) {
+  if (c.loadCurve.empty() && c.fluxAtZero == 0 && c.surfaceRate == 0) {
     const double w = c.thickness * c.length / c.cells;
     const double exactInjected = c.density * c.flux * t * w * w;
     r.injectedVsExact = r.injected / exactInjected - 1;

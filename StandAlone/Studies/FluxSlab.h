@@ -30,6 +30,10 @@ struct FluxSlabCase {
   // Optional piecewise-linear load curve (time, J) replacing the constant `flux` (balance tests);
   // the analytic solution is then not meaningful.
   std::vector<std::pair<double, double>> loadCurve;
+  // Potentiostatic (surfaceRate k > 0): the x+ face's BC holds c_s = heldConcentration through
+  // J = k (c_s - c) (a Robin condition, Bi = k L / D); `flux` is then unused and the analytic
+  // solution is the plane wall's series (robinSlabAnalytic).
+  double surfaceRate = 0, heldConcentration = 0.5;
   // Optional second flux BC on the x- face, constant (balance tests; 0: none).
   double fluxAtZero = 0;
   // OpenMP threads for the run (0: the OpenMP default). These problems have at most a few
@@ -64,6 +68,11 @@ struct FluxSlabResult : RunSummary {
 
 // Carslaw & Jaeger's solution above (x from the insulated face).
 double fluxSlabAnalytic(double x, double t, double J, double L, double D);
+
+// The same slab held at c_s through D dc/dx = k (c_s - c) at x = L (Carslaw & Jaeger §3.11; the
+// plane wall with convection): c = c_s (1 - sum_n C_n exp(-z_n^2 D t / L^2) cos(z_n x / L)),
+// z_n tan z_n = Bi = k L / D, C_n = 4 sin z_n / (2 z_n + sin 2 z_n).
+double robinSlabAnalytic(double x, double t, double cs, double k, double L, double D);
 
 // The .ups text of one case.
 std::string fluxSlabInput(const FluxSlabCase& c);

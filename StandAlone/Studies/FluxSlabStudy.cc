@@ -1,5 +1,5 @@
 // flux_slab_study [--quick] [--csv FILE] [--profile FILE] [--threads N] [--timestep-multiplier M]
-// [--flux J] [--fourier F]:
+// [--flux J] [--fourier F] [--potentiostatic K] [--held C]:
 // convergence study of the flux-BC slab (StandAlone/Studies/FluxSlab.h, Carslaw & Jaeger) for the
 // linear, GIMP and CPDI interpolators. Prints a table and writes a CSV (default
 // verification/flux_slab.csv, relative to the working directory). Orders are log(error
@@ -23,13 +23,17 @@ void usage(FILE* out) {
       out,
       "usage: flux_slab_study [--quick] [--csv FILE] [--profile FILE] [--threads N]\n"
       "                       [--timestep-multiplier M] [--flux J] [--fourier F]\n"
+      "                       [--potentiostatic K] [--held C]\n"
       "  --quick     the test's resolutions (8, 16, 32 cells) only\n"
       "  --csv FILE  where to write the results (default verification/flux_slab.csv)\n"
       "  --profile FILE              also write the final particle profiles\n"
       "  --threads N                 OpenMP threads per run (default 1; 0: OpenMP's default)\n"
       "  --timestep-multiplier M     <timestep_multiplier> (default 0.2)\n"
       "  --flux J                    the flux into the x+ face (default 1e-6)\n"
-      "  --fourier F                 run length D t / L^2 (default 0.25)\n");
+      "  --fourier F                 run length D t / L^2 (default 0.25)\n"
+      "  --potentiostatic K          hold the x+ face at c_s through J = K (c_s - c) instead\n"
+      "                              (against the plane wall's series, Bi = K L / D)\n"
+      "  --held C                    c_s of --potentiostatic (default 0.5)\n");
 }
 
 }  // namespace
@@ -50,16 +54,26 @@ int main(int argc, char** argv) {
   args.positiveNumber("--timestep-multiplier", base.timestepMultiplier);
   args.positiveNumber("--flux", base.flux);
   args.positiveNumber("--fourier", base.fourier);
+  args.positiveNumber("--potentiostatic", base.surfaceRate);
+  args.positiveNumber("--held", base.heldConcentration);
   if (const auto exitCode = args.parse(argc, argv)) return *exitCode;
 
   try {
     const std::vector<int> cells =
         quick ? anode::fluxSlabQuickCells() : anode::fluxSlabStudyCells();
-    std::printf(
-        "Flux slab (Carslaw & Jaeger): L = %g, D = %g, J = %g, t = %g (D t/L^2 = %g), "
-        "timestep_multiplier %g\n",
-        base.length, base.diffusivity, base.flux, base.endTime(), base.fourier,
-        base.timestepMultiplier);
+    if (base.surfaceRate > 0)
+      std::printf(
+          "Potentiostatic slab (plane wall, Robin): L = %g, D = %g, c_s = %g, k = %g (Bi = %g), "
+          "t = %g (D t/L^2 = %g), timestep_multiplier %g\n",
+          base.length, base.diffusivity, base.heldConcentration, base.surfaceRate,
+          base.surfaceRate * base.length / base.diffusivity, base.endTime(), base.fourier,
+          base.timestepMultiplier);
+    else
+      std::printf(
+          "Flux slab (Carslaw & Jaeger): L = %g, D = %g, J = %g, t = %g (D t/L^2 = %g), "
+          "timestep_multiplier %g\n",
+          base.length, base.diffusivity, base.flux, base.endTime(), base.fourier,
+          base.timestepMultiplier);
     std::printf("%-6s %5s %5s %7s %8s | %9s %5s | %9s %5s | %9s %5s | %9s %9s %9s | %9s %9s\n",
                 "interp", "cells", "parts", "steps", "wall [s]", "L2 err", "order", "max err",
                 "order", "x<=L/2", "order", "max c", "min c", "1-R(c)", "Li bal.", "inj/exact-1");

@@ -51,6 +51,15 @@ double fluxArea(const ScalarFluxBC& bc, const ParticleSet& p, const Particles& d
                          : d.area[i][s];
 }
 
+// A potentiostatic BC's k_eff at a particle of volume V whose face of area A lies
+// delta = V / (2 A) from its centre (half its thickness normal to the face): the surface reaction
+// k and diffusion D across delta in series, J = (c_s - c_p) / (1/k + delta/D), since c_p is the
+// particle's mean, not the surface's concentration.
+double surfaceConductance(const ScalarFluxBC& bc, double area, double volume, double D) {
+  const double delta = 0.5 * volume / area;
+  return bc.surfaceRate * D / (D + bc.surfaceRate * delta);
+}
+
 }  // namespace
 
 std::vector<ExternalScalarFlux::Flagged> ExternalScalarFlux::assignToParticles(
@@ -232,16 +241,23 @@ void ExternalScalarFlux::computeFluxRates(std::vector<MPMMaterial>& materials,
     double inflow = 0, outflow = 0;
 #pragma omp parallel for schedule(static) reduction(max : inflow, outflow)
     for (long i = 0; i < n; ++i) {
-      double rate = 0, in = 0, out = 0;
+      const double c = d.concentration[i] / cmax;
+      double rate = 0, held = 0, in = 0, out = 0;
       for (int s = 0; s < 3 && d.loadCurveID[i][s] > 0; ++s) {
         const int b = d.loadCurveID[i][s] - 1;
         const double area = fluxArea(bcs_[b], p, d, i, s);
-        rate += J[b] * area;
-        (J[b] > 0 ? in : out) += std::abs(J[b]) * area;
+        const bool potentiostatic = bcs_[b].mode == ScalarFluxBC::Mode::Potentiostatic;
+        // A potentiostatic BC's J = k_eff (c_s - c) / c_max, its load being c_s.
+        const double j = potentiostatic
+                             ? surfaceConductance(bcs_[b], area, p.volume[i], d.diffusivity[i]) *
+                                   (J[b] / cmax - c)
+                             : J[b];
+        (potentiostatic ? held : rate) += j * area;
+        (j > 0 ? in : out) += std::abs(j) * area;
       }
-      // Eq. 17 restricts inflow as c -> 1; outflow is restricted the same way as c -> 0.
-      const double c = d.concentration[i] / cmax;
-      d.externalScalarFlux[i] = rate / p.volume[i] * fluxRestriction(c, rate >= 0) * cmax;
+      // Eq. 17 restricts inflow as c -> 1; outflow is restricted the same way as c -> 0. A
+      // potentiostatic BC's flux needs no restriction: it vanishes at c_s.
+      d.externalScalarFlux[i] = (rate * fluxRestriction(c, rate >= 0) + held) / p.volume[i] * cmax;
       inflow = std::max(inflow, in / p.volume[i]);
       outflow = std::max(outflow, out / p.volume[i]);
     }
@@ -256,25 +272,38 @@ double ExternalScalarFlux::stableTimestep(Collective, const std::vector<MPMMater
   // G_i / W_i is a weighted mean of unrestricted rates, at most the largest of its sign. The
   // step to the root falls as c nears it, so the fullest particle below the root (for an
   // outflow: the emptiest above e^-4) bounds them all.
-  double fullest = 0, emptiest = 1;
+  // A potentiostatic BC's particle relaxes to c_s at the rate sum k A / V: a step of at most
+  // its inverse takes it at most to c_s (no overshoot, no oscillation).
+  double fullest = 0, emptiest = 1, relaxation = 0;
   for (size_t m = 0; m < materials.size(); ++m) {
     const ParticleSet& p = materials[m].particles;
     const ConstDiffusionParticles d(p);
     if (d.loadCurveID.empty()) continue;
     const double cmax = diffusion[m].model->maxConcentration;
     const long n = static_cast<long>(p.count());
-#pragma omp parallel for schedule(static) reduction(max : fullest) reduction(min : emptiest)
+#pragma omp parallel for schedule(static) reduction(max                                  \
+                                                    : fullest, relaxation) reduction(min \
+                                                                                     : emptiest)
     for (long i = 0; i < n; ++i) {
       const double c = d.concentration[i] / cmax;
       if (c < kRestrictionRoot) fullest = std::max(fullest, c);
       if (1 - c < kRestrictionRoot) emptiest = std::min(emptiest, c);
+      double k = 0;
+      for (int s = 0; s < 3 && d.loadCurveID[i][s] > 0; ++s) {
+        const ScalarFluxBC& bc = bcs_[d.loadCurveID[i][s] - 1];
+        if (bc.mode != ScalarFluxBC::Mode::Potentiostatic) continue;
+        const double area = fluxArea(bc, p, d, i, s);
+        k += surfaceConductance(bc, area, p.volume[i], d.diffusivity[i]) * area;
+      }
+      relaxation = std::max(relaxation, k / p.volume[i]);
     }
   }
-  double lows[4] = {-maxInflowRate_, -maxOutflowRate_, -fullest, emptiest};
-  collective::minimum(lows, 4);
+  double lows[5] = {-maxInflowRate_, -maxOutflowRate_, -fullest, emptiest, -relaxation};
+  collective::minimum(lows, 5);
   double dt = std::numeric_limits<double>::infinity();
   if (lows[0] < 0) dt = std::min(dt, fluxStepToRoot(-lows[2]) / -lows[0]);
   if (lows[1] < 0) dt = std::min(dt, fluxStepToRoot(1 - lows[3]) / -lows[1]);
+  if (lows[4] < 0) dt = std::min(dt, 1 / -lows[4]);
   return dt;
 }
 

@@ -25,6 +25,11 @@ std::vector<ScalarFluxBC> readFluxBCs(const PSNode& root, const MPMFlags& flags,
     root.requireChild("MPM")
         .requireChild("do_auto_cycle_bc")
         .fail("<do_auto_cycle_bc>true needs <scalar_flux> boundary conditions");
+  for (const ScalarFluxBC& bc : bcs)
+    if (flags.autoCycle && bc.mode == ScalarFluxBC::Mode::Potentiostatic)
+      throw InputError(root.file(), bc.line,
+                       "<do_auto_cycle_bc>true reverses fluxes, and this <scalar_flux> holds a "
+                       "concentration (potentiostatic): not both");
   if (!bcs.empty() && !flags.useLoadCurves)
     physical.node.fail(
         "<scalar_flux> needs <MPM><use_load_curves>true (without it Uintah applies no flux)");
@@ -130,6 +135,15 @@ void ReactiveFlow::initialize(const PSNode& root, const Grid& grid,
           "nowhere");
   std::vector<double> capacities(flux_.bcs().size(), 0.0);
   for (const ExternalScalarFlux::Flagged& f : flagged) {
+    const ScalarFluxBC& bc = flux_.bcs()[f.bc];
+    const ScalarDiffusionModel& held = model(f.material);
+    if (bc.mode == ScalarFluxBC::Mode::Potentiostatic)
+      for (double c : bc.load.loads())
+        if (c < held.minConcentration || c > held.maxConcentration)
+          throw InputError(root.file(), bc.line,
+                           "this potentiostatic <scalar_flux> holds c = " + std::to_string(c) +
+                               ", outside [min_concentration, max_concentration] of " +
+                               describeMaterial(materials[f.material], f.material));
     const ParticleSet& p = materials[f.material].particles;
     double mass = 0;  // setup: every rank holds every particle
     for (size_t i = 0; i < p.count(); ++i) mass += p.mass[i];
@@ -156,6 +170,10 @@ void ReactiveFlow::initialize(const PSNode& root, const Grid& grid,
         s << "the lithium rate into them in all";
       s << "; the BC's materials hold " << capacities[f.bc]
         << " of lithium (sum m c) at max_concentration";
+    } else if (bc.mode == ScalarFluxBC::Mode::Potentiostatic) {
+      s << "; potentiostatic: its load is the surface concentration, held through J = k (c_s - "
+           "c) with k = "
+        << bc.surfaceRate;
     }
     setupReport_.push_back(s.str());
   }

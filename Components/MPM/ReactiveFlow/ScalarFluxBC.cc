@@ -108,12 +108,25 @@ std::vector<ScalarFluxBC> ScalarFluxBC::fromInput(const std::vector<PSNode>& blo
       const std::string value = mode.value<std::string>();
       if (value == "galvanostatic")
         bc.mode = Mode::Galvanostatic;
+      else if (value == "potentiostatic")
+        bc.mode = Mode::Potentiostatic;
       else if (value != "flux")
         mode.fail(
-            "<mode> must be flux (the load is the flux J through the surface, Eq. 16) or "
-            "galvanostatic (the load is the total lithium rate into the flagged particles), "
-            "found \"" +
+            "<mode> must be flux (the load is the flux J through the surface, Eq. 16), "
+            "galvanostatic (the load is the total lithium rate into the flagged particles) or "
+            "potentiostatic (the load is the surface concentration held), found \"" +
             value + "\"");
+    }
+    if (const PSNode rate = block.child("surface_rate")) {
+      if (bc.mode != Mode::Potentiostatic)
+        rate.fail("<surface_rate> belongs to <mode>potentiostatic</mode>");
+      bc.surfaceRate = rate.value<double>();
+      if (!(bc.surfaceRate > 0 && std::isfinite(bc.surfaceRate)))
+        rate.fail("<surface_rate> must be above 0");
+    } else if (bc.mode == Mode::Potentiostatic) {
+      block.requireChild("mode").fail(
+          "<mode>potentiostatic</mode> needs <surface_rate>, the rate constant k of the surface "
+          "reaction (length per time): the flux is k (c_s - c)");
     }
     if (const PSNode cutoff = block.child("cutoff")) {
       if (bc.mode != Mode::Galvanostatic)

@@ -31,8 +31,12 @@ struct ScalarFluxBC {
   // the load is the total lithium rate into the particles the BC flags, in history.csv's
   // lithium per time (mass x concentration / time), held until the flagged surface's mean
   // restriction falls to `cutoff` (a full surface takes no more: the BC's current ends there).
-  enum class Mode { Flux, Galvanostatic } mode = Mode::Flux;
-  double cutoff = 0.25;  // <cutoff>, galvanostatic only
+  // potentiostatic: the load is c_s, the surface concentration held through a surface reaction
+  // of rate constant k (`surfaceRate`, <surface_rate>, length per time): J = k (c_s - c_p) / c_max
+  // at each flagged particle (a Robin condition; kL/D >> 1 holds c_s), not restricted by R.
+  enum class Mode { Flux, Galvanostatic, Potentiostatic } mode = Mode::Flux;
+  double cutoff = 0.25;    // <cutoff>, galvanostatic only
+  double surfaceRate = 0;  // <surface_rate>, potentiostatic only
   // <rate_unit>C</rate_unit> (galvanostatic only): the load is a C-rate, n C filling the
   // materials the BC flags (every particle, to max_concentration) in 1/n of an hour, `hour`
   // (<hour>) being an hour in the input's time unit; 0: the load is in lithium per time.
