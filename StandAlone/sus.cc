@@ -89,6 +89,15 @@ int run(anode::RunOptions& options) {
     }
     sim.printTimings();
     if (sim.stoppedOnRequest()) return 4;
+  } catch (const anode::SetupFailedOnAnotherRank& e) {
+    // The lowest rank that failed reports its own error when it is rank 0; otherwise rank 0
+    // prints it here, naming the ranks when not every one found it.
+    if (root && e.rank != 0)
+      std::fprintf(stderr,
+                   "%s\n(found by rank %d, %d of the %d ranks: is the input on a file system "
+                   "every node shares?)\n",
+                   e.what(), e.rank, e.failing, anode::Communicator::size());
+    return e.input ? 2 : 1;
   } catch (const anode::InputError& e) {
     // Every rank reads the same input and finds the same error: one reports it.
     if (root) std::fprintf(stderr, "%s\n", e.what());

@@ -194,6 +194,36 @@ TEST(Restart, SkipsADamagedNewestCheckpoint) {
   expectSameOutputs(s.dir / "whole", s.dir / "parts");
 }
 
+// An output the restart cannot restore (here history.csv, which a directory stands in for: as
+// root no file permission stops a write) stops it with exit 1 naming the file, and every output
+// stays: an I/O error is not a damaged checkpoint, to be answered by going back to an older one
+// and removing what came after it.
+TEST(Restart, AnOutputItCannotRestoreStopsItWithEveryOutputKept) {
+  Scratch s("unwritable");
+  const fs::path run = s.dir / "run";
+  const std::string input = kSource + "/tests/checkpoint/AutoCycleSlab.ups";
+  ASSERT_EQ(sus({"--max-timesteps", "1000", "-o", run.string(), input}).exitCode, 0);
+  ASSERT_EQ(listCheckpoints(run.string()).size(), 3u);  // 1000 (the stop's), 900, 600
+  const auto files = [&] {
+    std::vector<std::string> names;
+    for (const fs::directory_entry& e : fs::recursive_directory_iterator(run))
+      if (e.path().string().find("checkpoints") == std::string::npos)
+        names.push_back(e.path().string());
+    std::sort(names.begin(), names.end());
+    return names;
+  };
+  fs::rename(run / "history.csv", s.dir / "history.csv");
+  fs::create_directory(run / "history.csv");
+  const std::vector<std::string> before = files();
+  const testing::SusResult restart = sus({"-restart", run.string()});
+  EXPECT_EQ(restart.exitCode, 1) << restart.output;
+  EXPECT_NE(restart.output.find((run / "history.csv").string()), std::string::npos)
+      << restart.output;
+  EXPECT_EQ(restart.output.find("skipping"), std::string::npos) << restart.output;
+  EXPECT_EQ(files(), before);
+  EXPECT_EQ(listCheckpoints(run.string()).size(), 3u);
+}
+
 // The end summary of a restarted run gives the particle-steps per second of its own steps (not of
 // every step since step 0 over its own wall time), and the whole run's beside them.
 TEST(Restart, SummaryRateCountsTheStepsOfThisRun) {

@@ -93,6 +93,9 @@ void MPM::problemSetup(const PSNode& root, double initTime, double maxTime) {
             timers_.task("splitParticles"),
             timers_.task("updateDiffusionState"),
             distributed_ ? timers_.task("communication") : -1};
+}
+
+void MPM::distributeOverRanks(Collective) {
   decompose(true);
 }
 

@@ -31,8 +31,12 @@ class MPM {
  public:
   // Reads <MPM>, <PhysicalConstants>, <Grid>, <MaterialProperties> and <PhysicalBC>; the
   // simulation starts at initTime and ends at maxTime. In a distributed run every rank sets up
-  // the whole problem, then keeps the particles of its box (docs/parallel.md).
+  // the whole problem (no collective: the ranks agree on its errors after it), then keeps the
+  // particles of its box (distributeOverRanks; docs/parallel.md).
   void problemSetup(const PSNode& root, double initTime, double maxTime);
+  // After problemSetup: keeps this rank's box of the problem (the whole of it on one rank) and
+  // lays out its grid.
+  void distributeOverRanks(Collective);
 
   // Advances the state from time t by dt (DESIGN.md §4). Throws SimulationError when a particle
   // leaves the grid, J <= 0, or a concentration leaves [min, max] beyond kConcentrationTolerance

@@ -2,7 +2,9 @@
 // rank in the same step, and no rank is left waiting in a collective the others never enter.
 #pragma once
 
+#include <cstdint>
 #include <exception>
+#include <stdexcept>
 #include <string>
 
 #include "Core/Parallel/Communicator.h"
@@ -18,7 +20,46 @@ class StoppedOnAnotherRank : public SimulationError {
       : SimulationError("stopped by rank " + std::to_string(rank)) {}
 };
 
+// A setup error other ranks found (readTogether): `input` when it was an InputError; `message`
+// is that rank's, to print once (rank 0 prints it when the error was not its own).
+class SetupFailedOnAnotherRank : public std::runtime_error {
+ public:
+  SetupFailedOnAnotherRank(int rank, int failing, bool input, const std::string& message)
+      : std::runtime_error(message), rank(rank), failing(failing), input(input) {}
+  int rank;     // the lowest rank that failed
+  int failing;  // how many ranks failed
+  bool input;
+};
+
 namespace collective {
+
+// Runs `phase`, a setup that calls no collective (reading the input, building what it asks for);
+// when it throws on any rank (an input one rank cannot read, a memory check on one node), every
+// rank throws after it, none is left waiting in a later collective: the lowest such rank its own
+// error, the others SetupFailedOnAnotherRank with its message. One reduction and, on an error,
+// a broadcast (nothing on a run of one rank).
+template <class Phase>
+void readTogether(Phase&& phase) {
+  std::exception_ptr error;
+  std::string message;
+  bool input = false;
+  try {
+    phase();
+  } catch (const InputError& e) {
+    error = std::current_exception();
+    message = e.what();
+    input = true;
+  } catch (const std::exception& e) {
+    error = std::current_exception();
+    message = e.what();
+  }
+  const int first = firstRankWith(error != nullptr);
+  if (first < 0) return;
+  const int failing = static_cast<int>(sum(static_cast<int64_t>(error != nullptr)));
+  const std::string shared = broadcast((input ? "2" : "1") + message, first);
+  if (first == Communicator::rank()) std::rethrow_exception(error);
+  throw SetupFailedOnAnotherRank(first, failing, shared[0] == '2', shared.substr(1));
+}
 
 // Runs `phase`; when it throws a SimulationError on any rank, every rank throws after it: the
 // lowest such rank its own error, the others StoppedOnAnotherRank. One reduction of an int

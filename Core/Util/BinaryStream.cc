@@ -1,6 +1,7 @@
 #include "Core/Util/BinaryStream.h"
 
 #include <algorithm>
+#include <cerrno>
 #include <cstring>
 #include <stdexcept>
 
@@ -45,9 +46,12 @@ uint64_t StreamHash::value() const {
   return h;
 }
 
-bool hasIntactHash(const std::string& path) {
+HashCheck checkHash(const std::string& path, std::string* error) {
   FILE* f = std::fopen(path.c_str(), "rb");
-  if (!f) return false;
+  if (!f) {
+    if (error) *error = path + ": cannot open: " + std::strerror(errno);
+    return HashCheck::Unreadable;
+  }
   std::vector<unsigned char> buffer(1 << 20);
   std::fseek(f, 0, SEEK_END);
   const long size = std::ftell(f);
@@ -63,8 +67,14 @@ bool hasIntactHash(const std::string& path) {
   }
   uint64_t stored = 0;
   ok = ok && std::fread(&stored, sizeof stored, 1, f) == 1 && stored == h.value();
+  const bool readError = std::ferror(f) != 0;
+  const int readErrno = errno;
   std::fclose(f);
-  return ok;
+  if (readError) {
+    if (error) *error = path + ": read error: " + std::strerror(readErrno);
+    return HashCheck::Unreadable;
+  }
+  return ok ? HashCheck::Intact : HashCheck::Damaged;
 }
 
 BinaryWriter::BinaryWriter(const std::string& path)

@@ -30,8 +30,14 @@ class StreamHash {
   size_t pendingBytes_ = 0;
 };
 
-// Whether the file at `path` ends with the hash of the bytes before it (a complete file).
-bool hasIntactHash(const std::string& path);
+// Whether the file at `path` ends with the hash of the bytes before it (a complete file):
+// Damaged when it is too short or the hash differs, Unreadable when it cannot be opened or read
+// (an I/O error, said in `error`, which is no evidence of damage).
+enum class HashCheck { Intact, Damaged, Unreadable };
+HashCheck checkHash(const std::string& path, std::string* error = nullptr);
+inline bool hasIntactHash(const std::string& path) {
+  return checkHash(path) == HashCheck::Intact;
+}
 
 class BinaryWriter {
  public:

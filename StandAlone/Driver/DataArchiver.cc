@@ -374,33 +374,43 @@ std::string truncateHistory(const std::string& path, long step) {
 }  // namespace
 
 void DataArchiver::removeOutputsAfter(long step) {
-  static const std::regex output(R"(step_(\d+)(\.r\d+)?\.p?vt[ui])");
   std::string error;
+  // On rank 0, history.csv first: when it cannot be restored the restart stops with every output
+  // kept. Its errors reach every rank (the others wait in the reduction below).
   if (Communicator::isRoot()) {
-    for (const char* folder : {"particles", "grid"}) {
-      const fs::path path = fs::path(dir_) / folder;
-      if (!fs::is_directory(path)) continue;
-      const PVDSeries& series = std::string(folder) == "grid" ? gridSeries_ : particleSeries_;
-      const bool seriesHasStep =
-          !series.entries().empty() &&
-          fs::path(series.entries().back().second).stem() == stepName("step_", step);
-      std::vector<fs::path> later;
-      for (const fs::directory_entry& e : fs::directory_iterator(path)) {
-        std::smatch m;
-        const std::string name = e.path().filename().string();
-        if (!std::regex_match(name, m, output)) continue;
-        const long fileStep = std::stol(m[1].str());
-        if (fileStep > step || (fileStep == step && !seriesHasStep)) later.push_back(e.path());
-      }
-      for (const fs::path& p : later) fs::remove(p);
+    try {
+      error = truncateHistory((fs::path(dir_) / "history.csv").string(), step);
+      if (error.empty()) removeOutputFilesAfter(step);
+    } catch (const std::exception& e) {
+      error = e.what();
     }
-    error = truncateHistory((fs::path(dir_) / "history.csv").string(), step);
   }
   unwritten_.clear();
   historyStarted_ = true;
   if (collective::any(!error.empty()))
     throw std::runtime_error(Communicator::isRoot() ? error
-                                                    : "rank 0 could not restore history.csv");
+                                                    : "rank 0 could not restore the outputs");
+}
+
+void DataArchiver::removeOutputFilesAfter(long step) const {
+  static const std::regex output(R"(step_(\d+)(\.r\d+)?\.p?vt[ui])");
+  for (const char* folder : {"particles", "grid"}) {
+    const fs::path path = fs::path(dir_) / folder;
+    if (!fs::is_directory(path)) continue;
+    const PVDSeries& series = std::string(folder) == "grid" ? gridSeries_ : particleSeries_;
+    const bool seriesHasStep =
+        !series.entries().empty() &&
+        fs::path(series.entries().back().second).stem() == stepName("step_", step);
+    std::vector<fs::path> later;
+    for (const fs::directory_entry& e : fs::directory_iterator(path)) {
+      std::smatch m;
+      const std::string name = e.path().filename().string();
+      if (!std::regex_match(name, m, output)) continue;
+      const long fileStep = std::stol(m[1].str());
+      if (fileStep > step || (fileStep == step && !seriesHasStep)) later.push_back(e.path());
+    }
+    for (const fs::path& p : later) fs::remove(p);
+  }
 }
 
 void DataArchiver::writeIndexFiles() {

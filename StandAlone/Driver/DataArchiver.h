@@ -85,10 +85,13 @@ class DataArchiver {
   // Removes what an interrupted run wrote beyond its checkpoint at `step`: the particle and grid
   // files of later steps, those of `step` itself that the checkpoint's series lacks (a stop's
   // output, written after its checkpoint) and the history rows after `step` (history.csv is
-  // rewritten whole, atomically, once).
+  // rewritten whole, atomically, once, before any file is removed: an error stops the restart
+  // with every output kept, on every rank).
   void removeOutputsAfter(long step);
 
  private:
+  // The particle and grid files removeOutputsAfter removes (rank 0).
+  void removeOutputFilesAfter(long step) const;
   // This rank's particles (grid nodes) under `base` (relative to the directory): base.vtu on one
   // rank, else its piece base.rNNNN.vtu and, from rank 0, base.pvtu; returns the file to list.
   std::string writeParticles(const std::string& base, const ParticleData& data) const;

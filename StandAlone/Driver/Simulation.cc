@@ -15,18 +15,29 @@
 
 namespace anode {
 
-Simulation::Simulation(const RunOptions& options)
-    : options_(options),
-      spec_(std::make_unique<ProblemSpec>(options.input, options.ignoreUnsupported)) {
-  setup();
+Simulation::Simulation(const RunOptions& options) : options_(options) {
+  setup([&] { spec_ = std::make_unique<ProblemSpec>(options.input, options.ignoreUnsupported); });
 }
 
 Simulation::Simulation(const std::string& text, const std::string& name, const RunOptions& options)
-    : options_(options), spec_(ProblemSpec::fromText(text, name, options.ignoreUnsupported)) {
-  setup();
+    : options_(options) {
+  setup([&] { spec_ = ProblemSpec::fromText(text, name, options.ignoreUnsupported); });
 }
 
-void Simulation::setup() {
+void Simulation::setup(const std::function<void()>& readSpec) {
+  // Everything that reads and checks the input calls no collective: a rank that cannot read it
+  // (a path not shared between nodes) ends every rank here, not in the first collective.
+  collective::readTogether([&] {
+    readSpec();
+    readInput();
+  });
+  mpm_.distributeOverRanks(Collective{});
+  if (archiver_.savesConcentrationFields() || scenes_.draws("p.concentrationGradient"))
+    mpm_.computeConcentrationOfEveryMaterial();
+  takeStableTimestep(0.0);
+}
+
+void Simulation::readInput() {
   PSNode root = spec_->root();
   time_ = TimeControl::fromInput(root.requireChild("Time"));
   mpm_.problemSetup(root, time_.initTime, time_.maxTime);
@@ -41,8 +52,6 @@ void Simulation::setup() {
     archiver_.setMaterialColumns(mpm_.materials(), mpm_.diffusion()->lithiumTakingMaterials());
   checkpoints_ = CheckpointSchedule::fromInput(root.requireChild("DataArchiver"));
   scenes_ = SceneOutput::fromInput(root, time_, mpm_);
-  if (archiver_.savesConcentrationFields() || scenes_.draws("p.concentrationGradient"))
-    mpm_.computeConcentrationOfEveryMaterial();
   spec_->checkAllUsed();
   inputMaxTimesteps_ = time_.maxTimesteps;
   if (options_.maxTimesteps > 0 &&
@@ -50,7 +59,6 @@ void Simulation::setup() {
     time_.maxTimesteps = options_.maxTimesteps;
   t_ = time_.initTime;
   lastCheckpointTime_ = t_;
-  takeStableTimestep(0.0);
 }
 
 void Simulation::takeStableTimestep(double previousDt) {
@@ -419,13 +427,32 @@ void Simulation::loadCheckpoint(Collective, const std::string& path, bool output
 }
 
 std::string Simulation::loadNewestCheckpoint() {
-  const std::vector<std::string> found = listCheckpoints(options_.restartDir);
-  if (found.empty())
-    throw std::runtime_error("no checkpoint in " + options_.restartDir +
-                             "/checkpoints (the input needs "
-                             "<checkpoint cycle=\"N\" interval=\"T\"/> in <DataArchiver>)");
-  for (const std::string& path : found) {
-    if (!hasIntactHash(path)) {
+  // Rank 0 lists the checkpoints, newest first, and checks their hashes; every rank then tries
+  // the same ones (a rank whose view of the directory lags, or whose read fails, must not resume
+  // from another step). One line each: "I path" intact, "D path" damaged (skipped), or "E error"
+  // (an I/O error: the restart stops, nothing removed).
+  std::string listed;
+  if (Communicator::isRoot()) {
+    const std::vector<std::string> found = listCheckpoints(options_.restartDir);
+    if (found.empty())
+      listed = "E no checkpoint in " + options_.restartDir +
+               "/checkpoints (the input needs <checkpoint cycle=\"N\" interval=\"T\"/> in "
+               "<DataArchiver>)\n";
+    for (const std::string& path : found) {
+      std::string error;
+      const HashCheck check = checkHash(path, &error);
+      if (check == HashCheck::Unreadable) {
+        listed += "E " + error + " (nothing was removed)\n";
+        break;
+      }
+      listed += (check == HashCheck::Intact ? "I " : "D ") + path + "\n";
+    }
+  }
+  std::istringstream lines(collective::broadcast(listed, 0));
+  for (std::string line; std::getline(lines, line);) {
+    const std::string path = line.substr(2);
+    if (line[0] == 'E') throw std::runtime_error(path);
+    if (line[0] == 'D') {
       if (Communicator::isRoot())
         std::fprintf(stderr,
                      "warning: skipping %s: incomplete or damaged (its hash does not match)\n",
@@ -433,14 +460,17 @@ std::string Simulation::loadNewestCheckpoint() {
       continue;
     }
     try {
-      loadCheckpoint(Collective{}, path, true);
-      archiver_.removeOutputsAfter(step_);
-      archiver_.writeIndexFiles();
-      return path;
+      loadCheckpoint(Collective{}, path, true);  // fails on every rank together
     } catch (const std::runtime_error& e) {
       if (Communicator::isRoot())
         std::fprintf(stderr, "warning: skipping %s: %s\n", path.c_str(), e.what());
+      continue;
     }
+    // The outputs after it go only once it is loaded; an error here (a file that cannot be
+    // written) stops the restart, and is no reason to go back to an older checkpoint.
+    archiver_.removeOutputsAfter(step_);
+    archiver_.writeIndexFiles();
+    return path;
   }
   throw std::runtime_error("no complete checkpoint in " + options_.restartDir + "/checkpoints");
 }

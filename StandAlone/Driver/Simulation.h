@@ -3,6 +3,7 @@
 
 #include <array>
 #include <chrono>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -56,7 +57,10 @@ class Simulation {
   void printTimings() const;
 
  private:
-  void setup();
+  // Reads the input (readSpec sets spec_) on every rank, agreeing on its errors, then lays the
+  // problem out over the ranks.
+  void setup(const std::function<void()>& readSpec);
+  void readInput();
   // The MPM's step from t_ over dt_: explicit, or quasi-static (which may retake it with a
   // smaller dt_).
   void stepMPM();

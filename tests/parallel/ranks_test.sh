@@ -9,6 +9,7 @@
 #   kill INPUT STEPS             a rank of 3 is killed (SIGKILL) at a random moment: the job ends
 #                                within 60 s, every output file is complete, a 2-rank restart agrees
 #   badinput INPUT               3 ranks: exit code 2, the file:line message once, within 30 s
+#   badrank GOOD BAD             3 ranks, one (then two) of them given BAD: the same, every rank
 #   stop INPUT [RANKS]           RANKS ranks (3 unless given) stop on a diagnostic one of them
 #                                finds: exit code 3 in the step of one rank, its message once,
 #                                the last good state of one rank written
@@ -177,6 +178,25 @@ EOF
     [ -e "$work/r" ] && fail "output written for a bad input"
     grep "$(basename "$input"):" "$work/r.log"
     echo "exit 2 after $(($(date +%s) - start)) s"
+    ;;
+  badrank)
+    # One rank's input differs from the others' (an input path not shared between nodes): the
+    # bad one on rank 2 of 3, then on ranks 0 and 1 (MPMD launches). Every rank ends within 30 s
+    # with exit 2, the bad rank's message printed once, no output written.
+    good=$1 bad=$2
+    for layout in "2 $good 1 $bad" "2 $bad 1 $good"; do
+      set -- $layout
+      rm -rf "$work/r"
+      timeout 30 mpirun -np "$1" "$sus" --threads 1 -o "$work/r" "$2" : \
+        -np "$3" "$sus" --threads 1 -o "$work/r" "$4" > "$work/r.log" 2>&1
+      code=$?
+      [ $code = 124 ] && fail "$layout: no end within 30 s ($(tail -3 "$work/r.log"))"
+      [ $code = 2 ] || fail "$layout: exit code $code, not 2 ($(tail -3 "$work/r.log"))"
+      count=$(grep -c "$(basename "$bad"):[0-9]*:" "$work/r.log")
+      [ "$count" = 1 ] || fail "$layout: the message appears $count times: $(cat "$work/r.log")"
+      [ -e "$work/r" ] && fail "$layout: output written for a bad input"
+      grep "$(basename "$bad"):" "$work/r.log"
+    done
     ;;
   stop)
     input=$1 ranks=${2:-3}
