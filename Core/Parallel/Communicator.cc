@@ -2,9 +2,11 @@
 
 #include <mpi.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <limits>
+#include <memory>
 #include <numeric>
 #include <stdexcept>
 #include <vector>
@@ -48,18 +50,81 @@ bool launchedByMpi() {
   return false;
 }
 
-std::vector<int> displacements(const std::vector<int>& counts) {
-  std::vector<int> d(counts.size(), 0);
-  for (size_t i = 1; i < counts.size(); ++i) d[i] = d[i - 1] + counts[i - 1];
-  return d;
-}
+// The most bytes one MPI message carries here: counts are ints, and Open MPI 4.1 fails on a
+// message above 2^31 bytes whatever its datatype. Larger messages go in pieces of this size.
+constexpr size_t kLargest = size_t{1} << 30;
+constexpr int kLargeMessageTag = 7001;
 
-int byteCount(size_t n) {
-  if (n > static_cast<size_t>(std::numeric_limits<int>::max()))
-    throw std::runtime_error("MPI: a message of " + std::to_string(n) +
-                             " bytes exceeds the 2 GiB one exchange can carry");
-  return static_cast<int>(n);
-}
+// The n <= kLargest bytes at p as one MPI datatype at their absolute address (for buffer
+// MPI_BOTTOM), so that an exchange's counts and displacements are 1 and 0 whatever the sizes and
+// their sum (MPI_Alltoallw's displacements are ints). MPI matches type signatures: n MPI_CHARs
+// on either side, however each side builds them.
+class BytesAt {
+ public:
+  BytesAt(const char* p, size_t n) {
+    int length = static_cast<int>(n);
+    MPI_Aint address = 0;
+    MPI_Datatype bytes = MPI_CHAR;
+    check(MPI_Get_address(p, &address), "MPI_Get_address");
+    check(MPI_Type_create_struct(1, &length, &address, &bytes, &type_), "MPI_Type_create_struct");
+    check(MPI_Type_commit(&type_), "MPI_Type_commit");
+  }
+  ~BytesAt() { MPI_Type_free(&type_); }
+  BytesAt(const BytesAt&) = delete;
+  BytesAt& operator=(const BytesAt&) = delete;
+  MPI_Datatype type() const { return type_; }
+
+ private:
+  MPI_Datatype type_ = MPI_DATATYPE_NULL;
+};
+
+// The messages above kLargest of one exchange, point to point in pieces of at most kLargest (a
+// pair posts its pieces in the same order, and MPI keeps the order of one sender's messages of
+// one tag): posted as they are added, completed by wait.
+class LargeMessages {
+ public:
+  void send(const std::string& bytes, int rank) {
+    post(const_cast<char*>(bytes.data()), bytes.size(), rank, true);
+  }
+  void receive(std::string& bytes, int rank) { post(bytes.data(), bytes.size(), rank, false); }
+  void wait() {
+    check(MPI_Waitall(static_cast<int>(requests_.size()), requests_.data(), MPI_STATUSES_IGNORE),
+          "MPI_Waitall");
+    requests_.clear();
+  }
+
+ private:
+  void post(char* p, size_t n, int rank, bool out) {
+    for (size_t done = 0; done < n; done += kLargest) {
+      const int length = static_cast<int>(std::min(kLargest, n - done));
+      requests_.emplace_back();
+      if (out)
+        check(MPI_Isend(p + done, length, MPI_CHAR, rank, kLargeMessageTag, MPI_COMM_WORLD,
+                        &requests_.back()),
+              "MPI_Isend");
+      else
+        check(MPI_Irecv(p + done, length, MPI_CHAR, rank, kLargeMessageTag, MPI_COMM_WORLD,
+                        &requests_.back()),
+              "MPI_Irecv");
+    }
+  }
+  std::vector<MPI_Request> requests_;
+};
+
+// One datatype per message of an MPI_Alltoallw: the message's bytes, or none when it is above
+// kLargest (LargeMessages carries it).
+struct MessageTypes {
+  std::vector<std::unique_ptr<BytesAt>> owned;
+  std::vector<MPI_Datatype> types;
+  std::vector<int> counts, zeros;
+  void add(const std::string& bytes) {
+    const bool inline_ = bytes.size() <= kLargest;
+    owned.push_back(std::make_unique<BytesAt>(bytes.data(), inline_ ? bytes.size() : 0));
+    types.push_back(owned.back()->type());
+    counts.push_back(1);
+    zeros.push_back(0);
+  }
+};
 
 }  // namespace
 
@@ -175,48 +240,69 @@ std::string broadcast(const std::string& data, int root) {
   check(MPI_Bcast(&n, 1, MPI_LONG_LONG, root, MPI_COMM_WORLD), "MPI_Bcast");
   std::string out = worldRank == root ? data : std::string(static_cast<size_t>(n), '\0');
   if (worldRank == root) bytes += static_cast<double>(n) * (worldSize - 1);
-  check(MPI_Bcast(out.data(), byteCount(out.size()), MPI_CHAR, root, MPI_COMM_WORLD), "MPI_Bcast");
+  for (size_t done = 0; done < out.size(); done += kLargest)
+    check(MPI_Bcast(out.data() + done, static_cast<int>(std::min(kLargest, out.size() - done)),
+                    MPI_CHAR, root, MPI_COMM_WORLD),
+          "MPI_Bcast");
   return out;
 }
 
 std::vector<std::string> allGather(const std::string& data) {
   if (!started) return {data};
   CommunicationTimer t;
-  int n = byteCount(data.size());
-  std::vector<int> counts(worldSize);
-  check(MPI_Allgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, MPI_COMM_WORLD), "MPI_Allgather");
-  const std::vector<int> at = displacements(counts);
-  std::string all(static_cast<size_t>(at.back()) + counts.back(), '\0');
-  bytes += static_cast<double>(n) * (worldSize - 1);
-  check(MPI_Allgatherv(data.data(), n, MPI_CHAR, all.data(), counts.data(), at.data(), MPI_CHAR,
-                       MPI_COMM_WORLD),
-        "MPI_Allgatherv");
-  std::vector<std::string> out(worldSize);
-  for (int r = 0; r < worldSize; ++r) out[r] = all.substr(at[r], counts[r]);
-  return out;
+  int64_t size = static_cast<int64_t>(data.size());
+  std::vector<int64_t> sizes(worldSize);
+  check(MPI_Allgather(&size, 1, MPI_INT64_T, sizes.data(), 1, MPI_INT64_T, MPI_COMM_WORLD),
+        "MPI_Allgather");
+  bytes += static_cast<double>(data.size()) * (worldSize - 1);
+  std::vector<std::string> gathered(worldSize);
+  LargeMessages large;
+  MessageTypes mine, in;
+  mine.add(data);
+  for (int r = 0; r < worldSize; ++r) {
+    gathered[r].resize(static_cast<size_t>(sizes[r]));
+    in.add(gathered[r]);
+    if (r == worldRank) continue;
+    if (gathered[r].size() > kLargest) large.receive(gathered[r], r);
+    if (data.size() > kLargest) large.send(data, r);
+  }
+  const std::vector<MPI_Datatype> sendTypes(worldSize, mine.types[0]);
+  const std::vector<int> ones(worldSize, 1), zeros(worldSize, 0);
+  check(MPI_Alltoallw(MPI_BOTTOM, ones.data(), zeros.data(), sendTypes.data(), MPI_BOTTOM,
+                      in.counts.data(), in.zeros.data(), in.types.data(), MPI_COMM_WORLD),
+        "MPI_Alltoallw");
+  large.wait();
+  if (data.size() > kLargest) gathered[worldRank] = data;
+  return gathered;
 }
 
 std::vector<std::string> exchangeWithAll(const std::vector<std::string>& send) {
   if (!started) return send;
   CommunicationTimer t;
-  std::vector<int> sendCounts(worldSize), receiveCounts(worldSize);
-  std::string out;
+  std::vector<int64_t> sendSizes(worldSize), receiveSizes(worldSize);
   for (int r = 0; r < worldSize; ++r) {
-    sendCounts[r] = byteCount(send[r].size());
-    out += send[r];
+    sendSizes[r] = static_cast<int64_t>(send[r].size());
     if (r != worldRank) bytes += static_cast<double>(send[r].size());
   }
-  check(
-      MPI_Alltoall(sendCounts.data(), 1, MPI_INT, receiveCounts.data(), 1, MPI_INT, MPI_COMM_WORLD),
-      "MPI_Alltoall");
-  const std::vector<int> sendAt = displacements(sendCounts),
-                         receiveAt = displacements(receiveCounts);
-  std::string in(static_cast<size_t>(receiveAt.back()) + receiveCounts.back(), '\0');
-  check(MPI_Alltoallv(out.data(), sendCounts.data(), sendAt.data(), MPI_CHAR, in.data(),
-                      receiveCounts.data(), receiveAt.data(), MPI_CHAR, MPI_COMM_WORLD),
-        "MPI_Alltoallv");
+  check(MPI_Alltoall(sendSizes.data(), 1, MPI_INT64_T, receiveSizes.data(), 1, MPI_INT64_T,
+                     MPI_COMM_WORLD),
+        "MPI_Alltoall");
   std::vector<std::string> received(worldSize);
-  for (int r = 0; r < worldSize; ++r) received[r] = in.substr(receiveAt[r], receiveCounts[r]);
+  LargeMessages large;
+  MessageTypes out, in;
+  for (int r = 0; r < worldSize; ++r) {
+    received[r].resize(static_cast<size_t>(receiveSizes[r]));
+    out.add(send[r]);
+    in.add(received[r]);
+    if (r == worldRank) continue;
+    if (send[r].size() > kLargest) large.send(send[r], r);
+    if (received[r].size() > kLargest) large.receive(received[r], r);
+  }
+  check(MPI_Alltoallw(MPI_BOTTOM, out.counts.data(), out.zeros.data(), out.types.data(), MPI_BOTTOM,
+                      in.counts.data(), in.zeros.data(), in.types.data(), MPI_COMM_WORLD),
+        "MPI_Alltoallw");
+  large.wait();
+  if (send[worldRank].size() > kLargest) received[worldRank] = send[worldRank];
   return received;
 }
 
@@ -259,24 +345,39 @@ void collective::exchangeWithNeighbours(const Neighbourhood& neighbours,
   receive.resize(n);
   if (!neighbours.handle_) return;
   CommunicationTimer t;
-  std::vector<int> sendCounts(n), receiveCounts(n);
+  std::vector<int64_t> sendSizes(n), receiveSizes(n);
   for (size_t i = 0; i < n; ++i) {
-    sendCounts[i] = byteCount(send[i].size());
+    sendSizes[i] = static_cast<int64_t>(send[i].size());
     bytes += static_cast<double>(send[i].size());
   }
-  check(MPI_Neighbor_alltoall(sendCounts.data(), 1, MPI_INT, receiveCounts.data(), 1, MPI_INT,
+  check(MPI_Neighbor_alltoall(sendSizes.data(), 1, MPI_INT64_T, receiveSizes.data(), 1, MPI_INT64_T,
                               neighbours.handle_->graph),
         "MPI_Neighbor_alltoall");
-  std::string out, in;
-  for (const auto& s : send) out += s;
-  const std::vector<int> sendAt = displacements(sendCounts),
-                         receiveAt = displacements(receiveCounts);
-  in.resize(n ? static_cast<size_t>(receiveAt.back()) + receiveCounts.back() : 0);
-  check(MPI_Neighbor_alltoallv(out.data(), sendCounts.data(), sendAt.data(), MPI_CHAR, in.data(),
-                               receiveCounts.data(), receiveAt.data(), MPI_CHAR,
+  // Each message straight from and into its own string: MPI_CHARs at absolute displacements
+  // (MPI_Aint), or none when it is above kLargest (LargeMessages carries it).
+  std::vector<int> sendCounts(n), receiveCounts(n);
+  std::vector<MPI_Aint> sendAt(n), receiveAt(n);
+  const std::vector<MPI_Datatype> types(n, MPI_CHAR);
+  LargeMessages large;
+  for (size_t i = 0; i < n; ++i) {
+    receive[i].resize(static_cast<size_t>(receiveSizes[i]));
+    const int rank = neighbours.ranks_[i];
+    if (send[i].size() > kLargest)
+      large.send(send[i], rank);
+    else
+      sendCounts[i] = static_cast<int>(send[i].size());
+    if (receive[i].size() > kLargest)
+      large.receive(receive[i], rank);
+    else
+      receiveCounts[i] = static_cast<int>(receive[i].size());
+    check(MPI_Get_address(send[i].data(), &sendAt[i]), "MPI_Get_address");
+    check(MPI_Get_address(receive[i].data(), &receiveAt[i]), "MPI_Get_address");
+  }
+  check(MPI_Neighbor_alltoallw(MPI_BOTTOM, sendCounts.data(), sendAt.data(), types.data(),
+                               MPI_BOTTOM, receiveCounts.data(), receiveAt.data(), types.data(),
                                neighbours.handle_->graph),
-        "MPI_Neighbor_alltoallv");
-  for (size_t i = 0; i < n; ++i) receive[i] = in.substr(receiveAt[i], receiveCounts[i]);
+        "MPI_Neighbor_alltoallw");
+  large.wait();
 }
 
 }  // namespace anode
