@@ -179,12 +179,15 @@ uint64_t writePart(const std::string& checkpoint, const MPM& mpm) {
   std::error_code exists;
   fs::create_directories(checkpointParts(checkpoint), exists);
   uint64_t hash = 0;
-  writeAtomically(checkpointPart(checkpoint, Communicator::rank()), [&](const std::string& tmp) {
-    BinaryWriter out(tmp);
-    out.string(kCheckpointPartMagic);
-    mpm.saveState(out);
-    hash = out.finish();
-  });
+  writeAtomically(
+      checkpointPart(checkpoint, Communicator::rank()),
+      [&](const std::string& tmp) {
+        BinaryWriter out(tmp);
+        out.string(kCheckpointPartMagic);
+        mpm.saveState(out);
+        hash = out.finish();
+      },
+      Durability::Synced);
   return hash;
 }
 
@@ -272,29 +275,32 @@ void writeCheckpoint(Collective, const std::string& path, const CheckpointHeader
     fs::create_directories(fs::path(path).parent_path());
   }
   if (!Communicator::isRoot()) return;
-  writeAtomically(path, [&](const std::string& tmp) {
-    BinaryWriter out(tmp);
-    out.string(distributed ? kDistributedCheckpointMagic : kCheckpointMagic);
-    out.value(kCheckpointVersion);
-    out.value<int32_t>(header.threads);
-    out.value(header.inputHash);
-    out.value(header.t);
-    out.value(header.dt);
-    out.value<int32_t>(header.dtLimit);
-    out.value(header.step);
-    out.value(header.particleSteps);
-    out.value(header.wallSeconds);
-    out.value(header.lastScheduledTime);
-    archiver.saveState(out);
-    if (distributed) {
-      out.value<int32_t>(header.ranks);
-      mpm.saveLayout(out);
-      for (const std::string& h : partHashes) out.bytes(h.data(), h.size());
-    } else {
-      mpm.saveState(out);
-    }
-    out.finish();
-  });
+  writeAtomically(
+      path,
+      [&](const std::string& tmp) {
+        BinaryWriter out(tmp);
+        out.string(distributed ? kDistributedCheckpointMagic : kCheckpointMagic);
+        out.value(kCheckpointVersion);
+        out.value<int32_t>(header.threads);
+        out.value(header.inputHash);
+        out.value(header.t);
+        out.value(header.dt);
+        out.value<int32_t>(header.dtLimit);
+        out.value(header.step);
+        out.value(header.particleSteps);
+        out.value(header.wallSeconds);
+        out.value(header.lastScheduledTime);
+        archiver.saveState(out);
+        if (distributed) {
+          out.value<int32_t>(header.ranks);
+          mpm.saveLayout(out);
+          for (const std::string& h : partHashes) out.bytes(h.data(), h.size());
+        } else {
+          mpm.saveState(out);
+        }
+        out.finish();
+      },
+      Durability::Synced);
 }
 
 CheckpointHeader loadCheckpoint(Collective, const std::string& path, DataArchiver* outputs,

@@ -5,10 +5,12 @@
 
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <sstream>
 
 #include "Core/Parallel/Communicator.h"
 #include "Core/Parallel/StopTogether.h"
+#include "Core/Util/AtomicFile.h"
 #include "Core/Util/InstructionSet.h"
 #include "StandAlone/Driver/StepForecast.h"
 #include "StandAlone/Driver/StopRequest.h"
@@ -380,6 +382,10 @@ void Simulation::writeCheckpoint(Collective, CheckpointKind kind) {
   const double wallSeconds = earlierWallSeconds_ + wallTime();
   archiver_.writeHistory();  // history.csv holds every row up to the checkpoint's step
   const std::string dir = archiver_.directory();
+  // On the disk before the checkpoint, as the checkpoint before any older one is removed
+  // (parts, then manifest, each synced with its directory): a crashed node leaves a whole one.
+  const std::filesystem::path history = std::filesystem::path(dir) / "history.csv";
+  if (Communicator::isRoot() && std::filesystem::exists(history)) syncToDisk(history.string());
   if (kind == CheckpointKind::Scheduled) lastCheckpointTime_ = t_;
   newestCheckpoint_ = checkpointPath(dir, step_, kind);
   anode::writeCheckpoint(Collective{}, newestCheckpoint_,
