@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <limits>
 #include <stdexcept>
 
 #include "Core/Parallel/Decomposition.h"
@@ -120,6 +121,20 @@ TEST(Decomposition, NeighboursAreTheRanksWhoseWindowsShareNodes) {
   // One ghost layer: windows [0,5], [3,6], [4,10], [8,12].
   EXPECT_EQ(d.neighbours(whole, 0, 1), (std::vector<int>{1, 2}));
   EXPECT_EQ(d.neighbours(whole, 3, 1), (std::vector<int>{2}));
+}
+
+// A particle's rank from its position: inside, the box of its cell; far outside the grid (past
+// int's range as an index), the nearest box; not finite, the rank it is on (migration leaves a
+// NaN position where the state checks report it, as on one rank).
+TEST(Decomposition, OwnerOfAPointFarAwayOrNotFinite) {
+  const Decomposition d = Decomposition::fromCuts({{{0, 4, 8}, {0, 8}, {0, 8}}});
+  EXPECT_EQ(d.ownerOfPoint(Vec3(1.5, 2, 2), 7), 0);
+  EXPECT_EQ(d.ownerOfPoint(Vec3(5.5, 2, 2), 7), 1);
+  EXPECT_EQ(d.ownerOfPoint(Vec3(1e300, 2, 2), 7), 1);
+  EXPECT_EQ(d.ownerOfPoint(Vec3(-1e300, -1e12, 3e9), 7), 0);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(d.ownerOfPoint(Vec3(nan, 2, 2), 7), 7);
+  EXPECT_EQ(d.ownerOfPoint(Vec3(1, 2, std::numeric_limits<double>::infinity()), 7), 7);
 }
 
 }  // namespace

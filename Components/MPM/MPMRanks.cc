@@ -15,10 +15,7 @@
 namespace anode {
 
 int MPM::ownerOf(const ParticleSet& p, size_t i) const {
-  const Vec3 xi = whole_.indexCoordinate(p.x[i]);
-  return decomposition_.ownerOfCell(Vec3i(static_cast<int>(std::floor(xi.x())),
-                                          static_cast<int>(std::floor(xi.y())),
-                                          static_cast<int>(std::floor(xi.z()))));
+  return decomposition_.ownerOfPoint(whole_.indexCoordinate(p.x[i]), Communicator::rank());
 }
 
 int MPM::computeGhostWidth(bool allHere) const {

@@ -1,6 +1,7 @@
 #include "Core/Parallel/Decomposition.h"
 
 #include <algorithm>
+#include <cmath>
 #include <sstream>
 #include <stdexcept>
 
@@ -118,6 +119,14 @@ int Decomposition::ownerOfCell(const Vec3i& cell) const {
     k[d] = static_cast<int>(std::upper_bound(c.begin(), c.end(), clamped) - c.begin()) - 1;
   }
   return (k.z() * ranksPerAxis_.y() + k.y()) * ranksPerAxis_.x() + k.x();
+}
+
+int Decomposition::ownerOfPoint(const Vec3& xi, int otherwise) const {
+  if (!xi.allFinite()) return otherwise;
+  Vec3i cell;
+  for (int d = 0; d < 3; ++d)  // clamped as a double: a cast of one beyond int's range is undefined
+    cell[d] = static_cast<int>(std::clamp(std::floor(xi[d]), -1.0, double(cuts_[d].back())));
+  return ownerOfCell(cell);
 }
 
 Grid Decomposition::window(const Grid& whole, int rank, int ghost) const {

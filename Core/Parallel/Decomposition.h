@@ -40,6 +40,10 @@ class Decomposition {
   CellBox box(int rank) const;
   // The rank owning a cell; a cell outside the interior counts as the nearest interior one.
   int ownerOfCell(const Vec3i& cell) const;
+  // The rank owning the cell holding the point at index coordinate xi (Grid::indexCoordinate),
+  // any distance outside the grid counting as the nearest cell; `otherwise` for a point that is
+  // not finite (a NaN position stays where the state checks find it, as on one rank).
+  int ownerOfPoint(const Vec3& xi, int otherwise) const;
   // The grid as rank `rank` stores it: its box, `ghost` node layers around it and, on the
   // grid's faces, the extra nodes.
   Grid window(const Grid& whole, int rank, int ghost) const;
