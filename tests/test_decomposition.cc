@@ -137,5 +137,20 @@ TEST(Decomposition, OwnerOfAPointFarAwayOrNotFinite) {
   EXPECT_EQ(d.ownerOfPoint(Vec3(1, 2, std::numeric_limits<double>::infinity()), 7), 7);
 }
 
+// 12 boxes over 3x4x1 cells: particles in one y plane give x 3 boxes, then y 2 and 2; spread
+// over y they send the 3 to y first, and the two 2s then fit no axis. Boxes redrawn mid-run keep
+// the boxes per axis they had rather than fail where setup succeeded.
+TEST(Decomposition, BoxesDrawnAnewNeverFailWhereTheFirstFit) {
+  const Vec3i cells(3, 4, 1);
+  std::array<std::vector<double>, 3> onePlane = uniformPlanes(cells);
+  onePlane[1] = {0, 5, 0, 0};
+  const Decomposition first = Decomposition::balanced(cells, 12, onePlane);
+  EXPECT_EQ(first.ranksPerAxis(), Vec3i(3, 4, 1));
+  EXPECT_THROW(Decomposition::balanced(cells, 12, uniformPlanes(cells)), std::runtime_error);
+  const Decomposition again = Decomposition::balanced(cells, 12, uniformPlanes(cells), &first);
+  EXPECT_EQ(again.ranksPerAxis(), Vec3i(3, 4, 1));
+  EXPECT_EQ(again.cuts(1), (std::vector<int>{0, 1, 2, 3, 4}));
+}
+
 }  // namespace
 }  // namespace anode

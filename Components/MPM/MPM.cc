@@ -304,8 +304,13 @@ void MPM::splitParticles() {
     }
     // New IDs in the order of the parents' IDs over all ranks, as one rank would give them
     // (its particles stay in ID order), whatever rank holds a parent.
+    // The IDs are gathered only in a step that splits some particle (a sum first).
     std::vector<int64_t> parents;
     const std::vector<int64_t> mine = stretchedParticleIds(p, grid_, flags_.stretchRatio);
+    if (collective::sum(static_cast<int64_t>(mine.size())) == 0) {
+      r.split.clear();
+      continue;
+    }
     for (const std::string& ids : collective::allGather(std::string(
              reinterpret_cast<const char*>(mine.data()), mine.size() * sizeof(int64_t)))) {
       const size_t at = parents.size();

@@ -54,7 +54,9 @@ void MPM::decompose(bool allHere) {
     }
   if (!allHere)
     for (int d = 0; d < 3; ++d) collective::sum(planes[d].data(), whole_.cells[d]);
-  decomposition_ = Decomposition::balanced(whole_.cells, ranks, planes);
+  const Decomposition earlier = decomposition_;
+  decomposition_ =
+      Decomposition::balanced(whole_.cells, ranks, planes, allHere ? nullptr : &earlier);
   ghostWidth_ = computeGhostWidth(allHere);
   std::vector<std::string> send(ranks);
   for (MPMMaterial& mat : materials_) {

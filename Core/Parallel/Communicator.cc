@@ -19,11 +19,12 @@ bool started = false;
 std::vector<void (*)()> stopHooks;  // Communicator::beforeStop
 int worldRank = 0, worldSize = 1;
 double seconds = 0, bytes = 0;
+long calls = 0;  // collective calls (every rank makes the same ones)
 
 // Times one MPI call into `seconds`.
 class CommunicationTimer {
  public:
-  CommunicationTimer() : start_(std::chrono::steady_clock::now()) {}
+  CommunicationTimer() : start_(std::chrono::steady_clock::now()) { ++calls; }
   ~CommunicationTimer() {
     seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
   }
@@ -168,6 +169,9 @@ double Communicator::communicationSeconds() {
 }
 double Communicator::bytesSent() {
   return bytes;
+}
+long Communicator::collectiveCalls() {
+  return calls;
 }
 
 namespace collective {

@@ -36,6 +36,8 @@ class Communicator {
   // Time spent in and bytes sent by the exchanges and reductions of this process so far.
   static double communicationSeconds();
   static double bytesSent();
+  // The collective calls of this process so far (each reduction or exchange once).
+  static long collectiveCalls();
 };
 
 class Neighbourhood;

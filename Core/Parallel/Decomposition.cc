@@ -67,7 +67,8 @@ Decomposition::Decomposition(const Vec3i& cells) {
 }
 
 Decomposition Decomposition::balanced(const Vec3i& cells, int ranks,
-                                      const std::array<std::vector<double>, 3>& planeCounts) {
+                                      const std::array<std::vector<double>, 3>& planeCounts,
+                                      const Decomposition* earlier) {
   Decomposition out(cells);
   Vec3 span;
   for (int d = 0; d < 3; ++d) {
@@ -80,6 +81,10 @@ Decomposition Decomposition::balanced(const Vec3i& cells, int ranks,
       if (out.ranksPerAxis_[d] * p > cells[d]) continue;
       if (best < 0 || span[d] / out.ranksPerAxis_[d] > span[best] / out.ranksPerAxis_[best])
         best = d;
+    }
+    if (best < 0 && earlier && earlier->ranks() == ranks) {
+      out.ranksPerAxis_ = earlier->ranksPerAxis_;
+      break;
     }
     if (best < 0)
       throw std::runtime_error("the grid (" + std::to_string(cells.x()) + "x" +

@@ -25,10 +25,13 @@ class Decomposition {
   // `ranks` boxes over `cells`. The rank count is factored into primes and the larger factors go
   // to the axes the particles span most cells of (per rank), only to axes with a cell per box;
   // along each axis the cuts sit at the quantiles of planeCounts[d] (particles per cell plane,
-  // cells[d] of them), every box at least one cell wide. Throws std::runtime_error when the grid
-  // has too few cells for that many boxes.
+  // cells[d] of them), every box at least one cell wide. When the factors fit no axis that way,
+  // the boxes per axis of `earlier` (the boxes drawn before, which fit: boxes redrawn mid-run
+  // never fail where setup succeeded); without it, throws std::runtime_error (the grid has too
+  // few cells for that many boxes).
   static Decomposition balanced(const Vec3i& cells, int ranks,
-                                const std::array<std::vector<double>, 3>& planeCounts);
+                                const std::array<std::vector<double>, 3>& planeCounts,
+                                const Decomposition* earlier = nullptr);
 
   // The boxes `cuts` (per axis: the first cell of each box and, last, the cell count) draw.
   static Decomposition fromCuts(const std::array<std::vector<int>, 3>& cuts);

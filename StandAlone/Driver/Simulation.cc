@@ -489,6 +489,7 @@ void Simulation::printTimings() const {
   const size_t particles =
       static_cast<size_t>(collective::sum(static_cast<int64_t>(mpm_.numParticles())));
   const double imbalance = mpm_.imbalance(Collective{});
+  const long collectiveCalls = Communicator::collectiveCalls();  // before this summary's own
   double communication[2] = {Communicator::bytesSent(), Communicator::communicationSeconds()};
   collective::sum(communication, 1);
   collective::maximum(communication + 1, 1);
@@ -534,12 +535,16 @@ void Simulation::printTimings() const {
   if (Communicator::size() > 1)
     std::fprintf(stderr,
                  "  %d ranks: particles per rank max/mean %.3f; sent %.4g bytes in all, %.4g per "
-                 "step; communication at most %.3f s on a rank\n",
+                 "step; communication at most %.3f s on a rank; %ld collective calls, %.1f per "
+                 "step\n",
                  Communicator::size(), imbalance, communication[0],
                  step_ > firstStepOfThisProcess_
                      ? communication[0] / (step_ - firstStepOfThisProcess_)
                      : 0.0,
-                 communication[1]);
+                 communication[1], collectiveCalls,
+                 step_ > firstStepOfThisProcess_
+                     ? static_cast<double>(collectiveCalls) / (step_ - firstStepOfThisProcess_)
+                     : 0.0);
   std::fprintf(
       stderr, "  peak memory: %.1f MB, %.0f bytes per particle%s\n", peakBytes / 1e6,
       allPeaks / std::max<size_t>(particles, 1),
