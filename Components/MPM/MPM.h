@@ -92,9 +92,14 @@ class MPM {
   void saveLayout(BinaryWriter& out) const;
   static Layout readLayout(BinaryReader& in);
   void adoptLayout(Collective, const Layout& layout);
-  // After every rank loaded all particles (a checkpoint of another rank count): puts them in ID
-  // order and keeps this rank's share under a decomposition drawn anew.
+  // After every rank loaded all particles (a one-rank checkpoint on several ranks): puts them in
+  // ID order and keeps this rank's share under a decomposition drawn anew.
   void keepOwnShare(Collective);
+  // After each rank loaded some parts of a distributed checkpoint of another rank count: shares
+  // the particles out under a decomposition drawn anew, each rank's in ID order.
+  void shareOutAnew(Collective);
+  // Drops this rank's particles (a part read only for the state every part holds).
+  void dropParticles();
 
   // The nodes this rank stores (the whole grid on one rank; its window in a distributed run).
   const Grid& grid() const { return grid_; }

@@ -73,15 +73,32 @@ void MPM::adoptLayout(Collective, const Layout& layout) {
   layOutWindow();
 }
 
-void MPM::keepOwnShare(Collective) {
-  for (MPMMaterial& mat : materials_) {
+namespace {
+
+void putInIdOrder(std::vector<MPMMaterial>& materials) {
+  for (MPMMaterial& mat : materials) {
     ParticleSet& p = mat.particles;
     std::vector<long> order(p.count());
     std::iota(order.begin(), order.end(), 0L);
     std::sort(order.begin(), order.end(), [&p](long a, long b) { return p.id[a] < p.id[b]; });
     reorderParticles(p, order);
   }
+}
+
+}  // namespace
+
+void MPM::keepOwnShare(Collective) {
+  putInIdOrder(materials_);
   decompose(true);
+}
+
+void MPM::shareOutAnew(Collective) {
+  decompose(false);
+  putInIdOrder(materials_);
+}
+
+void MPM::dropParticles() {
+  for (MPMMaterial& mat : materials_) keepParticles(mat.particles, {});
 }
 
 }  // namespace anode

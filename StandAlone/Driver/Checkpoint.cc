@@ -224,6 +224,7 @@ CheckpointHeader readCheckpoint(const std::string& path, DataArchiver* outputs, 
   if (!distributed) {
     mpm.loadState(in);
     in.finish();
+    header.bytesRead = header.bytesInAll = static_cast<double>(fs::file_size(path));
     return header;
   }
   header.ranks = in.value<int32_t>();
@@ -232,16 +233,29 @@ CheckpointHeader readCheckpoint(const std::string& path, DataArchiver* outputs, 
   std::vector<uint64_t> hashes(header.ranks);
   for (uint64_t& h : hashes) h = in.value<uint64_t>();
   in.finish();
-  // The same rank count continues with the same boxes, each rank from its own part; another
-  // reads every part and shares the particles out anew.
+  // The same rank count continues with the same boxes, each rank from its own part; with another
+  // each rank reads the parts r = rank (mod ranks) and the particles are shared out anew. A rank
+  // with no such part reads one for the state every part holds (the next ID, the flux BCs'),
+  // keeping none of its particles.
   std::vector<int> parts;
-  if (header.ranks == Communicator::size())
-    parts.push_back(Communicator::rank());
+  const int me = Communicator::rank(), size = Communicator::size();
+  if (header.ranks == size)
+    parts.push_back(me);
   else
-    for (int r = 0; r < header.ranks; ++r) parts.push_back(r);
+    for (int r = me; r < header.ranks; r += size) parts.push_back(r);
+  const bool forStateOnly = parts.empty();
+  if (forStateOnly) parts.push_back(me % header.ranks);
+  header.bytesRead = static_cast<double>(fs::file_size(path));
+  header.bytesInAll = header.bytesRead;
+  for (int r = 0; r < header.ranks; ++r) {
+    std::error_code missing;
+    const auto bytes = fs::file_size(checkpointPart(path, r), missing);
+    if (!missing) header.bytesInAll += static_cast<double>(bytes);
+  }
   for (int r : parts) {
     const std::string partPath = checkpointPart(path, r);
     BinaryReader part(partPath);
+    header.bytesRead += static_cast<double>(fs::file_size(partPath));
     if (part.string() != kCheckpointPartMagic)
       throw std::runtime_error(partPath + ": not a part of a checkpoint of this code");
     if (r == parts.front())
@@ -251,6 +265,7 @@ CheckpointHeader readCheckpoint(const std::string& path, DataArchiver* outputs, 
     if (part.finish() != hashes[r])
       throw std::runtime_error(partPath + ": not the part " + path + " names (another hash)");
   }
+  if (forStateOnly) mpm.dropParticles();
   return header;
 }
 
@@ -319,10 +334,13 @@ CheckpointHeader loadCheckpoint(Collective, const std::string& path, DataArchive
     throw std::runtime_error(failed == Communicator::rank()
                                  ? error
                                  : path + ": unreadable on rank " + std::to_string(failed));
-  if (header.ranks != Communicator::size())
+  if (header.ranks == Communicator::size()) {
+    if (header.ranks > 1) mpm.adoptLayout(Collective{}, layout);
+  } else if (header.ranks > 1) {
+    mpm.shareOutAnew(Collective{});
+  } else {
     mpm.keepOwnShare(Collective{});
-  else if (header.ranks > 1)
-    mpm.adoptLayout(Collective{}, layout);
+  }
   return header;
 }
 

@@ -70,6 +70,8 @@ struct CheckpointHeader {
   double particleSteps = 0;      // of every rank since step 0
   double wallSeconds = 0;        // of the runs up to the checkpoint
   double lastScheduledTime = 0;  // of the newest scheduled checkpoint (before any: the start)
+  // Reading: the bytes of the files this rank read, and of the whole checkpoint.
+  double bytesRead = 0, bytesInAll = 0;
 };
 
 // The hash of a file's bytes (the input's, kept in the header).
@@ -81,7 +83,8 @@ uint64_t fileHash(const std::string& path);
 void writeCheckpoint(Collective, const std::string& path, const CheckpointHeader& header,
                      const DataArchiver& archiver, const MPM& mpm);
 // Reads the checkpoint `path` into `mpm` on every rank, its particles shared out among this run's
-// ranks, and into `outputs` (the output series and the last history row) unless null; returns its
+// ranks (a distributed one of another rank count: each rank reads its share of the parts, and
+// the particles move to their new ranks), and into `outputs` (the output series and the last history row) unless null; returns its
 // header. Throws std::runtime_error, on every rank together.
 CheckpointHeader loadCheckpoint(Collective, const std::string& path, DataArchiver* outputs,
                                 MPM& mpm);

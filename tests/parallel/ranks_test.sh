@@ -6,6 +6,8 @@
 #                                write the same bytes
 #   restart INPUT STEPS FROM TO  FROM ranks stop at 3/5 of STEPS, TO ranks continue from the
 #                                checkpoint to STEPS; agrees with one rank
+#   chain INPUT STEPS R1 R2 R3   R1 ranks, restarted on R2 then R3: each restart's rank that read
+#                                most read at most 0.6 of the checkpoint; agrees with one rank
 #   kill INPUT STEPS             a rank of 3 is killed (SIGKILL) at a random moment: the job ends
 #                                within 60 s, every output file is complete, a 2-rank restart agrees
 #   badinput INPUT               3 ranks: exit code 2, the file:line message once, within 30 s
@@ -98,6 +100,32 @@ total, per = map(float, re.search(r"sent (\S+) bytes in all, (\S+) per step", lo
 print("sent %.4g bytes in the %d steps after the restart: %.4g per step; the summary: %.4g" % (total, steps, total / steps, per))
 sys.exit(abs(per - total / steps) > 1e-2 * total / steps)  # both printed to 4 digits
 EOF
+    ;;
+  chain)
+    # A distributed run restarted on two other rank counts in turn: each restart's rank that read
+    # most read at most 0.6 of the checkpoint (its share of the parts, not all of them), and the
+    # end agrees with one rank.
+    input=$1 steps=$2
+    shift 2
+    run 1 "$work/reference" --max-timesteps "$steps" "$input" || fail "reference: exit $?"
+    n=$#
+    k=1
+    run "$1" "$work/r" --max-timesteps $((steps / n)) "$input" || fail "$1 ranks: exit $?"
+    from=$1
+    shift
+    for to in "$@"; do
+      k=$((k + 1))
+      restartRun "$to" "$work/r" --max-timesteps $((steps * k / n)) ||
+        fail "$from -> $to ranks: exit $? ($(tail -3 "$work/r.restart.log"))"
+      line=$(grep "read most" "$work/r.restart.log") || fail "$from -> $to: no bytes-read line"
+      echo "$from -> $to ranks: $line"
+      fraction=$(echo "$line" | sed 's/.*(\([0-9.]*\))$/\1/')
+      /usr/bin/python3 -c "import sys; sys.exit(float('$fraction') > 0.6)" ||
+        fail "$from -> $to ranks: a rank read $fraction of the checkpoint"
+      from=$to
+    done
+    $compare "$(stepFile "$work/reference" "$steps")" "$(stepFile "$work/r" "$steps")" | tail -3 ||
+      fail "the chain of restarts differs from 1 rank"
     ;;
   kill)
     input=$1 steps=$2
