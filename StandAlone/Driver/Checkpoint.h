@@ -84,8 +84,8 @@ void writeCheckpoint(Collective, const std::string& path, const CheckpointHeader
                      const DataArchiver& archiver, const MPM& mpm);
 // Reads the checkpoint `path` into `mpm` on every rank, its particles shared out among this run's
 // ranks (a distributed one of another rank count: each rank reads its share of the parts, and
-// the particles move to their new ranks), and into `outputs` (the output series and the last history row) unless null; returns its
-// header. Throws std::runtime_error, on every rank together.
+// the particles move to their new ranks), and into `outputs` (the output series and the last
+// history row) unless null; returns its header. Throws std::runtime_error, on every rank together.
 CheckpointHeader loadCheckpoint(Collective, const std::string& path, DataArchiver* outputs,
                                 MPM& mpm);
 

@@ -417,8 +417,7 @@ void Simulation::loadCheckpoint(Collective, const std::string& path, bool output
   const double mostRead = collective::maximum(read.bytesRead);
   if (!Communicator::isRoot()) return;
   if (Communicator::size() > 1 && outputs)
-    std::fprintf(stderr,
-                 "sus: the rank that read most of %s read %.4g of its %.4g bytes (%.2f)\n",
+    std::fprintf(stderr, "sus: the rank that read most of %s read %.4g of its %.4g bytes (%.2f)\n",
                  path.c_str(), mostRead, read.bytesInAll, mostRead / read.bytesInAll);
   if (read.inputHash != inputHash_)
     std::fprintf(
