@@ -257,7 +257,8 @@ void ExternalScalarFlux::computeFluxRates(std::vector<MPMMaterial>& materials,
       }
       // Eq. 17 restricts inflow as c -> 1; outflow is restricted the same way as c -> 0. A
       // potentiostatic BC's flux needs no restriction: it vanishes at c_s.
-      d.externalScalarFlux[i] = (rate * fluxRestriction(c, rate >= 0) + held) / p.volume[i] * cmax;
+      d.externalScalarFlux[i] = rate / p.volume[i] * fluxRestriction(c, rate >= 0) * cmax;
+      if (held != 0) d.externalScalarFlux[i] += held / p.volume[i] * cmax;
       inflow = std::max(inflow, in / p.volume[i]);
       outflow = std::max(outflow, out / p.volume[i]);
     }
