@@ -90,9 +90,9 @@ int run(anode::RunOptions& options) {
     sim.printTimings();
     if (sim.stoppedOnRequest()) return 4;
   } catch (const anode::SetupFailedOnAnotherRank& e) {
-    // The lowest rank that failed reports its own error when it is rank 0; otherwise rank 0
-    // prints it here, naming the ranks when not every one found it.
-    if (root && e.rank != 0)
+    // An input error of other ranks only: rank 0 prints it, naming them (rank 0 reports its
+    // own). Any other error: the rank that found it prints it.
+    if (root && e.input)
       std::fprintf(stderr,
                    "%s\n(found by rank %d, %d of the %d ranks: is the input on a file system "
                    "every node shares?)\n",
