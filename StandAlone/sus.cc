@@ -29,7 +29,9 @@ const char* kUsage =
     "  --max-timesteps N    stop after N steps (at most; the input's max_Timesteps still holds)\n"
     "  --threads N          OpenMP threads (default: OMP_NUM_THREADS or all cores)\n"
     "  --ignore-unsupported run without features the input asks for but this code lacks,\n"
-    "                       listing each as a warning\n";
+    "                       listing each as a warning\n"
+    "  --decompose N        set the input up (one process), print the boxes N ranks would\n"
+    "                       draw, their particle counts, imbalance and ghost bytes, and exit\n";
 
 long positiveNumber(const char* flag, const char* value) {
   char* end = nullptr;
@@ -51,11 +53,15 @@ int coresOfThisRank() {
 
 }  // namespace
 
-// Runs the input; returns the exit code.
-int run(anode::RunOptions& options) {
+// Runs the input (or with decomposeRanks > 0 only describes its boxes); returns the exit code.
+int run(anode::RunOptions& options, long decomposeRanks) {
   const bool root = anode::Communicator::isRoot();
   try {
     anode::Simulation sim(options);
+    if (decomposeRanks > 0) {
+      std::fputs(sim.mpm().describeDecomposition(static_cast<int>(decomposeRanks)).c_str(), stdout);
+      return 0;
+    }
     if (root)
       for (const std::string& w : sim.warnings()) std::fprintf(stderr, "warning: %s\n", w.c_str());
     // A launcher that binds each rank to fewer cores than it has threads (Open MPI binds to one
@@ -129,6 +135,7 @@ int main(int argc, char** argv) {
     return 1;
   }
   anode::RunOptions options;
+  long decomposeRanks = 0;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     const char* next = i + 1 < argc ? argv[i + 1] : nullptr;
@@ -155,6 +162,9 @@ int main(int argc, char** argv) {
     } else if (a == "--threads") {
       omp_set_num_threads(static_cast<int>(positiveNumber("--threads", next)));
       ++i;
+    } else if (a == "--decompose") {
+      decomposeRanks = positiveNumber("--decompose", next);
+      ++i;
     } else if (a == "--ignore-unsupported") {
       options.ignoreUnsupported = true;
     } else if (!a.empty() && a[0] == '-') {
@@ -179,8 +189,18 @@ int main(int argc, char** argv) {
     std::fputs(kUsage, stderr);
     return 2;
   }
+  if (decomposeRanks > 0 && !options.restartDir.empty()) {
+    std::fprintf(stderr, "sus: --decompose takes an input, not -restart\n%s", kUsage);
+    return 2;
+  }
   anode::Communicator::start(&argc, &argv);
-  const int code = run(options);
+  if (decomposeRanks > 0 && anode::Communicator::size() > 1) {
+    if (anode::Communicator::isRoot())
+      std::fprintf(stderr, "sus: --decompose runs on one process, not under mpirun\n");
+    anode::Communicator::stop();
+    return 2;
+  }
+  const int code = run(options, decomposeRanks);
   anode::Communicator::stop();
   return code;
 }

@@ -95,6 +95,10 @@ class MPM {
   // After every rank loaded all particles (a one-rank checkpoint on several ranks): puts them in
   // ID order and keeps this rank's share under a decomposition drawn anew.
   void keepOwnShare(Collective);
+  // On one rank holding the whole problem: the boxes `ranks` ranks would draw for it, their
+  // particle counts and imbalance, and the ghost nodes and bytes of the ghost sums
+  // (sus --decompose N).
+  std::string describeDecomposition(int ranks);
   // After each rank loaded some parts of a distributed checkpoint of another rank count: shares
   // the particles out under a decomposition drawn anew, each rank's in ID order.
   void shareOutAnew(Collective);
@@ -170,6 +174,10 @@ class MPM {
   void readState(BinaryReader& in, bool append);
   void layOutGrid();
   int computeGhostWidth(bool allHere) const;
+  // Particles per cell plane of the whole grid, per axis (of this rank's particles).
+  std::array<std::vector<double>, 3> particlesPerPlane() const;
+  // The grid arrays the ghost sums after P2G complete.
+  std::vector<NodeArray> ghostSumArrays();
   // Rank of the box holding material m's particle i.
   int ownerOf(const ParticleSet& p, size_t i) const;
   // The equilibrium problem of the step: fields, nodal masses, the displacement increments the

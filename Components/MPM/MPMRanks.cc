@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <numeric>
+#include <sstream>
 #include <string>
 
 #include "Components/MPM/MPM.h"
@@ -16,6 +18,18 @@ namespace anode {
 
 int MPM::ownerOf(const ParticleSet& p, size_t i) const {
   return decomposition_.ownerOfPoint(whole_.indexCoordinate(p.x[i]), Communicator::rank());
+}
+
+std::array<std::vector<double>, 3> MPM::particlesPerPlane() const {
+  std::array<std::vector<double>, 3> planes;
+  for (int d = 0; d < 3; ++d) planes[d].assign(whole_.cells[d], 0.0);
+  for (const MPMMaterial& mat : materials_)
+    for (const Vec3& x : mat.particles.x) {
+      const Vec3 xi = whole_.indexCoordinate(x);
+      for (int d = 0; d < 3; ++d)
+        planes[d][std::clamp(static_cast<int>(std::floor(xi[d])), 0, whole_.cells[d] - 1)] += 1;
+    }
+  return planes;
 }
 
 int MPM::computeGhostWidth(bool allHere) const {
@@ -44,14 +58,7 @@ void MPM::decompose(bool allHere) {
     layOutGrid();
     return;
   }
-  std::array<std::vector<double>, 3> planes;
-  for (int d = 0; d < 3; ++d) planes[d].assign(whole_.cells[d], 0.0);
-  for (const MPMMaterial& mat : materials_)
-    for (const Vec3& x : mat.particles.x) {
-      const Vec3 xi = whole_.indexCoordinate(x);
-      for (int d = 0; d < 3; ++d)
-        planes[d][std::clamp(static_cast<int>(std::floor(xi[d])), 0, whole_.cells[d] - 1)] += 1;
-    }
+  std::array<std::vector<double>, 3> planes = particlesPerPlane();
   if (!allHere)
     for (int d = 0; d < 3; ++d) collective::sum(planes[d].data(), whole_.cells[d]);
   const Decomposition earlier = decomposition_;
@@ -96,7 +103,7 @@ double MPM::imbalance(Collective) const {
   return total > 0 ? most / (total / Communicator::size()) : 1.0;
 }
 
-void MPM::sumGhostNodes() {
+std::vector<NodeArray> MPM::ghostSumArrays() {
   std::vector<NodeArray> sums;
   for (GridFields& g : fields_) {
     sums.push_back({g.mass.data(), 1});
@@ -104,7 +111,42 @@ void MPM::sumGhostNodes() {
     sums.push_back({g.internalForce.data()->data(), 3});
   }
   if (diffusion_) diffusion_->addScatteredArrays(sums);
-  ghosts_.sumOverRanks(Collective{}, sums);
+  return sums;
+}
+
+void MPM::sumGhostNodes() {
+  ghosts_.sumOverRanks(Collective{}, ghostSumArrays());
+}
+
+std::string MPM::describeDecomposition(int ranks) {
+  const Decomposition boxes = Decomposition::balanced(whole_.cells, ranks, particlesPerPlane());
+  std::vector<double> particles(ranks, 0.0);
+  for (const MPMMaterial& mat : materials_)
+    for (const Vec3& x : mat.particles.x)
+      particles[boxes.ownerOfPoint(whole_.indexCoordinate(x), 0)] += 1;
+  int valuesPerNode = 0;
+  for (const NodeArray& a : ghostSumArrays()) valuesPerNode += a.width;
+  // Ghost nodes: those a rank stores beyond the nodes of its own cells' lower corners.
+  const int ghost = computeGhostWidth(true);
+  double ghostNodes = 0, mostGhostNodes = 0;
+  for (int r = 0; r < ranks; ++r) {
+    const double stored = boxes.window(whole_, r, ghost).numNodes();
+    const double own = static_cast<double>(boxes.box(r).cellCount());
+    ghostNodes += stored - own;
+    mostGhostNodes = std::max(mostGhostNodes, stored - own);
+  }
+  const double total = std::accumulate(particles.begin(), particles.end(), 0.0);
+  const double most = *std::max_element(particles.begin(), particles.end());
+  const double fewest = *std::min_element(particles.begin(), particles.end());
+  std::ostringstream s;
+  s << "sus --decompose " << ranks << ": " << boxes.describe() << "\n"
+    << "  particles per box: fewest " << fewest << ", mean " << total / ranks << ", most " << most
+    << "; imbalance (most / mean) " << most / (total / ranks) << "\n"
+    << "  ghost layers " << ghost << " cells: " << ghostNodes << " ghost nodes in all, at most "
+    << mostGhostNodes << " on a box; the ghost sums after P2G carry " << valuesPerNode
+    << " values a node: about " << 8.0 * valuesPerNode * ghostNodes
+    << " bytes a step in all (a rank's parts of the nodes it shares)\n";
+  return s.str();
 }
 
 void MPM::migrateParticles() {

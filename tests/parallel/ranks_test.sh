@@ -6,6 +6,8 @@
 #                                write the same bytes
 #   restart INPUT STEPS FROM TO  FROM ranks stop at 3/5 of STEPS, TO ranks continue from the
 #                                checkpoint to STEPS; agrees with one rank
+#   decompose INPUT RANKS        sus --decompose RANKS prints the boxes and imbalance a RANKS-rank
+#                                run draws at setup
 #   chain INPUT STEPS R1 R2 R3   R1 ranks, restarted on R2 then R3: each restart's rank that read
 #                                most read at most 0.6 of the checkpoint; agrees with one rank
 #   kill INPUT STEPS             a rank of 3 is killed (SIGKILL) at a random moment: the job ends
@@ -100,6 +102,24 @@ total, per = map(float, re.search(r"sent (\S+) bytes in all, (\S+) per step", lo
 print("sent %.4g bytes in the %d steps after the restart: %.4g per step; the summary: %.4g" % (total, steps, total / steps, per))
 sys.exit(abs(per - total / steps) > 1e-2 * total / steps)  # both printed to 4 digits
 EOF
+    ;;
+  decompose)
+    # sus --decompose N (one process) draws the boxes an N-rank run draws at setup, with the same
+    # imbalance; under mpirun it is an error.
+    input=$1 ranks=$2
+    "$sus" --decompose "$ranks" "$input" > "$work/dry.txt" 2>&1 || fail "--decompose: exit $?"
+    cat "$work/dry.txt"
+    launch "$ranks" "$work/run.log" -o "$work/r" --max-timesteps 1 "$input" || fail "$ranks ranks: exit $?"
+    boxes=$(sed -n "s/^sus --decompose $ranks: //p" "$work/dry.txt")
+    grep -qF "sus: $ranks ranks: $boxes," "$work/run.log" ||
+      fail "the run drew other boxes: $(grep "ranks:" "$work/run.log")"
+    dry=$(sed -n 's/.*imbalance (most \/ mean) \([0-9.]*\).*/\1/p' "$work/dry.txt")
+    run=$(sed -n 's/.*particles per rank max\/mean \([0-9.]*\)$/\1/p' "$work/run.log" | head -1)
+    /usr/bin/python3 -c "import sys; sys.exit(abs($dry - $run) > 1e-3)" ||
+      fail "imbalance $dry dry, $run in the run"
+    echo "imbalance $dry, as the run's $run"
+    timeout 30 mpirun -np 2 "$sus" --decompose 2 "$input" > "$work/mpi.txt" 2>&1
+    [ $? = 2 ] || fail "--decompose under mpirun: not exit 2"
     ;;
   chain)
     # A distributed run restarted on two other rank counts in turn: each restart's rank that read
