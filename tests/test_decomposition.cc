@@ -6,8 +6,10 @@
 
 #include <algorithm>
 #include <limits>
+#include <numeric>
 #include <stdexcept>
 
+#include "Core/Parallel/Bisection.h"
 #include "Core/Parallel/Decomposition.h"
 
 namespace anode {
@@ -150,6 +152,47 @@ TEST(Decomposition, BoxesDrawnAnewNeverFailWhereTheFirstFit) {
   const Decomposition again = Decomposition::balanced(cells, 12, uniformPlanes(cells), &first);
   EXPECT_EQ(again.ranksPerAxis(), Vec3i(3, 4, 1));
   EXPECT_EQ(again.cuts(1), (std::vector<int>{0, 1, 2, 3, 4}));
+}
+
+// Recursive bisection (Core/Parallel/Bisection.h): the boxes tile the grid, each at least a
+// cell; an L of particles that tensor-product cuts cannot share (its arms fill different rows
+// and columns) is shared evenly.
+TEST(Bisection, TilesTheGridAndSharesAnLEvenly) {
+  const Vec3i cells(8, 8, 1);
+  std::vector<double> perCell(64, 0.0);
+  for (int j = 0; j < 8; ++j)
+    for (int i = 0; i < 8; ++i)
+      if (i < 2 || j < 2) perCell[j * 8 + i] = 1;  // 28 cells of the L
+  for (int ranks : {1, 2, 4, 7, 64}) {
+    SCOPED_TRACE(ranks);
+    const std::vector<CellBox> boxes = bisectCells(cells, ranks, perCell);
+    ASSERT_EQ(boxes.size(), static_cast<size_t>(ranks));
+    std::vector<int> covered(64, 0);
+    for (const CellBox& b : boxes) {
+      EXPECT_GE(b.cellCount(), 1);
+      for (int j = b.lower.y(); j < b.upper.y(); ++j)
+        for (int i = b.lower.x(); i < b.upper.x(); ++i) ++covered[j * 8 + i];
+    }
+    for (int c : covered) EXPECT_EQ(c, 1);
+    const std::vector<double> counts = particlesPerBox(cells, boxes, perCell);
+    EXPECT_EQ(std::accumulate(counts.begin(), counts.end(), 0.0), 28.0);
+  }
+  // 4 boxes (7 cells each at best): bisection cuts the L's two arms apart (16 | 12), then each
+  // in two, 8 at most; tensor-product cuts at the planes' quantiles (x and y at 2) leave one
+  // box 12 cells of an arm and another none.
+  const std::vector<double> four = particlesPerBox(cells, bisectCells(cells, 4, perCell), perCell);
+  EXPECT_EQ(*std::max_element(four.begin(), four.end()), 8.0);
+  std::array<std::vector<double>, 3> planes{
+      std::vector<double>(8, 0.0), std::vector<double>(8, 0.0), {28.0}};
+  for (int j = 0; j < 8; ++j)
+    for (int i = 0; i < 8; ++i)
+      planes[0][i] += perCell[j * 8 + i], planes[1][j] += perCell[j * 8 + i];
+  const Decomposition cuts = Decomposition::balanced(cells, 4, planes);
+  std::vector<CellBox> tensor;
+  for (int r = 0; r < 4; ++r) tensor.push_back(cuts.box(r));
+  const std::vector<double> byCuts = particlesPerBox(cells, tensor, perCell);
+  EXPECT_EQ(*std::max_element(byCuts.begin(), byCuts.end()), 12.0);
+  EXPECT_THROW(bisectCells(cells, 65, perCell), std::runtime_error);
 }
 
 }  // namespace

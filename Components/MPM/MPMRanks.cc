@@ -11,6 +11,7 @@
 
 #include "Components/MPM/MPM.h"
 #include "Components/MPM/ParticleMigration.h"
+#include "Core/Parallel/Bisection.h"
 #include "Core/Parallel/StopTogether.h"
 #include "Core/Util/Errors.h"
 
@@ -119,33 +120,46 @@ void MPM::sumGhostNodes() {
 }
 
 std::string MPM::describeDecomposition(int ranks) {
-  const Decomposition boxes = Decomposition::balanced(whole_.cells, ranks, particlesPerPlane());
-  std::vector<double> particles(ranks, 0.0);
+  const Vec3i& cells = whole_.cells;
+  std::vector<double> perCell(static_cast<size_t>(cells.cast<long>().prod()), 0.0);
   for (const MPMMaterial& mat : materials_)
-    for (const Vec3& x : mat.particles.x)
-      particles[boxes.ownerOfPoint(whole_.indexCoordinate(x), 0)] += 1;
+    for (const Vec3& x : mat.particles.x) {
+      Vec3i c;
+      for (int d = 0; d < 3; ++d)
+        c[d] = static_cast<int>(
+            std::clamp(std::floor(whole_.indexCoordinate(x)[d]), 0.0, cells[d] - 1.0));
+      perCell[(static_cast<size_t>(c.z()) * cells.y() + c.y()) * cells.x() + c.x()] += 1;
+    }
+  const Decomposition cuts = Decomposition::balanced(cells, ranks, particlesPerPlane());
+  std::vector<CellBox> tensor;
+  for (int r = 0; r < ranks; ++r) tensor.push_back(cuts.box(r));
   int valuesPerNode = 0;
   for (const NodeArray& a : ghostSumArrays()) valuesPerNode += a.width;
-  // Ghost nodes: those a rank stores beyond the nodes of its own cells' lower corners.
   const int ghost = computeGhostWidth(true);
-  double ghostNodes = 0, mostGhostNodes = 0;
-  for (int r = 0; r < ranks; ++r) {
-    const double stored = boxes.window(whole_, r, ghost).numNodes();
-    const double own = static_cast<double>(boxes.box(r).cellCount());
-    ghostNodes += stored - own;
-    mostGhostNodes = std::max(mostGhostNodes, stored - own);
-  }
-  const double total = std::accumulate(particles.begin(), particles.end(), 0.0);
-  const double most = *std::max_element(particles.begin(), particles.end());
-  const double fewest = *std::min_element(particles.begin(), particles.end());
   std::ostringstream s;
-  s << "sus --decompose " << ranks << ": " << boxes.describe() << "\n"
-    << "  particles per box: fewest " << fewest << ", mean " << total / ranks << ", most " << most
-    << "; imbalance (most / mean) " << most / (total / ranks) << "\n"
-    << "  ghost layers " << ghost << " cells: " << ghostNodes << " ghost nodes in all, at most "
-    << mostGhostNodes << " on a box; the ghost sums after P2G carry " << valuesPerNode
-    << " values a node: about " << 8.0 * valuesPerNode * ghostNodes
-    << " bytes a step in all (a rank's parts of the nodes it shares)\n";
+  s << "sus --decompose " << ranks << ": " << cuts.describe() << "\n";
+  // Per layout: particles per box, imbalance, and the nodes a box stores beyond its own cells
+  // (its box grown by the ghost layers within the grid) times the values of a ghost sum.
+  const auto describe = [&](const char* name, const std::vector<CellBox>& boxes) {
+    const std::vector<double> particles = particlesPerBox(cells, boxes, perCell);
+    const double total = std::accumulate(particles.begin(), particles.end(), 0.0);
+    const auto [fewest, most] = std::minmax_element(particles.begin(), particles.end());
+    double ghostNodes = 0, mostGhostNodes = 0;
+    for (const CellBox& b : boxes) {
+      double stored = 1;
+      for (int d = 0; d < 3; ++d)
+        stored *= std::min(b.upper[d] + ghost, cells[d]) - std::max(b.lower[d] - ghost, 0) + 1;
+      ghostNodes += stored - static_cast<double>(b.cellCount());
+      mostGhostNodes = std::max(mostGhostNodes, stored - static_cast<double>(b.cellCount()));
+    }
+    s << "  " << name << ": particles per box fewest " << *fewest << ", mean " << total / ranks
+      << ", most " << *most << "; imbalance (most / mean) " << *most / (total / ranks) << "; "
+      << ghostNodes << " ghost nodes (at most " << mostGhostNodes << " a box), about "
+      << 8.0 * valuesPerNode * ghostNodes << " bytes of ghost sums a step\n";
+  };
+  describe("tensor-product cuts (what runs use)", tensor);
+  describe("recursive bisection (measured only)", bisectCells(cells, ranks, perCell));
+  s << "  ghost layers " << ghost << " cells, " << valuesPerNode << " values a node\n";
   return s.str();
 }
 

@@ -1,0 +1,110 @@
+#include "Core/Parallel/Bisection.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace anode {
+
+namespace {
+
+struct Cells {
+  const Vec3i& n;
+  const std::vector<double>& count;
+  double at(int i, int j, int k) const {
+    return count[(static_cast<size_t>(k) * n.y() + j) * n.x() + i];
+  }
+};
+
+// Particles per cell plane of `box` along axis d.
+std::vector<double> planesOf(const Cells& c, const CellBox& box, int d) {
+  std::vector<double> planes(box.upper[d] - box.lower[d], 0.0);
+  for (int k = box.lower.z(); k < box.upper.z(); ++k)
+    for (int j = box.lower.y(); j < box.upper.y(); ++j)
+      for (int i = box.lower.x(); i < box.upper.x(); ++i)
+        planes[Vec3i(i, j, k)[d] - box.lower[d]] += c.at(i, j, k);
+  return planes;
+}
+
+// The occupied extent of `planes` (first to last nonzero), or the whole when empty.
+int span(const std::vector<double>& planes) {
+  int first = -1, last = -1;
+  for (int p = 0; p < static_cast<int>(planes.size()); ++p)
+    if (planes[p] > 0) {
+      if (first < 0) first = p;
+      last = p;
+    }
+  return first < 0 ? static_cast<int>(planes.size()) : last - first + 1;
+}
+
+void bisect(const Cells& c, const CellBox& box, int ranks, int first, std::vector<CellBox>& out) {
+  if (ranks == 1) {
+    out[first] = box;
+    return;
+  }
+  const int left = ranks / 2, right = ranks - left;
+  // The axis the particles span most (then the box's longest) that can take a cut leaving each
+  // half a cell per rank.
+  const Vec3i extent = box.upper - box.lower;
+  int axis = -1, best = -1;
+  std::vector<double> planes;
+  for (int d = 0; d < 3; ++d) {
+    if (extent[d] < 2) continue;
+    const long across = box.cellCount() / extent[d];
+    std::vector<double> p = planesOf(c, box, d);
+    const int score = span(p) * 4096 + extent[d];
+    // Each half needs at least as many cells as ranks: its planes times the cells across.
+    const int minLeft = static_cast<int>((left + across - 1) / across);
+    const int minRight = static_cast<int>((right + across - 1) / across);
+    if (minLeft + minRight > extent[d]) continue;
+    if (score > best) best = score, axis = d, planes.swap(p);
+  }
+  if (axis < 0)
+    throw std::runtime_error("recursive bisection: a box of " + std::to_string(box.cellCount()) +
+                             " cells cannot hold " + std::to_string(ranks) + " ranks");
+  const long across = box.cellCount() / extent[axis];
+  const int minLeft = static_cast<int>((left + across - 1) / across);
+  const int minRight = static_cast<int>((right + across - 1) / across);
+  double total = 0;
+  for (double p : planes) total += p;
+  // The cut after `cut` planes whose left sum is nearest total * left / ranks.
+  const double target = total * left / ranks;
+  int cut = static_cast<int>(std::lround(static_cast<double>(extent[axis]) * left / ranks));
+  if (total > 0) {
+    double sum = 0, bestGap = INFINITY;
+    for (int k = 1; k < extent[axis]; ++k) {
+      sum += planes[k - 1];
+      if (std::abs(sum - target) < bestGap) bestGap = std::abs(sum - target), cut = k;
+    }
+  }
+  cut = std::clamp(cut, minLeft, extent[axis] - minRight);
+  CellBox low = box, high = box;
+  low.upper[axis] = high.lower[axis] = box.lower[axis] + cut;
+  bisect(c, low, left, first, out);
+  bisect(c, high, right, first + left, out);
+}
+
+}  // namespace
+
+std::vector<CellBox> bisectCells(const Vec3i& cells, int ranks,
+                                 const std::vector<double>& perCell) {
+  std::vector<CellBox> boxes(ranks);
+  bisect(Cells{cells, perCell}, CellBox{Vec3i::Zero(), cells}, ranks, 0, boxes);
+  return boxes;
+}
+
+std::vector<double> particlesPerBox(const Vec3i& cells, const std::vector<CellBox>& boxes,
+                                    const std::vector<double>& perCell) {
+  const Cells c{cells, perCell};
+  std::vector<double> sums;
+  for (const CellBox& b : boxes) {
+    double sum = 0;
+    for (int k = b.lower.z(); k < b.upper.z(); ++k)
+      for (int j = b.lower.y(); j < b.upper.y(); ++j)
+        for (int i = b.lower.x(); i < b.upper.x(); ++i) sum += c.at(i, j, k);
+    sums.push_back(sum);
+  }
+  return sums;
+}
+
+}  // namespace anode
