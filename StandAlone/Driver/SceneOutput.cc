@@ -62,7 +62,11 @@ ParticleData gatherToRoot(ParticleData data) {
   };
   append(data.points);
   for (const NamedArray& a : data.arrays) append(a.real);
-  const std::vector<std::string> all = collective::allGather(bytes);
+  // To rank 0 only: the other ranks receive nothing (an all-gather would give each of them
+  // every drawn particle).
+  std::vector<std::string> send(Communicator::size());
+  send[0] = std::move(bytes);
+  const std::vector<std::string> all = collective::exchangeWithAll(send);
   if (!Communicator::isRoot()) return {};
   ParticleData out = data;
   out.points.clear();
