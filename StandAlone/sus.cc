@@ -98,6 +98,8 @@ int run(anode::RunOptions& options, long decomposeRanks) {
   } catch (const anode::SetupFailedOnAnotherRank& e) {
     // An input error of other ranks only: rank 0 prints it, naming them (rank 0 reports its
     // own). Any other error: the rank that found it prints it.
+    if (!e.input && e.rank == anode::Communicator::rank())
+      std::fprintf(stderr, "sus: error on rank %d: %s\n", e.rank, e.what());
     if (root && e.input)
       std::fprintf(stderr,
                    "%s\n(found by rank %d, %d of the %d ranks: is the input on a file system "

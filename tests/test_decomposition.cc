@@ -193,6 +193,8 @@ TEST(Bisection, TilesTheGridAndSharesAnLEvenly) {
   const std::vector<double> byCuts = particlesPerBox(cells, tensor, perCell);
   EXPECT_EQ(*std::max_element(byCuts.begin(), byCuts.end()), 12.0);
   EXPECT_THROW(bisectCells(cells, 65, perCell), std::runtime_error);
+  // Halves of 4 ranks need 4 cells each, and no cut of 3x3 cells gives that.
+  EXPECT_THROW(bisectCells(Vec3i(3, 3, 1), 8, std::vector<double>(9, 1.0)), std::runtime_error);
 }
 
 }  // namespace

@@ -132,8 +132,9 @@ void MPM::diffuseOverStep(double t, double dt, double substepMultiplier) {
     concentrationChange_[m].assign(materials_[m].particles.count(), 0.0);
   double done = 0;
   while (done < dt) {
+    // Eq. 44 over every rank's particles: each rank's sub-steps are the same.
     const double limit =
-        substepMultiplier * std::min(diffusion_->diffusionTimestep(grid_),
+        substepMultiplier * std::min(collective::minimum(diffusion_->diffusionTimestep(grid_)),
                                      diffusion_->fluxTimestep(Collective{}, materials_));
     // The last sub-step ends at t + dt exactly (a remainder below 1e-12 dt joins the one before).
     double h = std::min(limit, dt - done);

@@ -63,8 +63,8 @@ void MPM::decompose(bool allHere) {
   if (!allHere)
     for (int d = 0; d < 3; ++d) collective::sum(planes[d].data(), whole_.cells[d]);
   const Decomposition earlier = decomposition_;
-  decomposition_ =
-      Decomposition::balanced(whole_.cells, ranks, planes, allHere ? nullptr : &earlier);
+  // The boxes drawn before (for this rank count once set up) are the fallback.
+  decomposition_ = Decomposition::balanced(whole_.cells, ranks, planes, &earlier);
   ghostWidth_ = computeGhostWidth(allHere);
   std::vector<std::string> send(ranks);
   for (MPMMaterial& mat : materials_) {
@@ -158,7 +158,11 @@ std::string MPM::describeDecomposition(int ranks) {
       << 8.0 * valuesPerNode * ghostNodes << " bytes of ghost sums a step\n";
   };
   describe("tensor-product cuts (what runs use)", tensor);
-  describe("recursive bisection (measured only)", bisectCells(cells, ranks, perCell));
+  try {
+    describe("recursive bisection (measured only)", bisectCells(cells, ranks, perCell));
+  } catch (const std::runtime_error& e) {
+    s << "  recursive bisection (measured only): " << e.what() << "\n";
+  }
   s << "  ghost layers " << ghost << " cells, " << valuesPerNode << " values a node\n";
   return s.str();
 }

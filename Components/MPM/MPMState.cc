@@ -49,7 +49,7 @@ void MPM::readState(BinaryReader& in, bool append) {
                                ": the checkpoint's particle arrays do not match the input");
   }
   nextParticleId_ = in.value<int64_t>();
-  if (diffusion_) diffusion_->loadState(in);
+  if (diffusion_) diffusion_->loadState(in, append);
 }
 
 void MPM::saveLayout(BinaryWriter& out) const {

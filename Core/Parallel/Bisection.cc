@@ -46,13 +46,14 @@ void bisect(const Cells& c, const CellBox& box, int ranks, int first, std::vecto
   // The axis the particles span most (then the box's longest) that can take a cut leaving each
   // half a cell per rank.
   const Vec3i extent = box.upper - box.lower;
-  int axis = -1, best = -1;
+  int axis = -1;
+  long best = -1;
   std::vector<double> planes;
   for (int d = 0; d < 3; ++d) {
     if (extent[d] < 2) continue;
     const long across = box.cellCount() / extent[d];
     std::vector<double> p = planesOf(c, box, d);
-    const int score = span(p) * 4096 + extent[d];
+    const long score = span(p) * 4096L + extent[d];
     // Each half needs at least as many cells as ranks: its planes times the cells across.
     const int minLeft = static_cast<int>((left + across - 1) / across);
     const int minRight = static_cast<int>((right + across - 1) / across);

@@ -12,8 +12,9 @@
 namespace anode {
 
 // `ranks` boxes over `cells`, every box at least one cell, from the particles per cell
-// (perCell[(k * cells.y() + j) * cells.x() + i]); throws std::runtime_error when the grid has
-// fewer cells than ranks.
+// (perCell[(k * cells.y() + j) * cells.x() + i]); throws std::runtime_error when a box cannot be
+// cut for its ranks (fewer cells than ranks; or halves of ranks that fit no cut, as 8 ranks on
+// 3x3x1 cells).
 std::vector<CellBox> bisectCells(const Vec3i& cells, int ranks, const std::vector<double>& perCell);
 
 // Particles per box: the sum of perCell over each box.

@@ -20,8 +20,9 @@ class StoppedOnAnotherRank : public SimulationError {
       : SimulationError("stopped by rank " + std::to_string(rank)) {}
 };
 
-// A setup error other ranks found (readTogether): `input` when it was an InputError; `message`
-// is that rank's, to print once (rank 0 prints it when the error was not its own).
+// A setup error the ranks agreed on (readTogether): found by `rank` (another rank, or this one
+// when it was not an InputError); `input` when it was an InputError; `message` is that rank's,
+// to print once.
 class SetupFailedOnAnotherRank : public std::runtime_error {
  public:
   SetupFailedOnAnotherRank(int rank, int failing, bool input, const std::string& message)
@@ -57,7 +58,10 @@ void readTogether(Phase&& phase) {
   if (first < 0) return;
   const int failing = static_cast<int>(sum(static_cast<int64_t>(error != nullptr)));
   const std::string shared = broadcast((input ? "2" : "1") + message, first);
-  if (first == Communicator::rank()) std::rethrow_exception(error);
+  // The first rank's own input error as it is; its other errors, on several ranks, agreed like
+  // the others' (no rank is then left to abort the others).
+  if (first == Communicator::rank() && (input || Communicator::size() == 1))
+    std::rethrow_exception(error);
   throw SetupFailedOnAnotherRank(first, failing, shared[0] == '2', shared.substr(1));
 }
 

@@ -258,15 +258,18 @@ std::string DataArchiver::writeFailedState(Collective, long step, const MPM& mpm
 
 void DataArchiver::setMaterialColumns(const std::vector<MPMMaterial>& materials,
                                       const std::vector<size_t>& which) {
-  materialColumns_.clear();
-  for (size_t m : which) {
-    std::string name = materials[m].name;
-    const bool shared = std::count_if(materials.begin(), materials.end(),
-                                      [&](const auto& other) { return other.name == name; }) > 1;
-    if (name.empty() || shared) name = "material" + std::to_string(m);
+  const auto column = [](std::string name) {
     for (char& ch : name)
       if (!std::isalnum(static_cast<unsigned char>(ch)) && ch != '-' && ch != '_') ch = '_';
-    materialColumns_.push_back(name);
+    return name;
+  };
+  materialColumns_.clear();
+  for (size_t m : which) {
+    const std::string name = column(materials[m].name);
+    const bool shared = std::count_if(materials.begin(), materials.end(), [&](const auto& other) {
+                          return column(other.name) == name;
+                        }) > 1;
+    materialColumns_.push_back(name.empty() || shared ? "material" + std::to_string(m) : name);
   }
 }
 

@@ -58,7 +58,7 @@ class DataArchiver {
   // history.csv's per-material columns (lithium_NAME, min_c_NAME, max_c_NAME) for materials
   // `which`, in the order of each row's perMaterial; none by default. NAME is the material's
   // name attribute with characters other than letters, digits, '-' and '_' as '_', or
-  // "material<index>" when it has none or shares it with another material.
+  // "material<index>" when it has none or another material's comes out the same.
   void setMaterialColumns(const std::vector<MPMMaterial>& materials,
                           const std::vector<size_t>& which);
   void recordHistory(const HistoryRow& row,

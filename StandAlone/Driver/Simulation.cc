@@ -442,22 +442,24 @@ std::string Simulation::loadNewestCheckpoint() {
   // from another step). One line each: "I path" intact, "D path" damaged (skipped), or "E error"
   // (an I/O error: the restart stops, nothing removed).
   std::string listed;
-  if (Communicator::isRoot()) {
-    const std::vector<std::string> found = listCheckpoints(options_.restartDir);
-    if (found.empty())
-      listed = "E no checkpoint in " + options_.restartDir +
-               "/checkpoints (the input needs <checkpoint cycle=\"N\" interval=\"T\"/> in "
-               "<DataArchiver>)\n";
-    for (const std::string& path : found) {
-      std::string error;
-      const HashCheck check = checkHash(path, &error);
-      if (check == HashCheck::Unreadable) {
-        listed += "E " + error + " (nothing was removed)\n";
-        break;
+  if (Communicator::isRoot()) try {
+      const std::vector<std::string> found = listCheckpoints(options_.restartDir);
+      if (found.empty())
+        listed = "E no checkpoint in " + options_.restartDir +
+                 "/checkpoints (the input needs <checkpoint cycle=\"N\" interval=\"T\"/> in "
+                 "<DataArchiver>)\n";
+      for (const std::string& path : found) {
+        std::string error;
+        const HashCheck check = checkHash(path, &error);
+        if (check == HashCheck::Unreadable) {
+          listed += "E " + error + " (nothing was removed)\n";
+          break;
+        }
+        listed += (check == HashCheck::Intact ? "I " : "D ") + path + "\n";
       }
-      listed += (check == HashCheck::Intact ? "I " : "D ") + path + "\n";
+    } catch (const std::exception& e) {  // the directory unreadable: every rank stops
+      listed = std::string("E ") + e.what() + " (nothing was removed)\n";
     }
-  }
   std::istringstream lines(collective::broadcast(listed, 0));
   for (std::string line; std::getline(lines, line);) {
     const std::string path = line.substr(2);
@@ -479,7 +481,15 @@ std::string Simulation::loadNewestCheckpoint() {
     // The outputs after it go only once it is loaded; an error here (a file that cannot be
     // written) stops the restart, and is no reason to go back to an older checkpoint.
     archiver_.removeOutputsAfter(step_);
-    archiver_.writeIndexFiles();
+    std::string error;  // rank 0 writes the .pvd files; every rank stops on its error
+    try {
+      archiver_.writeIndexFiles();
+    } catch (const std::exception& e) {
+      error = e.what();
+    }
+    if (collective::any(!error.empty()))
+      throw std::runtime_error(Communicator::isRoot() ? error
+                                                      : "rank 0 could not write the .pvd files");
     return path;
   }
   throw std::runtime_error("no complete checkpoint in " + options_.restartDir + "/checkpoints");

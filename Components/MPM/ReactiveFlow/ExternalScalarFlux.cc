@@ -348,10 +348,11 @@ void ExternalScalarFlux::saveState(BinaryWriter& out) const {
   for (char e : ended_) out.value(e);
 }
 
-void ExternalScalarFlux::loadState(BinaryReader& in) {
+void ExternalScalarFlux::loadState(BinaryReader& in, bool merge) {
   sign_ = in.value<double>();
-  maxInflowRate_ = in.value<double>();
-  maxOutflowRate_ = in.value<double>();
+  const double inflow = in.value<double>(), outflow = in.value<double>();
+  maxInflowRate_ = merge ? std::max(maxInflowRate_, inflow) : inflow;
+  maxOutflowRate_ = merge ? std::max(maxOutflowRate_, outflow) : outflow;
   ended_.resize(in.value<uint64_t>());
   for (char& e : ended_) e = in.value<char>();
 }

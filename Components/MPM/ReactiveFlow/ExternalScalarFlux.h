@@ -70,7 +70,7 @@ class ExternalScalarFlux {
   void shareFacesOnSplit(ParticleSet& p, const std::vector<SplitParticle>& splits) const;
 
   void saveState(BinaryWriter& out) const;
-  void loadState(BinaryReader& in);
+  void loadState(BinaryReader& in, bool merge = false);  // merge: ReactiveFlow::loadState
 
  private:
   // A <surface> BC b on material m: its free-surface particles flagged with their share of the

@@ -381,9 +381,10 @@ void ReactiveFlow::saveState(BinaryWriter& out) const {
   for (const DiffusionMaterial& mat : materials_) mat.model->saveState(out);
 }
 
-void ReactiveFlow::loadState(BinaryReader& in) {
-  maxDiffusivity_ = in.value<double>();
-  flux_.loadState(in);
+void ReactiveFlow::loadState(BinaryReader& in, bool merge) {
+  const double maxDiffusivity = in.value<double>();
+  maxDiffusivity_ = merge ? std::max(maxDiffusivity_, maxDiffusivity) : maxDiffusivity;
+  flux_.loadState(in, merge);
   for (DiffusionMaterial& mat : materials_) mat.model->loadState(in);
 }
 

@@ -98,7 +98,10 @@ class ReactiveFlow {
   // sum and range (StepSummary::perMaterial, in the order of lithiumTakingMaterials).
   void summarize(const std::vector<MPMMaterial>& materials, StepSummary& s) const;
   void saveState(BinaryWriter& out) const;
-  void loadState(BinaryReader& in);
+  // `merge`: a further part of a distributed checkpoint read by this rank (another rank count):
+  // the largest diffusivity and flux rates are the largest of the parts', whose particles this
+  // rank now holds some of (the time-step limits are minimums over the ranks).
+  void loadState(BinaryReader& in, bool merge = false);
 
   // False for a material whose concentration no step can change: no diffusivity, no constant
   // rate, no <scalar_flux>, no SD-Type condition, no common interface (docs/diffusion.md,
