@@ -26,9 +26,8 @@ std::array<std::vector<double>, 3> MPM::particlesPerPlane() const {
   for (int d = 0; d < 3; ++d) planes[d].assign(whole_.cells[d], 0.0);
   for (const MPMMaterial& mat : materials_)
     for (const Vec3& x : mat.particles.x) {
-      const Vec3 xi = whole_.indexCoordinate(x);
-      for (int d = 0; d < 3; ++d)
-        planes[d][std::clamp(static_cast<int>(std::floor(xi[d])), 0, whole_.cells[d] - 1)] += 1;
+      const Vec3i c = whole_.interiorCell(x);
+      for (int d = 0; d < 3; ++d) planes[d][c[d]] += 1;
     }
   return planes;
 }
@@ -124,10 +123,7 @@ std::string MPM::describeDecomposition(int ranks) {
   std::vector<double> perCell(static_cast<size_t>(cells.cast<long>().prod()), 0.0);
   for (const MPMMaterial& mat : materials_)
     for (const Vec3& x : mat.particles.x) {
-      Vec3i c;
-      for (int d = 0; d < 3; ++d)
-        c[d] = static_cast<int>(
-            std::clamp(std::floor(whole_.indexCoordinate(x)[d]), 0.0, cells[d] - 1.0));
+      const Vec3i c = whole_.interiorCell(x);
       perCell[(static_cast<size_t>(c.z()) * cells.y() + c.y()) * cells.x() + c.x()] += 1;
     }
   const Decomposition cuts = Decomposition::balanced(cells, ranks, particlesPerPlane());

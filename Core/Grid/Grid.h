@@ -5,6 +5,9 @@
 // node arrays and flat indices cover that window, grid indices (i,j,k) stay global.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
+
 #include "Core/Math/Types.h"
 #include "Core/ProblemSpec/ProblemSpec.h"
 
@@ -61,6 +64,16 @@ struct Grid {
   }
   // Index-space coordinate (x - lower)/dx.
   Vec3 indexCoordinate(const Vec3& x) const { return (x - lower).cwiseQuotient(dx); }
+  // The interior cell holding x; a point outside counts as the nearest interior cell (clamped
+  // as a double: no int cast beyond its range), a NaN coordinate as the first.
+  Vec3i interiorCell(const Vec3& x) const {
+    Vec3i c;
+    for (int d = 0; d < 3; ++d) {
+      const double index = std::floor(indexCoordinate(x)[d]);
+      c[d] = std::isnan(index) ? 0 : static_cast<int>(std::clamp(index, 0.0, cells[d] - 1.0));
+    }
+    return c;
+  }
   // Grid index (i,j,k) of flat node index n.
   Vec3i nodeOf(int n) const {
     const Vec3i s = nodes();

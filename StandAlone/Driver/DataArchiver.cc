@@ -376,14 +376,17 @@ std::string truncateHistory(const std::string& path, long step) {
 
 }  // namespace
 
-void DataArchiver::removeOutputsAfter(long step) {
+void DataArchiver::restoreOutputsTo(long step) {
   std::string error;
   // On rank 0, history.csv first: when it cannot be restored the restart stops with every output
   // kept. Its errors reach every rank (the others wait in the reduction below).
   if (Communicator::isRoot()) {
     try {
       error = truncateHistory((fs::path(dir_) / "history.csv").string(), step);
-      if (error.empty()) removeOutputFilesAfter(step);
+      if (error.empty()) {
+        removeOutputFilesAfter(step);
+        writeIndexFiles();
+      }
     } catch (const std::exception& e) {
       error = e.what();
     }
@@ -417,7 +420,6 @@ void DataArchiver::removeOutputFilesAfter(long step) const {
 }
 
 void DataArchiver::writeIndexFiles() {
-  if (!Communicator::isRoot()) return;
   for (auto [series, name] : {std::pair{&particleSeries_, "particles"}, {&gridSeries_, "grid"}})
     if (const size_t missing = series->dropMissing(dir_))
       std::fprintf(

@@ -69,7 +69,7 @@ class DataArchiver {
   // Appends the rows recorded since the last call to history.csv (the header first), so a long
   // run's history costs neither memory nor checkpoint space in proportion to its steps. The file
   // grows in whole lines; a kill during the append can cut its last line short, and a restart
-  // drops every row after its checkpoint's step (removeOutputsAfter).
+  // drops every row after its checkpoint's step (restoreOutputsTo).
   void writeHistory();
   const HistoryRow& lastHistoryRow() const { return lastRow_; }
 
@@ -77,21 +77,22 @@ class DataArchiver {
   // holds the rows up to the checkpoint's step (Simulation writes it first).
   void saveState(BinaryWriter& out) const;
   void loadState(BinaryReader& in);
-  // Writes the .pvd files as the state has them: after a restart, outputs the interrupted run
-  // wrote after its checkpoint leave the series (the continued run writes them again under the
-  // same names), and so do outputs whose files are gone (removed by hand, or not carried with
-  // the checkpoint to another machine), with a note of how many.
-  void writeIndexFiles();
-  // Removes what an interrupted run wrote beyond its checkpoint at `step`: the particle and grid
-  // files of later steps, those of `step` itself that the checkpoint's series lacks (a stop's
-  // output, written after its checkpoint) and the history rows after `step` (history.csv is
-  // rewritten whole, atomically, once, before any file is removed: an error stops the restart
-  // with every output kept, on every rank).
-  void removeOutputsAfter(long step);
+  // A restart from the checkpoint at `step` (loadState first), on rank 0: removes what the
+  // interrupted run wrote beyond it, the history rows after `step` (history.csv is rewritten
+  // whole, atomically, once, before any file is removed), the particle and grid files of later
+  // steps and those of `step` itself that the checkpoint's series lacks (a stop's output, written
+  // after its checkpoint); then writes the .pvd files as the state has them. An error stops the
+  // restart on every rank, before any output is removed when it is history.csv's.
+  void restoreOutputsTo(long step);
 
  private:
-  // The particle and grid files removeOutputsAfter removes (rank 0).
+  // The particle and grid files restoreOutputsTo removes.
   void removeOutputFilesAfter(long step) const;
+  // The .pvd files as the state has them: outputs the interrupted run wrote after its checkpoint
+  // leave the series (the continued run writes them again under the same names), and so do
+  // outputs whose files are gone (removed by hand, or not carried with the checkpoint to another
+  // machine), with a note of how many.
+  void writeIndexFiles();
   // This rank's particles (grid nodes) under `base` (relative to the directory): base.vtu on one
   // rank, else its piece base.rNNNN.vtu and, from rank 0, base.pvtu; returns the file to list.
   std::string writeParticles(const std::string& base, const ParticleData& data) const;

@@ -480,16 +480,7 @@ std::string Simulation::loadNewestCheckpoint() {
     }
     // The outputs after it go only once it is loaded; an error here (a file that cannot be
     // written) stops the restart, and is no reason to go back to an older checkpoint.
-    archiver_.removeOutputsAfter(step_);
-    std::string error;  // rank 0 writes the .pvd files; every rank stops on its error
-    try {
-      archiver_.writeIndexFiles();
-    } catch (const std::exception& e) {
-      error = e.what();
-    }
-    if (collective::any(!error.empty()))
-      throw std::runtime_error(Communicator::isRoot() ? error
-                                                      : "rank 0 could not write the .pvd files");
+    archiver_.restoreOutputsTo(step_);
     return path;
   }
   throw std::runtime_error("no complete checkpoint in " + options_.restartDir + "/checkpoints");

@@ -275,6 +275,9 @@ double ExternalScalarFlux::stableTimestep(Collective, const std::vector<MPMMater
   // outflow: the emptiest above e^-4) bounds them all.
   // A potentiostatic BC's particle relaxes to c_s at the rate sum k A / V: a step of at most
   // its inverse takes it at most to c_s (no overshoot, no oscillation).
+  const bool potentiostatic = std::any_of(bcs_.begin(), bcs_.end(), [](const ScalarFluxBC& bc) {
+    return bc.mode == ScalarFluxBC::Mode::Potentiostatic;
+  });
   double fullest = 0, emptiest = 1, relaxation = 0;
   for (size_t m = 0; m < materials.size(); ++m) {
     const ParticleSet& p = materials[m].particles;
@@ -289,6 +292,7 @@ double ExternalScalarFlux::stableTimestep(Collective, const std::vector<MPMMater
       const double c = d.concentration[i] / cmax;
       if (c < kRestrictionRoot) fullest = std::max(fullest, c);
       if (1 - c < kRestrictionRoot) emptiest = std::min(emptiest, c);
+      if (!potentiostatic) continue;
       double k = 0;
       for (int s = 0; s < 3 && d.loadCurveID[i][s] > 0; ++s) {
         const ScalarFluxBC& bc = bcs_[d.loadCurveID[i][s] - 1];
