@@ -96,7 +96,12 @@ TEST(ParticleFill, BoundingBoxFillPlacesTheSameParticlesAsAWholeGridScan) {
   for (const auto& piece : pieces)
     for (const Vec3i& res : {Vec3i(1, 1, 1), Vec3i(2, 3, 2)}) {
       const std::vector<Vec3> expected = fillWholeGrid(grid, *piece, res);
-      EXPECT_EQ(fillParticles(grid, *piece, res), expected) << piece->type();
+      std::vector<Vec3> filled;
+      std::vector<int64_t> place;
+      const PieceLattice lattice(grid, piece, res);
+      lattice.fill({Vec3i::Zero(), grid.cells}, filled, place);
+      EXPECT_EQ(filled, expected) << piece->type();
+      EXPECT_EQ(lattice.count(), static_cast<int64_t>(expected.size())) << piece->type();
       EXPECT_LE(static_cast<double>(expected.size()), fillCandidates(grid, *piece, res))
           << piece->type();
       if (piece->type() != "intersection") {
@@ -109,8 +114,63 @@ TEST(ParticleFill, BoundingBoxFillPlacesTheSameParticlesAsAWholeGridScan) {
       }
     }
   EXPECT_EQ(fillCandidates(grid, *disjoint, Vec3i(2, 2, 2)), 0.0);
-  // The fill stops after one particle more than asked.
-  EXPECT_EQ(fillParticles(grid, *sphere, Vec3i(2, 2, 2), 10).size(), 11u);
+}
+
+// A rank fills only the cells of its box (docs/parallel.md, "Setup per box"): over boxes that
+// tile the grid unevenly, each box's points are those of the whole fill lying in its cells, in
+// the same order, each with its place in the whole fill; the counts per box and per cell plane
+// are those of the points.
+TEST(ParticleFill, FillsOfBoxesTilingTheGridAreTheWholeFillShared) {
+  const Grid grid = fillTestGrid();
+  auto sphere = std::make_shared<SpherePiece>();
+  sphere->origin = Vec3(0.3, 0.7, 1.1);
+  sphere->radius = 0.45;
+  auto cylinder = std::make_shared<CylinderPiece>();
+  cylinder->bottom = Vec3(-2, 0.2, 0.9);
+  cylinder->top = Vec3(1.7, 1.0, 1.6);
+  cylinder->radius = 0.3;
+  for (const GeometryPieceP& piece : std::vector<GeometryPieceP>{sphere, cylinder}) {
+    const Vec3i res(2, 3, 2);
+    const PieceLattice lattice(grid, piece, res);
+    std::vector<Vec3> whole;
+    std::vector<int64_t> wholePlace;
+    lattice.fill({Vec3i::Zero(), grid.cells}, whole, wholePlace);
+    ASSERT_GT(whole.size(), 100u);
+    for (size_t k = 0; k < wholePlace.size(); ++k)
+      EXPECT_EQ(wholePlace[k], static_cast<int64_t>(k));
+    std::array<std::vector<double>, 3> planes, expectedPlanes;
+    for (int d = 0; d < 3; ++d) {
+      planes[d].assign(grid.cells[d], 0.0);
+      expectedPlanes[d].assign(grid.cells[d], 0.0);
+    }
+    lattice.addPerPlane(planes);
+    for (const Vec3& x : whole)
+      for (int d = 0; d < 3; ++d) expectedPlanes[d][grid.interiorCell(x)[d]] += 1;
+    EXPECT_EQ(planes, expectedPlanes);
+    const std::array<std::vector<int>, 3> cuts = {
+        std::vector<int>{0, 7, 13, 30}, std::vector<int>{0, 9, 15}, std::vector<int>{0, 4, 5, 15}};
+    std::vector<int> seen(whole.size(), 0);
+    for (size_t a = 0; a + 1 < cuts[0].size(); ++a)
+      for (size_t b = 0; b + 1 < cuts[1].size(); ++b)
+        for (size_t c = 0; c + 1 < cuts[2].size(); ++c) {
+          const CellBox box{Vec3i(cuts[0][a], cuts[1][b], cuts[2][c]),
+                            Vec3i(cuts[0][a + 1], cuts[1][b + 1], cuts[2][c + 1])};
+          std::vector<Vec3> x;
+          std::vector<int64_t> place;
+          lattice.fill(box, x, place);
+          EXPECT_EQ(lattice.countIn(box), static_cast<int64_t>(x.size()));
+          std::vector<int64_t> expected;
+          for (size_t k = 0; k < whole.size(); ++k)
+            if (box.contains(grid.interiorCell(whole[k])))
+              expected.push_back(static_cast<int64_t>(k));
+          EXPECT_EQ(place, expected);
+          for (size_t k = 0; k < x.size(); ++k) {
+            EXPECT_EQ(x[k], whole[place[k]]);
+            ++seen[place[k]];
+          }
+        }
+    EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), static_cast<long>(whole.size()));
+  }
 }
 
 TEST(ProblemSize, MoreNodesThan32BitIndicesIsAnInputErrorAtTheResolution) {

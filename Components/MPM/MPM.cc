@@ -22,6 +22,7 @@ namespace anode {
 
 void MPM::problemSetup(const PSNode& root, double initTime, double maxTime) {
   flags_ = MPMFlags::fromInput(root);
+  initTime_ = initTime;
   const PSNode gridNode = root.requireChild("Grid");
   grid_ = Grid::fromInput(gridNode);
   if (flags_.interpolator != InterpolatorKind::Linear && (grid_.extra.array() < 1).any())
@@ -32,27 +33,27 @@ void MPM::problemSetup(const PSNode& root, double initTime, double maxTime) {
   const PSNode matProps = root.requireChild("MaterialProperties");
   const PSNode mpmMats = matProps.requireChild("MPM");
   GeometryPieceFactory pieces;
-  int64_t nextId = 0;
   const auto materialNodes = mpmMats.children("material");
   if (materialNodes.empty())
     mpmMats.fail("<MaterialProperties><MPM> needs at least one <material>");
-  std::vector<MaterialSeeds> seeds(materialNodes.size());
+  seeds_.assign(materialNodes.size(), {});
   for (size_t m = 0; m < materialNodes.size(); ++m)
     materials_.push_back(
-        MPMMaterial::fromInput(materialNodes[m], grid_, flags_, pieces, nextId, seeds[m]));
-  nextParticleId_ = nextId;
+        MPMMaterial::fromInput(materialNodes[m], grid_, flags_, pieces, seeds_[m]));
+  // Each geom_object's particles are numbered on from the objects' before it, in input order.
+  for (MaterialSeeds& s : seeds_)
+    for (MaterialSeeds::Object& object : s.objects) {
+      object.firstId = nextParticleId_;
+      nextParticleId_ += object.total;
+    }
   if (flags_.refineMaterial >= static_cast<int>(materials_.size()))
     root.requireChild("AMR").fail("the stretchRatio names material " +
                                   std::to_string(flags_.refineMaterial) + ", but there are " +
                                   std::to_string(materials_.size()));
-  for (size_t m = 0; m < materials_.size(); ++m)
-    if (flags_.refineParticles &&
-        (flags_.refineMaterial < 0 || flags_.refineMaterial == static_cast<int>(m)))
-      materials_[m].particles.enable(Physics::Splitting);
   contact_ = Contact::fromInput(mpmMats, static_cast<int>(materials_.size()));
   const PhysicalBCs physical = readPhysicalBCs(root);
   if (flags_.doScalarDiffusion)
-    diffusion_ = std::make_unique<ReactiveFlow>(root, flags_, materials_, seeds, maxTime, physical);
+    diffusion_ = std::make_unique<ReactiveFlow>(root, flags_, materials_, maxTime, physical);
   else
     ReactiveFlow::rejectWithoutDiffusion(root, flags_, physical);
   gridBCs_ = readGridBoundaryConditions(gridNode, static_cast<int>(materials_.size()),
@@ -63,8 +64,9 @@ void MPM::problemSetup(const PSNode& root, double initTime, double maxTime) {
                                             ReactiveFlow::rejectConcentrationBC(bc);
                                         });
   for (size_t m = 0; m < materials_.size(); ++m)
-    seeds[m].checkPiecesInsideGrid(grid_, gridBCs_.symmetryPlanes(static_cast<int>(m)));
-  warnOfOverlaps(materials_, seeds);
+    seeds_[m].checkPiecesInsideGrid(grid_, gridBCs_.symmetryPlanes(static_cast<int>(m)));
+  swellingNotes_ = swellingRoomNotes(grid_, gridBCs_, materials_, seeds_, diffusion_.get());
+  warnOfOverlaps(grid_, materials_, seeds_);
 
   if (flags_.implicit) {
     checkImplicitSetup(root);
@@ -79,11 +81,22 @@ void MPM::problemSetup(const PSNode& root, double initTime, double maxTime) {
       if (f < 0) f = fields++;
     equilibrium_.useTimers(timers_);
   }
+  // This rank's particles: those of its box (the whole grid on one rank) and, while the flux
+  // particles are flagged, those setup needs around it.
+  whole_ = grid_;
+  const CellBox box = setupBox();
+  const CellBox region = grownBySetupReach(box);
+  checkParticlesOfRank(region);
+  for (size_t m = 0; m < materials_.size(); ++m) {
+    materials_[m].placeParticles(seeds_[m], grid_, region);
+    if (flags_.refineParticles &&
+        (flags_.refineMaterial < 0 || flags_.refineMaterial == static_cast<int>(m)))
+      materials_[m].particles.enable(Physics::Splitting);
+  }
   checkProblemSize(gridNode, grid_, flags_, materials_.size(), numParticles(),
                    omp_get_max_threads());
-  if (diffusion_) diffusion_->initialize(root, grid_, materials_, seeds, initTime);
-  swellingNotes_ = swellingRoomNotes(grid_, gridBCs_, materials_, diffusion_.get());
-  whole_ = grid_;
+  if (diffusion_) diffusion_->initialize(root, grid_, materials_, seeds_, box, initTime);
+  if (region.lower != box.lower || region.upper != box.upper) keepParticlesOfBox(box);
   distributed_ = Communicator::size() > 1;
   reordering_.resize(materials_.size());
   tasks_ = {timers_.task("computeInterpolationWeights"),
@@ -96,7 +109,16 @@ void MPM::problemSetup(const PSNode& root, double initTime, double maxTime) {
 }
 
 void MPM::distributeOverRanks(Collective) {
-  decompose(true);
+  if (Communicator::size() == 1) {
+    decompose(true);
+  } else {
+    // problemSetup drew the boxes and placed each rank's particles in its own.
+    ++layoutGeneration_;
+    ghostWidth_ = computeGhostWidth(false);
+    layOutWindow();
+  }
+  if (diffusion_) diffusion_->completeSetup(Collective{}, materials_, initTime_);
+  seeds_.clear();
 }
 
 void MPM::layOutGrid() {

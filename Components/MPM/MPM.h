@@ -30,12 +30,13 @@ namespace anode {
 class MPM {
  public:
   // Reads <MPM>, <PhysicalConstants>, <Grid>, <MaterialProperties> and <PhysicalBC>; the
-  // simulation starts at initTime and ends at maxTime. In a distributed run every rank sets up
-  // the whole problem (no collective: the ranks agree on its errors after it), then keeps the
-  // particles of its box (distributeOverRanks; docs/parallel.md).
+  // simulation starts at initTime and ends at maxTime. In a distributed run each rank counts the
+  // particles the geom_objects lay out per cell, draws the boxes from the counts and creates
+  // only the particles of its own box (docs/parallel.md, "Setup per box"). Calls no collective:
+  // the ranks agree on its errors after it.
   void problemSetup(const PSNode& root, double initTime, double maxTime);
-  // After problemSetup: keeps this rank's box of the problem (the whole of it on one rank) and
-  // lays out its grid.
+  // After problemSetup: lays out this rank's grid and completes the setup over the ranks (the
+  // flux BCs' areas and capacities, their report).
   void distributeOverRanks(Collective);
 
   // Advances the state from time t by dt (DESIGN.md §4). Throws SimulationError when a particle
@@ -174,6 +175,14 @@ class MPM {
   void readState(BinaryReader& in, bool append);
   void layOutGrid();
   int computeGhostWidth(bool allHere) const;
+  // Setup per box (MPMRanks.cc): this rank's box, drawn from the particle counts of seeds_ (the
+  // whole grid on one rank); the box grown by what flagging the flux particles needs around it;
+  // the particle count of a region against the memory budget; dropping the particles beyond the
+  // box once flagged.
+  CellBox setupBox();
+  CellBox grownBySetupReach(const CellBox& box) const;
+  void checkParticlesOfRank(const CellBox& region) const;
+  void keepParticlesOfBox(const CellBox& box);
   // Particles per cell plane of the whole grid, per axis (of this rank's particles).
   std::array<std::vector<double>, 3> particlesPerPlane() const;
   // The grid arrays the ghost sums after P2G complete.
@@ -212,6 +221,8 @@ class MPM {
   std::vector<MPMMaterial> materials_;
   std::unique_ptr<ReactiveFlow> diffusion_;  // only with <do_scalar_diffusion>true
   int64_t nextParticleId_ = 0;
+  std::vector<MaterialSeeds> seeds_;  // setup only: what the geom_objects lay out
+  double initTime_ = 0;
   // The nodes the particles touch this step; grid loops run over them only. Outside, nodal
   // fields are zero (the previous step's box is cleared too) except the values face boundary
   // conditions set.

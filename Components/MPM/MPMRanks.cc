@@ -11,9 +11,11 @@
 
 #include "Components/MPM/MPM.h"
 #include "Components/MPM/ParticleMigration.h"
+#include "Components/MPM/ProblemSize.h"
 #include "Core/Parallel/Bisection.h"
 #include "Core/Parallel/StopTogether.h"
 #include "Core/Util/Errors.h"
+#include "Core/Util/MemoryBudget.h"
 
 namespace anode {
 
@@ -30,6 +32,67 @@ std::array<std::vector<double>, 3> MPM::particlesPerPlane() const {
       for (int d = 0; d < 3; ++d) planes[d][c[d]] += 1;
     }
   return planes;
+}
+
+CellBox MPM::setupBox() {
+  const int ranks = Communicator::size();
+  if (ranks == 1) return {Vec3i::Zero(), whole_.cells};
+  // The boxes from the particles per cell plane the geom_objects lay out, counted before any
+  // particle is stored: the same on every rank, and the same boxes a fill of everything gives.
+  std::array<std::vector<double>, 3> planes;
+  for (int d = 0; d < 3; ++d) planes[d].assign(whole_.cells[d], 0.0);
+  for (const MaterialSeeds& s : seeds_) s.addPerPlane(whole_, planes);
+  decomposition_ = Decomposition::balanced(whole_.cells, ranks, planes);
+  return decomposition_.box(Communicator::rank());
+}
+
+CellBox MPM::grownBySetupReach(const CellBox& box) const {
+  if (Communicator::size() == 1 || !diffusion_ || !diffusion_->sharesSurfacesAtSetup()) return box;
+  // A sample of a BC's surface goes to the nearest flagged particle within 1.5 particle spacings
+  // (FluxSurfaceArea.h): the samples a particle of the box can get lie within 1.5 spacings of
+  // it, and the particles they can go to within 3.
+  Vec3 spacing = Vec3::Zero();
+  for (const MaterialSeeds& s : seeds_)
+    for (const MaterialSeeds::Object& object : s.objects)
+      spacing = spacing.cwiseMax(object.spacing);
+  const int reach = static_cast<int>(std::ceil(3 * spacing.norm() / whole_.dx.minCoeff())) + 1;
+  return {(box.lower.array() - reach).max(0),
+          (box.upper.array() + reach).min(whole_.cells.array())};
+}
+
+void MPM::checkParticlesOfRank(const CellBox& region) const {
+  const double limit = std::floor(maxParticles(flags_));
+  double n = 0;
+  for (const MaterialSeeds& s : seeds_)
+    for (const MaterialSeeds::Object& object : s.objects) {
+      n += static_cast<double>(object.countIn(whole_, region));
+      if (n > limit)
+        object.sizeNode.fail(
+            "the <geom_object>s up to this one lay out " + formatCount(n) + " particles" +
+            (Communicator::size() > 1 ? " in this rank's part of the grid" : "") + ", beyond " +
+            describeMemoryBudget() + " at about " +
+            std::to_string(static_cast<long>(bytesPerParticle(flags_))) + " bytes per particle");
+    }
+}
+
+void MPM::keepParticlesOfBox(const CellBox& box) {
+  for (size_t m = 0; m < materials_.size(); ++m) {
+    ParticleSet& p = materials_[m].particles;
+    std::vector<long> keep;
+    for (MaterialSeeds::Object& object : seeds_[m].objects) {
+      const size_t first = keep.size();
+      std::vector<Vec3> faceAreas;
+      for (size_t i = object.first; i < object.first + object.count; ++i)
+        if (box.contains(whole_.interiorCell(p.x[i]))) {
+          keep.push_back(static_cast<long>(i));
+          if (object.smooth) faceAreas.push_back(object.faceAreaOf(i));
+        }
+      object.first = first;
+      object.count = keep.size() - first;
+      object.smoothFaceAreas = std::move(faceAreas);
+    }
+    keepParticles(p, keep);
+  }
 }
 
 int MPM::computeGhostWidth(bool allHere) const {

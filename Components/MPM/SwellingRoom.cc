@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <map>
 #include <numeric>
 #include <sstream>
@@ -41,16 +42,25 @@ bool swells(const MPMMaterial& mat, size_t m, const ReactiveFlow* diffusion) {
          (diffusion->model(m).diffuses() || diffusion->model(m).constantRate() != 0);
 }
 
+// Calls visit(cell) for the cell of each of material m's particles (a cell of a grid-filled
+// object once, from its count).
+void forEachOccupiedCell(const Grid& g, const MaterialSeeds& seeds,
+                         const std::function<void(const Vec3i&)>& visit) {
+  for (const MaterialSeeds::Object& object : seeds.objects)
+    if (object.smooth)
+      for (const SmoothParticle& s : object.smoothLayout) visit(cellOf(g, s.x));
+    else
+      object.lattice->forEachOccupiedCell(visit);
+}
+
 }  // namespace
 
-std::vector<Body> findBodies(const Grid& g, const std::vector<MPMMaterial>& materials, size_t m) {
-  const ParticleSet& p = materials[m].particles;
+std::vector<Body> findBodies(const Grid& g, const std::vector<MaterialSeeds>& seeds, size_t m) {
   std::unordered_map<long long, int> cellIndex;
   std::vector<Vec3i> cells;
-  for (const Vec3& x : p.x) {
-    const Vec3i c = cellOf(g, x);
+  forEachOccupiedCell(g, seeds[m], [&](const Vec3i& c) {
     if (cellIndex.emplace(keyOf(g, c), static_cast<int>(cells.size())).second) cells.push_back(c);
-  }
+  });
   std::vector<int> parent(cells.size());
   std::iota(parent.begin(), parent.end(), 0);
   for (size_t k = 0; k < cells.size(); ++k)
@@ -64,20 +74,20 @@ std::vector<Body> findBodies(const Grid& g, const std::vector<MPMMaterial>& mate
         }
   std::vector<Body> bodies;
   std::unordered_map<int, size_t> bodyOfRoot;
-  for (size_t i = 0; i < p.count(); ++i) {
-    const int cell = cellIndex.at(keyOf(g, cellOf(g, p.x[i])));
+  seeds[m].forEachPosition(g, [&](const Vec3& x) {
+    const int cell = cellIndex.at(keyOf(g, cellOf(g, x)));
     const auto [it, added] = bodyOfRoot.emplace(root(parent, cell), bodies.size());
-    if (added) bodies.push_back({0, p.x[i], p.x[i], {}, {}});
+    if (added) bodies.push_back({0, x, x, {}, {}});
     Body& b = bodies[it->second];
     ++b.particles;
-    b.lo = b.lo.cwiseMin(p.x[i]);
-    b.hi = b.hi.cwiseMax(p.x[i]);
-  }
+    b.lo = b.lo.cwiseMin(x);
+    b.hi = b.hi.cwiseMax(x);
+  });
   // Where another material occupies the cell next to one of the body's cells.
   std::unordered_set<long long> others;
-  for (size_t o = 0; o < materials.size(); ++o)
+  for (size_t o = 0; o < seeds.size(); ++o)
     if (o != m)
-      for (const Vec3& x : materials[o].particles.x) others.insert(keyOf(g, cellOf(g, x)));
+      forEachOccupiedCell(g, seeds[o], [&](const Vec3i& c) { others.insert(keyOf(g, c)); });
   for (size_t k = 0; k < cells.size(); ++k) {
     Body& b = bodies[bodyOfRoot.at(root(parent, static_cast<int>(k)))];
     for (int a = 0; a < 3; ++a)
@@ -91,13 +101,14 @@ std::vector<Body> findBodies(const Grid& g, const std::vector<MPMMaterial>& mate
 
 std::vector<std::string> swellingRoomNotes(const Grid& g, const GridBoundaryConditions& bcs,
                                            const std::vector<MPMMaterial>& materials,
+                                           const std::vector<MaterialSeeds>& seeds,
                                            const ReactiveFlow* diffusion) {
   std::vector<std::string> notes;
   for (size_t m = 0; m < materials.size(); ++m) {
     const MPMMaterial& mat = materials[m];
-    if (!swells(mat, m, diffusion) || mat.particles.count() == 0) continue;
+    if (!swells(mat, m, diffusion)) continue;
     const double eta = mat.model->swellingCoefficient(), growth = std::exp(eta);
-    std::vector<Body> bodies = findBodies(g, materials, m);
+    std::vector<Body> bodies = findBodies(g, seeds, m);
     // Which faces each body reaches, grouped by the faces: "x+, z+" -> bodies 1, 3.
     std::map<std::string, std::vector<size_t>> reaching;
     for (size_t n = 0; n < bodies.size(); ++n) {

@@ -2,7 +2,8 @@
 // that takes up lithium, its bodies (particles connected through the grid cells they occupy) and
 // the Symmetric faces each would reach swelling freely to c = 1, exp(eta)-fold along each axis,
 // away from what it rests on (a Symmetric face it starts on, another material just beyond it) or
-// else about its middle. Computed at setup, when every rank holds every particle.
+// else about its middle. Computed at setup from where the geom_objects lay their particles out
+// (MaterialSeeds: the same on every rank).
 #pragma once
 
 #include <string>
@@ -24,12 +25,13 @@ struct Body {
 };
 
 // The bodies of material m, in the order of their first particle.
-std::vector<Body> findBodies(const Grid& g, const std::vector<MPMMaterial>& materials, size_t m);
+std::vector<Body> findBodies(const Grid& g, const std::vector<MaterialSeeds>& seeds, size_t m);
 
 // The setup notes: per material whose bodies would reach a Symmetric face, which bodies reach
 // which faces.
 std::vector<std::string> swellingRoomNotes(const Grid& g, const GridBoundaryConditions& bcs,
                                            const std::vector<MPMMaterial>& materials,
+                                           const std::vector<MaterialSeeds>& seeds,
                                            const ReactiveFlow* diffusion);
 
 }  // namespace anode

@@ -99,27 +99,143 @@ bool placesParticlesOutside(const Grid& grid, const GeometryPiece& piece, const 
   return false;
 }
 
-std::vector<Vec3> fillParticles(const Grid& grid, const GeometryPiece& piece, const Vec3i& res,
-                                size_t maxParticles) {
-  std::vector<Vec3> out;
-  Vec3i first, last;
-  cellRange(grid, piece, first, last);
-  const Vec3 dxp = grid.dx.cwiseQuotient(res.cast<double>());
-  for (int k = first.z(); k <= last.z(); ++k)
-    for (int j = first.y(); j <= last.y(); ++j)
-      for (int i = first.x(); i <= last.x(); ++i) {
-        const Vec3 cell = grid.nodePosition(i, j, k);
-        for (int c = 0; c < res.z(); ++c)
-          for (int b = 0; b < res.y(); ++b)
-            for (int a = 0; a < res.x(); ++a) {
-              const Vec3 x =
-                  cell + Vec3((a + 0.5) * dxp.x(), (b + 0.5) * dxp.y(), (c + 0.5) * dxp.z());
-              if (!piece.inside(x)) continue;
-              out.push_back(x);
-              if (out.size() > maxParticles) return out;
-            }
+PieceLattice::PieceLattice(const Grid& grid, GeometryPieceP piece, const Vec3i& res)
+    : grid_(grid),
+      piece_(std::move(piece)),
+      res_(res),
+      dxp_(grid.dx.cwiseQuotient(res.cast<double>())) {
+  // A union (a geom_object's pieces, an array's pillars) is tested part by part, each only in
+  // the cells its bounds meet: the same points, found without testing every part everywhere.
+  if (const auto* u = dynamic_cast<const UnionPiece*>(piece_.get()))
+    for (const GeometryPieceP& part : u->pieces) parts_.emplace_back(part->bounds(), part.get());
+  else
+    parts_.emplace_back(piece_->bounds(), piece_.get());
+  cellRange(grid, *piece_, first_, last_);
+  const Vec3i n = (last_ - first_ + Vec3i::Ones()).cwiseMax(0);
+  perCell_.assign(static_cast<size_t>(n.cast<long>().prod()), 0);
+  beforeRow_.assign(static_cast<size_t>(n.y()) * n.z() + 1, 0);
+  const long rows = static_cast<long>(n.y()) * n.z();
+#pragma omp parallel for schedule(dynamic, 16)
+  for (long row = 0; row < rows; ++row) {
+    const int j = first_.y() + static_cast<int>(row % n.y());
+    const int k = first_.z() + static_cast<int>(row / n.y());
+    const Parts parts = partsMeetingRow(j, k);
+    for (int i = first_.x(); i <= last_.x(); ++i)
+      visitCell(i, j, k, parts, [&](const Vec3&) { ++perCell_[cellIndex(i, j, k)]; });
+  }
+  for (long row = 0; row < rows; ++row) {
+    int64_t inRow = 0;
+    for (int i = 0; i < n.x(); ++i) inRow += perCell_[static_cast<size_t>(row) * n.x() + i];
+    beforeRow_[row + 1] = beforeRow_[row] + inRow;
+  }
+  total_ = beforeRow_.back();
+}
+
+PieceLattice::Parts PieceLattice::partsMeetingRow(int j, int k) const {
+  const Vec3 lo = grid_.nodePosition(0, j, k), hi = grid_.nodePosition(0, j + 1, k + 1);
+  Parts parts;
+  for (size_t p = 0; p < parts_.size(); ++p) {
+    const Bounds& b = parts_[p].first;
+    if (b.lo.y() <= hi.y() && b.hi.y() >= lo.y() && b.lo.z() <= hi.z() && b.hi.z() >= lo.z())
+      parts.push_back(static_cast<int>(p));
+  }
+  return parts;
+}
+
+template <class Visit>
+void PieceLattice::visitCell(int i, int j, int k, const Parts& row, Visit&& inside) const {
+  const Vec3 cell = grid_.nodePosition(i, j, k);
+  const double hi = grid_.nodePosition(i + 1, j, k).x();
+  const GeometryPiece* parts[64];
+  size_t count = 0;
+  bool many = false;
+  for (int p : row) {
+    const Bounds& b = parts_[p].first;
+    if (b.lo.x() <= hi && b.hi.x() >= cell.x()) {
+      if (count == 64) {
+        many = true;
+        break;
       }
-  return out;
+      parts[count++] = parts_[p].second;
+    }
+  }
+  if (count == 0) return;
+  // Beyond 64 parts in one cell, the piece itself (the same test, in one call).
+  const auto holds = [&](const Vec3& x) {
+    return many ? piece_->inside(x)
+                : std::any_of(parts, parts + count,
+                              [&](const GeometryPiece* part) { return part->inside(x); });
+  };
+  for (int c = 0; c < res_.z(); ++c)
+    for (int b = 0; b < res_.y(); ++b)
+      for (int a = 0; a < res_.x(); ++a) {
+        const Vec3 x =
+            cell + Vec3((a + 0.5) * dxp_.x(), (b + 0.5) * dxp_.y(), (c + 0.5) * dxp_.z());
+        if (holds(x)) inside(x);
+      }
+}
+
+size_t PieceLattice::cellIndex(int i, int j, int k) const {
+  const Vec3i n = last_ - first_ + Vec3i::Ones();
+  return (static_cast<size_t>(k - first_.z()) * n.y() + (j - first_.y())) * n.x() +
+         (i - first_.x());
+}
+
+int64_t PieceLattice::countIn(const CellBox& region) const {
+  int64_t n = 0;
+  const Vec3i lo = region.lower.cwiseMax(first_), hi = region.upper.cwiseMin(last_ + Vec3i::Ones());
+  for (int k = lo.z(); k < hi.z(); ++k)
+    for (int j = lo.y(); j < hi.y(); ++j)
+      for (int i = lo.x(); i < hi.x(); ++i) n += perCell_[cellIndex(i, j, k)];
+  return n;
+}
+
+void PieceLattice::addPerPlane(std::array<std::vector<double>, 3>& planes) const {
+  for (int k = first_.z(); k <= last_.z(); ++k)
+    for (int j = first_.y(); j <= last_.y(); ++j)
+      for (int i = first_.x(); i <= last_.x(); ++i) {
+        const double n = perCell_[cellIndex(i, j, k)];
+        planes[0][i] += n;
+        planes[1][j] += n;
+        planes[2][k] += n;
+      }
+}
+
+void PieceLattice::fill(const CellBox& region, std::vector<Vec3>& x,
+                        std::vector<int64_t>& place) const {
+  const size_t n = static_cast<size_t>(countIn(region));
+  x.reserve(x.size() + n);
+  place.reserve(place.size() + n);
+  forEachPoint(region, [&](const Vec3& point, int64_t at) {
+    x.push_back(point);
+    place.push_back(at);
+  });
+}
+
+void PieceLattice::forEachOccupiedCell(const std::function<void(const Vec3i&)>& visit) const {
+  for (int k = first_.z(); k <= last_.z(); ++k)
+    for (int j = first_.y(); j <= last_.y(); ++j)
+      for (int i = first_.x(); i <= last_.x(); ++i)
+        if (perCell_[cellIndex(i, j, k)] > 0) visit(Vec3i(i, j, k));
+}
+
+void PieceLattice::forEachPoint(const CellBox& region,
+                                const std::function<void(const Vec3&, int64_t)>& visit) const {
+  const Vec3i lo = region.lower.cwiseMax(first_), hi = region.upper.cwiseMin(last_ + Vec3i::Ones());
+  const size_t rowLength = static_cast<size_t>(last_.x() - first_.x() + 1);
+  for (int k = lo.z(); k < hi.z(); ++k)
+    for (int j = lo.y(); j < hi.y(); ++j) {
+      const Parts parts = partsMeetingRow(j, k);
+      // The points before this row's first cell in the region: the rows before and the cells
+      // of this row before it.
+      const size_t row =
+          static_cast<size_t>(k - first_.z()) * (last_.y() - first_.y() + 1) + (j - first_.y());
+      int64_t next = beforeRow_[row];
+      for (int i = first_.x(); i < lo.x(); ++i)
+        next += perCell_[row * rowLength + (i - first_.x())];
+      for (int i = lo.x(); i < hi.x(); ++i)
+        visitCell(i, j, k, parts, [&](const Vec3& point) { visit(point, next++); });
+    }
 }
 
 }  // namespace anode

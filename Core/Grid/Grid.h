@@ -13,6 +13,15 @@
 
 namespace anode {
 
+// Cells [lower, upper) in grid index space.
+struct CellBox {
+  Vec3i lower = Vec3i::Zero(), upper = Vec3i::Zero();
+  long cellCount() const { return static_cast<long>((upper - lower).cast<long>().prod()); }
+  bool contains(const Vec3i& c) const {
+    return (c.array() >= lower.array()).all() && (c.array() < upper.array()).all();
+  }
+};
+
 struct Grid {
   // Limits setup enforces: cells per axis, and the bytes one material's nodal fields take per
   // node at least (mass, velocity, internal force, velocity*, acceleration).

@@ -12,12 +12,6 @@
 
 namespace anode {
 
-// Cells [lower, upper) in grid index space.
-struct CellBox {
-  Vec3i lower = Vec3i::Zero(), upper = Vec3i::Zero();
-  long cellCount() const { return static_cast<long>((upper - lower).cast<long>().prod()); }
-};
-
 class Decomposition {
  public:
   // One box holding the whole grid.

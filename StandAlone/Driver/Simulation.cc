@@ -27,6 +27,7 @@ Simulation::Simulation(const std::string& text, const std::string& name, const R
 }
 
 void Simulation::setup(const std::function<void()>& readSpec) {
+  const auto start = std::chrono::steady_clock::now();
   // Everything that reads and checks the input calls no collective: a rank that cannot read it
   // (a path not shared between nodes) ends every rank here, not in the first collective.
   collective::readTogether([&] {
@@ -37,6 +38,10 @@ void Simulation::setup(const std::function<void()>& readSpec) {
   if (archiver_.savesConcentrationFields() || scenes_.draws("p.concentrationGradient"))
     mpm_.computeConcentrationOfEveryMaterial();
   takeStableTimestep(0.0);
+  setupSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  setupPeakBytes_ = usage.ru_maxrss * 1024.0;  // Linux: kilobytes
 }
 
 void Simulation::readInput() {
@@ -236,7 +241,18 @@ std::string Simulation::restartFromNewestCheckpoint(Collective) {
 void Simulation::reportSetup(Collective) {
   const size_t particles = mpm_.summarize(Collective{}).particles;
   layoutImbalance_ = mpm_.imbalance(Collective{});
+  // Setup's wall time and the memory it left (the peak so far), of the slowest and the largest
+  // rank and of the smallest.
+  double setup[4] = {setupSeconds_, setupPeakBytes_, -setupSeconds_, -setupPeakBytes_};
+  if (Communicator::size() > 1) collective::maximum(setup, 4);
   if (Communicator::isRoot()) {
+    if (Communicator::size() > 1)
+      std::fprintf(stderr,
+                   "sus: setup %.2f s on the slowest rank (%.2f s on the fastest), peak memory "
+                   "%.1f MB on the largest rank (%.1f MB on the smallest)\n",
+                   setup[0], -setup[2], setup[1] / 1e6, -setup[3] / 1e6);
+    else
+      std::fprintf(stderr, "sus: setup %.2f s, peak memory %.1f MB\n", setup[0], setup[1] / 1e6);
     std::fprintf(stderr,
                  "sus: %zu particles in %zu material(s), grid %dx%dx%d cells, output in %s\n",
                  particles, mpm_.materials().size(), mpm_.grid().cells.x(), mpm_.grid().cells.y(),

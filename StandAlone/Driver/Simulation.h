@@ -147,6 +147,8 @@ class Simulation {
   double earlierWallSeconds_ = 0;  // of the runs before a restart, for history.csv
   uint64_t inputHash_ = 0;         // of the input file, stored in checkpoints
   double layoutImbalance_ = 1;     // particles per rank, max/mean, when the boxes were drawn
+  double setupSeconds_ = 0,
+         setupPeakBytes_ = 0;  // this rank's setup: wall time, peak memory after it
   std::chrono::steady_clock::time_point runStart_;
   double newestCheckpointWallTime_ = 0;  // wallTime() when this process last wrote one
   int outputTask_ = 0, checkpointTask_ = 0;

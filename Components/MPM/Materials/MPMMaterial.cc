@@ -17,10 +17,9 @@ std::string domain(const Grid& grid) {
   return "the grid domain " + formatVector(grid.lower) + " to " + formatVector(grid.upper);
 }
 
-// Adds the particles of one <geom_object> (UINTAH_UPS.md §3.1).
-void addGeomObject(const PSNode& geom, const Grid& grid, const MPMFlags& flags, MPMMaterial& m,
-                   GeometryPieceFactory& pieces, int64_t& nextId, MaterialSeeds& out) {
-  ParticleSet& p = m.particles;
+// Reads one <geom_object> (UINTAH_UPS.md §3.1) and counts the particles it lays out.
+void readGeomObject(const PSNode& geom, const Grid& grid, const MPMFlags& flags,
+                    GeometryPieceFactory& pieces, MaterialSeeds& out) {
   auto piece = std::make_shared<UnionPiece>();
   const std::vector<PSNode> pieceNodes = geom.childrenWhere(GeometryPieceFactory::isPieceTag);
   for (const PSNode& c : pieceNodes) piece->pieces.push_back(pieces.create(c));
@@ -31,7 +30,12 @@ void addGeomObject(const PSNode& geom, const Grid& grid, const MPMFlags& flags, 
   const Vec3i res = resNode.value<Vec3i>();
   if ((res.array() < 1).any())
     resNode.fail("<res> needs at least one particle per cell in each direction");
-  const Vec3 velocity = geom.require<Vec3>("velocity");
+  MaterialSeeds::Object object;
+  object.node = geom;
+  object.piece = piece;
+  object.velocity = geom.require<Vec3>("velocity");
+  object.res = res;
+  object.spacing = grid.dx.cwiseQuotient(res.cast<double>());
   // Temperature and colour change nothing in isothermal single-field MPM (the concentration is
   // the diffusion subcomponent's: ReactiveFlow).
   for (const char* inert : {"temperature", "color"}) geom.acceptInert(inert);
@@ -43,13 +47,12 @@ void addGeomObject(const PSNode& geom, const Grid& grid, const MPMFlags& flags, 
       a.unsupported("affine transformation of the particle lattice");
 
   // Particles from the grid (Uintah's placement) or laid out by a smooth piece.
-  std::vector<SmoothParticle> seeds;
-  const Vec3 dxp = grid.dx.cwiseQuotient(res.cast<double>());
   const auto* smooth = piece->pieces.size() == 1
                            ? dynamic_cast<const SmoothCylinderPiece*>(piece->pieces[0].get())
                            : nullptr;
-  // The particles of the materials before and of this object must fit the memory budget.
-  const double limit = std::max(0.0, std::floor(maxParticles(flags)) - static_cast<double>(nextId));
+  // Counting a piece's particles is bounded by the memory budget as well: a smooth piece's are
+  // all laid out on every rank, a filled piece's candidate points are all tested.
+  const double limit = std::floor(maxParticles(flags));
   const std::string beyond = " particles, beyond " + describeMemoryBudget() + " at about " +
                              std::to_string(static_cast<long>(bytesPerParticle(flags))) +
                              " bytes per particle";
@@ -61,67 +64,106 @@ void addGeomObject(const PSNode& geom, const Grid& grid, const MPMFlags& flags, 
       fraction.unsupported("<volumeFraction> other than 1 (Uintah scales the particle mass by it)");
   }
   if (smooth) {
+    object.sizeNode = pieceNodes[0];
     const double n = smooth->particleCount(grid, limit);
     if (n > limit)
       pieceNodes[0].fail("the <smoothcyl> lays out " +
                          (n > 2 * limit ? "more than " + formatCount(limit) : formatCount(n)) +
                          beyond);
-    seeds = smooth->createParticles(grid);
+    object.smoothLayout = smooth->createParticles(grid);
+    // A smooth piece lays out every particle, inside the grid or not (grid-filled pieces are
+    // checked once the face BCs are read: checkPiecesInsideGrid).
+    for (const SmoothParticle& s : object.smoothLayout)
+      if ((s.x.array() < grid.lower.array()).any() || (s.x.array() > grid.upper.array()).any())
+        pieceNodes[0].fail("<smoothcyl> places particles outside " + domain(grid) + ", e.g. at " +
+                           formatVector(s.x) + ": enlarge the <Grid><Box> or move the piece");
+    object.smooth = out.smooth = true;
+    object.total = static_cast<int64_t>(object.smoothLayout.size());
   } else {
     for (const GeometryPieceP& g : piece->pieces)
       if (dynamic_cast<const SmoothCylinderPiece*>(g.get()))
         geom.fail("a <smoothcyl> must be the only piece of its <geom_object>");
+    object.sizeNode = resNode;
     // Filling tests every candidate point: bound the work as well as the particles kept.
     const double candidates = fillCandidates(grid, *piece, res);
     if (candidates > 16 * limit + 1e6)
       resNode.fail("<res> gives " + formatCount(candidates) +
                    " candidate positions in the cells the pieces' bounding box meets; at most " +
                    formatCount(limit) + beyond);
-    const std::vector<Vec3> points = fillParticles(grid, *piece, res, static_cast<size_t>(limit));
-    if (static_cast<double>(points.size()) > limit)
-      resNode.fail("the <geom_object> places more than " + formatCount(limit) + beyond);
-    const Mat3 size = res.cast<double>().cwiseInverse().asDiagonal();
-    const Vec3 faces(dxp.y() * dxp.z(), dxp.x() * dxp.z(), dxp.x() * dxp.y());  // normal to x, y, z
-    for (const Vec3& x : points) seeds.push_back({x, dxp.prod(), size, faces});
-  }
-  // A smooth piece lays out every particle, inside the grid or not (grid-filled pieces are
-  // checked once the face BCs are read: checkPiecesInsideGrid).
-  if (smooth) {
-    out.smooth = true;
-    for (const SmoothParticle& s : seeds)
-      if ((s.x.array() < grid.lower.array()).any() || (s.x.array() > grid.upper.array()).any())
-        pieceNodes[0].fail("<smoothcyl> places particles outside " + domain(grid) + ", e.g. at " +
-                           formatVector(s.x) + ": enlarge the <Grid><Box> or move the piece");
-  } else {
+    object.lattice = std::make_shared<PieceLattice>(grid, piece, res);
+    object.total = object.lattice->count();
+    object.faceArea =
+        Vec3(object.spacing.y() * object.spacing.z(), object.spacing.x() * object.spacing.z(),
+             object.spacing.x() * object.spacing.y());  // normal to x, y, z
     for (size_t k = 0; k < pieceNodes.size(); ++k)
       out.filledPieces.push_back({pieceNodes[k], piece->pieces[k], res});
   }
-  if (seeds.empty())
+  if (object.total == 0)
     geom.fail(
         "<geom_object> places no particle: its pieces contain no particle position of the grid");
-
-  const size_t first = p.count();
-  MaterialSeeds::Object object{geom,         piece, first, seeds.size(), dxp, smooth != nullptr,
-                               Vec3::Zero(), {}};
-  if (smooth)
-    for (const SmoothParticle& s : seeds) object.smoothFaceAreas.push_back(s.faceArea);
-  else
-    object.faceArea = seeds[0].faceArea;
   out.objects.push_back(std::move(object));
-  p.resize(first + seeds.size());  // every array of the material's physics, at its initial value
-  for (size_t k = 0; k < seeds.size(); ++k) {
-    const SmoothParticle& s = seeds[k];
-    const size_t i = first + k;
-    p.id[i] = nextId++;
-    p.x[i] = s.x;
-    p.velocity[i] = velocity;
-    p.mass[i] = m.density * s.volume;
-    p.volume[i] = s.volume;
-    p.size[i] = s.size;
+}
+
+// The particles of `object` in the cells of `region`: positions, sizes and volumes, and each
+// one's place in the object's order.
+std::vector<SmoothParticle> objectParticles(const MaterialSeeds::Object& object, const Grid& grid,
+                                            const CellBox& region, std::vector<int64_t>& place) {
+  std::vector<SmoothParticle> particles;
+  if (object.smooth) {
+    for (size_t k = 0; k < object.smoothLayout.size(); ++k)
+      if (region.contains(grid.interiorCell(object.smoothLayout[k].x))) {
+        particles.push_back(object.smoothLayout[k]);
+        place.push_back(static_cast<int64_t>(k));
+      }
+    return particles;
   }
+  std::vector<Vec3> x;
+  object.lattice->fill(region, x, place);
+  const Mat3 size = object.res.cast<double>().cwiseInverse().asDiagonal();
+  for (const Vec3& point : x)
+    particles.push_back({point, object.spacing.prod(), size, object.faceArea});
+  return particles;
 }
 
 }  // namespace
+
+int64_t MaterialSeeds::Object::countIn(const Grid& grid, const CellBox& region) const {
+  if (!smooth) return lattice->countIn(region);
+  return std::count_if(smoothLayout.begin(), smoothLayout.end(), [&](const SmoothParticle& s) {
+    return region.contains(grid.interiorCell(s.x));
+  });
+}
+
+void MaterialSeeds::Object::forEachParticle(
+    const Grid& grid, const std::function<void(const Vec3&, double)>& visit) const {
+  if (smooth) {
+    for (const SmoothParticle& s : smoothLayout) visit(s.x, s.volume);
+    return;
+  }
+  const double volume = spacing.prod();
+  lattice->forEachPoint({Vec3i::Zero(), grid.cells},
+                        [&](const Vec3& x, int64_t) { visit(x, volume); });
+}
+
+void MaterialSeeds::forEachPosition(const Grid& grid,
+                                    const std::function<void(const Vec3&)>& visit) const {
+  for (const Object& object : objects)
+    object.forEachParticle(grid, [&](const Vec3& x, double) { visit(x); });
+}
+
+void MaterialSeeds::addPerPlane(const Grid& grid,
+                                std::array<std::vector<double>, 3>& planes) const {
+  for (const Object& object : objects) {
+    if (!object.smooth) {
+      object.lattice->addPerPlane(planes);
+      continue;
+    }
+    for (const SmoothParticle& s : object.smoothLayout) {
+      const Vec3i c = grid.interiorCell(s.x);
+      for (int d = 0; d < 3; ++d) planes[d][c[d]] += 1;
+    }
+  }
+}
 
 std::string formatVector(const Vec3& v) {
   std::ostringstream s;
@@ -139,8 +181,7 @@ std::string describeParticle(const MPMMaterial& mat, size_t matl, size_t i) {
 }
 
 MPMMaterial MPMMaterial::fromInput(const PSNode& node, const Grid& grid, const MPMFlags& flags,
-                                   GeometryPieceFactory& pieces, int64_t& nextId,
-                                   MaterialSeeds& seeds) {
+                                   GeometryPieceFactory& pieces, MaterialSeeds& seeds) {
   MPMMaterial m;
   m.name = node.attribute("name").value_or("");
   m.density = node.require<double>("density");
@@ -155,14 +196,45 @@ MPMMaterial MPMMaterial::fromInput(const PSNode& node, const Grid& grid, const M
 
   const auto geoms = node.children("geom_object");
   if (geoms.empty()) node.fail("<material> needs at least one <geom_object>");
-  for (const PSNode& g : geoms) addGeomObject(g, grid, flags, m, pieces, nextId, seeds);
-  const double lightest = *std::min_element(m.particles.mass.begin(), m.particles.mass.end());
+  for (const PSNode& g : geoms) readGeomObject(g, grid, flags, pieces, seeds);
+  // Every particle of a grid-filled object has the same volume; a smooth one's vary.
+  double lightest = HUGE_VAL;
+  for (const MaterialSeeds::Object& object : seeds.objects)
+    if (object.smooth)
+      for (const SmoothParticle& s : object.smoothLayout)
+        lightest = std::min(lightest, m.density * s.volume);
+    else
+      lightest = std::min(lightest, m.density * object.spacing.prod());
   if (lightest <= flags.minimumParticleMass)
     node.requireChild("density").fail(
         "particle mass " + std::to_string(lightest) + " is at or below <minimum_particle_mass> " +
         std::to_string(flags.minimumParticleMass) + " (Uintah deletes such particles)");
-  m.model->initializeState(m.particles);
   return m;
+}
+
+void MPMMaterial::placeParticles(MaterialSeeds& seeds, const Grid& grid, const CellBox& region) {
+  ParticleSet& p = particles;
+  for (MaterialSeeds::Object& object : seeds.objects) {
+    std::vector<int64_t> place;
+    const std::vector<SmoothParticle> placed = objectParticles(object, grid, region, place);
+    object.first = p.count();
+    object.count = placed.size();
+    if (object.smooth)
+      for (const SmoothParticle& s : placed) object.smoothFaceAreas.push_back(s.faceArea);
+    p.resize(object.first + placed.size());  // every array of the physics, at its initial value
+    for (size_t k = 0; k < placed.size(); ++k) {
+      const SmoothParticle& s = placed[k];
+      const size_t i = object.first + k;
+      p.id[i] = object.firstId + place[k];
+      p.x[i] = s.x;
+      p.velocity[i] = object.velocity;
+      p.mass[i] = density * s.volume;
+      p.volume[i] = s.volume;
+      p.size[i] = s.size;
+    }
+    object.smoothLayout = {};  // laid out; the rest belong to other ranks
+  }
+  model->initializeState(p);
 }
 
 void MaterialSeeds::checkPiecesInsideGrid(const Grid& grid,

@@ -14,31 +14,31 @@ struct Inside {
   const MaterialSeeds::Object* object = nullptr;
 };
 
-Inside particlesInside(const MPMMaterial& inner, const MaterialSeeds& innerSeeds,
+Inside particlesInside(const Grid& grid, const MaterialSeeds& innerSeeds,
                        const MaterialSeeds& outer) {
   Inside in;
-  const ParticleSet& p = inner.particles;
   for (const MaterialSeeds::Object& object : innerSeeds.objects)
-    for (size_t i = object.first; i < object.first + object.count; ++i)
+    object.forEachParticle(grid, [&](const Vec3& x, double volume) {
       for (const MaterialSeeds::Object& other : outer.objects)
-        if (other.piece->inside(p.x[i])) {
+        if (other.piece->inside(x)) {
           ++in.count;
-          in.volume += p.volume[i];
+          in.volume += volume;
           if (!in.object) in.object = &object;
           break;
         }
+    });
   return in;
 }
 
 }  // namespace
 
-std::vector<MaterialOverlap> findOverlaps(const std::vector<MPMMaterial>& materials,
+std::vector<MaterialOverlap> findOverlaps(const Grid& grid,
                                           const std::vector<MaterialSeeds>& seeds) {
   std::vector<MaterialOverlap> found;
-  for (size_t a = 0; a < materials.size(); ++a)
-    for (size_t b = a + 1; b < materials.size(); ++b) {
-      const Inside aInB = particlesInside(materials[a], seeds[a], seeds[b]);
-      const Inside bInA = particlesInside(materials[b], seeds[b], seeds[a]);
+  for (size_t a = 0; a < seeds.size(); ++a)
+    for (size_t b = a + 1; b < seeds.size(); ++b) {
+      const Inside aInB = particlesInside(grid, seeds[a], seeds[b]);
+      const Inside bInA = particlesInside(grid, seeds[b], seeds[a]);
       if (aInB.count + bInA.count > 0)
         found.push_back({a, b, aInB.count, bInA.count, aInB.volume, bInA.volume,
                          bInA.object ? bInA.object->node : seeds[b].objects.front().node});
@@ -46,9 +46,9 @@ std::vector<MaterialOverlap> findOverlaps(const std::vector<MPMMaterial>& materi
   return found;
 }
 
-void warnOfOverlaps(const std::vector<MPMMaterial>& materials,
+void warnOfOverlaps(const Grid& grid, const std::vector<MPMMaterial>& materials,
                     const std::vector<MaterialSeeds>& seeds) {
-  for (const MaterialOverlap& o : findOverlaps(materials, seeds)) {
+  for (const MaterialOverlap& o : findOverlaps(grid, seeds)) {
     const std::string a = describeMaterial(materials[o.first], o.first),
                       b = describeMaterial(materials[o.second], o.second);
     std::ostringstream s;

@@ -17,13 +17,14 @@ struct MaterialOverlap {
   PSNode at;  // the second's first geom_object holding overlapping particles (or its first)
 };
 
-// The overlapping pairs, in material order.
-std::vector<MaterialOverlap> findOverlaps(const std::vector<MPMMaterial>& materials,
+// The overlapping pairs, in material order, from where the geom_objects lay their particles out
+// (the same on every rank).
+std::vector<MaterialOverlap> findOverlaps(const Grid& grid,
                                           const std::vector<MaterialSeeds>& seeds);
 
 // Adds the input warning of each overlap (PSNode::warn, at the second material's first
 // geom_object that holds overlapping particles).
-void warnOfOverlaps(const std::vector<MPMMaterial>& materials,
+void warnOfOverlaps(const Grid& grid, const std::vector<MPMMaterial>& materials,
                     const std::vector<MaterialSeeds>& seeds);
 
 }  // namespace anode

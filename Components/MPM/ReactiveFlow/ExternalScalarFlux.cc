@@ -64,7 +64,7 @@ double surfaceConductance(const ScalarFluxBC& bc, double area, double volume, do
 
 std::vector<ExternalScalarFlux::Flagged> ExternalScalarFlux::assignToParticles(
     std::vector<MPMMaterial>& materials, const std::vector<DiffusionMaterial>& diffusion,
-    const std::vector<MaterialSeeds>& seeds, const Grid& grid) const {
+    const std::vector<MaterialSeeds>& seeds, const Grid& grid, const CellBox& counted) const {
   // Surface particles get, per BC that flags them, the area of the face that BC names
   // (UINTAH_UPS.md §3.1; unlike Uintah, not the area left by the last BC tested).
   std::vector<Flagged> report;
@@ -92,7 +92,7 @@ std::vector<ExternalScalarFlux::Flagged> ExternalScalarFlux::assignToParticles(
         for (size_t b = 0; b < bcs_.size(); ++b) {
           const double a = bcs_[b].flaggedArea(p.x[i], object.spacing, object.faceAreaOf(i));
           if (a <= 0) continue;
-          ++flagged[b];
+          if (counted.contains(grid.interiorCell(p.x[i]))) ++flagged[b];
           if (slot == 3) continue;  // a particle holds at most 3 load curves
           d.loadCurveID[i][slot] = static_cast<int>(b) + 1;
           d.area[i][slot] = a;
@@ -105,11 +105,14 @@ std::vector<ExternalScalarFlux::Flagged> ExternalScalarFlux::assignToParticles(
     std::vector<SurfaceShare> bodyShares(bcs_.size());
     for (size_t b = 0; b < bcs_.size(); ++b)
       if (bcs_[b].face == ScalarFluxBC::Face::Surface && bcs_[b].surfaceMaterial == mat.name)
-        flagFreeSurface(b, m, materials, seeds, grid, flagged[b], holding[b], slots[b],
+        flagFreeSurface(b, m, materials, seeds, grid, counted, flagged[b], holding[b], slots[b],
                         bodyShares[b]);
     for (size_t b = 0; b < bcs_.size(); ++b) {
-      if (flagged[b] == 0) continue;
       Flagged f{b, m, flagged[b]};
+      if (flagged[b] == 0) {
+        report.push_back(f);
+        continue;
+      }
       if (bcs_[b].face == ScalarFluxBC::Face::Surface) {
         f.surfaceArea = bodyShares[b].surfaceArea;
         f.bodyArea = bodyShares[b].bodyArea;
@@ -125,7 +128,9 @@ std::vector<ExternalScalarFlux::Flagged> ExternalScalarFlux::assignToParticles(
         f.surfaceArea = share.surfaceArea;
         f.bodyArea = share.bodyArea;
       }
-      for (size_t k = 0; k < holding[b].size(); ++k) f.area += d.area[holding[b][k]][slots[b][k]];
+      for (size_t k = 0; k < holding[b].size(); ++k)
+        if (counted.contains(grid.interiorCell(p.x[holding[b][k]])))
+          f.area += d.area[holding[b][k]][slots[b][k]];
       report.push_back(f);
     }
   }
@@ -191,8 +196,9 @@ std::vector<std::string> ExternalScalarFlux::takeNotes() {
 
 void ExternalScalarFlux::flagFreeSurface(size_t b, size_t m, std::vector<MPMMaterial>& materials,
                                          const std::vector<MaterialSeeds>& seeds, const Grid& grid,
-                                         size_t& count, std::vector<size_t>& holding,
-                                         std::vector<int>& slots, SurfaceShare& share) const {
+                                         const CellBox& counted, size_t& count,
+                                         std::vector<size_t>& holding, std::vector<int>& slots,
+                                         SurfaceShare& share) const {
   ParticleSet& p = materials[m].particles;
   const DiffusionParticles d(p);
   // The material's surface particles (as the geometry BCs find them), the largest spacing.
@@ -215,7 +221,7 @@ void ExternalScalarFlux::flagFreeSurface(size_t b, size_t m, std::vector<MPMMate
   for (size_t k = 0; k < candidates.size(); ++k) {
     if (area[k] <= 0) continue;
     const size_t i = candidates[k];
-    ++count;
+    if (counted.contains(grid.interiorCell(p.x[i]))) ++count;
     int slot = 0;
     while (slot < 3 && d.loadCurveID[i][slot] > 0) ++slot;
     if (slot == 3) continue;  // a particle holds at most 3 load curves

@@ -61,8 +61,7 @@ void setInitialState(const ScalarDiffusionModel& model, const MaterialSeeds& see
 }  // namespace
 
 ReactiveFlow::ReactiveFlow(const PSNode& root, const MPMFlags& flags,
-                           std::vector<MPMMaterial>& materials,
-                           const std::vector<MaterialSeeds>& seeds, double maxTime,
+                           const std::vector<MPMMaterial>& materials, double maxTime,
                            const PhysicalBCs& physical)
     : flags_(flags),
       interface_(DiffusionInterface::fromInput(
@@ -73,8 +72,14 @@ ReactiveFlow::ReactiveFlow(const PSNode& root, const MPMFlags& flags,
     DiffusionMaterial& mat = materials_.emplace_back();
     mat.reducesConcentration = nodes[m].get<bool>("do_conc_reduction", false);
     mat.model = createDiffusionModel(nodes[m].requireChild("diffusion_model"), maxTime);
-    setInitialState(*mat.model, seeds[m], materials[m].particles);
   }
+}
+
+bool ReactiveFlow::sharesSurfacesAtSetup() const {
+  return std::any_of(flux_.bcs().begin(), flux_.bcs().end(), [](const ScalarFluxBC& bc) {
+    return bc.face == ScalarFluxBC::Face::Surface ||
+           (bc.face != ScalarFluxBC::Face::Box && !bc.particleFaceArea);
+  });
 }
 
 void ReactiveFlow::rejectWithoutDiffusion(const PSNode& root, const MPMFlags& flags,
@@ -122,33 +127,86 @@ void ReactiveFlow::rejectConcentrationBC(const BCType& bc) {
 
 void ReactiveFlow::initialize(const PSNode& root, const Grid& grid,
                               std::vector<MPMMaterial>& materials,
-                              const std::vector<MaterialSeeds>& seeds, double initTime) {
+                              const std::vector<MaterialSeeds>& seeds, const CellBox& box,
+                              double initTime) {
+  for (size_t m = 0; m < materials.size(); ++m)
+    setInitialState(model(m), seeds[m], materials[m].particles);
   checkSurfaceBCs(root, materials, seeds);
-  const std::vector<ExternalScalarFlux::Flagged> flagged =
-      flux_.assignToParticles(materials, materials_, seeds, grid);
-  for (size_t b = 0; b < flux_.bcs().size(); ++b)
-    if (std::none_of(flagged.begin(), flagged.end(), [b](const auto& f) { return f.bc == b; }))
-      throw InputError(
-          root.file(), flux_.bcs()[b].geomLine,
-          "this <scalar_flux> flags no particle: its geometry selects no surface particle of a "
-          "material that diffuses (selection rules in docs/diffusion.md), so its flux would go "
-          "nowhere");
-  std::vector<double> capacities(flux_.bcs().size(), 0.0);
-  for (const ExternalScalarFlux::Flagged& f : flagged) {
-    const ScalarFluxBC& bc = flux_.bcs()[f.bc];
-    const ScalarDiffusionModel& held = model(f.material);
-    if (bc.mode == ScalarFluxBC::Mode::Potentiostatic)
-      for (double c : bc.load.loads())
-        if (c < held.minConcentration || c > held.maxConcentration)
-          throw InputError(root.file(), bc.line,
-                           "this potentiostatic <scalar_flux> holds c = " + std::to_string(c) +
-                               ", outside [min_concentration, max_concentration] of " +
-                               describeMaterial(materials[f.material], f.material));
-    const ParticleSet& p = materials[f.material].particles;
-    double mass = 0;  // setup: every rank holds every particle
-    for (size_t i = 0; i < p.count(); ++i) mass += p.mass[i];
-    capacities[f.bc] += mass * model(f.material).maxConcentration;
+  inputFile_ = root.file();
+  flagged_ = flux_.assignToParticles(materials, materials_, seeds, grid, box);
+  if (flags_.autoCycle && std::none_of(materials_.begin(), materials_.end(),
+                                       [](const auto& mat) { return mat.reducesConcentration; }))
+    root.requireChild("MPM")
+        .requireChild("do_auto_cycle_bc")
+        .fail(
+            "<do_auto_cycle_bc>true watches the concentration of the materials with "
+            "<do_conc_reduction>true, and none has it (Uintah then never reverses the flux)");
+  for (size_t m = 0; m < materials.size(); ++m) {
+    receivesFlux_.push_back(!diffusionParticles(materials[m].particles).externalScalarFlux.empty());
+    cmax_.push_back(model(m).maxConcentration);
+    constantRate_.push_back(model(m).constantRate());
   }
+  for (size_t m = 0; m < materials.size(); ++m) {
+    changes_.push_back(concentrationCanChange(m, model(m)));
+    if (!changes_.back()) noUptake_.push_back(describeMaterial(materials[m], m));
+  }
+  computeDiffusivity(materials, initTime);
+}
+
+void ReactiveFlow::completeSetup(Collective, std::vector<MPMMaterial>& materials, double initTime) {
+  // What the BCs flagged and each material's mass over every rank; a BC surface's areas are the
+  // same on every rank that flagged a particle under it (0 on the others).
+  const bool overRanks = Communicator::size() > 1;
+  std::vector<double> sums, largest;
+  for (const ExternalScalarFlux::Flagged& f : flagged_) {
+    sums.push_back(static_cast<double>(f.particles));
+    sums.push_back(f.area);
+    largest.push_back(f.surfaceArea);
+    largest.push_back(f.bodyArea);
+  }
+  for (const MPMMaterial& mat : materials) {
+    double mass = 0;
+    for (double mp : mat.particles.mass) mass += mp;
+    sums.push_back(mass);
+  }
+  if (overRanks) {
+    collective::sum(sums.data(), static_cast<int>(sums.size()));
+    collective::maximum(largest.data(), static_cast<int>(largest.size()));
+  }
+  std::vector<ExternalScalarFlux::Flagged> flagged;
+  for (size_t k = 0; k < flagged_.size(); ++k) {
+    ExternalScalarFlux::Flagged f = flagged_[k];
+    f.particles = static_cast<size_t>(sums[2 * k]);
+    f.area = sums[2 * k + 1];
+    f.surfaceArea = largest[2 * k];
+    f.bodyArea = largest[2 * k + 1];
+    if (f.particles > 0) flagged.push_back(f);
+  }
+  flagged_.clear();
+  const double* materialMass = sums.data() + sums.size() - materials.size();
+  std::vector<double> capacities(flux_.bcs().size(), 0.0);
+  // The same on every rank: errors without a collective, agreed for one message.
+  collective::readTogether([&] {
+    for (size_t b = 0; b < flux_.bcs().size(); ++b)
+      if (std::none_of(flagged.begin(), flagged.end(), [b](const auto& f) { return f.bc == b; }))
+        throw InputError(
+            inputFile_, flux_.bcs()[b].geomLine,
+            "this <scalar_flux> flags no particle: its geometry selects no surface particle of a "
+            "material that diffuses (selection rules in docs/diffusion.md), so its flux would go "
+            "nowhere");
+    for (const ExternalScalarFlux::Flagged& f : flagged) {
+      const ScalarFluxBC& bc = flux_.bcs()[f.bc];
+      const ScalarDiffusionModel& held = model(f.material);
+      if (bc.mode == ScalarFluxBC::Mode::Potentiostatic)
+        for (double c : bc.load.loads())
+          if (c < held.minConcentration || c > held.maxConcentration)
+            throw InputError(inputFile_, bc.line,
+                             "this potentiostatic <scalar_flux> holds c = " + std::to_string(c) +
+                                 ", outside [min_concentration, max_concentration] of " +
+                                 describeMaterial(materials[f.material], f.material));
+      capacities[f.bc] += materialMass[f.material] * model(f.material).maxConcentration;
+    }
+  });
   for (const ExternalScalarFlux::Flagged& f : flagged) {
     std::ostringstream s;
     s << "<scalar_flux> " << f.bc + 1 << " (line " << flux_.bcs()[f.bc].line << ") flags "
@@ -178,25 +236,7 @@ void ReactiveFlow::initialize(const PSNode& root, const Grid& grid,
     setupReport_.push_back(s.str());
   }
   flux_.setCapacities(std::move(capacities));
-  if (flags_.autoCycle && std::none_of(materials_.begin(), materials_.end(),
-                                       [](const auto& mat) { return mat.reducesConcentration; }))
-    root.requireChild("MPM")
-        .requireChild("do_auto_cycle_bc")
-        .fail(
-            "<do_auto_cycle_bc>true watches the concentration of the materials with "
-            "<do_conc_reduction>true, and none has it (Uintah then never reverses the flux)");
-  for (size_t m = 0; m < materials.size(); ++m) {
-    receivesFlux_.push_back(!diffusionParticles(materials[m].particles).externalScalarFlux.empty());
-    cmax_.push_back(model(m).maxConcentration);
-    constantRate_.push_back(model(m).constantRate());
-  }
-  for (size_t m = 0; m < materials.size(); ++m) {
-    changes_.push_back(concentrationCanChange(m, model(m)));
-    if (!changes_.back()) noUptake_.push_back(describeMaterial(materials[m], m));
-  }
-  computeDiffusivity(materials, initTime);
-  // Setup: every rank holds every particle, so the galvanostatic sums are local.
-  flux_.computeFluxRates(materials, materials_, initTime, false);
+  flux_.computeFluxRates(materials, materials_, initTime, overRanks);
 }
 
 void ReactiveFlow::layOutGrid(const Grid& grid, const GhostNodes* ghosts) {

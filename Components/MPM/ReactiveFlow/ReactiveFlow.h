@@ -32,12 +32,9 @@ namespace anode {
 class ReactiveFlow {
  public:
   // Reads <diffusion_interface>, the <scalar_flux> blocks of `physical` and each material's
-  // <diffusion_model> (`maxTime` bounds its diff_curve); declares the diffusion arrays on the
-  // materials' particles and sets their initial state: each <geom_object>'s <concentration>
-  // (`seeds`: which object laid out which particles) and the diffusivity D0.
-  ReactiveFlow(const PSNode& root, const MPMFlags& flags, std::vector<MPMMaterial>& materials,
-               const std::vector<MaterialSeeds>& seeds, double maxTime,
-               const PhysicalBCs& physical);
+  // <diffusion_model> (`maxTime` bounds its diff_curve).
+  ReactiveFlow(const PSNode& root, const MPMFlags& flags, const std::vector<MPMMaterial>& materials,
+               double maxTime, const PhysicalBCs& physical);
   // A run without diffusion: the tags that would need it are errors, not silently dropped; the
   // diffusion tags of the materials are read as Uintah reads them then (not at all).
   static void rejectWithoutDiffusion(const PSNode& root, const MPMFlags& flags,
@@ -49,10 +46,21 @@ class ReactiveFlow {
   }
   [[noreturn]] static void rejectConcentrationBC(const BCType& bc);
 
-  // Flags the flux particles and computes the initial state's diffusivity and flux rates, for
-  // every particle of the input (`grid` whole); `seeds` holds the surface particles.
+  // Whether setup shares a BC's surface out among the particles near it (a curved face of a
+  // grid-filled body, or a <surface>; FluxSurfaceArea.h): a rank then holds, while it flags the
+  // flux particles, the particles within 3 particle spacings of its box as well.
+  bool sharesSurfacesAtSetup() const;
+  // Declares the diffusion arrays on the materials' particles (this rank's, and in a distributed
+  // run those around its box) and sets their initial state: each <geom_object>'s
+  // <concentration> (`seeds`: which object laid out which particles) and the diffusivity D0;
+  // flags the flux particles (`seeds` holds the surface particles), counting those in the cells
+  // of `box` (this rank's). Calls no collective.
   void initialize(const PSNode& root, const Grid& grid, std::vector<MPMMaterial>& materials,
-                  const std::vector<MaterialSeeds>& seeds, double initTime);
+                  const std::vector<MaterialSeeds>& seeds, const CellBox& box, double initTime);
+  // Once each rank holds only its own particles: the flagged particles, their areas and the
+  // capacities over every rank, the input errors they show (a BC flagging nothing), the setup
+  // report and the initial flux rates.
+  void completeSetup(Collective, std::vector<MPMMaterial>& materials, double initTime);
   // Lays out the grid fields on the nodes this rank stores (`grid`: the whole grid, or this
   // rank's window); `ghosts` completes the source marks on the nodes shared with other ranks
   // (none: a run of one rank).
@@ -155,6 +163,8 @@ class ReactiveFlow {
   double maxDiffusivity_ = 0;                    // over all particles, for Eq. 44
   std::vector<ConcentrationGridFields> fields_;  // per material
   std::vector<std::string> setupReport_;
+  std::vector<ExternalScalarFlux::Flagged> flagged_;  // this rank's, between the two setup calls
+  std::string inputFile_;                             // for the errors completeSetup finds
   std::vector<std::string> noUptake_;  // "material m (name)" of those that take up no lithium
   const GhostNodes* ghosts_ = nullptr;
 };
