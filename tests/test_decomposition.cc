@@ -197,5 +197,17 @@ TEST(Bisection, TilesTheGridAndSharesAnLEvenly) {
   EXPECT_THROW(bisectCells(Vec3i(3, 3, 1), 8, std::vector<double>(9, 1.0)), std::runtime_error);
 }
 
+// Of the axes a box can be cut along, bisection takes the one whose best cut shares the
+// particles most evenly: 3 x 2 cells of a particle each on 2 ranks are cut across y (3 | 3), not
+// along x, the axis they span most (4 | 2 at best).
+TEST(Bisection, CutsAlongTheAxisThatSharesBest) {
+  const Vec3i cells(3, 2, 1);
+  const std::vector<double> perCell(6, 1.0);
+  const std::vector<CellBox> boxes = bisectCells(cells, 2, perCell);
+  const std::vector<double> counts = particlesPerBox(cells, boxes, perCell);
+  EXPECT_EQ(counts, std::vector<double>({3.0, 3.0}));
+  EXPECT_EQ(boxes[0].upper, Vec3i(3, 1, 1));
+}
+
 }  // namespace
 }  // namespace anode

@@ -37,50 +37,69 @@ int span(const std::vector<double>& planes) {
   return first < 0 ? static_cast<int>(planes.size()) : last - first + 1;
 }
 
+// A cut of `box` along one axis after `cut` planes, and how far its left part's particles are
+// from the share of its ranks.
+struct Cut {
+  int axis = -1, cut = 0;
+  double gap = INFINITY;
+  long span = 0;
+};
+
+// The best cut along axis d leaving each half a cell per rank (gap infinite when none can).
+Cut cutAlong(const Cells& c, const CellBox& box, int d, int left, int ranks) {
+  Cut best;
+  const Vec3i extent = box.upper - box.lower;
+  if (extent[d] < 2) return best;
+  const long across = box.cellCount() / extent[d];
+  // Each half needs at least as many cells as ranks: its planes times the cells across.
+  const int minLeft = static_cast<int>((left + across - 1) / across);
+  const int minRight = static_cast<int>((ranks - left + across - 1) / across);
+  if (minLeft + minRight > extent[d]) return best;
+  const std::vector<double> planes = planesOf(c, box, d);
+  double total = 0;
+  for (double p : planes) total += p;
+  const double target = total * left / ranks;
+  best.axis = d;
+  best.span = span(planes) * 4096L + extent[d];
+  best.cut =
+      std::clamp(static_cast<int>(std::lround(static_cast<double>(extent[d]) * left / ranks)),
+                 minLeft, extent[d] - minRight);
+  if (total <= 0) {
+    best.gap = 0;
+    return best;
+  }
+  double sum = 0;
+  for (int k = 1; k < extent[d]; ++k) {
+    sum += planes[k - 1];
+    if (k < minLeft || k > extent[d] - minRight) continue;
+    const double gap = std::abs(sum - target) / total;
+    if (gap < best.gap) best.gap = gap, best.cut = k;
+  }
+  return best;
+}
+
 void bisect(const Cells& c, const CellBox& box, int ranks, int first, std::vector<CellBox>& out) {
   if (ranks == 1) {
     out[first] = box;
     return;
   }
   const int left = ranks / 2, right = ranks - left;
-  // The axis the particles span most (then the box's longest) that can take a cut leaving each
-  // half a cell per rank.
-  const Vec3i extent = box.upper - box.lower;
-  int axis = -1;
-  long best = -1;
-  std::vector<double> planes;
+  // Of the axes that can take a cut, the one whose best cut shares the particles most nearly as
+  // the ranks are shared (within 1e-3 of the total: the one the particles span most, then the
+  // box's longest).
+  Cut best;
   for (int d = 0; d < 3; ++d) {
-    if (extent[d] < 2) continue;
-    const long across = box.cellCount() / extent[d];
-    std::vector<double> p = planesOf(c, box, d);
-    const long score = span(p) * 4096L + extent[d];
-    // Each half needs at least as many cells as ranks: its planes times the cells across.
-    const int minLeft = static_cast<int>((left + across - 1) / across);
-    const int minRight = static_cast<int>((right + across - 1) / across);
-    if (minLeft + minRight > extent[d]) continue;
-    if (score > best) best = score, axis = d, planes.swap(p);
+    const Cut cut = cutAlong(c, box, d, left, ranks);
+    if (cut.axis < 0) continue;
+    if (best.axis < 0 || cut.gap < best.gap - 1e-3 ||
+        (std::abs(cut.gap - best.gap) <= 1e-3 && cut.span > best.span))
+      best = cut;
   }
-  if (axis < 0)
+  if (best.axis < 0)
     throw std::runtime_error("recursive bisection: a box of " + std::to_string(box.cellCount()) +
                              " cells cannot hold " + std::to_string(ranks) + " ranks");
-  const long across = box.cellCount() / extent[axis];
-  const int minLeft = static_cast<int>((left + across - 1) / across);
-  const int minRight = static_cast<int>((right + across - 1) / across);
-  double total = 0;
-  for (double p : planes) total += p;
-  // The cut after `cut` planes whose left sum is nearest total * left / ranks.
-  const double target = total * left / ranks;
-  int cut = static_cast<int>(std::lround(static_cast<double>(extent[axis]) * left / ranks));
-  if (total > 0) {
-    double sum = 0, bestGap = INFINITY;
-    for (int k = 1; k < extent[axis]; ++k) {
-      sum += planes[k - 1];
-      if (std::abs(sum - target) < bestGap) bestGap = std::abs(sum - target), cut = k;
-    }
-  }
-  cut = std::clamp(cut, minLeft, extent[axis] - minRight);
   CellBox low = box, high = box;
-  low.upper[axis] = high.lower[axis] = box.lower[axis] + cut;
+  low.upper[best.axis] = high.lower[best.axis] = box.lower[best.axis] + best.cut;
   bisect(c, low, left, first, out);
   bisect(c, high, right, first + left, out);
 }

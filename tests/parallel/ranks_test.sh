@@ -8,6 +8,9 @@
 #                                checkpoint to STEPS; agrees with one rank
 #   decompose INPUT RANKS        sus --decompose RANKS prints the boxes and imbalance a RANKS-rank
 #                                run draws at setup
+#   setup INPUT                  4 ranks each set up only their box: the largest rank's memory
+#                                after setup at most 0.75 of one rank's, the particles the same
+#                                as one rank's at step 0
 #   chain INPUT STEPS R1 R2 R3   R1 ranks, restarted on R2 then R3: each restart's rank that read
 #                                most read at most 0.6 of the checkpoint; agrees with one rank
 #   kill INPUT STEPS             a rank of 3 is killed (SIGKILL) at a random moment: the job ends
@@ -120,6 +123,19 @@ EOF
     echo "imbalance $dry, as the run's $run"
     timeout 30 mpirun -np 2 "$sus" --decompose 2 "$input" > "$work/mpi.txt" 2>&1
     [ $? = 2 ] || fail "--decompose under mpirun: not exit 2"
+    ;;
+  setup)
+    input=$1
+    run 1 "$work/r1" --max-timesteps 1 "$input" || fail "1 rank: exit $?"
+    run 4 "$work/r4" --max-timesteps 1 "$input" || fail "4 ranks: exit $?"
+    /usr/bin/python3 - "$work/r1.log" "$work/r4.log" <<'EOF' || fail "4 ranks' setup memory not at most 0.75 of one rank's"
+import re, sys
+one = float(re.search(r"sus: setup .*peak memory ([0-9.]+) MB", open(sys.argv[1]).read()).group(1))
+four = float(re.search(r"sus: setup .*peak memory ([0-9.]+) MB on the largest", open(sys.argv[2]).read()).group(1))
+print(f"setup peak memory: 1 rank {one} MB, the largest of 4 ranks {four} MB ({four / one:.2f})")
+sys.exit(0 if four <= 0.75 * one else 1)
+EOF
+    $compare "$(stepFile "$work/r1" 0)" "$(stepFile "$work/r4" 0)" | tail -3 || fail "4 ranks' setup differs from 1"
     ;;
   chain)
     # A distributed run restarted on two other rank counts in turn: each restart's rank that read
