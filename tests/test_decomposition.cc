@@ -5,9 +5,11 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <functional>
 #include <limits>
 #include <numeric>
 #include <stdexcept>
+#include <string>
 
 #include "Core/Parallel/Bisection.h"
 #include "Core/Parallel/Decomposition.h"
@@ -154,6 +156,26 @@ TEST(Decomposition, BoxesDrawnAnewNeverFailWhereTheFirstFit) {
   EXPECT_EQ(again.cuts(1), (std::vector<int>{0, 1, 2, 3, 4}));
 }
 
+// The boxes Decomposition::bisected draws from the particles per cell.
+Decomposition bisect(const Vec3i& cells, int ranks, const std::vector<double>& perCell) {
+  return Decomposition::bisected(
+      cells, ranks,
+      [&](const std::vector<CellBox>& boxes, const std::function<int(const Vec3i&)>& partOf) {
+        // partOf names each cell's box among those cut at this level.
+        for (size_t b = 0; b < boxes.size(); ++b)
+          EXPECT_EQ(partOf(boxes[b].lower), static_cast<int>(b));
+        return planesOfBoxes(cells, perCell, boxes);
+      });
+}
+
+std::vector<CellBox> bisectCells(const Vec3i& cells, int ranks,
+                                 const std::vector<double>& perCell) {
+  const Decomposition d = bisect(cells, ranks, perCell);
+  std::vector<CellBox> boxes;
+  for (int r = 0; r < d.ranks(); ++r) boxes.push_back(d.box(r));
+  return boxes;
+}
+
 // Recursive bisection (Core/Parallel/Bisection.h): the boxes tile the grid, each at least a
 // cell; an L of particles that tensor-product cuts cannot share (its arms fill different rows
 // and columns) is shared evenly.
@@ -207,6 +229,60 @@ TEST(Bisection, CutsAlongTheAxisThatSharesBest) {
   const std::vector<double> counts = particlesPerBox(cells, boxes, perCell);
   EXPECT_EQ(counts, std::vector<double>({3.0, 3.0}));
   EXPECT_EQ(boxes[0].upper, Vec3i(3, 1, 1));
+}
+
+// Runs use bisected boxes: every cell's owner is the rank whose box holds it (cells outside the
+// grid: the nearest); the windows of neighbours share nodes; a checkpoint's copy (save, load)
+// draws the same boxes.
+TEST(Bisection, OwnersWindowsAndCheckpointCopyFollowTheBoxes) {
+  const Vec3i cells(9, 7, 5);
+  std::vector<double> perCell(cells.prod(), 0.0);
+  for (int k = 0; k < cells.z(); ++k)
+    for (int j = 0; j < cells.y(); ++j)
+      for (int i = 0; i < cells.x(); ++i)
+        perCell[(k * cells.y() + j) * cells.x() + i] = (i + 2 * j < 8) ? 3.0 : (k < 2 ? 1.0 : 0.0);
+  Grid whole;
+  whole.cells = cells;
+  whole.extra = Vec3i::Ones();
+  whole.dx = Vec3::Ones();
+  whole.upper = cells.cast<double>();
+  for (int ranks : {2, 5, 12}) {
+    SCOPED_TRACE(ranks);
+    const Decomposition d = bisect(cells, ranks, perCell);
+    ASSERT_EQ(d.ranks(), ranks);
+    for (int k = -1; k <= cells.z(); ++k)
+      for (int j = -1; j <= cells.y(); ++j)
+        for (int i = -1; i <= cells.x(); ++i) {
+          const Vec3i c(i, j, k);
+          const Vec3i inside = c.cwiseMax(0).cwiseMin(cells - Vec3i::Ones());
+          const int owner = d.ownerOfCell(c);
+          EXPECT_TRUE(d.box(owner).contains(inside)) << c.transpose();
+        }
+    for (int r = 0; r < ranks; ++r) {
+      const std::vector<int> near = d.neighbours(whole, r, 2);
+      for (int o = 0; o < ranks; ++o) {
+        if (o == r) continue;
+        const Grid a = d.window(whole, r, 2), b = d.window(whole, o, 2);
+        const bool share = (a.firstNode().array() <= b.lastNode().array()).all() &&
+                           (b.firstNode().array() <= a.lastNode().array()).all();
+        EXPECT_EQ(std::count(near.begin(), near.end(), o), share ? 1 : 0);
+      }
+    }
+    const std::string path = testing::TempDir() + "/bisected_layout.bin";
+    {
+      BinaryWriter out(path);
+      d.save(out);
+      out.finish();
+    }
+    BinaryReader in(path);
+    const Decomposition copy = Decomposition::load(in);
+    ASSERT_EQ(copy.ranks(), ranks);
+    for (int r = 0; r < ranks; ++r) {
+      EXPECT_EQ(copy.box(r).lower, d.box(r).lower);
+      EXPECT_EQ(copy.box(r).upper, d.box(r).upper);
+    }
+    EXPECT_EQ(copy.describe(), d.describe());
+  }
 }
 
 }  // namespace

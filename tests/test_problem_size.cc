@@ -118,8 +118,8 @@ TEST(ParticleFill, BoundingBoxFillPlacesTheSameParticlesAsAWholeGridScan) {
 
 // A rank fills only the cells of its box (docs/parallel.md, "Setup per box"): over boxes that
 // tile the grid unevenly, each box's points are those of the whole fill lying in its cells, in
-// the same order, each with its place in the whole fill; the counts per box and per cell plane
-// are those of the points.
+// the same order, each with its place in the whole fill; the counts per box and per cell (summed
+// per cell plane) are those of the points.
 TEST(ParticleFill, FillsOfBoxesTilingTheGridAreTheWholeFillShared) {
   const Grid grid = fillTestGrid();
   auto sphere = std::make_shared<SpherePiece>();
@@ -143,7 +143,9 @@ TEST(ParticleFill, FillsOfBoxesTilingTheGridAreTheWholeFillShared) {
       planes[d].assign(grid.cells[d], 0.0);
       expectedPlanes[d].assign(grid.cells[d], 0.0);
     }
-    lattice.addPerPlane(planes);
+    lattice.forEachOccupiedCell([&](const Vec3i& cell, double n) {
+      for (int d = 0; d < 3; ++d) planes[d][cell[d]] += n;
+    });
     for (const Vec3& x : whole)
       for (int d = 0; d < 3; ++d) expectedPlanes[d][grid.interiorCell(x)[d]] += 1;
     EXPECT_EQ(planes, expectedPlanes);

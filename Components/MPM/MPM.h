@@ -87,7 +87,7 @@ class MPM {
   // The boxes of a distributed run, for its checkpoint; adoptLayout takes them back after each
   // rank loaded its own part.
   struct Layout {
-    std::array<std::vector<int>, 3> cuts;  // per axis (Decomposition::cuts)
+    Decomposition boxes;
     int ghostWidth = 0;
   };
   void saveLayout(BinaryWriter& out) const;
@@ -183,6 +183,16 @@ class MPM {
   CellBox grownBySetupReach(const CellBox& box) const;
   void checkParticlesOfRank(const CellBox& region) const;
   void keepParticlesOfBox(const CellBox& box);
+  // The boxes of this rank count by recursive bisection (`earlier`, when it has as many, where a
+  // box cannot be cut); the counts per cell plane it cuts by: empty, one added, and those of the
+  // particles (of every rank's unless `allHere`).
+  Decomposition drawBoxes(const Decomposition::PlanesOfBoxes& planesOf,
+                          const Decomposition* earlier) const;
+  static std::vector<std::array<std::vector<double>, 3>> emptyPlanes(
+      const std::vector<CellBox>& boxes);
+  static void addToPlanes(const std::vector<CellBox>& boxes, int b, const Vec3i& cell, double count,
+                          std::vector<std::array<std::vector<double>, 3>>& planes);
+  Decomposition::PlanesOfBoxes particlePlanes(bool allHere) const;
   // Particles per cell plane of the whole grid, per axis (of this rank's particles).
   std::array<std::vector<double>, 3> particlesPerPlane() const;
   // The grid arrays the ghost sums after P2G complete.

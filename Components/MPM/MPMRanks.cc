@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <numeric>
+#include <optional>
 #include <sstream>
 #include <string>
 
@@ -37,12 +38,18 @@ std::array<std::vector<double>, 3> MPM::particlesPerPlane() const {
 CellBox MPM::setupBox() {
   const int ranks = Communicator::size();
   if (ranks == 1) return {Vec3i::Zero(), whole_.cells};
-  // The boxes from the particles per cell plane the geom_objects lay out, counted before any
-  // particle is stored: the same on every rank, and the same boxes a fill of everything gives.
-  std::array<std::vector<double>, 3> planes;
-  for (int d = 0; d < 3; ++d) planes[d].assign(whole_.cells[d], 0.0);
-  for (const MaterialSeeds& s : seeds_) s.addPerPlane(whole_, planes);
-  decomposition_ = Decomposition::balanced(whole_.cells, ranks, planes);
+  // The boxes from the particles the geom_objects lay out per cell, counted before any particle
+  // is stored: the same on every rank, and the same boxes a fill of everything gives.
+  decomposition_ = drawBoxes(
+      [&](const std::vector<CellBox>& boxes, const std::function<int(const Vec3i&)>& partOf) {
+        std::vector<std::array<std::vector<double>, 3>> planes = emptyPlanes(boxes);
+        for (const MaterialSeeds& s : seeds_)
+          s.forEachOccupiedCell(whole_, [&](const Vec3i& cell, double count) {
+            addToPlanes(boxes, partOf(cell), cell, count, planes);
+          });
+        return planes;
+      },
+      nullptr);
   return decomposition_.box(Communicator::rank());
 }
 
@@ -95,6 +102,57 @@ void MPM::keepParticlesOfBox(const CellBox& box) {
   }
 }
 
+std::vector<std::array<std::vector<double>, 3>> MPM::emptyPlanes(
+    const std::vector<CellBox>& boxes) {
+  std::vector<std::array<std::vector<double>, 3>> planes(boxes.size());
+  for (size_t b = 0; b < boxes.size(); ++b)
+    for (int d = 0; d < 3; ++d) planes[b][d].assign(boxes[b].upper[d] - boxes[b].lower[d], 0.0);
+  return planes;
+}
+
+void MPM::addToPlanes(const std::vector<CellBox>& boxes, int b, const Vec3i& cell, double count,
+                      std::vector<std::array<std::vector<double>, 3>>& planes) {
+  if (b < 0) return;
+  for (int d = 0; d < 3; ++d) planes[b][d][cell[d] - boxes[b].lower[d]] += count;
+}
+
+Decomposition::PlanesOfBoxes MPM::particlePlanes(bool allHere) const {
+  return [this, allHere](const std::vector<CellBox>& boxes,
+                         const std::function<int(const Vec3i&)>& partOf) {
+    std::vector<std::array<std::vector<double>, 3>> planes = emptyPlanes(boxes);
+    for (const MPMMaterial& mat : materials_)
+      for (const Vec3& x : mat.particles.x) {
+        const Vec3i cell = whole_.interiorCell(x);
+        addToPlanes(boxes, partOf(cell), cell, 1.0, planes);
+      }
+    if (!allHere) {
+      // The counts of every rank's particles: one sum of all the level's planes.
+      std::vector<double> flat;
+      for (const auto& box : planes)
+        for (const std::vector<double>& axis : box)
+          flat.insert(flat.end(), axis.begin(), axis.end());
+      collective::sum(flat.data(), static_cast<int>(flat.size()));
+      size_t k = 0;
+      for (auto& box : planes)
+        for (std::vector<double>& axis : box)
+          for (double& v : axis) v = flat[k++];
+    }
+    return planes;
+  };
+}
+
+Decomposition MPM::drawBoxes(const Decomposition::PlanesOfBoxes& planesOf,
+                             const Decomposition* earlier) const {
+  // Recursive bisection; where a box cannot be cut for its ranks, the boxes drawn before (boxes
+  // redrawn mid-run never fail where setup succeeded).
+  try {
+    return Decomposition::bisected(whole_.cells, Communicator::size(), planesOf);
+  } catch (const std::runtime_error&) {
+    if (earlier && earlier->ranks() == Communicator::size()) return *earlier;
+    throw;
+  }
+}
+
 int MPM::computeGhostWidth(bool allHere) const {
   if (flags_.interpolator != InterpolatorKind::CPDI)
     return flags_.interpolator == InterpolatorKind::Linear ? 1 : 2;
@@ -121,12 +179,9 @@ void MPM::decompose(bool allHere) {
     layOutGrid();
     return;
   }
-  std::array<std::vector<double>, 3> planes = particlesPerPlane();
-  if (!allHere)
-    for (int d = 0; d < 3; ++d) collective::sum(planes[d].data(), whole_.cells[d]);
   const Decomposition earlier = decomposition_;
   // The boxes drawn before (for this rank count once set up) are the fallback.
-  decomposition_ = Decomposition::balanced(whole_.cells, ranks, planes, &earlier);
+  decomposition_ = drawBoxes(particlePlanes(allHere), &earlier);
   ghostWidth_ = computeGhostWidth(allHere);
   std::vector<std::string> send(ranks);
   for (MPMMaterial& mat : materials_) {
@@ -192,11 +247,20 @@ std::string MPM::describeDecomposition(int ranks) {
   const Decomposition cuts = Decomposition::balanced(cells, ranks, particlesPerPlane());
   std::vector<CellBox> tensor;
   for (int r = 0; r < ranks; ++r) tensor.push_back(cuts.box(r));
+  // The boxes a run of `ranks` ranks draws (drawBoxes' bisection, here from every particle).
+  std::optional<Decomposition> bisected;
+  std::string bisectionError;
+  try {
+    bisected = Decomposition::bisected(cells, ranks, particlePlanes(true));
+  } catch (const std::runtime_error& e) {
+    bisectionError = e.what();
+  }
   int valuesPerNode = 0;
   for (const NodeArray& a : ghostSumArrays()) valuesPerNode += a.width;
   const int ghost = computeGhostWidth(true);
   std::ostringstream s;
-  s << "sus --decompose " << ranks << ": " << cuts.describe() << "\n";
+  s << "sus --decompose " << ranks << ": "
+    << (bisected ? bisected->describe() : "no boxes: " + bisectionError) << "\n";
   // Per layout: particles per box, imbalance, and the nodes a box stores beyond its own cells
   // (its box grown by the ghost layers within the grid) times the values of a ghost sum.
   const auto describe = [&](const char* name, const std::vector<CellBox>& boxes) {
@@ -216,12 +280,12 @@ std::string MPM::describeDecomposition(int ranks) {
       << ghostNodes << " ghost nodes (at most " << mostGhostNodes << " a box), about "
       << 8.0 * valuesPerNode * ghostNodes << " bytes of ghost sums a step\n";
   };
-  describe("tensor-product cuts (what runs use)", tensor);
-  try {
-    describe("recursive bisection (measured only)", bisectCells(cells, ranks, perCell));
-  } catch (const std::runtime_error& e) {
-    s << "  recursive bisection (measured only): " << e.what() << "\n";
+  if (bisected) {
+    std::vector<CellBox> boxes;
+    for (int r = 0; r < ranks; ++r) boxes.push_back(bisected->box(r));
+    describe("recursive bisection (what runs use)", boxes);
   }
+  describe("tensor-product cuts (measured only)", tensor);
   s << "  ghost layers " << ghost << " cells, " << valuesPerNode << " values a node\n";
   return s.str();
 }

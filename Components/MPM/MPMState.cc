@@ -53,23 +53,22 @@ void MPM::readState(BinaryReader& in, bool append) {
 }
 
 void MPM::saveLayout(BinaryWriter& out) const {
-  for (int d = 0; d < 3; ++d) out.array(decomposition_.cuts(d));
+  decomposition_.save(out);
   out.value<int32_t>(ghostWidth_);
 }
 
 MPM::Layout MPM::readLayout(BinaryReader& in) {
   Layout layout;
-  for (std::vector<int>& c : layout.cuts) in.array(c);
+  layout.boxes = Decomposition::load(in);
   layout.ghostWidth = in.value<int32_t>();
   return layout;
 }
 
 void MPM::adoptLayout(Collective, const Layout& layout) {
   ghostWidth_ = layout.ghostWidth;
-  for (int d = 0; d < 3; ++d)
-    if (layout.cuts[d].size() < 2 || layout.cuts[d].back() != whole_.cells[d])
-      throw std::runtime_error("the checkpoint's boxes are for another grid");
-  decomposition_ = Decomposition::fromCuts(layout.cuts);
+  if (layout.boxes.cells() != whole_.cells || layout.boxes.ranks() != Communicator::size())
+    throw std::runtime_error("the checkpoint's boxes are for another grid or rank count");
+  decomposition_ = layout.boxes;
   layOutWindow();
 }
 

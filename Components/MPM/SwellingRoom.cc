@@ -50,7 +50,7 @@ void forEachOccupiedCell(const Grid& g, const MaterialSeeds& seeds,
     if (object.smooth)
       for (const SmoothParticle& s : object.smoothLayout) visit(cellOf(g, s.x));
     else
-      object.lattice->forEachOccupiedCell(visit);
+      object.lattice->forEachOccupiedCell([&](const Vec3i& cell, double) { visit(cell); });
 }
 
 }  // namespace

@@ -190,17 +190,6 @@ int64_t PieceLattice::countIn(const CellBox& region) const {
   return n;
 }
 
-void PieceLattice::addPerPlane(std::array<std::vector<double>, 3>& planes) const {
-  for (int k = first_.z(); k <= last_.z(); ++k)
-    for (int j = first_.y(); j <= last_.y(); ++j)
-      for (int i = first_.x(); i <= last_.x(); ++i) {
-        const double n = perCell_[cellIndex(i, j, k)];
-        planes[0][i] += n;
-        planes[1][j] += n;
-        planes[2][k] += n;
-      }
-}
-
 void PieceLattice::fill(const CellBox& region, std::vector<Vec3>& x,
                         std::vector<int64_t>& place) const {
   const size_t n = static_cast<size_t>(countIn(region));
@@ -212,11 +201,12 @@ void PieceLattice::fill(const CellBox& region, std::vector<Vec3>& x,
   });
 }
 
-void PieceLattice::forEachOccupiedCell(const std::function<void(const Vec3i&)>& visit) const {
+void PieceLattice::forEachOccupiedCell(
+    const std::function<void(const Vec3i&, double)>& visit) const {
   for (int k = first_.z(); k <= last_.z(); ++k)
     for (int j = first_.y(); j <= last_.y(); ++j)
       for (int i = first_.x(); i <= last_.x(); ++i)
-        if (perCell_[cellIndex(i, j, k)] > 0) visit(Vec3i(i, j, k));
+        if (const uint32_t n = perCell_[cellIndex(i, j, k)]; n > 0) visit(Vec3i(i, j, k), n);
 }
 
 void PieceLattice::forEachPoint(const CellBox& region,

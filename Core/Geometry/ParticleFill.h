@@ -37,13 +37,11 @@ class PieceLattice {
   // Points inside the piece, in all and in the cells of `region`.
   int64_t count() const { return total_; }
   int64_t countIn(const CellBox& region) const;
-  // Adds each cell's points to the counts per cell plane of the grid, per axis.
-  void addPerPlane(std::array<std::vector<double>, 3>& planes) const;
   // The points in the cells of `region` in the order of a fill of the whole grid (cells z, y, x
   // slowest to fastest, then the points of a cell likewise), with each one's place in that order.
   void fill(const CellBox& region, std::vector<Vec3>& x, std::vector<int64_t>& place) const;
-  // Calls visit(cell) for each cell holding a point.
-  void forEachOccupiedCell(const std::function<void(const Vec3i&)>& visit) const;
+  // Calls visit(cell, points) for each cell holding points.
+  void forEachOccupiedCell(const std::function<void(const Vec3i&, double)>& visit) const;
   // Calls visit(x, place) for each of those points, in that order, storing none.
   void forEachPoint(const CellBox& region,
                     const std::function<void(const Vec3&, int64_t)>& visit) const;

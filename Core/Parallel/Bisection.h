@@ -1,21 +1,34 @@
 // Recursive coordinate bisection of the grid's cells (docs/parallel.md, "How the boxes are
-// chosen"): a box of cells and its ranks are cut in two along the axis its particles span most,
-// at the plane that shares the particles as the ranks are shared, and each half is cut again, so
-// that bodies whose particles are not separable along the axes (a disk on a square substrate)
-// are balanced. Measured by `sus --decompose` beside the tensor-product cuts runs use.
+// chosen"): a box of cells and its ranks are cut in two along the axis whose best cell plane
+// shares its particles most nearly as its ranks are shared, and each half is cut again
+// (Decomposition::bisected, level by level), so that bodies whose particles are not separable
+// along the axes (a disk on a square substrate) are balanced.
 #pragma once
 
+#include <array>
 #include <vector>
 
-#include "Core/Parallel/Decomposition.h"
+#include "Core/Grid/Grid.h"
 
 namespace anode {
 
-// `ranks` boxes over `cells`, every box at least one cell, from the particles per cell
-// (perCell[(k * cells.y() + j) * cells.x() + i]); throws std::runtime_error when a box cannot be
-// cut for its ranks (fewer cells than ranks; or halves of ranks that fit no cut, as 8 ranks on
-// 3x3x1 cells).
-std::vector<CellBox> bisectCells(const Vec3i& cells, int ranks, const std::vector<double>& perCell);
+// Where a box is cut: cells with index below `at` along `axis` form the first part.
+struct BisectionCut {
+  int axis = -1, at = 0;
+};
+
+// The cut of `box` (planes[d]: its particles per cell plane along axis d, from box.lower[d])
+// into a part for `left` of its `ranks` ranks and one for the others, each at least a cell per
+// rank; throws std::runtime_error when no axis has such a cut (fewer cells than ranks, or
+// halves of ranks that fit no cut, as 8 ranks on 3x3x1 cells).
+BisectionCut bisectionCut(const CellBox& box, const std::array<std::vector<double>, 3>& planes,
+                          int left, int ranks);
+
+// Per box, its particles per cell plane along each axis from the particles per cell of the grid
+// (perCell[(k * cells.y() + j) * cells.x() + i]).
+std::vector<std::array<std::vector<double>, 3>> planesOfBoxes(const Vec3i& cells,
+                                                              const std::vector<double>& perCell,
+                                                              const std::vector<CellBox>& boxes);
 
 // Particles per box: the sum of perCell over each box.
 std::vector<double> particlesPerBox(const Vec3i& cells, const std::vector<CellBox>& boxes,

@@ -5,6 +5,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "Core/Parallel/Bisection.h"
+
 namespace anode {
 
 namespace {
@@ -62,7 +64,7 @@ std::vector<int> quantileCuts(const std::vector<double>& counts, int cells, int 
 
 }  // namespace
 
-Decomposition::Decomposition(const Vec3i& cells) {
+Decomposition::Decomposition(const Vec3i& cells) : cells_(cells) {
   for (int d = 0; d < 3; ++d) cuts_[d] = {0, cells[d]};
 }
 
@@ -99,13 +101,141 @@ Decomposition Decomposition::balanced(const Vec3i& cells, int ranks,
 }
 
 Decomposition Decomposition::fromCuts(const std::array<std::vector<int>, 3>& cuts) {
-  Decomposition out;
+  Decomposition out(Vec3i(cuts[0].back(), cuts[1].back(), cuts[2].back()));
   out.cuts_ = cuts;
   for (int d = 0; d < 3; ++d) out.ranksPerAxis_[d] = static_cast<int>(cuts[d].size()) - 1;
   return out;
 }
 
+Decomposition Decomposition::bisected(const Vec3i& cells, int ranks,
+                                      const PlanesOfBoxes& planesOf) {
+  Decomposition out(cells);
+  if (ranks == 1) return out;
+  out.boxes_.assign(ranks, CellBox{});
+  // The parts of a level: a box, its ranks [first, first + ranks), and where the tree points
+  // to it (the cut above and which side; -1 for the root).
+  struct Part {
+    CellBox box;
+    int ranks, first, parent, side;
+  };
+  std::vector<Part> level{{CellBox{Vec3i::Zero(), cells}, ranks, 0, -1, 0}};
+  // While a level is cut, a child below -ranks points to the part -child - ranks - 1 of the
+  // level's parts to cut.
+  const auto pending = [ranks](int k) { return -ranks - 1 - k; };
+  while (!level.empty()) {
+    std::vector<CellBox> toCut;
+    for (Part& p : level) {
+      const int self = p.ranks == 1 ? -p.first - 1 : pending(static_cast<int>(toCut.size()));
+      if (p.ranks > 1) toCut.push_back(p.box);
+      if (p.ranks == 1) out.boxes_[p.first] = p.box;
+      if (p.parent >= 0) (p.side == 0 ? out.tree_[p.parent].low : out.tree_[p.parent].high) = self;
+    }
+    if (toCut.empty()) break;
+    const auto partOf = [&](const Vec3i& cell) {
+      if (out.tree_.empty()) return 0;
+      int node = 0;
+      for (;;) {
+        const Cut& c = out.tree_[node];
+        const int child = cell[c.axis] < c.at ? c.low : c.high;
+        if (child >= 0) {
+          node = child;
+        } else {
+          return child < -ranks ? -child - ranks - 1 : -1;
+        }
+      }
+    };
+    const std::vector<std::array<std::vector<double>, 3>> planes = planesOf(toCut, partOf);
+    std::vector<Part> next;
+    size_t k = 0;
+    for (const Part& p : level) {
+      if (p.ranks == 1) continue;
+      const int left = p.ranks / 2;
+      const BisectionCut cut = bisectionCut(p.box, planes[k++], left, p.ranks);
+      const int node = static_cast<int>(out.tree_.size());
+      out.tree_.push_back({cut.axis, cut.at, 0, 0});
+      if (p.parent >= 0) (p.side == 0 ? out.tree_[p.parent].low : out.tree_[p.parent].high) = node;
+      CellBox low = p.box, high = p.box;
+      low.upper[cut.axis] = high.lower[cut.axis] = cut.at;
+      next.push_back({low, left, p.first, node, 0});
+      next.push_back({high, p.ranks - left, p.first + left, node, 1});
+    }
+    level.swap(next);
+  }
+  out.ranksPerAxis_ = Vec3i::Ones();
+  return out;
+}
+
+void Decomposition::boxesFromTree() {
+  boxes_.clear();
+  if (tree_.empty()) return;
+  std::vector<std::pair<int, CellBox>> stack{{0, CellBox{Vec3i::Zero(), cells_}}};
+  while (!stack.empty()) {
+    const auto [node, box] = stack.back();
+    stack.pop_back();
+    const Cut& c = tree_[node];
+    CellBox low = box, high = box;
+    low.upper[c.axis] = high.lower[c.axis] = c.at;
+    for (const auto& [child, part] : {std::pair{c.low, low}, std::pair{c.high, high}}) {
+      if (child >= 0) {
+        stack.push_back({child, part});
+        continue;
+      }
+      const size_t rank = static_cast<size_t>(-child - 1);
+      if (boxes_.size() <= rank) boxes_.resize(rank + 1);
+      boxes_[rank] = part;
+    }
+  }
+}
+
+void Decomposition::save(BinaryWriter& out) const {
+  out.value<int32_t>(tree_.empty() ? 0 : 1);
+  for (int d = 0; d < 3; ++d) out.value<int32_t>(cells_[d]);
+  if (tree_.empty()) {
+    for (int d = 0; d < 3; ++d) out.array(cuts_[d]);
+    return;
+  }
+  std::vector<int> flat;
+  for (const Cut& c : tree_) flat.insert(flat.end(), {c.axis, c.at, c.low, c.high});
+  out.array(flat);
+}
+
+Decomposition Decomposition::load(BinaryReader& in) {
+  const int bisected = in.value<int32_t>();
+  Vec3i cells;
+  for (int d = 0; d < 3; ++d) cells[d] = in.value<int32_t>();
+  Decomposition out(cells);
+  if (!bisected) {
+    std::array<std::vector<int>, 3> cuts;
+    for (int d = 0; d < 3; ++d) {
+      in.array(cuts[d]);
+      if (cuts[d].size() < 2 || cuts[d].front() != 0 || cuts[d].back() != cells[d])
+        throw std::runtime_error("the checkpoint's boxes do not tile its grid");
+    }
+    return fromCuts(cuts);
+  }
+  std::vector<int> flat;
+  in.array(flat);
+  if (flat.empty() || flat.size() % 4 != 0)
+    throw std::runtime_error("the checkpoint's boxes are not a bisection");
+  const int nodes = static_cast<int>(flat.size() / 4);
+  for (size_t k = 0; k < flat.size(); k += 4) {
+    const Cut c{flat[k], flat[k + 1], flat[k + 2], flat[k + 3]};
+    // Children after their parent (the order bisected writes), ranks one per leaf.
+    const int self = static_cast<int>(k / 4);
+    if (c.axis < 0 || c.axis > 2 || c.low >= nodes || c.high >= nodes ||
+        (c.low >= 0 && c.low <= self) || (c.high >= 0 && c.high <= self) || c.low < -(nodes + 1) ||
+        c.high < -(nodes + 1))
+      throw std::runtime_error("the checkpoint's boxes are not a bisection");
+    out.tree_.push_back(c);
+  }
+  out.boxesFromTree();
+  if (static_cast<int>(out.boxes_.size()) != nodes + 1)
+    throw std::runtime_error("the checkpoint's boxes are not a bisection");
+  return out;
+}
+
 CellBox Decomposition::box(int rank) const {
+  if (!tree_.empty()) return boxes_[rank];
   const Vec3i& n = ranksPerAxis_;
   const Vec3i k(rank % n.x(), (rank / n.x()) % n.y(), rank / (n.x() * n.y()));
   CellBox b;
@@ -117,6 +247,16 @@ CellBox Decomposition::box(int rank) const {
 }
 
 int Decomposition::ownerOfCell(const Vec3i& cell) const {
+  if (!tree_.empty()) {
+    int node = 0;
+    for (;;) {
+      const Cut& c = tree_[node];
+      const int at = std::clamp(cell[c.axis], 0, cells_[c.axis] - 1);
+      const int child = at < c.at ? c.low : c.high;
+      if (child < 0) return -child - 1;
+      node = child;
+    }
+  }
   Vec3i k;
   for (int d = 0; d < 3; ++d) {
     const std::vector<int>& c = cuts_[d];
@@ -130,7 +270,7 @@ int Decomposition::ownerOfPoint(const Vec3& xi, int otherwise) const {
   if (!xi.allFinite()) return otherwise;
   Vec3i cell;
   for (int d = 0; d < 3; ++d)  // clamped as a double: a cast of one beyond int's range is undefined
-    cell[d] = static_cast<int>(std::clamp(std::floor(xi[d]), -1.0, double(cuts_[d].back())));
+    cell[d] = static_cast<int>(std::clamp(std::floor(xi[d]), -1.0, double(cells_[d])));
   return ownerOfCell(cell);
 }
 
@@ -164,6 +304,14 @@ std::vector<int> Decomposition::neighbours(const Grid& whole, int rank, int ghos
 
 std::string Decomposition::describe() const {
   std::ostringstream s;
+  if (!tree_.empty()) {
+    s << ranks() << " boxes by recursive bisection:";
+    for (int r = 0; r < ranks() && r < 4; ++r)
+      s << (r ? ", " : " ") << "[" << boxes_[r].lower.transpose() << "]-["
+        << boxes_[r].upper.transpose() << "]";
+    if (ranks() > 4) s << ", ...";
+    return s.str();
+  }
   s << ranksPerAxis_.x() << "x" << ranksPerAxis_.y() << "x" << ranksPerAxis_.z() << " boxes";
   const char* axis = "xyz";
   for (int d = 0; d < 3; ++d) {

@@ -5,10 +5,12 @@
 #pragma once
 
 #include <array>
+#include <functional>
 #include <string>
 #include <vector>
 
 #include "Core/Grid/Grid.h"
+#include "Core/Util/BinaryStream.h"
 
 namespace anode {
 
@@ -27,12 +29,30 @@ class Decomposition {
                                 const std::array<std::vector<double>, 3>& planeCounts,
                                 const Decomposition* earlier = nullptr);
 
+  // Per box of a level of recursive bisection, its particles per cell plane along each axis
+  // (planes[b][d][i]: plane box.lower[d] + i); `partOf(cell)` names the box of `boxes` a cell
+  // lies in (-1: one that is not cut further). Called once per level, on every rank alike (a
+  // distributed caller sums its particles' counts over the ranks there).
+  using PlanesOfBoxes = std::function<std::vector<std::array<std::vector<double>, 3>>(
+      const std::vector<CellBox>& boxes, const std::function<int(const Vec3i&)>& partOf)>;
+  // `ranks` boxes by recursive coordinate bisection (Core/Parallel/Bisection.h): the grid and
+  // its ranks cut in two, each half again, level by level. Throws std::runtime_error when a box
+  // cannot be cut for its ranks.
+  static Decomposition bisected(const Vec3i& cells, int ranks, const PlanesOfBoxes& planesOf);
+
   // The boxes `cuts` (per axis: the first cell of each box and, last, the cell count) draw.
   static Decomposition fromCuts(const std::array<std::vector<int>, 3>& cuts);
+  // For a checkpoint: the boxes, as save writes them and load reads them back.
+  void save(BinaryWriter& out) const;
+  static Decomposition load(BinaryReader& in);
 
-  int ranks() const { return ranksPerAxis_.prod(); }
+  int ranks() const {
+    return tree_.empty() ? ranksPerAxis_.prod() : static_cast<int>(boxes_.size());
+  }
+  const Vec3i& cells() const { return cells_; }
+  // Tensor-product boxes: per axis (`cuts` along axis d: the first cell of each box and, last,
+  // cells[d]); of bisected ones, 1 1 1 and the grid's.
   const Vec3i& ranksPerAxis() const { return ranksPerAxis_; }
-  // Along axis d: the first cell of each box and, last, cells[d].
   const std::vector<int>& cuts(int d) const { return cuts_[d]; }
   CellBox box(int rank) const;
   // The rank owning a cell; a cell outside the interior counts as the nearest interior one.
@@ -46,12 +66,24 @@ class Decomposition {
   Grid window(const Grid& whole, int rank, int ghost) const;
   // The ranks whose windows share nodes with rank `rank`'s, in rank order, itself excluded.
   std::vector<int> neighbours(const Grid& whole, int rank, int ghost) const;
-  // "2x1x1 boxes, cuts x [0 16 40] ..." for the setup report.
+  // "2x1x1 boxes, cuts x [0 16 40] ..." or "4 boxes by recursive bisection: [0 0 0]-[12 40 45],
+  // ..." for the setup report.
   std::string describe() const;
 
  private:
+  // A cut of a bisected decomposition: cells with index below `at` along `axis` go to `low`, the
+  // others to `high`; a child >= 0 is a node, below 0 the box of rank -child - 1.
+  struct Cut {
+    int axis = 0, at = 0, low = 0, high = 0;
+  };
+  // The boxes the tree's leaves hold, walked from the whole grid.
+  void boxesFromTree();
+
+  Vec3i cells_ = Vec3i::Ones();
   Vec3i ranksPerAxis_ = Vec3i::Ones();
   std::array<std::vector<int>, 3> cuts_;
+  std::vector<Cut> tree_;       // bisected: its cuts, tree_[0] the root; empty: tensor product
+  std::vector<CellBox> boxes_;  // bisected: per rank
 };
 
 }  // namespace anode

@@ -116,7 +116,7 @@ EOF
     boxes=$(sed -n "s/^sus --decompose $ranks: //p" "$work/dry.txt")
     grep -qF "sus: $ranks ranks: $boxes," "$work/run.log" ||
       fail "the run drew other boxes: $(grep "ranks:" "$work/run.log")"
-    dry=$(sed -n 's/^  tensor-product.*imbalance (most \/ mean) \([0-9.]*\).*/\1/p' "$work/dry.txt")
+    dry=$(sed -n 's/^  recursive bisection.*imbalance (most \/ mean) \([0-9.]*\).*/\1/p' "$work/dry.txt")
     run=$(sed -n 's/.*particles per rank max\/mean \([0-9.]*\)$/\1/p' "$work/run.log" | head -1)
     /usr/bin/python3 -c "import sys; sys.exit(abs($dry - $run) > 1e-3)" ||
       fail "imbalance $dry dry, $run in the run"

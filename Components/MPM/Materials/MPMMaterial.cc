@@ -151,18 +151,13 @@ void MaterialSeeds::forEachPosition(const Grid& grid,
     object.forEachParticle(grid, [&](const Vec3& x, double) { visit(x); });
 }
 
-void MaterialSeeds::addPerPlane(const Grid& grid,
-                                std::array<std::vector<double>, 3>& planes) const {
-  for (const Object& object : objects) {
-    if (!object.smooth) {
-      object.lattice->addPerPlane(planes);
-      continue;
-    }
-    for (const SmoothParticle& s : object.smoothLayout) {
-      const Vec3i c = grid.interiorCell(s.x);
-      for (int d = 0; d < 3; ++d) planes[d][c[d]] += 1;
-    }
-  }
+void MaterialSeeds::forEachOccupiedCell(
+    const Grid& grid, const std::function<void(const Vec3i&, double)>& visit) const {
+  for (const Object& object : objects)
+    if (object.smooth)
+      for (const SmoothParticle& s : object.smoothLayout) visit(grid.interiorCell(s.x), 1.0);
+    else
+      object.lattice->forEachOccupiedCell(visit);
 }
 
 std::string formatVector(const Vec3& v) {

@@ -66,8 +66,10 @@ struct MaterialSeeds {
   // Calls visit(x) with the position of each particle the objects lay out (on every rank), in
   // the order of their IDs, storing none.
   void forEachPosition(const Grid& grid, const std::function<void(const Vec3&)>& visit) const;
-  // Adds the objects' particles per cell plane of the grid, per axis.
-  void addPerPlane(const Grid& grid, std::array<std::vector<double>, 3>& planes) const;
+  // Calls visit(cell, particles) for the cells the objects lay particles in (a cell once per
+  // object at most).
+  void forEachOccupiedCell(const Grid& grid,
+                           const std::function<void(const Vec3i&, double)>& visit) const;
 };
 
 struct MPMMaterial {
