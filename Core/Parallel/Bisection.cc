@@ -20,43 +20,58 @@ int span(const std::vector<double>& planes) {
   return first < 0 ? static_cast<int>(planes.size()) : last - first + 1;
 }
 
-// A cut after `cut` planes along an axis, how far its first part's particles are from the share
-// of its ranks (relative to the box's), and the axis' preference when two share alike.
+// A cut after `cut` planes along an axis giving its first part `left` of the ranks, the load of
+// the busier part (particles per rank over the box's mean), and the axis' preference when two
+// cuts load alike.
 struct Candidate {
-  int cut = 0;
-  double gap = INFINITY;
+  int cut = 0, left = 0;
+  double load = INFINITY;
   long preference = 0;
 };
 
-// The best cut along axis d leaving each part a cell per rank (gap infinite when none can).
-Candidate cutAlong(const CellBox& box, const std::vector<double>& planes, int d, int left,
-                   int ranks) {
+// Whether candidate a is better than b: a lighter load (by more than 1e-3), else a more even
+// split of the ranks, else the preferred axis.
+bool better(const Candidate& a, const Candidate& b, int ranks) {
+  if (std::abs(a.load - b.load) > 1e-3) return a.load < b.load;
+  if (std::abs(2 * a.left - ranks) != std::abs(2 * b.left - ranks))
+    return std::abs(2 * a.left - ranks) < std::abs(2 * b.left - ranks);
+  return a.preference > b.preference;
+}
+
+// The best cut along axis d, each part at least a cell per rank (load infinite when none).
+// Beside the even split of the ranks, a cut may give its first part the share of the ranks
+// nearest its share of the particles (rounded either way), when that loads the busier part less.
+Candidate cutAlong(const CellBox& box, const std::vector<double>& planes, int d, int ranks) {
   Candidate best;
   const Vec3i extent = box.upper - box.lower;
   if (extent[d] < 2) return best;
   const long across = box.cellCount() / extent[d];
-  // Each part needs at least as many cells as ranks: its planes times the cells across.
-  const int minLeft = static_cast<int>((left + across - 1) / across);
-  const int minRight = static_cast<int>((ranks - left + across - 1) / across);
-  if (minLeft + minRight > extent[d]) return best;
   double total = 0;
   for (double p : planes) total += p;
   // The particles' span first, then the box's extent.
-  best.preference = span(planes) * 4096L + extent[d];
-  best.cut =
-      std::clamp(static_cast<int>(std::lround(static_cast<double>(extent[d]) * left / ranks)),
-                 minLeft, extent[d] - minRight);
+  const long preference = span(planes) * 4096L + extent[d];
   if (total <= 0) {
-    best.gap = 0;
+    // No particles: the middle, the ranks halved, if each half has a cell per rank.
+    const int left = ranks / 2;
+    const int cut =
+        std::max(1, static_cast<int>(std::lround(static_cast<double>(extent[d]) * left / ranks)));
+    if (cut * across >= left && (extent[d] - cut) * across >= ranks - left)
+      best = {cut, left, 1.0, preference};
     return best;
   }
-  const double target = total * left / ranks;
-  double sum = 0;
+  double below = 0;
   for (int k = 1; k < extent[d]; ++k) {
-    sum += planes[k - 1];
-    if (k < minLeft || k > extent[d] - minRight) continue;
-    const double gap = std::abs(sum - target) / total;
-    if (gap < best.gap) best.gap = gap, best.cut = k;
+    below += planes[k - 1];
+    const double share = below / total * ranks;
+    for (int left :
+         {ranks / 2, static_cast<int>(std::floor(share)), static_cast<int>(std::ceil(share))}) {
+      if (left < 1 || left >= ranks) continue;
+      if (k * across < left || (extent[d] - k) * across < ranks - left) continue;
+      const double load =
+          std::max(below / left, (total - below) / (ranks - left)) / (total / ranks);
+      const Candidate c{k, left, load, preference};
+      if (better(c, best, ranks)) best = c;
+    }
   }
   return best;
 }
@@ -64,18 +79,15 @@ Candidate cutAlong(const CellBox& box, const std::vector<double>& planes, int d,
 }  // namespace
 
 BisectionCut bisectionCut(const CellBox& box, const std::array<std::vector<double>, 3>& planes,
-                          int left, int ranks) {
-  // Of the axes that can take a cut, the one whose best cut shares the particles most nearly as
-  // the ranks (gaps within 1e-3 of the box's particles alike: the preferred axis).
+                          int ranks) {
   BisectionCut chosen;
   Candidate best;
   for (int d = 0; d < 3; ++d) {
-    const Candidate c = cutAlong(box, planes[d], d, left, ranks);
-    if (std::isinf(c.gap)) continue;
-    if (chosen.axis < 0 || c.gap < best.gap - 1e-3 ||
-        (std::abs(c.gap - best.gap) <= 1e-3 && c.preference > best.preference)) {
+    const Candidate c = cutAlong(box, planes[d], d, ranks);
+    if (std::isinf(c.load)) continue;
+    if (chosen.axis < 0 || better(c, best, ranks)) {
       best = c;
-      chosen = {d, box.lower[d] + c.cut};
+      chosen = {d, box.lower[d] + c.cut, c.left};
     }
   }
   if (chosen.axis < 0)

@@ -12,17 +12,19 @@
 
 namespace anode {
 
-// Where a box is cut: cells with index below `at` along `axis` form the first part.
+// Where a box is cut: cells with index below `at` along `axis` form the first part, which gets
+// `left` of the box's ranks.
 struct BisectionCut {
-  int axis = -1, at = 0;
+  int axis = -1, at = 0, left = 0;
 };
 
-// The cut of `box` (planes[d]: its particles per cell plane along axis d, from box.lower[d])
-// into a part for `left` of its `ranks` ranks and one for the others, each at least a cell per
-// rank; throws std::runtime_error when no axis has such a cut (fewer cells than ranks, or
-// halves of ranks that fit no cut, as 8 ranks on 3x3x1 cells).
+// The cut of `box` (planes[d]: its particles per cell plane along axis d, from box.lower[d]) and
+// its `ranks` ranks in two parts, each at least a cell per rank, that loads the busier part least
+// (particles per rank): the ranks halved, or shared as the cut shares the particles; throws
+// std::runtime_error when no axis has such a cut (fewer cells than ranks, or parts that fit no
+// cut, as 8 ranks on 3x3x1 cells).
 BisectionCut bisectionCut(const CellBox& box, const std::array<std::vector<double>, 3>& planes,
-                          int left, int ranks);
+                          int ranks);
 
 // Per box, its particles per cell plane along each axis from the particles per cell of the grid
 // (perCell[(k * cells.y() + j) * cells.x() + i]).

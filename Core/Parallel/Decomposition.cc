@@ -149,8 +149,8 @@ Decomposition Decomposition::bisected(const Vec3i& cells, int ranks,
     size_t k = 0;
     for (const Part& p : level) {
       if (p.ranks == 1) continue;
-      const int left = p.ranks / 2;
-      const BisectionCut cut = bisectionCut(p.box, planes[k++], left, p.ranks);
+      const BisectionCut cut = bisectionCut(p.box, planes[k++], p.ranks);
+      const int left = cut.left;
       const int node = static_cast<int>(out.tree_.size());
       out.tree_.push_back({cut.axis, cut.at, 0, 0});
       if (p.parent >= 0) (p.side == 0 ? out.tree_[p.parent].low : out.tree_[p.parent].high) = node;
