@@ -123,6 +123,8 @@ std::pair<Vec3, Vec3> presetDirection(CameraPreset preset) {
 struct Bounds {
   Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity());
   Vec3 hi = -Vec3::Constant(std::numeric_limits<double>::infinity());
+  Bounds() = default;
+  explicit Bounds(const SpriteExtent& e) : lo(e.lo), hi(e.hi) {}
   bool empty() const { return !(lo.x() <= hi.x()); }
   Vec3 centre() const { return empty() ? Vec3(Vec3::Zero()) : Vec3(0.5 * (lo + hi)); }
   // Corner k of 8: bit 0 picks x, bit 1 y, bit 2 z from hi.
@@ -131,15 +133,20 @@ struct Bounds {
   }
 };
 
-// The box around the spheres.
-Bounds spriteBounds(const SpriteSet& s) {
-  Bounds b;
-  for (size_t i = 0; i < s.count(); ++i)
-    for (int d = 0; d < 3; ++d) {
-      b.lo[d] = std::min(b.lo[d], s.position[3 * i + d] - s.radius[i]);
-      b.hi[d] = std::max(b.hi[d], s.position[3 * i + d] + s.radius[i]);
-    }
-  return b;
+// Where the particles go in a picture of the scene: the viewport (x, y, width, height) beside
+// the title band and the colour bar's area.
+std::array<int, 4> particleViewport(const Scene& scene, Overlay overlay) {
+  const int W = scene.width, H = scene.height;
+  const int titleSize = std::max(12, H / 30);
+  const bool overlaid = overlay == Overlay::TitleAndColourBar;
+  const int titleBand = overlaid ? 2 * titleSize : 0;
+  const int barArea = overlaid ? std::clamp(W * 17 / 100, 110, 400) : 0;
+  return {0, 0, W - barArea, H - titleBand};
+}
+
+// A layer's pixel: depth in the bits above 24, the colour below.
+uint64_t packPixel(uint64_t depth, const unsigned char* rgb) {
+  return depth << 24 | uint64_t{rgb[0]} << 16 | uint64_t{rgb[1]} << 8 | rgb[2];
 }
 
 struct View {
@@ -192,14 +199,24 @@ View makeView(const Camera& camera, const Bounds& bounds, double aspect) {
 
 }  // namespace
 
-std::pair<double, double> colourRange(const Scene& scene, const SpriteSet& s) {
-  if (scene.range) return *scene.range;
-  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+SpriteExtent SpriteExtent::of(const SpriteSet& s) {
+  SpriteExtent e;
+  for (size_t i = 0; i < s.count(); ++i)
+    for (int d = 0; d < 3; ++d) {
+      e.lo[d] = std::min(e.lo[d], s.position[3 * i + d] - s.radius[i]);
+      e.hi[d] = std::max(e.hi[d], s.position[3 * i + d] + s.radius[i]);
+    }
   for (double v : s.value)
     if (std::isfinite(v)) {
-      lo = std::min(lo, v);
-      hi = std::max(hi, v);
+      e.valueLo = std::min(e.valueLo, v);
+      e.valueHi = std::max(e.valueHi, v);
     }
+  return e;
+}
+
+std::pair<double, double> colourRange(const Scene& scene, const SpriteExtent& e) {
+  if (scene.range) return *scene.range;
+  const double lo = e.valueLo, hi = e.valueHi;
   if (!(lo <= hi)) return {0, 1};
   if (hi > lo) return {lo, hi};
   return lo == 0 ? std::make_pair(0.0, 1.0)
@@ -352,27 +369,30 @@ void drawColourBar(Canvas& canvas, const std::array<int, 4>& bar, std::pair<doub
 
 RenderedScene SceneRenderer::render(const Scene& scene, const SpriteSet& sprites, double time,
                                     Overlay overlay) {
+  const SpriteExtent extent = SpriteExtent::of(sprites);
+  return finish(scene, drawLayer(scene, sprites, extent, overlay), extent, time, overlay);
+}
+
+namespace {
+
+// The camera of a picture of the scene, for sprites of this extent.
+View viewOf(const Scene& scene, const SpriteExtent& extent, Overlay overlay) {
+  const std::array<int, 4> viewport = particleViewport(scene, overlay);
+  return makeView(scene.camera, Bounds(extent), static_cast<double>(viewport[2]) / viewport[3]);
+}
+
+}  // namespace
+
+PixelLayer SceneRenderer::drawLayer(const Scene& scene, const SpriteSet& sprites,
+                                    const SpriteExtent& extent, Overlay overlay) {
   const int W = scene.width, H = scene.height;
   const RGB background = {scene.background[0], scene.background[1], scene.background[2]};
-  const RGB ink = inkOn(scene.background);
-  const int titleSize = std::max(12, H / 30), labelSize = std::max(10, H / 44);
-  const bool overlaid = overlay == Overlay::TitleAndColourBar;
-  const int titleBand = overlaid ? 2 * titleSize : 0;
-  const int barArea = overlaid ? std::clamp(W * 17 / 100, 110, 400) : 0;
-
-  RenderedScene out(Canvas(W, H, background));
-  out.viewport = {0, 0, W - barArea, H - titleBand};
-  out.range = colourRange(scene, sprites);
+  const std::array<int, 4> viewport = particleViewport(scene, overlay);
+  const std::pair<double, double> range = colourRange(scene, extent);
   const ColourMap colours(scene.colourMap);
-  // Particles.
   if (!gl_) gl_ = std::make_unique<GLState>();
   gl_->makeCurrent(W, H);
-  const Bounds bounds = spriteBounds(sprites);
-  const View view =
-      makeView(scene.camera, bounds, static_cast<double>(out.viewport[2]) / out.viewport[3]);
-  Eigen::Matrix4d shift = Eigen::Matrix4d::Identity();
-  shift.block<3, 1>(0, 3) = -view.origin;
-  out.worldToClip = view.projection * view.view * shift;
+  const View view = viewOf(scene, extent, overlay);
 
   glViewport(0, 0, W, H);
   glClearColor(static_cast<float>(background[0]), static_cast<float>(background[1]),
@@ -381,7 +401,7 @@ RenderedScene SceneRenderer::render(const Scene& scene, const SpriteSet& sprites
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   if (sprites.count() > 0) {
     std::vector<float> vertices(5 * sprites.count());
-    const double lo = out.range.first, span = out.range.second - out.range.first;
+    const double lo = range.first, span = range.second - range.first;
     for (size_t i = 0; i < sprites.count(); ++i) {
       float* v = &vertices[5 * i];
       for (int d = 0; d < 3; ++d)
@@ -390,7 +410,7 @@ RenderedScene SceneRenderer::render(const Scene& scene, const SpriteSet& sprites
       v[3] = static_cast<float>(std::isnan(t) ? 0.0 : std::clamp(t, 0.0, 1.0));
       v[4] = static_cast<float>(sprites.radius[i]);
     }
-    glViewport(out.viewport[0], out.viewport[1], out.viewport[2], out.viewport[3]);
+    glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glEnable(GL_PROGRAM_POINT_SIZE);
@@ -399,7 +419,7 @@ RenderedScene SceneRenderer::render(const Scene& scene, const SpriteSet& sprites
                           projectionF = view.projection.cast<float>();
     glUniformMatrix4fv(gl_->uView, 1, GL_FALSE, viewF.data());  // Eigen is column-major, as GL
     glUniformMatrix4fv(gl_->uProjection, 1, GL_FALSE, projectionF.data());
-    glUniform1f(gl_->uPointScale, static_cast<float>(view.projection(1, 1) * out.viewport[3]));
+    glUniform1f(gl_->uPointScale, static_cast<float>(view.projection(1, 1) * viewport[3]));
     glActiveTexture(GL_TEXTURE0);
     glBindTexture(GL_TEXTURE_2D, gl_->texture);
     const std::vector<unsigned char> table = colours.rgba8();
@@ -416,10 +436,42 @@ RenderedScene SceneRenderer::render(const Scene& scene, const SpriteSet& sprites
   if (const GLenum error = glGetError(); error != GL_NO_ERROR)
     throw std::runtime_error("OpenGL error " + std::to_string(error) +
                              " while drawing the particles");
-  const unsigned char* src = gl_->buffer.data();
+  GLint depthWidth = 0, depthHeight = 0, bytesPerValue = 0;
+  void* depth = nullptr;
+  if (!OSMesaGetDepthBuffer(gl_->context, &depthWidth, &depthHeight, &bytesPerValue, &depth) ||
+      depthWidth != W || depthHeight != H || (bytesPerValue != 2 && bytesPerValue != 4))
+    throw std::runtime_error("OSMesa gives no depth buffer of the picture's size");
+  const size_t pixels = static_cast<size_t>(W) * H;
+  PixelLayer layer(pixels);
+  const unsigned char* rgba = gl_->buffer.data();
+  for (size_t p = 0; p < pixels; ++p) {
+    const uint64_t z = bytesPerValue == 4 ? static_cast<const uint32_t*>(depth)[p]
+                                          : static_cast<const uint16_t*>(depth)[p];
+    layer[p] = packPixel(z, rgba + 4 * p);
+  }
+  return layer;
+}
+
+RenderedScene SceneRenderer::finish(const Scene& scene, const PixelLayer& layer,
+                                    const SpriteExtent& extent, double time, Overlay overlay) {
+  const int W = scene.width, H = scene.height;
+  const RGB background = {scene.background[0], scene.background[1], scene.background[2]};
+  const RGB ink = inkOn(scene.background);
+  const int titleSize = std::max(12, H / 30), labelSize = std::max(10, H / 44);
+  const bool overlaid = overlay == Overlay::TitleAndColourBar;
+  const int barArea = overlaid ? std::clamp(W * 17 / 100, 110, 400) : 0;
+
+  RenderedScene out(Canvas(W, H, background));
+  out.viewport = particleViewport(scene, overlay);
+  out.range = colourRange(scene, extent);
+  const View view = viewOf(scene, extent, overlay);
+  Eigen::Matrix4d shift = Eigen::Matrix4d::Identity();
+  shift.block<3, 1>(0, 3) = -view.origin;
+  out.worldToClip = view.projection * view.view * shift;
   unsigned char* dst = out.canvas.data().data();
-  for (size_t p = 0; p < static_cast<size_t>(W) * H; ++p)
-    for (int c = 0; c < 3; ++c) dst[3 * p + c] = src[4 * p + c];
+  for (size_t p = 0; p < layer.size(); ++p)
+    for (int c = 0; c < 3; ++c)
+      dst[3 * p + c] = static_cast<unsigned char>(layer[p] >> (16 - 8 * c));
 
   if (!overlaid) return out;
 

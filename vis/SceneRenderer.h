@@ -5,6 +5,8 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
+#include <limits>
 #include <memory>
 #include <string>
 #include <utility>
@@ -34,6 +36,24 @@ struct RenderedScene {
 // (a run's pictures), or nothing (the panels of a figure, which draws them once for all).
 enum class Overlay { TitleAndColourBar, None };
 
+// What the camera and the colours of a scene depend on besides the scene: the box around the
+// drawn spheres and the range of their finite values. The extent of several sets of sprites
+// (each rank's in a distributed run) is the smallest of their lows and the largest of their
+// highs.
+struct SpriteExtent {
+  Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity());
+  Vec3 hi = -Vec3::Constant(std::numeric_limits<double>::infinity());
+  double valueLo = std::numeric_limits<double>::infinity();
+  double valueHi = -std::numeric_limits<double>::infinity();
+  static SpriteExtent of(const SpriteSet& sprites);
+};
+
+// The particles of a picture, pixel by pixel (rows from the bottom): depth << 24 | r << 16 |
+// g << 8 | b, the background at the farthest depth. Sprites drawn in layers by several processes
+// with the same scene and extent make, pixel by pixel, the minimum of their layers: the nearest
+// sphere at each pixel, as one process drawing them all (sort-last compositing).
+using PixelLayer = std::vector<uint64_t>;
+
 class SceneRenderer {
  public:
   // Creates no OpenGL context yet: the first render does.
@@ -42,9 +62,18 @@ class SceneRenderer {
   SceneRenderer(const SceneRenderer&) = delete;
   SceneRenderer& operator=(const SceneRenderer&) = delete;
 
-  // Draws the sprites with the scene's camera, colour map and range, and the title with `time`.
+  // Draws the sprites with the scene's camera, colour map and range, and the title with `time`
+  // (drawLayer, then finish).
   RenderedScene render(const Scene& scene, const SpriteSet& sprites, double time,
                        Overlay overlay = Overlay::TitleAndColourBar);
+  // The layer of these sprites, drawn with the camera and colours of `extent` (all the sprites
+  // of the picture).
+  PixelLayer drawLayer(const Scene& scene, const SpriteSet& sprites, const SpriteExtent& extent,
+                       Overlay overlay = Overlay::TitleAndColourBar);
+  // The picture of a layer (of all the sprites): its colours, and the title and colour bar.
+  static RenderedScene finish(const Scene& scene, const PixelLayer& layer,
+                              const SpriteExtent& extent, double time,
+                              Overlay overlay = Overlay::TitleAndColourBar);
 
   // OSMesa contexts created by this process so far (a run without scenes creates none).
   static int contextsCreated();
@@ -57,8 +86,12 @@ class SceneRenderer {
 // Colour-bar ticks: round numbers within [lo, hi], about `target` of them.
 std::vector<double> niceTicks(double lo, double hi, int target = 5);
 
-// The values the scene's colours span for these sprites: its <range>, else the drawn values'.
-std::pair<double, double> colourRange(const Scene& scene, const SpriteSet& sprites);
+// The values the scene's colours span for sprites of this extent: its <range>, else the drawn
+// values'.
+std::pair<double, double> colourRange(const Scene& scene, const SpriteExtent& extent);
+inline std::pair<double, double> colourRange(const Scene& scene, const SpriteSet& sprites) {
+  return colourRange(scene, SpriteExtent::of(sprites));
+}
 
 // Black on a light background, white on a dark one.
 RGB inkOn(const Vec3& background);

@@ -46,6 +46,7 @@ double spriteRadius(double volume) {
 }
 
 SpriteSet makeSprites(const Scene& scene, const ParticleData& data) {
+  if (data.points.empty()) return {};  // a rank holding none of the scene's particles
   const FieldSpec& field = scene.field;
   const NamedArray* values = findArray(data, field.label);
   if (!values || values->isInteger())

@@ -179,6 +179,18 @@ namespace collective {
 void sum(double* values, int n) {
   reduce(values, n, MPI_SUM);
 }
+void minimumOnRoot(uint64_t* values, size_t n) {
+  if (!started || n == 0) return;
+  CommunicationTimer t;
+  bytes += 8.0 * static_cast<double>(n);
+  const bool root = Communicator::isRoot();
+  for (size_t first = 0; first < n; first += kLargest / 8) {
+    const int count = static_cast<int>(std::min(n - first, kLargest / 8));
+    check(MPI_Reduce(root ? MPI_IN_PLACE : values + first, root ? values + first : nullptr, count,
+                     MPI_UINT64_T, MPI_MIN, 0, MPI_COMM_WORLD),
+          "MPI_Reduce");
+  }
+}
 void minimum(double* values, int n) {
   reduce(values, n, MPI_MIN);
 }

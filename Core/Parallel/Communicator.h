@@ -53,6 +53,9 @@ double sum(double v);
 double minimum(double v);
 double maximum(double v);
 int64_t sum(int64_t v);
+// The smallest of each of `n` values over the ranks, on rank 0 only (the others' values are left
+// as they were); in pieces of at most 2^30 bytes.
+void minimumOnRoot(uint64_t* values, size_t n);
 // The sum of v over the ranks before this one (0 on rank 0).
 int64_t exclusiveSum(int64_t v);
 bool any(bool v);

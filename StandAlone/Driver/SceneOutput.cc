@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <filesystem>
+#include <optional>
 
 #include "Core/Parallel/Communicator.h"
 #include "StandAlone/Driver/OutputLabels.h"
@@ -50,42 +50,25 @@ bool SceneOutput::draws(const std::string& label) const {
 
 namespace {
 
-// A distributed run draws on rank 0 what every rank holds of a scene (its position and the few
-// arrays it needs; docs/parallel.md), in rank order; one rank keeps its own.
-ParticleData gatherToRoot(ParticleData data) {
-  if (Communicator::size() == 1) return data;
-  std::string bytes;
-  auto append = [&bytes](const std::vector<double>& v) {
-    const uint64_t n = v.size();
-    bytes.append(reinterpret_cast<const char*>(&n), sizeof n);
-    bytes.append(reinterpret_cast<const char*>(v.data()), n * sizeof(double));
-  };
-  append(data.points);
-  for (const NamedArray& a : data.arrays) append(a.real);
-  // To rank 0 only: the other ranks receive nothing (an all-gather would give each of them
-  // every drawn particle).
-  std::vector<std::string> send(Communicator::size());
-  send[0] = std::move(bytes);
-  const std::vector<std::string> all = collective::exchangeWithAll(send);
-  if (!Communicator::isRoot()) return {};
-  ParticleData out = data;
-  out.points.clear();
-  for (NamedArray& a : out.arrays) a.real.clear();
-  for (const std::string& piece : all) {
-    const char* in = piece.data();
-    auto take = [&in](std::vector<double>& v) {
-      uint64_t n = 0;
-      std::memcpy(&n, in, sizeof n);
-      in += sizeof n;
-      const size_t at = v.size();
-      v.resize(at + n);
-      if (n > 0) std::memcpy(v.data() + at, in, n * sizeof(double));
-      in += n * sizeof(double);
-    };
-    take(out.points);
-    for (NamedArray& a : out.arrays) take(a.real);
-  }
-  return out;
+// A distributed run's picture (docs/parallel.md, "Pictures"): every rank draws its own sprites
+// into a layer with the camera and colours of all of them (one reduction of their extent), and
+// the layers' pixel-wise minimum, the nearest sphere at each pixel, reaches rank 0, which adds
+// the title and colour bar. One rank draws its sprites as they are.
+std::optional<RenderedScene> drawTogether(SceneRenderer& renderer, const Scene& scene,
+                                          const SpriteSet& sprites, double t) {
+  if (Communicator::size() == 1) return renderer.render(scene, sprites, t);
+  SpriteExtent extent = SpriteExtent::of(sprites);
+  double lows[8] = {extent.lo.x(),  extent.lo.y(),  extent.lo.z(),  extent.valueLo,
+                    -extent.hi.x(), -extent.hi.y(), -extent.hi.z(), -extent.valueHi};
+  collective::minimum(lows, 8);
+  extent.lo = Vec3(lows[0], lows[1], lows[2]);
+  extent.hi = -Vec3(lows[4], lows[5], lows[6]);
+  extent.valueLo = lows[3];
+  extent.valueHi = -lows[7];
+  PixelLayer layer = renderer.drawLayer(scene, sprites, extent);
+  collective::minimumOnRoot(layer.data(), layer.size());
+  if (!Communicator::isRoot()) return std::nullopt;
+  return SceneRenderer::finish(scene, layer, extent, t);
 }
 
 // The first state at or after a scene time renders it (as <outputInterval> output steps).
@@ -108,20 +91,20 @@ void SceneOutput::renderDue(double t, MPM& mpm, const std::string& outputDir) {
     ScopedTimer timer(mpm.timers(), mpm.timers().task("render"));
     std::vector<std::string> labels = {scene.field.label};
     if (scene.field.label != "p.volume") labels.push_back("p.volume");
-    const ParticleData data =
-        gatherToRoot(gatherParticlesWhere(mpm, labels, [&](size_t m, const double* x) {
-          return scene.drawsMaterial(static_cast<int>(m)) && scene.keeps(x);
-        }));
-    if (!Communicator::isRoot()) {
+    const ParticleData data = gatherParticlesWhere(mpm, labels, [&](size_t m, const double* x) {
+      return scene.drawsMaterial(static_cast<int>(m)) && scene.keeps(x);
+    });
+    if (!renderer_) renderer_ = std::make_unique<SceneRenderer>();
+    const std::optional<RenderedScene> picture =
+        drawTogether(*renderer_, scene, makeSprites(scene, data), t);
+    if (!picture) {
       while (next_[k] < times.size() && crossed(times[next_[k]], t)) ++next_[k];
       continue;
     }
-    if (!renderer_) renderer_ = std::make_unique<SceneRenderer>();
-    const RenderedScene picture = renderer_->render(scene, makeSprites(scene, data), t);
     std::filesystem::create_directories(std::filesystem::path(outputDir) / "images");
     // One picture for every scene time this step crossed, each under its own name.
     for (; next_[k] < times.size() && crossed(times[next_[k]], t); ++next_[k]) {
-      writePNG(picture.canvas,
+      writePNG(picture->canvas,
                (std::filesystem::path(outputDir) / scene.imageFile(times[next_[k]])).string());
       ++imagesWritten_;
     }
