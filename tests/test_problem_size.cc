@@ -72,15 +72,25 @@ Grid fillTestGrid() {
   return grid;
 }
 
-TEST(ParticleFill, BoundingBoxFillPlacesTheSameParticlesAsAWholeGridScan) {
-  const Grid grid = fillTestGrid();
+// Pieces of the fill tests on fillTestGrid: a sphere inside it, a cylinder reaching beyond x-.
+std::shared_ptr<SpherePiece> testSphere() {
   auto sphere = std::make_shared<SpherePiece>();
   sphere->origin = Vec3(0.3, 0.7, 1.1);
   sphere->radius = 0.45;
+  return sphere;
+}
+std::shared_ptr<CylinderPiece> testCylinder() {
   auto cylinder = std::make_shared<CylinderPiece>();
-  cylinder->bottom = Vec3(-2, 0.2, 0.9);  // reaches beyond the grid
+  cylinder->bottom = Vec3(-2, 0.2, 0.9);
   cylinder->top = Vec3(1.7, 1.0, 1.6);
   cylinder->radius = 0.3;
+  return cylinder;
+}
+
+TEST(ParticleFill, BoundingBoxFillPlacesTheSameParticlesAsAWholeGridScan) {
+  const Grid grid = fillTestGrid();
+  auto sphere = testSphere();
+  auto cylinder = testCylinder();  // reaches beyond the grid
   auto box = std::make_shared<BoxPiece>();
   box->lo = Vec3(1.0, 0.0, 0.5);  // on the grid's lower faces
   box->hi = Vec3(2.0, 0.35, 0.8);
@@ -122,14 +132,7 @@ TEST(ParticleFill, BoundingBoxFillPlacesTheSameParticlesAsAWholeGridScan) {
 // per cell plane) are those of the points.
 TEST(ParticleFill, FillsOfBoxesTilingTheGridAreTheWholeFillShared) {
   const Grid grid = fillTestGrid();
-  auto sphere = std::make_shared<SpherePiece>();
-  sphere->origin = Vec3(0.3, 0.7, 1.1);
-  sphere->radius = 0.45;
-  auto cylinder = std::make_shared<CylinderPiece>();
-  cylinder->bottom = Vec3(-2, 0.2, 0.9);
-  cylinder->top = Vec3(1.7, 1.0, 1.6);
-  cylinder->radius = 0.3;
-  for (const GeometryPieceP& piece : std::vector<GeometryPieceP>{sphere, cylinder}) {
+  for (const GeometryPieceP& piece : std::vector<GeometryPieceP>{testSphere(), testCylinder()}) {
     const Vec3i res(2, 3, 2);
     const PieceLattice lattice(grid, piece, res);
     std::vector<Vec3> whole;
