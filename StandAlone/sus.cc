@@ -202,6 +202,7 @@ int main(int argc, char** argv) {
     anode::Communicator::stop();
     return 2;
   }
+  options.countParticlesOnly = decomposeRanks > 0;
   const int code = run(options, decomposeRanks);
   anode::Communicator::stop();
   return code;

@@ -20,7 +20,7 @@
 
 namespace anode {
 
-void MPM::problemSetup(const PSNode& root, double initTime, double maxTime) {
+void MPM::problemSetup(const PSNode& root, double initTime, double maxTime, bool withParticles) {
   flags_ = MPMFlags::fromInput(root);
   initTime_ = initTime;
   const PSNode gridNode = root.requireChild("Grid");
@@ -84,11 +84,15 @@ void MPM::problemSetup(const PSNode& root, double initTime, double maxTime) {
   // This rank's particles: those of its box (the whole grid on one rank) and, while the flux
   // particles are flagged, those setup needs around it.
   whole_ = grid_;
-  const CellBox box = setupBox();
+  const CellBox box = withParticles ? setupBox() : CellBox{};
   const CellBox region = grownBySetupReach(box);
   checkParticlesOfRank(region);
   for (size_t m = 0; m < materials_.size(); ++m) {
     materials_[m].placeParticles(seeds_[m], grid_, region);
+    // A smooth piece's layout of every particle is no longer needed once they are placed (a
+    // count for describeDecomposition keeps it).
+    if (withParticles)
+      for (MaterialSeeds::Object& object : seeds_[m].objects) object.smoothLayout = {};
     if (flags_.refineParticles &&
         (flags_.refineMaterial < 0 || flags_.refineMaterial == static_cast<int>(m)))
       materials_[m].particles.enable(Physics::Splitting);

@@ -34,7 +34,8 @@ class MPM {
   // particles the geom_objects lay out per cell, draws the boxes from the counts and creates
   // only the particles of its own box (docs/parallel.md, "Setup per box"). Calls no collective:
   // the ranks agree on its errors after it.
-  void problemSetup(const PSNode& root, double initTime, double maxTime);
+  // Without `withParticles`, the particles are counted, not created (describeDecomposition).
+  void problemSetup(const PSNode& root, double initTime, double maxTime, bool withParticles = true);
   // After problemSetup: lays out this rank's grid and completes the setup over the ranks (the
   // flux BCs' areas and capacities, their report).
   void distributeOverRanks(Collective);
@@ -96,9 +97,9 @@ class MPM {
   // After every rank loaded all particles (a one-rank checkpoint on several ranks): puts them in
   // ID order and keeps this rank's share under a decomposition drawn anew.
   void keepOwnShare(Collective);
-  // On one rank holding the whole problem: the boxes `ranks` ranks would draw for it, their
-  // particle counts and imbalance, and the ghost nodes and bytes of the ghost sums
-  // (sus --decompose N).
+  // After problemSetup without particles: the boxes `ranks` ranks would draw for the problem,
+  // their particle counts and imbalance, and the ghost nodes and bytes of the ghost sums, beside
+  // those of tensor-product cuts (sus --decompose N).
   std::string describeDecomposition(int ranks);
   // After each rank loaded some parts of a distributed checkpoint of another rank count: shares
   // the particles out under a decomposition drawn anew, each rank's in ID order.
@@ -193,6 +194,10 @@ class MPM {
   static void addToPlanes(const std::vector<CellBox>& boxes, int b, const Vec3i& cell, double count,
                           std::vector<std::array<std::vector<double>, 3>>& planes);
   Decomposition::PlanesOfBoxes particlePlanes(bool allHere) const;
+  // The counts per cell plane of seeds_ (setup's, before any particle is created).
+  Decomposition::PlanesOfBoxes seedPlanes() const;
+  // The ghost layers of the interpolator for CPDI domains reaching `reach` cells.
+  int ghostWidthFor(double reach) const;
   // Particles per cell plane of the whole grid, per axis (of this rank's particles).
   std::array<std::vector<double>, 3> particlesPerPlane() const;
   // The grid arrays the ghost sums after P2G complete.

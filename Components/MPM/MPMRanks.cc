@@ -40,17 +40,19 @@ CellBox MPM::setupBox() {
   if (ranks == 1) return {Vec3i::Zero(), whole_.cells};
   // The boxes from the particles the geom_objects lay out per cell, counted before any particle
   // is stored: the same on every rank, and the same boxes a fill of everything gives.
-  decomposition_ = drawBoxes(
-      [&](const std::vector<CellBox>& boxes, const std::function<int(const Vec3i&)>& partOf) {
-        std::vector<std::array<std::vector<double>, 3>> planes = emptyPlanes(boxes);
-        for (const MaterialSeeds& s : seeds_)
-          s.forEachOccupiedCell(whole_, [&](const Vec3i& cell, double count) {
-            addToPlanes(boxes, partOf(cell), cell, count, planes);
-          });
-        return planes;
-      },
-      nullptr);
+  decomposition_ = drawBoxes(seedPlanes(), nullptr);
   return decomposition_.box(Communicator::rank());
+}
+
+Decomposition::PlanesOfBoxes MPM::seedPlanes() const {
+  return [this](const std::vector<CellBox>& boxes, const std::function<int(const Vec3i&)>& partOf) {
+    std::vector<std::array<std::vector<double>, 3>> planes = emptyPlanes(boxes);
+    for (const MaterialSeeds& s : seeds_)
+      s.forEachOccupiedCell(whole_, [&](const Vec3i& cell, double count) {
+        addToPlanes(boxes, partOf(cell), cell, count, planes);
+      });
+    return planes;
+  };
 }
 
 CellBox MPM::grownBySetupReach(const CellBox& box) const {
@@ -153,11 +155,15 @@ Decomposition MPM::drawBoxes(const Decomposition::PlanesOfBoxes& planesOf,
   }
 }
 
-int MPM::computeGhostWidth(bool allHere) const {
+int MPM::ghostWidthFor(double reach) const {
   if (flags_.interpolator != InterpolatorKind::CPDI)
     return flags_.interpolator == InterpolatorKind::Linear ? 1 : 2;
   // CPDI: as far as a domain reaches (its half extent F size / 2 along an axis, in cells), and a
   // cell more for the domains to stretch until the next decomposition.
+  return std::max(2, static_cast<int>(std::ceil(reach)) + 1);
+}
+
+int MPM::computeGhostWidth(bool allHere) const {
   double reach = 0;
   for (const MPMMaterial& mat : materials_) {
     const ParticleSet& p = mat.particles;
@@ -167,7 +173,7 @@ int MPM::computeGhostWidth(bool allHere) const {
       reach = std::max(reach, 0.5 * (p.F[i] * p.size[i]).cwiseAbs().rowwise().sum().maxCoeff());
   }
   if (!allHere) reach = collective::maximum(reach);
-  return std::max(2, static_cast<int>(std::ceil(reach)) + 1);
+  return ghostWidthFor(reach);
 }
 
 void MPM::decompose(bool allHere) {
@@ -237,27 +243,44 @@ void MPM::sumGhostNodes() {
 }
 
 std::string MPM::describeDecomposition(int ranks) {
+  // From the particles the geom_objects lay out per cell, none of them created (problemSetup
+  // without particles): the counts setup draws a run's boxes from.
   const Vec3i& cells = whole_.cells;
   std::vector<double> perCell(static_cast<size_t>(cells.cast<long>().prod()), 0.0);
-  for (const MPMMaterial& mat : materials_)
-    for (const Vec3& x : mat.particles.x) {
-      const Vec3i c = whole_.interiorCell(x);
-      perCell[(static_cast<size_t>(c.z()) * cells.y() + c.y()) * cells.x() + c.x()] += 1;
+  std::array<std::vector<double>, 3> planes;
+  for (int d = 0; d < 3; ++d) planes[d].assign(cells[d], 0.0);
+  double reach = 0;  // of a CPDI domain at the start, in cells (computeGhostWidth)
+  for (const MaterialSeeds& seeds : seeds_) {
+    seeds.forEachOccupiedCell(whole_, [&](const Vec3i& c, double count) {
+      perCell[(static_cast<size_t>(c.z()) * cells.y() + c.y()) * cells.x() + c.x()] += count;
+      for (int d = 0; d < 3; ++d) planes[d][c[d]] += count;
+    });
+    for (const MaterialSeeds::Object& object : seeds.objects) {
+      if (!object.smooth) reach = std::max(reach, 0.5 / object.res.minCoeff());
+      for (const SmoothParticle& p : object.smoothLayout)
+        reach = std::max(reach, 0.5 * p.size.cwiseAbs().rowwise().sum().maxCoeff());
     }
-  const Decomposition cuts = Decomposition::balanced(cells, ranks, particlesPerPlane());
+  }
+  const Decomposition cuts = Decomposition::balanced(cells, ranks, planes);
   std::vector<CellBox> tensor;
   for (int r = 0; r < ranks; ++r) tensor.push_back(cuts.box(r));
-  // The boxes a run of `ranks` ranks draws (drawBoxes' bisection, here from every particle).
+  // The boxes a run of `ranks` ranks draws.
   std::optional<Decomposition> bisected;
   std::string bisectionError;
   try {
-    bisected = Decomposition::bisected(cells, ranks, particlePlanes(true));
+    bisected = Decomposition::bisected(cells, ranks, seedPlanes());
   } catch (const std::runtime_error& e) {
     bisectionError = e.what();
   }
+  // The values a ghost sum carries per node, from the grid fields laid out on one cell (the
+  // whole grid's would take a rank's memory many times over).
+  grid_ = Decomposition::fromCuts(
+              {std::vector<int>{0, 1, cells.x()}, {0, 1, cells.y()}, {0, 1, cells.z()}})
+              .window(whole_, 0, 0);
+  layOutGrid();
   int valuesPerNode = 0;
   for (const NodeArray& a : ghostSumArrays()) valuesPerNode += a.width;
-  const int ghost = computeGhostWidth(true);
+  const int ghost = ghostWidthFor(reach);
   std::ostringstream s;
   s << "sus --decompose " << ranks << ": "
     << (bisected ? bisected->describe() : "no boxes: " + bisectionError) << "\n";

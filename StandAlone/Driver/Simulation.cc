@@ -34,6 +34,7 @@ void Simulation::setup(const std::function<void()>& readSpec) {
     readSpec();
     readInput();
   });
+  if (options_.countParticlesOnly) return;
   mpm_.distributeOverRanks(Collective{});
   if (archiver_.savesConcentrationFields() || scenes_.draws("p.concentrationGradient"))
     mpm_.computeConcentrationOfEveryMaterial();
@@ -47,7 +48,7 @@ void Simulation::setup(const std::function<void()>& readSpec) {
 void Simulation::readInput() {
   PSNode root = spec_->root();
   time_ = TimeControl::fromInput(root.requireChild("Time"));
-  mpm_.problemSetup(root, time_.initTime, time_.maxTime);
+  mpm_.problemSetup(root, time_.initTime, time_.maxTime, !options_.countParticlesOnly);
   // An implicit run's dt follows Newton's iterations (ImpMPM): the multiplier applies to its
   // diffusion sub-steps only.
   substepMultiplier_ = time_.multiplier;

@@ -30,6 +30,9 @@ struct RunOptions {
   long maxTimesteps = 0;   // 0: as the input says
   bool ignoreUnsupported = false;
   bool progress = true;
+  // Set the input up with its particles counted, not created, and stop there: for
+  // MPM::describeDecomposition (sus --decompose N).
+  bool countParticlesOnly = false;
 };
 
 class Simulation {

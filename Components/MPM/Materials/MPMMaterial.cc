@@ -227,7 +227,6 @@ void MPMMaterial::placeParticles(MaterialSeeds& seeds, const Grid& grid, const C
       p.volume[i] = s.volume;
       p.size[i] = s.size;
     }
-    object.smoothLayout = {};  // laid out; the rest belong to other ranks
   }
   model->initializeState(p);
 }

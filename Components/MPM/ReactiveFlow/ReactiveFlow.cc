@@ -142,7 +142,9 @@ void ReactiveFlow::initialize(const PSNode& root, const Grid& grid,
             "<do_auto_cycle_bc>true watches the concentration of the materials with "
             "<do_conc_reduction>true, and none has it (Uintah then never reverses the flux)");
   for (size_t m = 0; m < materials.size(); ++m) {
-    receivesFlux_.push_back(!diffusionParticles(materials[m].particles).externalScalarFlux.empty());
+    // From the input (the flux BCs gave the material their arrays), not from this rank's
+    // particles: every rank lays out the same fields, with or without particles of m.
+    receivesFlux_.push_back(materials[m].particles.has(Physics::FluxBC));
     cmax_.push_back(model(m).maxConcentration);
     constantRate_.push_back(model(m).constantRate());
   }
