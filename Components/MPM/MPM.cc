@@ -99,7 +99,7 @@ void MPM::problemSetup(const PSNode& root, double initTime, double maxTime, bool
   }
   checkProblemSize(gridNode, grid_, flags_, materials_.size(), numParticles(),
                    omp_get_max_threads());
-  if (diffusion_) diffusion_->initialize(root, grid_, materials_, seeds_, box, initTime);
+  if (diffusion_) diffusion_->initialize(root, grid_, materials_, seeds_, box, region, initTime);
   if (region.lower != box.lower || region.upper != box.upper) keepParticlesOfBox(box);
   distributed_ = Communicator::size() > 1;
   reordering_.resize(materials_.size());

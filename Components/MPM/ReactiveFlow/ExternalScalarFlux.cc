@@ -64,10 +64,12 @@ double surfaceConductance(const ScalarFluxBC& bc, double area, double volume, do
 
 std::vector<ExternalScalarFlux::Flagged> ExternalScalarFlux::assignToParticles(
     std::vector<MPMMaterial>& materials, const std::vector<DiffusionMaterial>& diffusion,
-    const std::vector<MaterialSeeds>& seeds, const Grid& grid, const CellBox& counted) const {
+    const std::vector<MaterialSeeds>& seeds, const Grid& grid, const CellBox& counted,
+    const CellBox& kept) const {
   // Surface particles get, per BC that flags them, the area of the face that BC names
   // (UINTAH_UPS.md §3.1; unlike Uintah, not the area left by the last BC tested).
   std::vector<Flagged> report;
+  const SampleRegion region{&grid, kept, counted};
   for (size_t m = 0; m < materials.size(); ++m) {
     MPMMaterial& mat = materials[m];
     const MaterialSeeds& surface = seeds[m];
@@ -81,7 +83,10 @@ std::vector<ExternalScalarFlux::Flagged> ExternalScalarFlux::assignToParticles(
     std::vector<size_t> flagged(bcs_.size(), 0);
     std::vector<std::vector<size_t>> holding(bcs_.size());
     std::vector<std::vector<int>> slots(bcs_.size());
+    // A shared surface is sampled at a quarter of the body's largest particle spacing.
     Vec3 spacing = Vec3::Zero();
+    for (const MaterialSeeds::Object& object : surface.objects)
+      spacing = spacing.cwiseMax(object.spacing);
     for (const MaterialSeeds::Object& object : surface.objects)
       for (size_t i = object.first; i < object.first + object.count; ++i) {
         // Smooth pieces are not searched for their surface: every particle is tested by the
@@ -92,27 +97,24 @@ std::vector<ExternalScalarFlux::Flagged> ExternalScalarFlux::assignToParticles(
         for (size_t b = 0; b < bcs_.size(); ++b) {
           const double a = bcs_[b].flaggedArea(p.x[i], object.spacing, object.faceAreaOf(i));
           if (a <= 0) continue;
-          if (counted.contains(grid.interiorCell(p.x[i]))) ++flagged[b];
+          if (region.counts(p.x[i])) ++flagged[b];
           if (slot == 3) continue;  // a particle holds at most 3 load curves
           d.loadCurveID[i][slot] = static_cast<int>(b) + 1;
           d.area[i][slot] = a;
           holding[b].push_back(i);
           slots[b].push_back(slot);
-          spacing = spacing.cwiseMax(object.spacing);
           ++slot;
         }
       }
     std::vector<SurfaceShare> bodyShares(bcs_.size());
     for (size_t b = 0; b < bcs_.size(); ++b)
       if (bcs_[b].face == ScalarFluxBC::Face::Surface && bcs_[b].surfaceMaterial == mat.name)
-        flagFreeSurface(b, m, materials, seeds, grid, counted, flagged[b], holding[b], slots[b],
+        flagFreeSurface(b, m, materials, seeds, grid, region, flagged[b], holding[b], slots[b],
                         bodyShares[b]);
+    // The surfaces are shared out on every rank (each adds the areas of its box's samples),
+    // whether or not its particles are flagged.
     for (size_t b = 0; b < bcs_.size(); ++b) {
       Flagged f{b, m, flagged[b]};
-      if (flagged[b] == 0) {
-        report.push_back(f);
-        continue;
-      }
       if (bcs_[b].face == ScalarFluxBC::Face::Surface) {
         f.surfaceArea = bodyShares[b].surfaceArea;
         f.bodyArea = bodyShares[b].bodyArea;
@@ -124,13 +126,12 @@ std::vector<ExternalScalarFlux::Flagged> ExternalScalarFlux::assignToParticles(
         for (const MaterialSeeds::FilledPiece& piece : surface.filledPieces)
           body.push_back(piece.piece);
         const SurfaceShare share =
-            shareSurfaceArea(bcs_[b], body, grid, spacing, holding[b], slots[b], p);
+            shareSurfaceArea(bcs_[b], body, grid, spacing, holding[b], slots[b], p, region);
         f.surfaceArea = share.surfaceArea;
         f.bodyArea = share.bodyArea;
       }
       for (size_t k = 0; k < holding[b].size(); ++k)
-        if (counted.contains(grid.interiorCell(p.x[holding[b][k]])))
-          f.area += d.area[holding[b][k]][slots[b][k]];
+        if (region.counts(p.x[holding[b][k]])) f.area += d.area[holding[b][k]][slots[b][k]];
       report.push_back(f);
     }
   }
@@ -196,7 +197,7 @@ std::vector<std::string> ExternalScalarFlux::takeNotes() {
 
 void ExternalScalarFlux::flagFreeSurface(size_t b, size_t m, std::vector<MPMMaterial>& materials,
                                          const std::vector<MaterialSeeds>& seeds, const Grid& grid,
-                                         const CellBox& counted, size_t& count,
+                                         const SampleRegion& region, size_t& count,
                                          std::vector<size_t>& holding, std::vector<int>& slots,
                                          SurfaceShare& share) const {
   ParticleSet& p = materials[m].particles;
@@ -217,11 +218,11 @@ void ExternalScalarFlux::flagFreeSurface(size_t b, size_t m, std::vector<MPMMate
       for (const MaterialSeeds::FilledPiece& piece : seeds[o].filledPieces)
         excluded.push_back(piece.piece);
   std::vector<double> area;
-  shareBodySurface(body, excluded, grid, spacing, candidates, p, area, share);
+  shareBodySurface(body, excluded, grid, spacing, candidates, p, area, share, region);
   for (size_t k = 0; k < candidates.size(); ++k) {
     if (area[k] <= 0) continue;
     const size_t i = candidates[k];
-    if (counted.contains(grid.interiorCell(p.x[i]))) ++count;
+    if (region.counts(p.x[i])) ++count;
     int slot = 0;
     while (slot < 3 && d.loadCurveID[i][slot] > 0) ++slot;
     if (slot == 3) continue;  // a particle holds at most 3 load curves

@@ -37,12 +37,12 @@ class ExternalScalarFlux {
   // Gives the surface particles of each material that diffuses (per material in `seeds`), per BC
   // that flags them, their area of the face that BC names (docs/diffusion.md, "Flux area at the
   // start"). Returns what each BC flagged in each material that diffuses, counting the
-  // particles in the cells of `counted` (this rank's box; the others are there for the sharing
-  // of a surface); the surface areas, where it counted any, are of the whole surface.
+  // particles in the cells of `counted` (this rank's box; those in `kept` around it are there
+  // for the sharing of a surface), and the areas of its box's part of the shared surfaces.
   std::vector<Flagged> assignToParticles(std::vector<MPMMaterial>& materials,
                                          const std::vector<DiffusionMaterial>& diffusion,
                                          const std::vector<MaterialSeeds>& seeds, const Grid& grid,
-                                         const CellBox& counted) const;
+                                         const CellBox& counted, const CellBox& kept) const;
   // Eqs. 16-17: rate_p = R(c_p) sum_k J_k(t) A_k / V_p, the restriction applied once; also the
   // largest unrestricted inflow and outflow rates, sum J A / V over the BCs of either sign, for
   // the time-step limit. A galvanostatic BC's J_k is its lithium rate Q_k(t) over
@@ -80,7 +80,7 @@ class ExternalScalarFlux {
   // BCs do.
   void flagFreeSurface(size_t b, size_t m, std::vector<MPMMaterial>& materials,
                        const std::vector<MaterialSeeds>& seeds, const Grid& grid,
-                       const CellBox& counted, size_t& count, std::vector<size_t>& holding,
+                       const SampleRegion& region, size_t& count, std::vector<size_t>& holding,
                        std::vector<int>& slots, SurfaceShare& share) const;
   // The flux J_k of each BC at time t: its load (times the auto-cycle sign), or for a
   // galvanostatic BC the J that delivers its lithium rate (its load, or for a C-rate the load

@@ -24,11 +24,25 @@ struct SurfaceSample {
   double area;
 };
 
-// Samples the surface of a sphere or cylinder BC (both end disks for cylinder_end) with points
-// at most `spacing` apart; the areas add up to the surface's area.
-std::vector<SurfaceSample> sampleSurface(const ScalarFluxBC& bc, double spacing);
+// The samples of a surface a process handles (setup per box, docs/parallel.md): it keeps those
+// whose cell (the nearest interior cell for a point outside the grid) lies in `kept` (its box and
+// the cells around it whose particles samples near its box can go to), and adds up the areas of
+// those in `counted` (its box), so that each sample's area is added by one process. Without a
+// grid, every sample is kept and counted (one process).
+struct SampleRegion {
+  const Grid* grid = nullptr;
+  CellBox kept, counted;
+  bool keeps(const Vec3& x) const { return !grid || kept.contains(grid->interiorCell(x)); }
+  bool counts(const Vec3& x) const { return !grid || counted.contains(grid->interiorCell(x)); }
+};
 
-// What distributing one BC's surface over one material's flagged particles gave.
+// Samples the surface of a sphere or cylinder BC (both end disks for cylinder_end) with points
+// at most `spacing` apart, those `region` keeps; the areas of all add up to the surface's area.
+std::vector<SurfaceSample> sampleSurface(const ScalarFluxBC& bc, double spacing,
+                                         const SampleRegion& region = {});
+
+// What distributing one BC's surface over one material's flagged particles gave (the areas of
+// the samples the region counts).
 struct SurfaceShare {
   double surfaceArea = 0;   // of the whole BC surface
   double bodyArea = 0;      // of the part where the body has its surface inside the grid
@@ -40,7 +54,8 @@ struct SurfaceShare {
 // 1.5 |dxp| of it; a sample with none is not handed out (assignedArea < bodyArea).
 SurfaceShare shareSurfaceArea(const ScalarFluxBC& bc, const std::vector<GeometryPieceP>& body,
                               const Grid& grid, const Vec3& dxp, const std::vector<size_t>& flagged,
-                              const std::vector<int>& slot, ParticleSet& p);
+                              const std::vector<int>& slot, ParticleSet& p,
+                              const SampleRegion& region);
 
 // The free surface of a material's body (a <surface> BC): the surfaces of its pieces are sampled
 // (points about dxp/4 apart), a sample kept where the body has its surface there, inside the
@@ -51,6 +66,6 @@ SurfaceShare shareSurfaceArea(const ScalarFluxBC& bc, const std::vector<Geometry
 bool shareBodySurface(const std::vector<GeometryPieceP>& body,
                       const std::vector<GeometryPieceP>& excluded, const Grid& grid,
                       const Vec3& dxp, const std::vector<size_t>& candidates, const ParticleSet& p,
-                      std::vector<double>& area, SurfaceShare& share);
+                      std::vector<double>& area, SurfaceShare& share, const SampleRegion& region);
 
 }  // namespace anode

@@ -128,12 +128,12 @@ void ReactiveFlow::rejectConcentrationBC(const BCType& bc) {
 void ReactiveFlow::initialize(const PSNode& root, const Grid& grid,
                               std::vector<MPMMaterial>& materials,
                               const std::vector<MaterialSeeds>& seeds, const CellBox& box,
-                              double initTime) {
+                              const CellBox& region, double initTime) {
   for (size_t m = 0; m < materials.size(); ++m)
     setInitialState(model(m), seeds[m], materials[m].particles);
   checkSurfaceBCs(root, materials, seeds);
   inputFile_ = root.file();
-  flagged_ = flux_.assignToParticles(materials, materials_, seeds, grid, box);
+  flagged_ = flux_.assignToParticles(materials, materials_, seeds, grid, box, region);
   if (flags_.autoCycle && std::none_of(materials_.begin(), materials_.end(),
                                        [](const auto& mat) { return mat.reducesConcentration; }))
     root.requireChild("MPM")
@@ -156,32 +156,25 @@ void ReactiveFlow::initialize(const PSNode& root, const Grid& grid,
 }
 
 void ReactiveFlow::completeSetup(Collective, std::vector<MPMMaterial>& materials, double initTime) {
-  // What the BCs flagged and each material's mass over every rank; a BC surface's areas are the
-  // same on every rank that flagged a particle under it (0 on the others).
+  // What the BCs flagged, the areas of their shared surfaces (each rank's part) and each
+  // material's mass, over every rank.
   const bool overRanks = Communicator::size() > 1;
-  std::vector<double> sums, largest;
-  for (const ExternalScalarFlux::Flagged& f : flagged_) {
-    sums.push_back(static_cast<double>(f.particles));
-    sums.push_back(f.area);
-    largest.push_back(f.surfaceArea);
-    largest.push_back(f.bodyArea);
-  }
+  std::vector<double> sums;
+  for (const ExternalScalarFlux::Flagged& f : flagged_)
+    sums.insert(sums.end(), {static_cast<double>(f.particles), f.area, f.surfaceArea, f.bodyArea});
   for (const MPMMaterial& mat : materials) {
     double mass = 0;
     for (double mp : mat.particles.mass) mass += mp;
     sums.push_back(mass);
   }
-  if (overRanks) {
-    collective::sum(sums.data(), static_cast<int>(sums.size()));
-    collective::maximum(largest.data(), static_cast<int>(largest.size()));
-  }
+  if (overRanks) collective::sum(sums.data(), static_cast<int>(sums.size()));
   std::vector<ExternalScalarFlux::Flagged> flagged;
   for (size_t k = 0; k < flagged_.size(); ++k) {
     ExternalScalarFlux::Flagged f = flagged_[k];
-    f.particles = static_cast<size_t>(sums[2 * k]);
-    f.area = sums[2 * k + 1];
-    f.surfaceArea = largest[2 * k];
-    f.bodyArea = largest[2 * k + 1];
+    f.particles = static_cast<size_t>(sums[4 * k]);
+    f.area = sums[4 * k + 1];
+    f.surfaceArea = sums[4 * k + 2];
+    f.bodyArea = sums[4 * k + 3];
     if (f.particles > 0) flagged.push_back(f);
   }
   flagged_.clear();

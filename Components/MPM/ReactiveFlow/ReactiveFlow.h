@@ -54,9 +54,11 @@ class ReactiveFlow {
   // run those around its box) and sets their initial state: each <geom_object>'s
   // <concentration> (`seeds`: which object laid out which particles) and the diffusivity D0;
   // flags the flux particles (`seeds` holds the surface particles), counting those in the cells
-  // of `box` (this rank's). Calls no collective.
+  // of `box` (this rank's; `region`, holding it, has the particles a shared surface can go to).
+  // Calls no collective.
   void initialize(const PSNode& root, const Grid& grid, std::vector<MPMMaterial>& materials,
-                  const std::vector<MaterialSeeds>& seeds, const CellBox& box, double initTime);
+                  const std::vector<MaterialSeeds>& seeds, const CellBox& box,
+                  const CellBox& region, double initTime);
   // Once each rank holds only its own particles: the flagged particles, their areas and the
   // capacities over every rank, the input errors they show (a BC flagging nothing), the setup
   // report and the initial flux rates.
