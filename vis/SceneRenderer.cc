@@ -201,7 +201,8 @@ View makeView(const Camera& camera, const Bounds& bounds, double aspect) {
 
 SpriteExtent SpriteExtent::of(const SpriteSet& s) {
   SpriteExtent e;
-  for (size_t i = 0; i < s.count(); ++i)
+  // A set of values alone (a figure's panels together, for their colour range) has no box.
+  for (size_t i = 0; i < s.position.size() / 3; ++i)
     for (int d = 0; d < 3; ++d) {
       e.lo[d] = std::min(e.lo[d], s.position[3 * i + d] - s.radius[i]);
       e.hi[d] = std::max(e.hi[d], s.position[3 * i + d] + s.radius[i]);
