@@ -133,15 +133,24 @@ struct Bounds {
   }
 };
 
-// Where the particles go in a picture of the scene: the viewport (x, y, width, height) beside
-// the title band and the colour bar's area.
-std::array<int, 4> particleViewport(const Scene& scene, Overlay overlay) {
+// Where things go in a picture of the scene: the title's and labels' text sizes, the title band
+// along the top and the colour bar's area on the right (none without the overlay), and the
+// viewport (x, y, width, height) of the particles beside them.
+struct PictureLayout {
+  int titleSize, labelSize, titleBand, barArea;
+  std::array<int, 4> viewport;
+};
+
+PictureLayout pictureLayout(const Scene& scene, Overlay overlay) {
   const int W = scene.width, H = scene.height;
-  const int titleSize = std::max(12, H / 30);
+  PictureLayout l;
+  l.titleSize = std::max(12, H / 30);
+  l.labelSize = std::max(10, H / 44);
   const bool overlaid = overlay == Overlay::TitleAndColourBar;
-  const int titleBand = overlaid ? 2 * titleSize : 0;
-  const int barArea = overlaid ? std::clamp(W * 17 / 100, 110, 400) : 0;
-  return {0, 0, W - barArea, H - titleBand};
+  l.titleBand = overlaid ? 2 * l.titleSize : 0;
+  l.barArea = overlaid ? std::clamp(W * 17 / 100, 110, 400) : 0;
+  l.viewport = {0, 0, W - l.barArea, H - l.titleBand};
+  return l;
 }
 
 // A layer's pixel: depth in the bits above 24, the colour below.
@@ -378,7 +387,7 @@ namespace {
 
 // The camera of a picture of the scene, for sprites of this extent.
 View viewOf(const Scene& scene, const SpriteExtent& extent, Overlay overlay) {
-  const std::array<int, 4> viewport = particleViewport(scene, overlay);
+  const std::array<int, 4> viewport = pictureLayout(scene, overlay).viewport;
   return makeView(scene.camera, Bounds(extent), static_cast<double>(viewport[2]) / viewport[3]);
 }
 
@@ -388,7 +397,7 @@ PixelLayer SceneRenderer::drawLayer(const Scene& scene, const SpriteSet& sprites
                                     const SpriteExtent& extent, Overlay overlay) {
   const int W = scene.width, H = scene.height;
   const RGB background = {scene.background[0], scene.background[1], scene.background[2]};
-  const std::array<int, 4> viewport = particleViewport(scene, overlay);
+  const std::array<int, 4> viewport = pictureLayout(scene, overlay).viewport;
   const std::pair<double, double> range = colourRange(scene, extent);
   const ColourMap colours(scene.colourMap);
   if (!gl_) gl_ = std::make_unique<GLState>();
@@ -458,12 +467,11 @@ RenderedScene SceneRenderer::finish(const Scene& scene, const PixelLayer& layer,
   const int W = scene.width, H = scene.height;
   const RGB background = {scene.background[0], scene.background[1], scene.background[2]};
   const RGB ink = inkOn(scene.background);
-  const int titleSize = std::max(12, H / 30), labelSize = std::max(10, H / 44);
-  const bool overlaid = overlay == Overlay::TitleAndColourBar;
-  const int barArea = overlaid ? std::clamp(W * 17 / 100, 110, 400) : 0;
+  const PictureLayout layout = pictureLayout(scene, overlay);
+  const int titleSize = layout.titleSize, labelSize = layout.labelSize, barArea = layout.barArea;
 
   RenderedScene out(Canvas(W, H, background));
-  out.viewport = particleViewport(scene, overlay);
+  out.viewport = layout.viewport;
   out.range = colourRange(scene, extent);
   const View view = viewOf(scene, extent, overlay);
   Eigen::Matrix4d shift = Eigen::Matrix4d::Identity();
@@ -474,7 +482,7 @@ RenderedScene SceneRenderer::finish(const Scene& scene, const PixelLayer& layer,
     for (int c = 0; c < 3; ++c)
       dst[3 * p + c] = static_cast<unsigned char>(layer[p] >> (16 - 8 * c));
 
-  if (!overlaid) return out;
+  if (overlay != Overlay::TitleAndColourBar) return out;
 
   // Title with the time.
   const std::string title = scene.titleAt(time);

@@ -198,8 +198,6 @@ class MPM {
   Decomposition::PlanesOfBoxes seedPlanes() const;
   // The ghost layers of the interpolator for CPDI domains reaching `reach` cells.
   int ghostWidthFor(double reach) const;
-  // Particles per cell plane of the whole grid, per axis (of this rank's particles).
-  std::array<std::vector<double>, 3> particlesPerPlane() const;
   // The grid arrays the ghost sums after P2G complete.
   std::vector<NodeArray> ghostSumArrays();
   // Rank of the box holding material m's particle i.

@@ -20,19 +20,18 @@
 
 namespace anode {
 
-int MPM::ownerOf(const ParticleSet& p, size_t i) const {
-  return decomposition_.ownerOfPoint(whole_.indexCoordinate(p.x[i]), Communicator::rank());
+namespace {
+
+// How far a CPDI domain of edge vectors `Fsize` (F times the particle's size, in cells) reaches
+// from its particle along an axis: half its extent.
+double domainReach(const Mat3& Fsize) {
+  return 0.5 * Fsize.cwiseAbs().rowwise().sum().maxCoeff();
 }
 
-std::array<std::vector<double>, 3> MPM::particlesPerPlane() const {
-  std::array<std::vector<double>, 3> planes;
-  for (int d = 0; d < 3; ++d) planes[d].assign(whole_.cells[d], 0.0);
-  for (const MPMMaterial& mat : materials_)
-    for (const Vec3& x : mat.particles.x) {
-      const Vec3i c = whole_.interiorCell(x);
-      for (int d = 0; d < 3; ++d) planes[d][c[d]] += 1;
-    }
-  return planes;
+}  // namespace
+
+int MPM::ownerOf(const ParticleSet& p, size_t i) const {
+  return decomposition_.ownerOfPoint(whole_.indexCoordinate(p.x[i]), Communicator::rank());
 }
 
 CellBox MPM::setupBox() {
@@ -169,8 +168,7 @@ int MPM::computeGhostWidth(bool allHere) const {
     const ParticleSet& p = mat.particles;
     const long n = static_cast<long>(p.count());
 #pragma omp parallel for schedule(static) reduction(max : reach)
-    for (long i = 0; i < n; ++i)
-      reach = std::max(reach, 0.5 * (p.F[i] * p.size[i]).cwiseAbs().rowwise().sum().maxCoeff());
+    for (long i = 0; i < n; ++i) reach = std::max(reach, domainReach(p.F[i] * p.size[i]));
   }
   if (!allHere) reach = collective::maximum(reach);
   return ghostWidthFor(reach);
@@ -247,21 +245,20 @@ std::string MPM::describeDecomposition(int ranks) {
   // without particles): the counts setup draws a run's boxes from.
   const Vec3i& cells = whole_.cells;
   std::vector<double> perCell(static_cast<size_t>(cells.cast<long>().prod()), 0.0);
-  std::array<std::vector<double>, 3> planes;
-  for (int d = 0; d < 3; ++d) planes[d].assign(cells[d], 0.0);
-  double reach = 0;  // of a CPDI domain at the start, in cells (computeGhostWidth)
+  double reach = 0;  // of a CPDI domain at the start (F = I), in cells
   for (const MaterialSeeds& seeds : seeds_) {
     seeds.forEachOccupiedCell(whole_, [&](const Vec3i& c, double count) {
       perCell[(static_cast<size_t>(c.z()) * cells.y() + c.y()) * cells.x() + c.x()] += count;
-      for (int d = 0; d < 3; ++d) planes[d][c[d]] += count;
     });
     for (const MaterialSeeds::Object& object : seeds.objects) {
-      if (!object.smooth) reach = std::max(reach, 0.5 / object.res.minCoeff());
+      if (!object.smooth)
+        reach = std::max(reach, domainReach(object.res.cast<double>().cwiseInverse().asDiagonal()));
       for (const SmoothParticle& p : object.smoothLayout)
-        reach = std::max(reach, 0.5 * p.size.cwiseAbs().rowwise().sum().maxCoeff());
+        reach = std::max(reach, domainReach(p.size));
     }
   }
-  const Decomposition cuts = Decomposition::balanced(cells, ranks, planes);
+  const Decomposition cuts = Decomposition::balanced(
+      cells, ranks, planesOfBoxes(cells, perCell, {CellBox{Vec3i::Zero(), cells}})[0]);
   std::vector<CellBox> tensor;
   for (int r = 0; r < ranks; ++r) tensor.push_back(cuts.box(r));
   // The boxes a run of `ranks` ranks draws.
