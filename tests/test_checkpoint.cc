@@ -165,7 +165,14 @@ INSTANTIATE_TEST_SUITE_P(
                     kSource + "/inputs/Stability/Implicit_yield_0.14_walls.ups",
                     "<checkpoint cycle=\"2\" timestepInterval=\"1\"/>",
                     5,
-                    {}}),
+                    {}},
+        // Implicit dynamics: the particles' accelerations (Newmark's state) are in the
+        // checkpoint; blocks colliding at step 10.
+        RestartCase{"implicit_dynamic",
+                    kSource + "/tests/parallel/ImplicitCollidingBlocks.ups",
+                    "",
+                    10,
+                    {"--max-timesteps", "15"}}),
     [](const ::testing::TestParamInfo<RestartCase>& info) { return info.param.name; });
 
 TEST(Restart, SkipsADamagedNewestCheckpoint) {

@@ -17,13 +17,6 @@ void readPositive(const PSNode& mpm, const char* tag, T& value) {
 ImplicitOptions ImplicitOptions::fromInput(const PSNode& mpm) {
   ImplicitOptions o;
   o.dynamic = mpm.get<bool>("dynamic", o.dynamic);
-  if (o.dynamic) {
-    const PSNode where = mpm.child("dynamic") ? mpm.child("dynamic") : mpm;
-    where.unsupported(
-        "implicit dynamics (Newmark; ImpMPM's default when <dynamic> is absent): only "
-        "<dynamic>false</dynamic>, quasi-static equilibrium, is supported");
-    o.dynamic = false;
-  }
   readPositive(mpm, "convergence_criteria_disp", o.convergenceDisp);
   readPositive(mpm, "convergence_criteria_energy", o.convergenceEnergy);
   readPositive(mpm, "iters_before_timestep_restart", o.maxIterations);

@@ -96,6 +96,8 @@ void MPM::problemSetup(const PSNode& root, double initTime, double maxTime, bool
     if (flags_.refineParticles &&
         (flags_.refineMaterial < 0 || flags_.refineMaterial == static_cast<int>(m)))
       materials_[m].particles.enable(Physics::Splitting);
+    if (flags_.implicit && flags_.implicit->dynamic)
+      materials_[m].particles.enable(Physics::Inertia);
   }
   checkProblemSize(gridNode, grid_, flags_, materials_.size(), numParticles(),
                    omp_get_max_threads());

@@ -205,6 +205,9 @@ class MPM {
   // The equilibrium problem of the step: fields, nodal masses, the displacement increments the
   // Velocity and Symmetric faces prescribe over dt.
   EquilibriumProblem equilibriumProblem(double dt);
+  // Implicit dynamics: the problem's nodal velocities and accelerations of the step's start, from
+  // the particles (momentum from the P2G of the step, sum m a S here; Implicit/Newmark.h).
+  void addStartOfStepMotion(EquilibriumProblem& problem, double dt);
   // P2G and, distributed, its sums completed on the shared nodes.
   void interpolateAndSumOverRanks();
   // Diffusion over the quasi-static step in explicit sub-steps on its start-of-step configuration;

@@ -63,8 +63,8 @@ void MPM::checkImplicitSetup(const PSNode& root) const {
 EquilibriumProblem MPM::equilibriumProblem(double dt) {
   const int nodes = grid_.numNodes();
   const int fields = 1 + *std::max_element(fieldOf_.begin(), fieldOf_.end());
-  EquilibriumProblem problem{grid_, materials_,     weights_, fieldOf_, {},
-                             {},    flags_.gravity, {},       nullptr,  {}};
+  EquilibriumProblem problem{grid_,          materials_, weights_, fieldOf_, {}, {},
+                             flags_.gravity, {},         nullptr,  {},       {}, {}};
   if (distributed_) {
     // A node's unknowns belong to the rank owning the cell of the node's index.
     problem.ghosts = &ghosts_;
@@ -91,7 +91,45 @@ EquilibriumProblem MPM::equilibriumProblem(double dt) {
       for (int a = 0; a < 3; ++a)
         if (!std::isnan(set[k][a])) problem.prescribed[f][k][a] = set[k][a] * dt;
   }
+  if (flags_.implicit->dynamic) addStartOfStepMotion(problem, dt);
   return problem;
+}
+
+void MPM::addStartOfStepMotion(EquilibriumProblem& problem, double dt) {
+  const int nodes = grid_.numNodes();
+  const size_t fields = problem.mass.size();
+  problem.velocity.assign(fields, std::vector<Vec3>(nodes, Vec3::Zero()));
+  problem.acceleration.assign(fields, std::vector<Vec3>(nodes, Vec3::Zero()));
+  for (size_t m = 0; m < materials_.size(); ++m) {
+    std::vector<Vec3>& momentum = problem.velocity[fieldOf_[m]];
+    std::vector<Vec3>& sum = problem.acceleration[fieldOf_[m]];
+    forEachNode(active_.rows, [&](long k) { momentum[k] += fields_[m].momentum[k]; });
+    // sum m a S, particle by particle (the accelerations are needed only here)
+    const ParticleSet& p = materials_[m].particles;
+    const InterpolationWeights& W = weights_[m];
+    for (size_t i = 0; i < p.count(); ++i)
+      for (size_t e = W.offset[i]; e < W.offset[i] + W.count[i]; ++e)
+        sum[W.node[e]] += p.mass[i] * W.weight[e] * p.acceleration[i];
+  }
+  if (distributed_) {
+    std::vector<NodeArray> sums;
+    for (std::vector<Vec3>& a : problem.acceleration) sums.push_back({a.data()->data(), 3});
+    ScopedTimer s(timers_, tasks_.communication);
+    ghosts_.sumOverRanks(Collective{}, sums);
+  }
+  // Mass-weighted means; the faces' prescribed components move at the faces' velocity.
+  for (size_t f = 0; f < fields; ++f)
+    for (int k = 0; k < nodes; ++k) {
+      const double mass = problem.mass[f][k];
+      if (!(mass > 0)) continue;
+      problem.velocity[f][k] /= mass;
+      problem.acceleration[f][k] /= mass;
+      for (int a = 0; a < 3; ++a)
+        if (!std::isnan(problem.prescribed[f][k][a])) {
+          problem.velocity[f][k][a] = problem.prescribed[f][k][a] / dt;
+          problem.acceleration[f][k][a] = 0;
+        }
+    }
 }
 
 void MPM::updateParticlesFromEquilibrium(double dt) {
@@ -103,6 +141,7 @@ void MPM::updateParticlesFromEquilibrium(double dt) {
         [&](const auto* model) {
           firstInverted = updateParticlesFromDisplacement(
               mat.particles, weights_[m], *model, mat.density, u,
+              flags_.implicit->dynamic ? &equilibrium_.acceleration(fieldOf_[m]) : nullptr,
               diffusion_ && model->swells() ? concentrationChange_[m].data() : nullptr, dt);
         },
         mat.model->concrete().model);

@@ -13,6 +13,7 @@ enum class Physics : uint8_t {
   Diffusion,   // <do_scalar_diffusion>true
   FluxBC,      // a material that diffuses, with <scalar_flux> blocks
   Splitting,   // <refine_particles>true for this material
+  Inertia,     // implicit dynamics (<dynamic>true): the particles' acceleration
 };
 
 // What splitting a particle in four (ParticleSplitting.cc) does to an array: the children copy

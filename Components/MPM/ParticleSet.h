@@ -34,6 +34,8 @@ struct ParticleSet {
   DeclaredArrays subcomponentArrays;  // the arrays subcomponents declared (declareArray)
   // Particle splitting (only with <refine_particles>true): 1 once a particle or its parent split.
   std::vector<uint8_t> refined;
+  // Implicit dynamics only (Implicit/Newmark.h): the acceleration of the last step's end.
+  std::vector<Vec3> acceleration;
 
   size_t count() const { return x.size(); }
 
@@ -154,6 +156,7 @@ struct ParticleSet {
     ConstitutiveState::eachArray(s.modelState, f);
     DeclaredArrays::eachArray(s.subcomponentArrays, f);
     f(s.refined, ParticleField<uint8_t>{"p.refinedMPM", P::Splitting, 0, S::Own});
+    f(s.acceleration, ParticleField<Vec3>{"p.acceleration", P::Inertia, Vec3::Zero(), S::Copy});
   }
 
   uint8_t physics_ = bit(Physics::Mechanics);

@@ -49,10 +49,11 @@ std::string upsTimeAndArchiver(double endTime, double maxDt, double multiplier,
   return s;
 }
 
-std::string upsMPM(const std::string& interpolator, const std::string& options) {
+std::string upsMPM(const std::string& interpolator, const std::string& options,
+                   const std::string& integrator) {
   std::string s;
   s += "  <MPM>\n";
-  s += "    <time_integrator>explicit</time_integrator>\n";
+  s += "    <time_integrator>" + integrator + "</time_integrator>\n";
   s += "    <interpolator>" + interpolator + "</interpolator>\n";
   s += options;
   s += "  </MPM>\n";

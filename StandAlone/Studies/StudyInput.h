@@ -24,8 +24,10 @@ std::string upsOpening(const std::string& comment, const std::string& title,
 // writing to `filebase` at a step interval no study reaches.
 std::string upsTimeAndArchiver(double endTime, double maxDt, double multiplier,
                                const std::string& filebase);
-// <MPM>: explicit integration with `interpolator`, then `options` (whole lines).
-std::string upsMPM(const std::string& interpolator, const std::string& options);
+// <MPM>: `integrator` ("explicit" or "implicit") with `interpolator`, then `options` (whole
+// lines).
+std::string upsMPM(const std::string& interpolator, const std::string& options,
+                   const std::string& integrator = "explicit");
 // No gravity, then <MaterialProperties> with `material` (whole lines), null contact and `more`
 // (whole lines).
 std::string upsMaterialProperties(const std::string& material, const std::string& more);

@@ -75,13 +75,28 @@ std::string vibratingBarInput(const VibratingBarCase& c) {
   faces += "      </Face>\n";
   for (const char* side : {"y-", "y+", "z-", "z+"}) faces += upsSymmetricFace(side);
 
+  const bool implicit = c.implicitStepsPerPeriod > 0;
   std::string s;
   s += upsOpening(
       "Axial vibrating bar: fixed at x = 0, free at x = L, uniaxial strain (one cell\n"
       "     thick, Symmetric y and z faces). The caller sets the initial velocity.",
-      "Axial vibrating bar, " + c.interpolator + ", " + std::to_string(c.cells) + " cells", "mpm");
-  s += upsTimeAndArchiver(c.periods * c.period(), 1, c.timestepMultiplier, "vibrating_bar.uda");
-  s += upsMPM(c.interpolator, "");
+      "Axial vibrating bar, " + c.interpolator + ", " + std::to_string(c.cells) + " cells",
+      implicit ? "impm" : "mpm");
+  if (implicit) {
+    // Newmark's steps of T / n (Newton's few iterations would double dt each step otherwise);
+    // the displacement increments are ~1e-5 m, so Newton's criteria are set below ImpMPM's
+    // absolute floors (docs/quasi-static.md) and it stops on the relative ratios.
+    s += upsTimeAndArchiver(c.periods * c.period(), c.period() / c.implicitStepsPerPeriod, 1,
+                            "vibrating_bar.uda");
+    s += upsMPM(c.interpolator,
+                "    <dynamic>true</dynamic>\n"
+                "    <convergence_criteria_disp>1e-16</convergence_criteria_disp>\n"
+                "    <convergence_criteria_energy>1e-16</convergence_criteria_energy>\n",
+                "implicit");
+  } else {
+    s += upsTimeAndArchiver(c.periods * c.period(), 1, c.timestepMultiplier, "vibrating_bar.uda");
+    s += upsMPM(c.interpolator, "");
+  }
   s += upsMaterialProperties(material, "");
   s += upsGrid(faces, gridCells * h, h, gridCells, 1, extra);
   s += "</Uintah_specification>\n";

@@ -19,6 +19,9 @@ struct VibratingBarCase {
   double timestepMultiplier = 0.2;
   double amplitudeRatio = 1e-4;  // v0 / c
   double periods = 1;            // run length in periods T = 2 pi / w
+  // > 0: implicit dynamics (<dynamic>true, Newmark), steps of T / implicitStepsPerPeriod;
+  // 0: explicit, dt = timestepMultiplier h / (c + |v|).
+  int implicitStepsPerPeriod = 0;
   // Material and geometry (SI): c = sqrt((K + 4G/3)/rho) = 100 m/s, T = 4L/c = 0.04 s.
   double length = 1, density = 1000, bulkModulus = 6e6, shearModulus = 3e6;
 

@@ -10,6 +10,7 @@
 #include <variant>
 
 #include "Components/MPM/Implicit/HourglassStabilization.h"
+#include "Components/MPM/Implicit/Newmark.h"
 #include "Components/MPM/Implicit/ParticleEquilibrium.h"
 #include "Components/MPM/Materials/ConstitutiveModels/ConcreteModels.h"
 
@@ -176,13 +177,24 @@ void EquilibriumSolver::assemble(const EquilibriumProblem& problem, double dt, d
     if (stabilization > 0) applyHourglassStiffness(first, last, withTangent);
   }
   completeOverRanks(problem, residual_, 3, false);
-  // Gravity (the nodal masses are complete on every rank), the fixed components' rows.
+  // Gravity and, in implicit dynamics, the inertia (the nodal masses, velocities and
+  // accelerations are complete on every rank), the fixed components' rows.
+  const bool dynamic = !problem.velocity.empty();
   for (size_t r = 0; r < unknown_.size(); ++r) {
     const auto [f, k] = unknown_[r];
-    for (int a = 0; a < 3; ++a) residual_[3 * r + a] += problem.mass[f][k] * problem.gravity[a];
+    Vec3 force = problem.mass[f][k] * problem.gravity;
+    if (dynamic)
+      force -= problem.mass[f][k] * newmarkAcceleration(u_[f][k], problem.velocity[f][k],
+                                                        problem.acceleration[f][k], dt);
+    for (int a = 0; a < 3; ++a) residual_[3 * r + a] += force[a];
   }
   for (int i : fixed_) residual_[i] = 0;
   if (!withTangent) return;
+  if (dynamic)  // on the owner's rows, as each rank's K holds its particles' parts
+    for (int r = 0; r < rows_.owned; ++r) {
+      const auto [f, k] = unknown_[r];
+      K_.at(r, r) += newmarkStiffnessPerMass(dt) * problem.mass[f][k] * Mat3::Identity();
+    }
   // The rigid-mode regularization, on the owner's rows (each rank's K holds its particles' parts).
   double sums[2] = {0, 0};  // diagonal, mass
   for (int r = 0; r < static_cast<int>(unknown_.size()); ++r) {
@@ -302,6 +314,13 @@ void EquilibriumSolver::takeStep(const EquilibriumProblem& problem, double dt, d
   addToDisplacement(du, best);
 }
 
+void EquilibriumSolver::computeEndOfStepAcceleration(const EquilibriumProblem& problem, double dt) {
+  acceleration_.assign(row_.size(), std::vector<Vec3>(problem.grid.numNodes(), Vec3::Zero()));
+  for (const auto& [f, k] : unknown_)
+    acceleration_[f][k] =
+        newmarkAcceleration(u_[f][k], problem.velocity[f][k], problem.acceleration[f][k], dt);
+}
+
 NewtonReport EquilibriumSolver::solve(const EquilibriumProblem& problem, double dt,
                                       const ImplicitOptions& options) {
   numberUnknowns(problem);
@@ -371,6 +390,7 @@ NewtonReport EquilibriumSolver::solve(const EquilibriumProblem& problem, double 
         std::abs(energyRatio) <= options.convergenceEnergy || qNorm0 <= options.convergenceEnergy;
     if (dispDone && energyDone) {
       report.converged = true;
+      if (!problem.velocity.empty()) computeEndOfStepAcceleration(problem, dt);
       return report;
     }
   }

@@ -2,8 +2,9 @@
 // 3; docs/quasi-static.md): the unknowns are the displacement increments of the nodes the
 // particles reach, one set per velocity field (materials in single_velocity contact share one,
 // with null contact each body has its own); the residual is the external force (gravity) minus
-// the internal force of the trial stresses; the Jacobian is assembled from the particles'
-// algorithmic tangents; Symmetric and Velocity faces fix components. ImpMPM's convergence test.
+// the internal force of the trial stresses (and, in implicit dynamics, minus m a: Newmark.h); the
+// Jacobian is assembled from the particles' algorithmic tangents; Symmetric and Velocity faces fix
+// components. ImpMPM's convergence test.
 #pragma once
 
 #include <string>
@@ -39,6 +40,9 @@ struct EquilibriumProblem {
   // unknowns (empty: every node).
   GhostNodes* ghosts = nullptr;
   std::vector<char> owned;
+  // Implicit dynamics (<dynamic>true; Implicit/Newmark.h): per field and node, the velocity and
+  // acceleration of the step's start. Empty in a quasi-static step.
+  std::vector<std::vector<Vec3>> velocity, acceleration;
 };
 
 // How Newton went in one attempt at a step.
@@ -62,6 +66,9 @@ class EquilibriumSolver {
   // increments of field f (by node).
   NewtonReport solve(const EquilibriumProblem& problem, double dt, const ImplicitOptions& options);
   const std::vector<Vec3>& displacement(int field) const { return u_[field]; }
+  // Implicit dynamics: the nodal accelerations at the end of the converged step (Newmark's;
+  // zero on the nodes left out of the unknowns).
+  const std::vector<Vec3>& acceleration(int field) const { return acceleration_[field]; }
 
  private:
   // The unknown nodes (block rows: this rank's own first, then the ones it shares with their
@@ -74,7 +81,7 @@ class EquilibriumSolver {
                          bool fromOwners) const;
   // sum of a_i b_i over the owned rows' components, over all ranks.
   double ownedDot(const std::vector<double>& a, const std::vector<double>& b) const;
-  // K and the residual r = f_ext - f_int at the current u (fixed components of r zeroed).
+  // K and the residual r = f_ext - f_int (- m a) at the current u (fixed components of r zeroed).
   // `stabilization`: epsilon of Implicit/HourglassStabilization.h. Without the tangent: the
   // residual only (the line search's trials).
   void assemble(const EquilibriumProblem& problem, double dt, double stabilization,
@@ -96,10 +103,14 @@ class EquilibriumSolver {
   // residual (and hourglass_ I into K).
   void applyHourglassStiffness(int first, int last, bool withTangent);
 
-  std::vector<std::vector<Vec3>> u_;          // per field, by node
-  std::vector<std::vector<int>> row_;         // per field, by node: block row, or -1
-  std::vector<std::pair<int, int>> unknown_;  // block row -> (field, node)
-  RowLayout rows_;                            // which rows this rank owns; global rows
+  // The end-of-step accelerations of implicit dynamics (Newmark) into acceleration_.
+  void computeEndOfStepAcceleration(const EquilibriumProblem& problem, double dt);
+
+  std::vector<std::vector<Vec3>> u_;             // per field, by node
+  std::vector<std::vector<Vec3>> acceleration_;  // per field, by node (implicit dynamics)
+  std::vector<std::vector<int>> row_;            // per field, by node: block row, or -1
+  std::vector<std::pair<int, int>> unknown_;     // block row -> (field, node)
+  RowLayout rows_;                               // which rows this rank owns; global rows
   BlockMatrix K_;
   std::vector<double> residual_, coordinates_;  // coordinates: of the owned rows
   std::vector<int> fixed_;                      // fixed components of the rows

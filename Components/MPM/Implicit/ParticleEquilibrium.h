@@ -127,12 +127,15 @@ void evaluateTrialStress(ParticleSet& p, const InterpolationWeights& W, const Mo
 }
 
 // The particles after the step with the converged u (Eq. 8's counterpart): position and
-// displacement by sum S u, velocity u/dt interpolated, F, volume, stress and the model's state.
-// dc as for TrialBlock. Returns the first particle whose det F is not positive (n if none).
+// displacement by sum S u, F, volume, stress and the model's state; the velocity u/dt
+// interpolated or, in implicit dynamics (`acceleration`: the nodes' at the step's end), Newmark's
+// v += dt/2 (a_p + sum S a') and a_p = sum S a' (Newmark.h). dc as for TrialBlock. Returns the
+// first particle whose det F is not positive (n if none).
 template <class Model>
 long updateParticlesFromDisplacement(ParticleSet& p, const InterpolationWeights& W,
                                      const Model& model, double density, const std::vector<Vec3>& u,
-                                     const double* dc, double dt) {
+                                     const std::vector<Vec3>* acceleration, const double* dc,
+                                     double dt) {
   const auto arrays = model.stateArrays(p);
   const long n = static_cast<long>(p.count());
   constexpr int lanes = static_cast<int>(Pack::size());
@@ -145,9 +148,12 @@ long updateParticlesFromDisplacement(ParticleSet& p, const InterpolationWeights&
     for (int l = 0; l < lanes; ++l) {
       const long i = block * lanes + l;
       if (i >= n) break;
-      Vec3 moved = Vec3::Zero();
+      Vec3 moved = Vec3::Zero(), accelerated = Vec3::Zero();
       const size_t b = W.offset[i];
       for (int e = 0; e < W.count[i]; ++e) moved += W.weight[b + e] * u[W.node[b + e]];
+      if (acceleration)
+        for (int e = 0; e < W.count[i]; ++e)
+          accelerated += W.weight[b + e] * (*acceleration)[W.node[b + e]];
       const Mat3 F = (Mat3::Identity() + lane(t.H, l)) * p.F[i];
       const double J = F.determinant();
       if (!(J > 0)) {
@@ -156,7 +162,12 @@ long updateParticlesFromDisplacement(ParticleSet& p, const InterpolationWeights&
       }
       p.x[i] += moved;
       p.displacement[i] += moved;
-      p.velocity[i] = moved / dt;
+      if (acceleration) {
+        p.velocity[i] += dt / 2 * (p.acceleration[i] + accelerated);
+        p.acceleration[i] = accelerated;
+      } else {
+        p.velocity[i] = moved / dt;
+      }
       p.F[i] = F;
       p.volume[i] = p.mass[i] / density * J;
       p.stress[i] = lane(sigma, l);
