@@ -2,12 +2,14 @@
 // order of its time integration, Newton's convergence, and the inputs it refuses.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <memory>
 #include <sstream>
 #include <string>
 
+#include "Components/MPM/ReactiveFlow/DiffusionParticles.h"
 #include "Core/Util/Errors.h"
 #include "StandAlone/Driver/Simulation.h"
 
@@ -262,6 +264,77 @@ TEST(QuasiStatic, ConcentrationChangeBoundsTheStep) {
   const ParticleSet& p = sim.mpm().materials()[0].particles;
   for (size_t i = 0; i < p.count(); ++i)
     EXPECT_NEAR(p.F[i].determinant(), std::exp(3 * 0.3 * 0.03), 1e-8) << "particle " << i;
+}
+
+// A slab lithiated through x+ whose non_linear1 diffusivity (D0 exp(2c)) is computed until
+// t = 2.5 and frozen after (<diff_curve> "out"), in quasi-static steps whose first one, dt 3,
+// changes c by more than twice <max_concentration_change> and is retaken at a smaller dt.
+std::string diffCurveSlab(const std::string& firstDt) {
+  return "<Uintah_specification><SimulationComponent type=\"impm\"/><Time><maxTime>100</maxTime>"
+         "<initTime>0</initTime><delt_min>0</delt_min><delt_max>3</delt_max>" +
+         firstDt +
+         "<timestep_multiplier>0.4</timestep_multiplier></Time><DataArchiver><filebase>dc.uda"
+         "</filebase><outputTimestepInterval>1000</outputTimestepInterval><save "
+         "label=\"p.diffusivity\"/></DataArchiver><MPM><time_integrator>implicit</time_integrator>"
+         "<dynamic>false</dynamic><max_concentration_change>0.01</max_concentration_change>"
+         "<interpolator>gimp</interpolator><do_scalar_diffusion>true</do_scalar_diffusion>"
+         "<use_load_curves>true</use_load_curves></MPM><MaterialProperties><MPM><material>"
+         "<density>1</density><constitutive_model type=\"rf_elastic_plastic\"><bulk_modulus>1e6"
+         "</bulk_modulus><shear_modulus>1e6</shear_modulus><volume_expansion_coeff>0.05"
+         "</volume_expansion_coeff></constitutive_model><diffusion_model type=\"non_linear1\">"
+         "<diffusivity>0.05</diffusivity><max_concentration>1</max_concentration><use_pressure>"
+         "false</use_pressure><tuning1>2</tuning1><tuning2>0</tuning2><diff_curve><time_point>"
+         "<time>0</time><flux_direction>in</flux_direction></time_point><time_point><time>2.5"
+         "</time><flux_direction>out</flux_direction></time_point><time_point><time>200</time>"
+         "<flux_direction>in</flux_direction></time_point></diff_curve></diffusion_model>"
+         "<geom_object><box><min>[0,0,0]</min><max>[1,0.1,0.1]</max></box><res>[2,1,1]</res>"
+         "<velocity>[0,0,0]</velocity><concentration>0</concentration></geom_object></material>"
+         "</MPM></MaterialProperties><PhysicalBC><MPM><scalar_flux><geom_object><box><min>"
+         "[0.99,0,0]</min><max>[1.01,0.1,0.1]</max></box></geom_object><load_curve><id>1</id>"
+         "<time_point><time>0</time><load>0.02</load></time_point><time_point><time>1e6</time>"
+         "<load>0.02</load></time_point></load_curve></scalar_flux></MPM></PhysicalBC><Grid>"
+         "<Level><Box><lower>[0,0,0]</lower><upper>[1,0.1,0.1]</upper><resolution>[10,1,1]"
+         "</resolution><extraCells>[1,1,1]</extraCells></Box></Level><BoundaryConditions>"
+         "<Face side=\"x-\"><BCType id=\"all\" label=\"Symmetric\" var=\"symmetry\"/></Face>"
+         "<Face side=\"y-\"><BCType id=\"all\" label=\"Symmetric\" var=\"symmetry\"/></Face>"
+         "<Face side=\"y+\"><BCType id=\"all\" label=\"Symmetric\" var=\"symmetry\"/></Face>"
+         "<Face side=\"z-\"><BCType id=\"all\" label=\"Symmetric\" var=\"symmetry\"/></Face>"
+         "<Face side=\"z+\"><BCType id=\"all\" label=\"Symmetric\" var=\"symmetry\"/></Face>"
+         "</BoundaryConditions></Grid></Uintah_specification>";
+}
+
+// The failed attempt's diffusion passes t = 2.5, where the curve's interval advances; the retake
+// starts again from the interval of the step's start, so its D is computed, not frozen, and the
+// run equals one whose first step is the retaken dt (<delt_init>).
+TEST(QuasiStatic, RetakenStepRestoresTheDiffusivityCurve) {
+  RunOptions o;
+  o.progress = false;
+  Simulation retaken(diffCurveSlab(""), "dc.ups", o);
+  retaken.advance();
+  ASSERT_GE(retaken.mpm().newtonCounts().retakes, 1);  // twice: dt 3, 0.3, then 0.066
+  const double dt = retaken.time();
+  ASSERT_LT(dt, 2.5);
+  char first[64];
+  std::snprintf(first, sizeof first, "<delt_init>%.17g</delt_init>", dt);
+  Simulation direct(diffCurveSlab(first), "dc.ups", o);
+  direct.advance();
+  ASSERT_EQ(direct.mpm().newtonCounts().retakes, 0);
+  ASSERT_EQ(direct.time(), dt);
+  for (int step = 0; step < 2; ++step) {
+    retaken.advance();
+    direct.advance();
+  }
+  ASSERT_EQ(retaken.time(), direct.time());
+  const ParticleSet& a = retaken.mpm().materials()[0].particles;
+  const ParticleSet& b = direct.mpm().materials()[0].particles;
+  const std::vector<double>& Da = diffusionParticles(a).diffusivity;
+  const std::vector<double>& Db = diffusionParticles(b).diffusivity;
+  double largest = 0;
+  for (size_t i = 0; i < a.count(); ++i) {
+    EXPECT_NEAR(Da[i], Db[i], 1e-12 * Db[i]) << "particle " << i;
+    largest = std::max(largest, Da[i]);
+  }
+  EXPECT_GT(largest, 1.01 * 0.05);  // computed from the risen c (frozen, it stays at D0)
 }
 
 TEST(QuasiStatic, ImpmNeedsTheImplicitIntegrator) {

@@ -212,11 +212,11 @@ double MPM::advanceQuasiStatic(Collective, double t, double dt, double dtMin,
   }
   // A step retaken with a smaller dt diffuses again from the particles of the step's start.
   std::vector<ParticleSet> start;
-  std::optional<ExternalScalarFlux> fluxAtStart;
+  std::optional<ReactiveFlow::StepState> diffusionAtStart;
   int retakes = 0;
   if (diffusion_) {
     for (const MPMMaterial& mat : materials_) start.push_back(mat.particles);
-    fluxAtStart = diffusion_->fluxState();
+    diffusionAtStart = diffusion_->stepState();
   }
   while (true) {
     interpolateAndSumOverRanks();  // the nodal masses (and the concentration's sums)
@@ -279,7 +279,7 @@ double MPM::advanceQuasiStatic(Collective, double t, double dt, double dtMin,
     dt = smaller;
     for (size_t m = 0; m < start.size(); ++m) materials_[m].particles = start[m];
     if (diffusion_) {
-      diffusion_->restoreFluxState(*fluxAtStart);
+      diffusion_->restoreStepState(*diffusionAtStart);
       diffusion_->updateDiffusionState(Collective{}, materials_, t);
     }
   }

@@ -410,6 +410,18 @@ std::vector<size_t> ReactiveFlow::lithiumTakingMaterials() const {
   return which;
 }
 
+ReactiveFlow::StepState ReactiveFlow::stepState() const {
+  StepState state{flux_, {}};
+  for (const DiffusionMaterial& mat : materials_) state.models.push_back(mat.model->stepState());
+  return state;
+}
+
+void ReactiveFlow::restoreStepState(const StepState& state) {
+  flux_ = state.flux;
+  for (size_t m = 0; m < materials_.size(); ++m)
+    materials_[m].model->restoreStepState(state.models[m]);
+}
+
 void ReactiveFlow::saveState(BinaryWriter& out) const {
   out.value(maxDiffusivity_);
   flux_.saveState(out);

@@ -133,10 +133,15 @@ class ReactiveFlow {
   // What happened in the steps since the last call that the user should know (a galvanostatic
   // BC's current ending); the same on every rank.
   std::vector<std::string> takeRunNotes() { return flux_.takeNotes(); }
-  // The flux BCs' state (the auto-cycle sign, the galvanostatic currents ended, their notes): a
-  // quasi-static step retaken with a smaller dt starts again from the one it had.
-  const ExternalScalarFlux& fluxState() const { return flux_; }
-  void restoreFluxState(const ExternalScalarFlux& state) { flux_ = state; }
+  // The state a quasi-static step retaken with a smaller dt starts again from: the flux BCs'
+  // (the auto-cycle sign, the galvanostatic currents ended, their notes) and the diffusivity
+  // models' (the interval a <diff_curve> is in).
+  struct StepState {
+    ExternalScalarFlux flux;
+    std::vector<std::vector<uint64_t>> models;
+  };
+  StepState stepState() const;
+  void restoreStepState(const StepState& state);
   // After particle splitting: the flux faces of the split particles shared among their children.
   void shareFluxFaces(ParticleSet& p, const std::vector<SplitParticle>& splits) const {
     flux_.shareFacesOnSplit(p, splits);

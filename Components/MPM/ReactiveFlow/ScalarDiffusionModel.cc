@@ -102,6 +102,12 @@ class NonLinear1 : public ScalarDiffusionModel {
       throw std::runtime_error("the checkpoint's <diff_curve> interval is beyond the curve");
     curve->interval = interval;
   }
+  std::vector<uint64_t> stepState() const override {
+    return curve ? std::vector<uint64_t>{curve->interval} : std::vector<uint64_t>{};
+  }
+  void restoreStepState(const std::vector<uint64_t>& state) override {
+    if (curve) curve->interval = state.at(0);
+  }
 };
 
 // cubic: paper Eq. 24 (Berla et al.), for comparison with Eq. 23.

@@ -3,6 +3,7 @@
 // the flux q_p = D_p grad c_p and its divergence (Eqs. 6-7) are computed by the MPM step.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -29,6 +30,10 @@ class ScalarDiffusionModel {
   // What the model carries from step to step besides the particle arrays (checkpoints).
   virtual void saveState(BinaryWriter&) const {}
   virtual void loadState(BinaryReader&) {}
+  // The same state in memory, for a quasi-static step retaken with a smaller dt (empty when the
+  // model has none).
+  virtual std::vector<uint64_t> stepState() const { return {}; }
+  virtual void restoreStepState(const std::vector<uint64_t>&) {}
 
   double D0 = 0;                // <diffusivity>
   double maxConcentration = 1;  // <max_concentration>
