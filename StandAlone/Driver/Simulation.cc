@@ -338,7 +338,8 @@ Simulation::Requests Simulation::requestsOfAnyRank(Collective, bool done) const 
 bool Simulation::rebalance(Collective) {
   if (Communicator::size() == 1) return false;
   const double before = mpm_.imbalance(Collective{});
-  if (before <= kRebalanceImbalance * layoutImbalance_) return false;
+  const double growth = mpm_.flags().implicit ? kRebalanceImbalanceImplicit : kRebalanceImbalance;
+  if (before <= growth * layoutImbalance_) return false;
   ScopedTimer timer(mpm_.timers(), mpm_.timers().task("rebalance"));
   mpm_.redistributeParticles(Collective{});
   const double after = mpm_.imbalance(Collective{});
