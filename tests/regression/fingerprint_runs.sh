@@ -26,7 +26,7 @@ run() {  # name steps input
 for f in $(cd "$root/inputs" && find . -name '*.ups' | sort); do
   name=$(echo "${f#./}" | tr / _ | sed 's/\.ups$//')
   case $name in
-    Paper_QuasiStatic_Cycle_LargePillar) steps=1 ;;
+    Paper_QuasiStatic_Cycle_LargePillar) continue ;;  # its first step alone takes 6 minutes
     Benchmarks_*|Paper_Cycle_LargePillar|Paper_Substrate_*|Paper_QuasiStatic_*) steps=5 ;;
     *) steps=40 ;;
   esac
