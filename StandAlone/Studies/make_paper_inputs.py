@@ -498,73 +498,72 @@ SCENARIOS.append(
 )
 SCENARIOS[-1]["pillar"] = dict(LARGE, top=0.24)
 
+
+def add_variant(base, **changes):
+    """Appends the scenario named `base` with `changes`."""
+    SCENARIOS.append(dict(next(s for s in SCENARIOS if s["name"] == base), **changes))
+
+
+# Quasi-static runs at silicon's real density in steps of at most 1 s; with NEWTON_STEPS dt follows
+# Newton's iterations alone, growing again after a step of at most 7 of them.
+REAL_DENSITY = dict(density=2.33e3, implicit=True, delt_max=1e6)
+NEWTON_STEPS = dict(
+    REAL_DENSITY,
+    implicit_extra="\n    <max_concentration_change>1</max_concentration_change>"
+    "\n    <num_iters_to_increase_delT>7</num_iters_to_increase_delT>",
+)
+
 # Figure 4's pillar at the real density, quasi-static (docs/quasi-static.md): no density enters
 # the equilibrium, dt follows Newton's iterations up to delt_max (1 s).
-SCENARIOS.append(
-    dict(
-        next(s for s in SCENARIOS if s["name"] == "Density_2.33e18"),
-        name="QuasiStatic_Fig4",
-        title="Quasi-static: 2.33e3 kg/m^3",
-        notes=describe(
-            COMMON
-            + [
-                "Linear isotropic hardening, yield 1.4 GPa, modulus 1.15 GPa.",
-                "Density 2.33e3 kg/m^3 (real silicon), D0 = 1e-17 m^2/s, flux 1e-9 m/s, quasi-static",
-                "(implicit) steps of at most 1 s; compare with Density_2.33e18 and Density_2.33e24.",
-                "dt by Newton's iterations alone (max_concentration_change 1), growing again",
-                "after a step of at most 7 iterations (this pillar's steps take 6-7: with",
-                "ImpMPM's 4 a retaken first step's cut would hold to the end);",
-                "docs/quasi-static.md shows how the answer moves with dt.",
-            ]
-        ),
-        density=2.33e3,
-        implicit=True,
-        delt_max=1e6,
-        implicit_extra="\n    <max_concentration_change>1</max_concentration_change>"
-        "\n    <num_iters_to_increase_delT>7</num_iters_to_increase_delT>",
-    )
+add_variant(
+    "Density_2.33e18",
+    name="QuasiStatic_Fig4",
+    title="Quasi-static: 2.33e3 kg/m^3",
+    notes=describe(
+        COMMON
+        + [
+            "Linear isotropic hardening, yield 1.4 GPa, modulus 1.15 GPa.",
+            "Density 2.33e3 kg/m^3 (real silicon), D0 = 1e-17 m^2/s, flux 1e-9 m/s, quasi-static",
+            "(implicit) steps of at most 1 s; compare with Density_2.33e18 and Density_2.33e24.",
+            "dt by Newton's iterations alone (max_concentration_change 1), growing again",
+            "after a step of at most 7 iterations (this pillar's steps take 6-7: with",
+            "ImpMPM's 4 a retaken first step's cut would hold to the end);",
+            "docs/quasi-static.md shows how the answer moves with dt.",
+        ]
+    ),
+    **NEWTON_STEPS,
 )
 
 # §4.4's faster flux at the real density, quasi-static: the explicit Flux_1e-8 stops at 16.06 s
 # with c = 1.0000037 (docs/paper); here dt follows Newton and the default bound on c's change.
-SCENARIOS.append(
-    dict(
-        next(s for s in SCENARIOS if s["name"] == "Flux_1e-8"),
-        name="QuasiStatic_Flux_1e-8",
-        title="Quasi-static: flux 1e-8 m/s at 2.33e3 kg/m^3",
-        notes=describe(
-            COMMON
-            + [
-                "Linear hardening; alpha = 6, beta = 0.5; flux 1e-8 m/s, as Flux_1e-8.",
-                "Density 2.33e3 kg/m^3 (real silicon), quasi-static (implicit) steps of at most",
-                "1 s, the change of c per step bounded by the default <max_concentration_change>.",
-            ]
-        ),
-        density=2.33e3,
-        implicit=True,
-        delt_max=1e6,
-    )
+add_variant(
+    "Flux_1e-8",
+    name="QuasiStatic_Flux_1e-8",
+    title="Quasi-static: flux 1e-8 m/s at 2.33e3 kg/m^3",
+    notes=describe(
+        COMMON
+        + [
+            "Linear hardening; alpha = 6, beta = 0.5; flux 1e-8 m/s, as Flux_1e-8.",
+            "Density 2.33e3 kg/m^3 (real silicon), quasi-static (implicit) steps of at most",
+            "1 s, the change of c per step bounded by the default <max_concentration_change>.",
+        ]
+    ),
+    **REAL_DENSITY,
 )
 
 # §4.7's cycle at the real density, quasi-static: steps of at most 1 s as Figure 4's.
-SCENARIOS.append(
-    dict(
-        next(s for s in SCENARIOS if s["name"] == "Cycle_LargePillar"),
-        name="QuasiStatic_Cycle_LargePillar",
-        title="Quasi-static: the large pillar's cycle at 2.33e3 kg/m^3",
-        notes=describe(
-            [
-                "Cycle_LargePillar (large pillar on a substrate, flux 1e-9 m/s in for 40 s, out for",
-                "40 s) at silicon's real density, 2.33e3 kg/m^3, in quasi-static (implicit) steps of",
-                "at most 1 s, dt by Newton's iterations alone as QuasiStatic_Fig4.",
-            ]
-        ),
-        density=2.33e3,
-        implicit=True,
-        delt_max=1e6,
-        implicit_extra="\n    <max_concentration_change>1</max_concentration_change>"
-        "\n    <num_iters_to_increase_delT>7</num_iters_to_increase_delT>",
-    )
+add_variant(
+    "Cycle_LargePillar",
+    name="QuasiStatic_Cycle_LargePillar",
+    title="Quasi-static: the large pillar's cycle at 2.33e3 kg/m^3",
+    notes=describe(
+        [
+            "Cycle_LargePillar (large pillar on a substrate, flux 1e-9 m/s in for 40 s, out for",
+            "40 s) at silicon's real density, 2.33e3 kg/m^3, in quasi-static (implicit) steps of",
+            "at most 1 s, dt by Newton's iterations alone as QuasiStatic_Fig4.",
+        ]
+    ),
+    **NEWTON_STEPS,
 )
 
 
