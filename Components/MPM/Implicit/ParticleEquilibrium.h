@@ -150,10 +150,10 @@ long updateParticlesFromDisplacement(ParticleSet& p, const InterpolationWeights&
       if (i >= n) break;
       Vec3 moved = Vec3::Zero(), accelerated = Vec3::Zero();
       const size_t b = W.offset[i];
-      for (int e = 0; e < W.count[i]; ++e) moved += W.weight[b + e] * u[W.node[b + e]];
-      if (acceleration)
-        for (int e = 0; e < W.count[i]; ++e)
-          accelerated += W.weight[b + e] * (*acceleration)[W.node[b + e]];
+      for (int e = 0; e < W.count[i]; ++e) {
+        moved += W.weight[b + e] * u[W.node[b + e]];
+        if (acceleration) accelerated += W.weight[b + e] * (*acceleration)[W.node[b + e]];
+      }
       const Mat3 F = (Mat3::Identity() + lane(t.H, l)) * p.F[i];
       const double J = F.determinant();
       if (!(J > 0)) {

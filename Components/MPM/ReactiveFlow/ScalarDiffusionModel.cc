@@ -90,23 +90,16 @@ class NonLinear1 : public ScalarDiffusionModel {
     return dmax;
   }
 
-  // The diff_curve's current interval: it advances at most once per step, so a restart cannot
-  // recompute it from the time.
-  void saveState(BinaryWriter& out) const override {
-    if (curve) out.value<uint64_t>(curve->interval);
-  }
-  void loadState(BinaryReader& in) override {
-    if (!curve) return;
-    const uint64_t interval = in.value<uint64_t>();
-    if (interval >= curve->times.size())
-      throw std::runtime_error("the checkpoint's <diff_curve> interval is beyond the curve");
-    curve->interval = interval;
-  }
+  // The diff_curve's current interval: it advances at most once per step, so neither a restart
+  // nor a retaken step can recompute it from the time.
   std::vector<uint64_t> stepState() const override {
     return curve ? std::vector<uint64_t>{curve->interval} : std::vector<uint64_t>{};
   }
   void restoreStepState(const std::vector<uint64_t>& state) override {
-    if (curve) curve->interval = state.at(0);
+    if (!curve) return;
+    if (state.at(0) >= curve->times.size())
+      throw std::runtime_error("the checkpoint's <diff_curve> interval is beyond the curve");
+    curve->interval = state[0];
   }
 };
 

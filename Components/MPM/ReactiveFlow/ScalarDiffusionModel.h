@@ -27,13 +27,19 @@ class ScalarDiffusionModel {
   virtual double scaledPressure(const Mat3&) const { return 0.0; }
   // False when the model has no flux at all (constant_rate, or a zero diffusivity everywhere).
   virtual bool diffuses() const { return D0 > 0; }
-  // What the model carries from step to step besides the particle arrays (checkpoints).
-  virtual void saveState(BinaryWriter&) const {}
-  virtual void loadState(BinaryReader&) {}
-  // The same state in memory, for a quasi-static step retaken with a smaller dt (empty when the
-  // model has none).
+  // What the model carries from step to step besides the particle arrays (empty when it has
+  // none): checkpoints save it, a quasi-static step retaken with a smaller dt restores it.
   virtual std::vector<uint64_t> stepState() const { return {}; }
+  // Throws std::runtime_error for a state the model cannot take.
   virtual void restoreStepState(const std::vector<uint64_t>&) {}
+  void saveState(BinaryWriter& out) const {
+    for (uint64_t v : stepState()) out.value(v);
+  }
+  void loadState(BinaryReader& in) {
+    std::vector<uint64_t> state = stepState();
+    for (uint64_t& v : state) v = in.value<uint64_t>();
+    restoreStepState(state);
+  }
 
   double D0 = 0;                // <diffusivity>
   double maxConcentration = 1;  // <max_concentration>
