@@ -73,27 +73,26 @@ LinearSolver::LinearSolver(const BlockMatrix& pattern, RowLayout rows,
     isFixed_[i] = 1;
     if (i < n) fixedOwned_.push_back(i);
   }
-  // The pattern: every 3 x 3 block of every rank's K, zeros included, counted by PETSc's
-  // preallocator (rows of other ranks included), then laid out in the matrix.
-  Mat counter = nullptr;
-  check(MatCreate(PETSC_COMM_WORLD, &counter), "MatCreate");
-  check(MatSetType(counter, MATPREALLOCATOR), "MatSetType");
-  check(MatSetSizes(counter, n, n, PETSC_DETERMINE, PETSC_DETERMINE), "MatSetSizes");
-  check(MatSetBlockSize(counter, 3), "MatSetBlockSize");
-  check(MatSetUp(counter), "MatSetUp");
-  std::swap(o_->A, counter);
-  for (int r = 0; r < pattern.rows(); ++r) addRow(pattern, r);
-  std::swap(o_->A, counter);
-  check(MatAssemblyBegin(counter, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
-  check(MatAssemblyEnd(counter, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+  // The pattern in PETSc's coordinate form: every entry of every 3 x 3 block of every rank's K
+  // (rows of other ranks included), in the order of K's blocks and of a Mat3's storage (column by
+  // column), so that setMatrix hands PETSc the values in that order.
+  std::vector<PetscInt> rowOf, columnOf;
+  rowOf.reserve(9 * pattern.column.size());
+  columnOf.reserve(9 * pattern.column.size());
+  for (int r = 0; r < pattern.rows(); ++r)
+    for (int e = pattern.rowStart[r]; e < pattern.rowStart[r + 1]; ++e)
+      for (int g = 0; g < 3; ++g)
+        for (int a = 0; a < 3; ++a) {
+          rowOf.push_back(3 * rows_.globalRow[r] + a);
+          columnOf.push_back(3 * rows_.globalRow[pattern.column[e]] + g);
+        }
   check(MatCreate(PETSC_COMM_WORLD, &o_->A), "MatCreate");
   check(MatSetSizes(o_->A, n, n, PETSC_DETERMINE, PETSC_DETERMINE), "MatSetSizes");
   check(MatSetType(o_->A, MATAIJ), "MatSetType");
   check(MatSetBlockSize(o_->A, 3), "MatSetBlockSize");
-  check(MatPreallocatorPreallocate(counter, PETSC_TRUE, o_->A), "MatPreallocatorPreallocate");
-  MatDestroy(&counter);
-  // Every later assembly sends the same rows to the same ranks.
-  check(MatSetOption(o_->A, MAT_SUBSET_OFF_PROC_ENTRIES, PETSC_TRUE), "MatSetOption");
+  check(MatSetPreallocationCOO(o_->A, static_cast<PetscCount>(rowOf.size()), rowOf.data(),
+                               columnOf.data()),
+        "MatSetPreallocationCOO");
   check(MatCreateVecs(o_->A, &o_->x, &o_->b), "MatCreateVecs");
   check(VecDuplicate(o_->b, &o_->scale), "VecDuplicate");
   check(VecDuplicate(o_->b, &o_->residual), "VecDuplicate");
@@ -112,37 +111,24 @@ LinearSolver::LinearSolver(const BlockMatrix& pattern, RowLayout rows,
 
 LinearSolver::~LinearSolver() = default;
 
-void LinearSolver::addRow(const BlockMatrix& K, int r) {
-  const int begin = K.rowStart[r], count = K.rowStart[r + 1] - begin;
-  if (count == 0) return;
-  const bool owned = r < rows_.owned;
-  // Row-major, as PETSc reads a block row: scalar row a holds (a, 3 j + g) for block j.
-  rowValues_.resize(9 * static_cast<size_t>(count));
-  rowColumns_.resize(count);
-  for (int j = 0; j < count; ++j) {
-    const int c = K.column[begin + j];
-    rowColumns_[j] = rows_.globalRow[c];
-    for (int a = 0; a < 3; ++a)
-      for (int g = 0; g < 3; ++g) {
-        const int row = 3 * r + a, column = 3 * c + g;
-        PetscValue& v = rowValues_[3 * count * a + 3 * j + g];
-        if (isFixed_[row] || isFixed_[column])  // the owner's 1 on the diagonal
-          v = owned && row == column ? 1.0 : 0.0;
-        else
-          v = K.block[begin + j](a, g);
-      }
-  }
-  const PetscInt row = rows_.globalRow[r];
-  check(
-      MatSetValuesBlocked(o_->A, 1, &row, count, rowColumns_.data(), rowValues_.data(), ADD_VALUES),
-      "MatSetValuesBlocked");
-}
-
 void LinearSolver::setMatrix(const BlockMatrix& K) {
-  check(MatZeroEntries(o_->A), "MatZeroEntries");
-  for (int r = 0; r < K.rows(); ++r) addRow(K, r);
-  check(MatAssemblyBegin(o_->A, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
-  check(MatAssemblyEnd(o_->A, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+  // K's values in the constructor's order; a fixed component's row and column are zero but for
+  // the owner's 1 on the diagonal. PETSc adds the ranks' parts of each entry.
+  values_.resize(9 * K.column.size());
+  for (int r = 0; r < K.rows(); ++r) {
+    const bool owned = r < rows_.owned;
+    for (int e = K.rowStart[r]; e < K.rowStart[r + 1]; ++e) {
+      const int c = K.column[e];
+      for (int g = 0; g < 3; ++g)
+        for (int a = 0; a < 3; ++a) {
+          const int row = 3 * r + a, column = 3 * c + g;
+          values_[9 * static_cast<size_t>(e) + 3 * g + a] =
+              isFixed_[row] || isFixed_[column] ? (owned && row == column ? 1.0 : 0.0)
+                                                : K.block[e](a, g);
+        }
+    }
+  }
+  check(MatSetValuesCOO(o_->A, values_.data(), INSERT_VALUES), "MatSetValuesCOO");
   // Symmetric diagonal scaling, D K D with D = |diag K|^-1/2: nodes a particle's corner just
   // reaches have stiffness 1e-8 of the others', which breaks GMRES down on the unscaled system.
   check(MatGetDiagonal(o_->A, o_->scale), "MatGetDiagonal");

@@ -58,8 +58,6 @@ class LinearSolver {
   // The PETSc matrix (every rank's parts of K added; fixed rows and columns: identity) scaled
   // symmetrically by its diagonal; sets scale_.
   void setMatrix(const BlockMatrix& K);
-  // Block row r of K into the PETSc matrix (the pattern's zeros when `K` is the pattern).
-  void addRow(const BlockMatrix& K, int r);
   // GAMG's near-null space: the rigid modes of the scaled system, orthonormal.
   void setNearNullSpace();
   // One KSPSolve with the preconditioner built anew or reused.
@@ -71,9 +69,8 @@ class LinearSolver {
   std::vector<int> fixedOwned_;              // the fixed components of owned rows
   std::vector<char> isFixed_;                // by local component: 1 where fixed
   std::vector<double> coordinates_, scale_;  // of the owned rows' components
-  std::vector<PetscValue> rowValues_;
-  std::vector<int> rowColumns_;
-  int freshIterations_ = -1;  // Krylov iterations of the last solve with a new preconditioner
+  std::vector<PetscValue> values_;  // K's entries in the order of the pattern given to PETSc
+  int freshIterations_ = -1;        // Krylov iterations of the last solve with a new preconditioner
 };
 
 }  // namespace anode
