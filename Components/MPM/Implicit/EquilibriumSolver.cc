@@ -7,6 +7,7 @@
 #include <limits>
 #include <optional>
 #include <stdexcept>
+#include <utility>
 #include <variant>
 
 #include "Components/MPM/Implicit/HourglassStabilization.h"
@@ -216,9 +217,16 @@ void EquilibriumSolver::addInternalForce(const EquilibriumProblem& problem, size
   const InterpolationWeights& W = problem.weights[m];
   const std::vector<int>& row = row_[problem.fieldOf[m]];
   Eigen::Matrix<double, 3, 9> T;
+  std::vector<std::pair<int, int>> columns;  // (column, g) of the particle's unknown nodes, sorted
   for (size_t i = 0; i < p.count(); ++i) {
     const double V = p.volume[i];
     const size_t b = W.offset[i];
+    if (withTangent) {
+      columns.clear();
+      for (int g = 0; g < W.count[i]; ++g)
+        if (row[W.node[b + g]] >= 0) columns.emplace_back(row[W.node[b + g]], g);
+      std::sort(columns.begin(), columns.end());
+    }
     for (int e = 0; e < W.count[i]; ++e) {
       const int r = row[W.node[b + e]];
       if (r < first || r >= last) continue;
@@ -230,14 +238,16 @@ void EquilibriumSolver::addInternalForce(const EquilibriumProblem& problem, size
       const Mat9& A = A_[m][i];
       for (int a = 0; a < 3; ++a)
         T.row(a) = V * (ge[0] * A.row(3 * a) + ge[1] * A.row(3 * a + 1) + ge[2] * A.row(3 * a + 2));
-      for (int g = 0; g < W.count[i]; ++g) {
-        if (row[W.node[b + g]] < 0) continue;
+      // Row r holds every column of the particle's nodes: one pass along it finds their blocks.
+      int j = K_.rowStart[r];
+      for (const auto& [column, g] : columns) {
+        while (K_.column[j] < column) ++j;
         const Vec3& gg = W.gradient[b + g];
         Mat3 k;
         for (int a = 0; a < 3; ++a)
           for (int c = 0; c < 3; ++c)
             k(a, c) = T(a, 3 * c) * gg[0] + T(a, 3 * c + 1) * gg[1] + T(a, 3 * c + 2) * gg[2];
-        K_.at(r, row[W.node[b + g]]) += k;
+        K_.block[j] += k;
       }
     }
   }
