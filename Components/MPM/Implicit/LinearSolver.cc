@@ -47,6 +47,7 @@ void startPetsc() {
 // One PETSc object of each kind the solves use.
 struct LinearSolver::Objects {
   Mat A = nullptr;
+  Mat part[2] = {nullptr, nullptr};  // A's own rows (A itself on one rank); not owned
   Vec x = nullptr, b = nullptr, scale = nullptr, residual = nullptr;
   KSP ksp = nullptr;
   ~Objects() {
@@ -73,26 +74,26 @@ LinearSolver::LinearSolver(const BlockMatrix& pattern, RowLayout rows,
     isFixed_[i] = 1;
     if (i < n) fixedOwned_.push_back(i);
   }
-  // The pattern in PETSc's coordinate form: every entry of every 3 x 3 block of every rank's K
-  // (rows of other ranks included), in the order of K's blocks and of a Mat3's storage (column by
-  // column), so that setMatrix hands PETSc the values in that order.
-  std::vector<PetscInt> rowOf, columnOf;
-  rowOf.reserve(9 * pattern.column.size());
-  columnOf.reserve(9 * pattern.column.size());
-  for (int r = 0; r < pattern.rows(); ++r)
-    for (int e = pattern.rowStart[r]; e < pattern.rowStart[r + 1]; ++e)
-      for (int g = 0; g < 3; ++g)
-        for (int a = 0; a < 3; ++a) {
-          rowOf.push_back(3 * rows_.globalRow[r] + a);
-          columnOf.push_back(3 * rows_.globalRow[pattern.column[e]] + g);
-        }
+  // The pattern: every 3 x 3 block of every rank's K, zeros included, counted by PETSc's
+  // preallocator (rows of other ranks included), then laid out in the matrix.
+  Mat counter = nullptr;
+  check(MatCreate(PETSC_COMM_WORLD, &counter), "MatCreate");
+  check(MatSetType(counter, MATPREALLOCATOR), "MatSetType");
+  check(MatSetSizes(counter, n, n, PETSC_DETERMINE, PETSC_DETERMINE), "MatSetSizes");
+  check(MatSetBlockSize(counter, 3), "MatSetBlockSize");
+  check(MatSetUp(counter), "MatSetUp");
+  for (int r = 0; r < pattern.rows(); ++r) addRow(counter, pattern, r);
+  check(MatAssemblyBegin(counter, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
+  check(MatAssemblyEnd(counter, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
   check(MatCreate(PETSC_COMM_WORLD, &o_->A), "MatCreate");
   check(MatSetSizes(o_->A, n, n, PETSC_DETERMINE, PETSC_DETERMINE), "MatSetSizes");
   check(MatSetType(o_->A, MATAIJ), "MatSetType");
   check(MatSetBlockSize(o_->A, 3), "MatSetBlockSize");
-  check(MatSetPreallocationCOO(o_->A, static_cast<PetscCount>(rowOf.size()), rowOf.data(),
-                               columnOf.data()),
-        "MatSetPreallocationCOO");
+  check(MatPreallocatorPreallocate(counter, PETSC_TRUE, o_->A), "MatPreallocatorPreallocate");
+  MatDestroy(&counter);
+  // Every later assembly sends the same rows to the same ranks.
+  check(MatSetOption(o_->A, MAT_SUBSET_OFF_PROC_ENTRIES, PETSC_TRUE), "MatSetOption");
+  locateOwnedEntries(pattern);
   check(MatCreateVecs(o_->A, &o_->x, &o_->b), "MatCreateVecs");
   check(VecDuplicate(o_->b, &o_->scale), "VecDuplicate");
   check(VecDuplicate(o_->b, &o_->residual), "VecDuplicate");
@@ -111,24 +112,113 @@ LinearSolver::LinearSolver(const BlockMatrix& pattern, RowLayout rows,
 
 LinearSolver::~LinearSolver() = default;
 
+double LinearSolver::entryOf(const BlockMatrix& K, int r, int c, int e, int a, int g) const {
+  const int row = 3 * r + a, column = 3 * c + g;
+  if (isFixed_[row] || isFixed_[column])  // the owner's 1 on the diagonal
+    return r < rows_.owned && row == column ? 1.0 : 0.0;
+  return K.block[e](a, g);
+}
+
+void LinearSolver::addRow(Mat target, const BlockMatrix& K, int r) {
+  const int begin = K.rowStart[r], count = K.rowStart[r + 1] - begin;
+  if (count == 0) return;
+  // Row-major, as PETSc reads a block row: scalar row a holds (a, 3 j + g) for block j.
+  rowValues_.resize(9 * static_cast<size_t>(count));
+  rowColumns_.resize(count);
+  for (int j = 0; j < count; ++j) {
+    const int c = K.column[begin + j];
+    rowColumns_[j] = rows_.globalRow[c];
+    for (int a = 0; a < 3; ++a)
+      for (int g = 0; g < 3; ++g)
+        rowValues_[3 * count * a + 3 * j + g] = entryOf(K, r, c, begin + j, a, g);
+  }
+  const PetscInt row = rows_.globalRow[r];
+  check(MatSetValuesBlocked(target, 1, &row, count, rowColumns_.data(), rowValues_.data(),
+                            ADD_VALUES),
+        "MatSetValuesBlocked");
+}
+
+void LinearSolver::locateOwnedEntries(const BlockMatrix& pattern) {
+  // This rank's rows of A: one sequential matrix, or (several ranks) the columns of its own rows
+  // (part 0, local columns) and the others (part 1, columns by the sorted `global` list).
+  const PetscInt* global = nullptr;
+  PetscBool sequential = PETSC_FALSE;
+  check(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(o_->A), MATSEQAIJ, &sequential),
+        "PetscObjectTypeCompare");
+  if (sequential)
+    o_->part[0] = o_->A;
+  else
+    check(MatMPIAIJGetSeqAIJ(o_->A, &o_->part[0], &o_->part[1], &global), "MatMPIAIJGetSeqAIJ");
+  PetscInt firstRow = 0, endRow = 0, globalColumns = 0;
+  check(MatGetOwnershipRange(o_->A, &firstRow, &endRow), "MatGetOwnershipRange");
+  if (o_->part[1]) check(MatGetSize(o_->part[1], nullptr, &globalColumns), "MatGetSize");
+  const PetscInt* rowStart[2] = {nullptr, nullptr};
+  const PetscInt* column[2] = {nullptr, nullptr};
+  for (int part = 0; part < 2; ++part) {
+    if (!o_->part[part]) continue;
+    PetscInt rows = 0;
+    PetscBool done = PETSC_FALSE;
+    check(MatGetRowIJ(o_->part[part], 0, PETSC_FALSE, PETSC_FALSE, &rows, &rowStart[part],
+                      &column[part], &done),
+          "MatGetRowIJ");
+    if (!done) throw std::runtime_error("PETSc: MatGetRowIJ gave no rows");
+  }
+  // Each block's three columns are adjacent in every scalar row: the first one's place is kept,
+  // for part 1 as -1 - place.
+  entryAt_.assign(3 * pattern.column.size(), 0);
+  for (int r = 0; r < rows_.owned; ++r)
+    for (int e = pattern.rowStart[r]; e < pattern.rowStart[r + 1]; ++e) {
+      const PetscInt first = 3 * static_cast<PetscInt>(rows_.globalRow[pattern.column[e]]);
+      const bool own = first >= firstRow && first < endRow;
+      const int part = own ? 0 : 1;
+      const PetscInt wanted =
+          own ? first - firstRow
+              : static_cast<PetscInt>(std::lower_bound(global, global + globalColumns, first) -
+                                      global);
+      for (int a = 0; a < 3; ++a) {
+        const PetscInt row = 3 * r + a;
+        const PetscInt* begin = column[part] + rowStart[part][row];
+        const PetscInt* end = column[part] + rowStart[part][row + 1];
+        const PetscInt* at = std::lower_bound(begin, end, wanted);
+        if (at == end || *at != wanted)
+          throw std::logic_error("a block of K outside PETSc's pattern");
+        const int place = static_cast<int>(at - column[part]);
+        entryAt_[3 * static_cast<size_t>(e) + a] = own ? place : -1 - place;
+      }
+    }
+  for (int part = 0; part < 2; ++part) {
+    if (!o_->part[part]) continue;
+    PetscInt rows = 0;
+    PetscBool done = PETSC_FALSE;
+    check(MatRestoreRowIJ(o_->part[part], 0, PETSC_FALSE, PETSC_FALSE, &rows, &rowStart[part],
+                          &column[part], &done),
+          "MatRestoreRowIJ");
+  }
+}
+
 void LinearSolver::setMatrix(const BlockMatrix& K) {
-  // K's values in the constructor's order; a fixed component's row and column are zero but for
-  // the owner's 1 on the diagonal. PETSc adds the ranks' parts of each entry.
-  values_.resize(9 * K.column.size());
-  for (int r = 0; r < K.rows(); ++r) {
-    const bool owned = r < rows_.owned;
+  // The owned rows' entries written where they lie in PETSc's arrays, the other rows added
+  // through PETSc (to the ranks that own them) when the matrix is assembled.
+  check(MatZeroEntries(o_->A), "MatZeroEntries");
+  PetscScalar* values[2] = {nullptr, nullptr};
+  for (int part = 0; part < 2; ++part)
+    if (o_->part[part])
+      check(MatSeqAIJGetArray(o_->part[part], &values[part]), "MatSeqAIJGetArray");
+  for (int r = 0; r < rows_.owned; ++r)
     for (int e = K.rowStart[r]; e < K.rowStart[r + 1]; ++e) {
       const int c = K.column[e];
-      for (int g = 0; g < 3; ++g)
-        for (int a = 0; a < 3; ++a) {
-          const int row = 3 * r + a, column = 3 * c + g;
-          values_[9 * static_cast<size_t>(e) + 3 * g + a] =
-              isFixed_[row] || isFixed_[column] ? (owned && row == column ? 1.0 : 0.0)
-                                                : K.block[e](a, g);
-        }
+      for (int a = 0; a < 3; ++a) {
+        const int at = entryAt_[3 * static_cast<size_t>(e) + a];
+        PetscScalar* v = at >= 0 ? values[0] + at : values[1] + (-at - 1);
+        for (int g = 0; g < 3; ++g) v[g] = entryOf(K, r, c, e, a, g);
+      }
     }
-  }
-  check(MatSetValuesCOO(o_->A, values_.data(), INSERT_VALUES), "MatSetValuesCOO");
+  for (int part = 0; part < 2; ++part)
+    if (o_->part[part])
+      check(MatSeqAIJRestoreArray(o_->part[part], &values[part]), "MatSeqAIJRestoreArray");
+  for (int r = rows_.owned; r < K.rows(); ++r) addRow(o_->A, K, r);
+  check(MatAssemblyBegin(o_->A, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
+  check(MatAssemblyEnd(o_->A, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
   // Symmetric diagonal scaling, D K D with D = |diag K|^-1/2: nodes a particle's corner just
   // reaches have stiffness 1e-8 of the others', which breaks GMRES down on the unscaled system.
   check(MatGetDiagonal(o_->A, o_->scale), "MatGetDiagonal");

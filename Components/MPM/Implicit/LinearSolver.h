@@ -13,6 +13,8 @@
 
 #include "Components/MPM/Implicit/BlockMatrix.h"
 
+struct _p_Mat;  // PETSc's Mat is a _p_Mat*
+
 namespace anode {
 
 using PetscValue = double;  // PETSc's scalar (real, double precision)
@@ -58,6 +60,13 @@ class LinearSolver {
   // The PETSc matrix (every rank's parts of K added; fixed rows and columns: identity) scaled
   // symmetrically by its diagonal; sets scale_.
   void setMatrix(const BlockMatrix& K);
+  // Block row r of K added to `target` (the preallocator, or the matrix for rows of other ranks).
+  void addRow(_p_Mat* target, const BlockMatrix& K, int r);
+  // Entry (a, g) of block e = (r, c) of K as the PETSc matrix holds it (fixed components: 0, and 1
+  // on the owner's diagonal).
+  double entryOf(const BlockMatrix& K, int r, int c, int e, int a, int g) const;
+  // Sets entryAt_ from the pattern after PETSc laid it out.
+  void locateOwnedEntries(const BlockMatrix& pattern);
   // GAMG's near-null space: the rigid modes of the scaled system, orthonormal.
   void setNearNullSpace();
   // One KSPSolve with the preconditioner built anew or reused.
@@ -69,8 +78,12 @@ class LinearSolver {
   std::vector<int> fixedOwned_;              // the fixed components of owned rows
   std::vector<char> isFixed_;                // by local component: 1 where fixed
   std::vector<double> coordinates_, scale_;  // of the owned rows' components
-  std::vector<PetscValue> values_;  // K's entries in the order of the pattern given to PETSc
-  int freshIterations_ = -1;        // Krylov iterations of the last solve with a new preconditioner
+  std::vector<PetscValue> rowValues_;
+  std::vector<int> rowColumns_;
+  // For block e of an owned row of K and its row a: where its first column lies in PETSc's
+  // arrays (>= 0: the own-column part's; else -1 - the place in the other part's).
+  std::vector<int> entryAt_;
+  int freshIterations_ = -1;  // Krylov iterations of the last solve with a new preconditioner
 };
 
 }  // namespace anode
