@@ -47,7 +47,8 @@ void startPetsc() {
 // One PETSc object of each kind the solves use.
 struct LinearSolver::Objects {
   Mat A = nullptr;
-  Mat part[2] = {nullptr, nullptr};  // A's own rows (A itself on one rank); not owned
+  // The sequential matrices of this rank's rows of A (A itself on one rank): A's, not destroyed.
+  Mat part[2] = {nullptr, nullptr};
   Vec x = nullptr, b = nullptr, scale = nullptr, residual = nullptr;
   KSP ksp = nullptr;
   ~Objects() {
@@ -93,6 +94,8 @@ LinearSolver::LinearSolver(const BlockMatrix& pattern, RowLayout rows,
   MatDestroy(&counter);
   // Every later assembly sends the same rows to the same ranks.
   check(MatSetOption(o_->A, MAT_SUBSET_OFF_PROC_ENTRIES, PETSC_TRUE), "MatSetOption");
+  // An entry outside the pattern would move the places entryAt_ holds: an error instead.
+  check(MatSetOption(o_->A, MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE), "MatSetOption");
   locateOwnedEntries(pattern);
   check(MatCreateVecs(o_->A, &o_->x, &o_->b), "MatCreateVecs");
   check(VecDuplicate(o_->b, &o_->scale), "VecDuplicate");
