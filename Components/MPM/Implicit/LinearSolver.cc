@@ -157,15 +157,21 @@ void LinearSolver::locateOwnedEntries(const BlockMatrix& pattern) {
   if (o_->part[1]) check(MatGetSize(o_->part[1], nullptr, &globalColumns), "MatGetSize");
   const PetscInt* rowStart[2] = {nullptr, nullptr};
   const PetscInt* column[2] = {nullptr, nullptr};
-  for (int part = 0; part < 2; ++part) {
-    if (!o_->part[part]) continue;
-    PetscInt rows = 0;
-    PetscBool done = PETSC_FALSE;
-    check(MatGetRowIJ(o_->part[part], 0, PETSC_FALSE, PETSC_FALSE, &rows, &rowStart[part],
-                      &column[part], &done),
-          "MatGetRowIJ");
-    if (!done) throw std::runtime_error("PETSc: MatGetRowIJ gave no rows");
-  }
+  // PETSc's compressed rows of each part (get), handed back when done (restore).
+  const auto rowsOfParts = [&](bool get) {
+    for (int part = 0; part < 2; ++part) {
+      if (!o_->part[part]) continue;
+      PetscInt rows = 0;
+      PetscBool done = PETSC_FALSE;
+      const auto call = get ? MatGetRowIJ : MatRestoreRowIJ;
+      const char* name = get ? "MatGetRowIJ" : "MatRestoreRowIJ";
+      check(call(o_->part[part], 0, PETSC_FALSE, PETSC_FALSE, &rows, &rowStart[part], &column[part],
+                 &done),
+            name);
+      if (!done) throw std::runtime_error(std::string("PETSc: ") + name + " did nothing");
+    }
+  };
+  rowsOfParts(true);
   // Each block's three columns are adjacent in every scalar row: the first one's place is kept,
   // for part 1 as -1 - place.
   entryAt_.assign(3 * pattern.column.size(), 0);
@@ -189,14 +195,7 @@ void LinearSolver::locateOwnedEntries(const BlockMatrix& pattern) {
         entryAt_[3 * static_cast<size_t>(e) + a] = own ? place : -1 - place;
       }
     }
-  for (int part = 0; part < 2; ++part) {
-    if (!o_->part[part]) continue;
-    PetscInt rows = 0;
-    PetscBool done = PETSC_FALSE;
-    check(MatRestoreRowIJ(o_->part[part], 0, PETSC_FALSE, PETSC_FALSE, &rows, &rowStart[part],
-                          &column[part], &done),
-          "MatRestoreRowIJ");
-  }
+  rowsOfParts(false);
 }
 
 void LinearSolver::setMatrix(const BlockMatrix& K) {
