@@ -1,5 +1,6 @@
 // render_vtu: renders the scenes of a finished run from its particle output (.pvd or one .vtu),
-// so pictures for a report are regenerated without re-running. Exit codes: 0 done, 1 I/O or
+// so pictures for a report are regenerated without re-running, and (--report) a run's
+// report.html from its files (RunReport.h). Exit codes: 0 done, 1 I/O or
 // rendering error, 2 bad options or scene.
 #include <algorithm>
 #include <chrono>
@@ -13,6 +14,7 @@
 #include <vector>
 
 #include "Core/ProblemSpec/ProblemSpec.h"
+#include "StandAlone/Driver/RunReport.h"
 #include "vis/SceneRenderer.h"
 #include "vis/SceneSpec.h"
 #include "vis/Sprites.h"
@@ -26,6 +28,7 @@ using namespace anode;
 
 const char* kUsage =
     "usage: render_vtu [options] DATA\n"
+    "       render_vtu --report DIR\n"
     "  DATA             a run's particles.pvd, or one .vtu\n"
     "  --ups FILE       the scenes of the <Visualization> block of FILE (scene options\n"
     "                   change them). Without --ups: with scene options, one new scene\n"
@@ -43,6 +46,8 @@ const char* kUsage =
     "                   --camera-position, --camera-focal-point, --camera-up,\n"
     "                   --camera-view-angle, --size, --background, --title, --units,\n"
     "                   --time-unit, --times, --interval\n"
+    "  --report DIR     write DIR/report.html from the run's history.csv, input.ups and\n"
+    "                   images/ (sus writes it at each checkpoint and at the end)\n"
     "  --benchmark N    render a synthetic pillar of N particles at --size (default\n"
     "                   [1024, 768]) five times and print the seconds per image\n"
     "example: render_vtu --field p.stress:von_mises --camera front\n"
@@ -65,7 +70,7 @@ std::string sceneTagOf(const std::string& option) {
 }
 
 struct Options {
-  std::string data, ups, only, outputDir, name = "view";
+  std::string data, ups, only, outputDir, name = "view", report;
   bool allTimes = false;
   double vtuTime = 0;
   long benchmark = 0;
@@ -85,6 +90,8 @@ Options parseOptions(int argc, char** argv) {
       std::exit(0);
     } else if (a == "--ups") {
       o.ups = value();
+    } else if (a == "--report") {
+      o.report = value();
     } else if (a == "--scene") {
       o.only = value();
     } else if (a == "-o") {
@@ -117,7 +124,9 @@ Options parseOptions(int argc, char** argv) {
       usageError("more than one DATA given");
     }
   }
-  if (o.data.empty() && o.benchmark == 0) usageError("no DATA given");
+  if (!o.report.empty() && (!o.data.empty() || o.benchmark > 0 || !o.tags.empty()))
+    usageError("--report DIR takes no DATA and no other option");
+  if (o.data.empty() && o.benchmark == 0 && o.report.empty()) usageError("no DATA given");
   return o;
 }
 
@@ -297,6 +306,14 @@ int render(const Options& o) {
 int main(int argc, char** argv) {
   const Options options = parseOptions(argc, argv);
   try {
+    if (!options.report.empty()) {
+      if (!fs::is_regular_file(fs::path(options.report) / "history.csv"))
+        throw std::runtime_error(options.report +
+                                 ": no history.csv (not a run's output directory)");
+      std::printf("%s\n",
+                  writeRunReport(options.report, "Written by render_vtu --report.").c_str());
+      return 0;
+    }
     return options.benchmark > 0 ? benchmark(options) : render(options);
   } catch (const InputError& e) {
     std::fprintf(stderr, "%s\n", e.what());

@@ -81,21 +81,25 @@ std::string historyWithoutWallTime(const fs::path& dir) {
   return out;
 }
 
-// Every output file (all but checkpoints and history.csv) has the same bytes in both runs, and
-// history.csv the same rows but for the wall time.
+// Every output file (all but checkpoints, history.csv and report.html, which holds the wall
+// time and the directory) has the same bytes in both runs, and history.csv the same rows but for
+// the wall time.
 void expectSameOutputs(const fs::path& a, const fs::path& b) {
+  const auto compared = [](const std::string& rel) {
+    return rel.rfind("checkpoints", 0) != 0 && rel != "history.csv" && rel != "report.html";
+  };
   std::vector<std::string> files;
   for (const auto& e : fs::recursive_directory_iterator(a)) {
     const std::string rel = fs::relative(e.path(), a).string();
-    if (e.is_regular_file() && rel.rfind("checkpoints", 0) != 0 && rel != "history.csv")
-      files.push_back(rel);
+    if (e.is_regular_file() && compared(rel)) files.push_back(rel);
   }
   for (const auto& e : fs::recursive_directory_iterator(b)) {
     const std::string rel = fs::relative(e.path(), b).string();
-    if (e.is_regular_file() && rel.rfind("checkpoints", 0) != 0 && rel != "history.csv") {
+    if (e.is_regular_file() && compared(rel)) {
       EXPECT_TRUE(fs::exists(a / rel)) << rel << " only in the restarted run";
     }
   }
+  EXPECT_TRUE(fs::exists(a / "report.html") && fs::exists(b / "report.html"));
   ASSERT_GT(files.size(), 3u);
   for (const std::string& f : files) {
     ASSERT_TRUE(fs::exists(b / f)) << f << " missing in the restarted run";
@@ -317,7 +321,7 @@ TEST(Checkpoint, HistoryRowPaddingIsStoredAsZeros) {
     row->totalLithium = row->minConcentration = row->maxConcentration = 0.5;
     row->lithiumRate = row->stateOfCharge = 0.5;
     DataArchiver archiver;
-    archiver.recordHistory(*row);
+    archiver.recordHistory(*row, StepRecord{});
     const fs::path path = s.dir / ("state_" + std::to_string(fill));
     BinaryWriter out(path.string());
     archiver.saveState(out);
@@ -381,7 +385,7 @@ TEST(Restart, StoppedRunReplaysItsLastGoodState) {
 
 // Every file under its final name is complete: VTU files read with all particles, .pvd files
 // parse and list existing files, history.csv rows are whole (but for a last one cut short),
-// checkpoints carry their hash, PNGs end with their IEND chunk.
+// checkpoints carry their hash, PNGs end with their IEND chunk, report.html parses.
 void expectEveryFileComplete(const fs::path& dir, long particles) {
   static const std::regex temporary(R"(.*\.tmp\d+)");
   for (const auto& e : fs::recursive_directory_iterator(dir)) {
@@ -412,6 +416,9 @@ void expectEveryFileComplete(const fs::path& dir, long particles) {
         EXPECT_EQ(std::count(line.begin(), line.end(), ','), columns) << line;
     } else if (p.extension() == ".ckpt") {
       EXPECT_TRUE(hasIntactHash(p.string())) << p;
+    } else if (name == "report.html") {
+      tinyxml2::XMLDocument doc;
+      EXPECT_EQ(doc.LoadFile(p.c_str()), tinyxml2::XML_SUCCESS) << p;
     } else if (p.extension() == ".png") {
       const std::string png = readFile(p);
       EXPECT_TRUE(png.size() > 12 && png.compare(png.size() - 8, 4, "IEND") == 0) << p;

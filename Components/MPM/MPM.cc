@@ -418,6 +418,7 @@ StepSummary MPM::summarize(Collective) const {
     const ParticleSet& p = mat.particles;
     for (size_t i = 0; i < p.count(); ++i) {
       s.kineticEnergy += 0.5 * p.mass[i] * p.velocity[i].squaredNorm();
+      s.elasticEnergy += p.volume[i] * mat.model->elasticEnergyDensity(p.stress[i]);
       const double J = p.volume[i] * mat.density / p.mass[i];
       s.minJ = std::min(s.minJ, J);
       s.maxJ = std::max(s.maxJ, J);
@@ -427,8 +428,9 @@ StepSummary MPM::summarize(Collective) const {
   if (diffusion_) diffusion_->summarize(materials_, s);
   if (distributed_) {
     // One reduction of each kind: the totals, then each material's own.
-    std::vector<double> sums = {s.kineticEnergy, s.totalLithium, static_cast<double>(s.particles),
-                                s.chargeableLithium, s.lithiumCapacity};
+    std::vector<double> sums = {
+        s.kineticEnergy,     s.totalLithium,    static_cast<double>(s.particles),
+        s.chargeableLithium, s.lithiumCapacity, s.elasticEnergy};
     std::vector<double> lows = {s.minJ, s.minConcentration}, highs = {s.maxJ, s.maxConcentration};
     for (const StepSummary::MaterialLithium& m : s.perMaterial) {
       sums.push_back(m.lithium);
@@ -439,11 +441,11 @@ StepSummary MPM::summarize(Collective) const {
     collective::minimum(lows.data(), static_cast<int>(lows.size()));
     collective::maximum(highs.data(), static_cast<int>(highs.size()));
     s.kineticEnergy = sums[0], s.totalLithium = sums[1], s.particles = static_cast<size_t>(sums[2]);
-    s.chargeableLithium = sums[3], s.lithiumCapacity = sums[4];
+    s.chargeableLithium = sums[3], s.lithiumCapacity = sums[4], s.elasticEnergy = sums[5];
     s.minJ = lows[0], s.minConcentration = lows[1], s.maxJ = highs[0],
     s.maxConcentration = highs[1];
     for (size_t k = 0; k < s.perMaterial.size(); ++k)
-      s.perMaterial[k] = {sums[5 + k], lows[2 + k], highs[2 + k]};
+      s.perMaterial[k] = {sums[6 + k], lows[2 + k], highs[2 + k]};
   }
   return s;
 }

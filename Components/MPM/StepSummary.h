@@ -8,6 +8,8 @@ namespace anode {
 
 struct StepSummary {
   double kineticEnergy = 0;
+  // Sum over particles of volume x ConstitutiveModel::elasticEnergyDensity(stress).
+  double elasticEnergy = 0;
   double minJ = 1, maxJ = 1;
   size_t particles = 0;
   bool diffusion = false;

@@ -172,7 +172,7 @@ constexpr char kCheckpointMagic[] = "anode-mpm checkpoint";
 // A distributed run's checkpoint: the manifest under the checkpoint's name, one part per rank.
 constexpr char kDistributedCheckpointMagic[] = "anode-mpm distributed checkpoint";
 constexpr char kCheckpointPartMagic[] = "anode-mpm checkpoint part";
-constexpr uint32_t kCheckpointVersion = 5;
+constexpr uint32_t kCheckpointVersion = 6;
 
 // This rank's part of a distributed checkpoint; returns its hash.
 uint64_t writePart(const std::string& checkpoint, const MPM& mpm) {
@@ -211,6 +211,7 @@ CheckpointHeader readCheckpoint(const std::string& path, DataArchiver* outputs, 
   header.dtLimit = static_cast<StableTimestep::Limit>(in.value<int32_t>());
   if (header.dtLimit < 0 || header.dtLimit >= StableTimestep::kLimits)
     throw std::runtime_error(path + ": unknown time-step limit " + std::to_string(header.dtLimit));
+  header.dtSetByTimeControl = in.value<int32_t>() != 0;
   header.step = in.value<long>();
   header.particleSteps = in.value<double>();
   header.wallSeconds = in.value<double>();
@@ -301,6 +302,7 @@ void writeCheckpoint(Collective, const std::string& path, const CheckpointHeader
         out.value(header.t);
         out.value(header.dt);
         out.value<int32_t>(header.dtLimit);
+        out.value<int32_t>(header.dtSetByTimeControl ? 1 : 0);
         out.value(header.step);
         out.value(header.particleSteps);
         out.value(header.wallSeconds);

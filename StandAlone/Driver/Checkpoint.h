@@ -66,6 +66,7 @@ struct CheckpointHeader {
   uint64_t inputHash = 0;  // fileHash of its input
   double t = 0, dt = 0;    // the state's time and the next step's dt
   StableTimestep::Limit dtLimit = StableTimestep::Mechanics;  // the limit that set dt
+  bool dtSetByTimeControl = false;  // <Time>'s clamps changed the limit's dt (DtRule)
   long step = 0;
   double particleSteps = 0;      // of every rank since step 0
   double wallSeconds = 0;        // of the runs up to the checkpoint

@@ -121,6 +121,15 @@ bool DataArchiver::savesConcentrationFields() const {
              particleLabels_.end();
 }
 
+const char* dtRuleName(int rule) {
+  if (rule >= 0 && rule < StableTimestep::kLimits)
+    return StableTimestep::name(static_cast<StableTimestep::Limit>(rule));
+  if (rule == kDtSetByTimeControl)
+    return "time control (<delt_max>, <delt_init>, <delt_min>, <max_delt_increase>, <maxTime>)";
+  if (rule == kDtRetaken) return "retaken with a smaller dt (Newton did not converge)";
+  return "unknown";
+}
+
 std::string chooseOutputDirectory(const std::string& requested, const std::string& filebase) {
   if (!requested.empty()) return requested;
   if (!fs::exists(filebase)) return filebase;
@@ -286,10 +295,13 @@ void DataArchiver::writeHistory() {
       for (const std::string& name : materialColumns_)
         s << "lithium_" << name << ",min_c_" << name << ",max_c_" << name << ',';
     }
+    s << "elastic_energy,dt_limit,";
+    if (unwritten_.front().record.newtonIterations >= 0)
+      s << "newton_iterations,krylov_iterations,";
     s << "wall_seconds\n";
   }
   s << std::setprecision(10);
-  for (const auto& [r, perMaterial] : unwritten_) {
+  for (const auto& [r, record, perMaterial] : unwritten_) {
     s << r.step << ',' << r.time << ',' << r.dt << ',' << r.particles << ',' << r.kineticEnergy
       << ',' << r.minJ << ',' << r.maxJ << ',';
     if (r.diffusion) {
@@ -299,6 +311,9 @@ void DataArchiver::writeHistory() {
       for (const StepSummary::MaterialLithium& m : perMaterial)
         s << m.lithium << ',' << m.minConcentration << ',' << m.maxConcentration << ',';
     }
+    s << record.elasticEnergy << ',' << record.dtRule << ',';
+    if (record.newtonIterations >= 0)
+      s << record.newtonIterations << ',' << record.krylovIterations << ',';
     s << r.wallSeconds << '\n';
   }
   const std::string path = (fs::path(dir_) / "history.csv").string();

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "Components/MPM/MPM.h"
+#include "Components/MPM/StableTimestep.h"
 #include "Core/Util/BinaryStream.h"
 #include "vis/VTKWriters.h"
 
@@ -21,6 +22,26 @@ struct HistoryRow {
   // charge: sum m c / sum m c_max over the materials whose c can change.
   double lithiumRate, stateOfCharge;
 };
+
+// What history.csv gives of a step besides its state: the elastic energy (StepSummary), the
+// rule that set dt (a DtRule) and, for an implicit step, its Newton and Krylov iterations. Not
+// kept in checkpoints (a restart needs none of it).
+struct StepRecord {
+  double elasticEnergy = 0;
+  int dtRule = 0;
+  int newtonIterations = -1, krylovIterations = -1;  // -1: an explicit run (no columns)
+};
+
+// history.csv's dt_limit: StableTimestep::Limit's codes (0 mechanics, Eq. 43; 1 diffusion, Eq.
+// 44; 2 flux restriction; 3 Newton iterations; 4 change of c per step), then these two.
+enum DtRule {
+  kDtSetByTimeControl = StableTimestep::kLimits,  // <delt_max>, <delt_init>, <delt_min>,
+                                                  // <max_delt_increase> or the end at <maxTime>
+  kDtRetaken,  // an implicit step retaken with a smaller dt (Newton did not converge)
+  kDtRules
+};
+// The rule's name, as the end summary and report.html write it.
+const char* dtRuleName(int rule);
 
 // The specific capacity at c = max_concentration of silicon normalised as the paper (c = 1 at
 // Li15Si4, 3.75 Li per Si): 3.75 F / M_Si, in mAh per gram of silicon.
@@ -61,9 +82,9 @@ class DataArchiver {
   // "material<index>" when it has none or another material's comes out the same.
   void setMaterialColumns(const std::vector<MPMMaterial>& materials,
                           const std::vector<size_t>& which);
-  void recordHistory(const HistoryRow& row,
+  void recordHistory(const HistoryRow& row, const StepRecord& record,
                      std::vector<StepSummary::MaterialLithium> perMaterial = {}) {
-    unwritten_.push_back({row, std::move(perMaterial)});
+    unwritten_.push_back({row, record, std::move(perMaterial)});
     lastRow_ = row;
   }
   // Appends the rows recorded since the last call to history.csv (the header first), so a long
@@ -108,6 +129,7 @@ class DataArchiver {
   PVDSeries particleSeries_, gridSeries_;
   struct UnwrittenRow {
     HistoryRow row;
+    StepRecord record;
     std::vector<StepSummary::MaterialLithium> perMaterial;
   };
   std::vector<UnwrittenRow> unwritten_;  // recorded, not yet in history.csv

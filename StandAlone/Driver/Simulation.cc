@@ -12,6 +12,7 @@
 #include "Core/Parallel/StopTogether.h"
 #include "Core/Util/AtomicFile.h"
 #include "Core/Util/InstructionSet.h"
+#include "StandAlone/Driver/RunReport.h"
 #include "StandAlone/Driver/StepForecast.h"
 #include "StandAlone/Driver/StopRequest.h"
 
@@ -73,6 +74,7 @@ void Simulation::takeStableTimestep(double previousDt) {
   const StableTimestep stable = mpm_.computeStableTimestep(Collective{});
   dt_ = time_.nextTimestep(stable.dt(), previousDt, t_);
   dtLimit_ = stable.binding();
+  dtSetByTimeControl_ = dt_ != time_.multiplier * stable.dt();
 }
 
 void Simulation::stepMPM() {
@@ -94,7 +96,6 @@ void Simulation::advance() {
     s << "step " << step_ + 1 << ", t = " << t_ + dt_ << ": " << e.what();
     throw SimulationError(s.str());
   }
-  ++stepsLimitedBy_[dtLimit_];
   lastStepDt_ = dt_;
   finishStep();
 }
@@ -117,6 +118,8 @@ void Simulation::run() {
   if (nothingLeft && archiver_.lastOutputStep() != step_) writeOutput(false);
   while (!nothingLeft) {
     const StableTimestep::Limit stepLimit = dtLimit_;
+    const double plannedDt = dt_;
+    const int plannedRule = dtSetByTimeControl_ ? int{kDtSetByTimeControl} : int{stepLimit};
     try {
       advance();
     } catch (const SimulationError&) {
@@ -124,7 +127,9 @@ void Simulation::run() {
       throw;
     }
     const double stepDt = lastStepDt_;
-    const double particles = static_cast<double>(recordHistoryRow(stepDt));
+    const int rule = stepDt < plannedDt ? int{kDtRetaken} : plannedRule;
+    ++stepsByRule_[rule];
+    const double particles = static_cast<double>(recordHistoryRow(stepDt, rule));
     particleSteps_ += particles;
     particleStepsOfThisProcess_ += particles;
     reportSymmetryFaces();
@@ -182,6 +187,10 @@ void Simulation::run() {
     else
       removeAutomaticCheckpoints(archiver_.directory());
   }
+  writeReport(reachedInputEnd()
+                  ? "Written at the end of the run (step " + std::to_string(step_) + ")."
+                  : "Written when the run stopped before its end, after step " +
+                        std::to_string(step_) + ".");
   wallSeconds_ = wallTime();
 }
 
@@ -206,7 +215,7 @@ void Simulation::start(Collective, bool restart) {
       std::fprintf(stderr, "sus: restarting from %s (step %ld, t = %.6e)\n", restartedFrom.c_str(),
                    step_, t_);
   } else {
-    recordHistoryRow(0.0);
+    recordHistoryRow(0.0, -1);
     writeOutput(false);
     scenes_.renderDue(t_, mpm_, archiver_.directory());
     writeCheckpoint(Collective{}, CheckpointKind::Automatic);
@@ -289,15 +298,18 @@ StepForecastInput Simulation::stepForecastInput() const {
   return in;
 }
 
-size_t Simulation::recordHistoryRow(double stepDt) {
+size_t Simulation::recordHistoryRow(double stepDt, int dtRule) {
   const StepSummary s = mpm_.summarize(Collective{});
   const double lithiumRate =
       stepDt > 0 ? (s.totalLithium - archiver_.lastHistoryRow().totalLithium) / stepDt : 0.0;
   stateOfCharge_ = s.lithiumCapacity > 0 ? s.chargeableLithium / s.lithiumCapacity : 0.0;
-  archiver_.recordHistory({step_, s.particles, t_, stepDt, s.kineticEnergy, s.minJ, s.maxJ,
-                           earlierWallSeconds_ + wallTime(), s.diffusion, s.totalLithium,
-                           s.minConcentration, s.maxConcentration, lithiumRate, stateOfCharge_},
-                          s.perMaterial);
+  archiver_.recordHistory(
+      {step_, s.particles, t_, stepDt, s.kineticEnergy, s.minJ, s.maxJ,
+       earlierWallSeconds_ + wallTime(), s.diffusion, s.totalLithium, s.minConcentration,
+       s.maxConcentration, lithiumRate, stateOfCharge_},
+      {s.elasticEnergy, dtRule, mpm_.flags().implicit ? mpm_.newtonCounts().lastIterations : -1,
+       mpm_.flags().implicit ? mpm_.newtonCounts().lastKrylov : -1},
+      s.perMaterial);
   return s.particles;
 }
 
@@ -371,6 +383,9 @@ void Simulation::writeStateOnStop() {
         "sus: the last good state (step %ld, t = %.6e) is the last entry of %s/particles.pvd; "
         "the failing step's particles are in %s\n",
         step_, t_, archiver_.directory().c_str(), failed.c_str());
+  writeReport("Written when step " + std::to_string(step_ + 1) +
+              " failed (the run's log says why); the last good state is step " +
+              std::to_string(step_) + ".");
 }
 
 void Simulation::replayToLastGoodState() {
@@ -406,10 +421,11 @@ void Simulation::writeCheckpoint(Collective, CheckpointKind kind) {
   if (Communicator::isRoot() && std::filesystem::exists(history)) syncToDisk(history.string());
   if (kind == CheckpointKind::Scheduled) lastCheckpointTime_ = t_;
   newestCheckpoint_ = checkpointPath(dir, step_, kind);
-  anode::writeCheckpoint(Collective{}, newestCheckpoint_,
-                         {omp_get_max_threads(), Communicator::size(), inputHash_, t_, dt_,
-                          dtLimit_, step_, particleSteps_, wallSeconds, lastCheckpointTime_},
-                         archiver_, mpm_);
+  anode::writeCheckpoint(
+      Collective{}, newestCheckpoint_,
+      {omp_get_max_threads(), Communicator::size(), inputHash_, t_, dt_, dtLimit_,
+       dtSetByTimeControl_, step_, particleSteps_, wallSeconds, lastCheckpointTime_},
+      archiver_, mpm_);
   if (Communicator::isRoot()) {
     if (kind == CheckpointKind::Scheduled) {
       removeOldCheckpoints(dir, kind, checkpoints_.cycle);
@@ -420,6 +436,19 @@ void Simulation::writeCheckpoint(Collective, CheckpointKind kind) {
   }
   collective::barrier();
   newestCheckpointWallTime_ = wallTime();
+  writeReport("Written at the checkpoint of step " + std::to_string(step_) +
+              " (the run went on from there, or stopped: see its log).");
+}
+
+void Simulation::writeReport(const std::string& status) {
+  if (!Communicator::isRoot()) return;
+  ScopedTimer timer(mpm_.timers(), outputTask_);
+  try {
+    writeRunReport(archiver_.directory(), status);
+  } catch (const std::exception& e) {
+    if (progress_) progress_->finish();
+    std::fprintf(stderr, "warning: report.html not written: %s\n", e.what());
+  }
 }
 
 void Simulation::loadCheckpoint(Collective, const std::string& path, bool outputs) {
@@ -428,6 +457,7 @@ void Simulation::loadCheckpoint(Collective, const std::string& path, bool output
   t_ = read.t;
   dt_ = read.dt;
   dtLimit_ = read.dtLimit;
+  dtSetByTimeControl_ = read.dtSetByTimeControl;
   step_ = read.step;
   particleSteps_ = read.particleSteps;
   earlierWallSeconds_ = read.wallSeconds;
@@ -534,11 +564,10 @@ void Simulation::printTimings() const {
     std::fprintf(stderr, "  %-34s %10.3f %6.1f%%\n", timers.names()[i].c_str(), seconds[i],
                  total > 0 ? 100 * seconds[i] / total : 0.0);
   std::string limits;
-  for (int l = 0; l < StableTimestep::kLimits; ++l)
-    if (stepsLimitedBy_[l] > 0)
-      limits += (limits.empty() ? "" : ", ") +
-                std::string(StableTimestep::name(static_cast<StableTimestep::Limit>(l))) + " " +
-                std::to_string(stepsLimitedBy_[l]);
+  for (int rule = 0; rule < kDtRules; ++rule)
+    if (stepsByRule_[rule] > 0)
+      limits += (limits.empty() ? "" : ", ") + std::string(dtRuleName(rule)) + " " +
+                std::to_string(stepsByRule_[rule]);
   if (!limits.empty()) std::fprintf(stderr, "  steps whose dt the limit set: %s\n", limits.c_str());
   if (mpm_.flags().implicit)
     std::fprintf(stderr, "  %s\n",

@@ -94,8 +94,9 @@ class Simulation {
   void reportSetup(Collective);
   // What the forecast of the run's steps needs (StepForecast.h), from its state now.
   struct StepForecastInput stepForecastInput() const;
-  // Appends the state's row (after a step of `stepDt`) to the history; returns the particle count.
-  size_t recordHistoryRow(double stepDt);
+  // Appends the state's row (after a step of `stepDt`, whose dt `dtRule` set: a DtRule, -1 for
+  // the start) to the history; returns the particle count.
+  size_t recordHistoryRow(double stepDt, int dtRule);
   // Writes the output of step_; `afterStep`: the grid labels hold the last step's nodal values.
   void writeOutput(bool afterStep);
   // Prints the symmetry-face warnings of the step just taken.
@@ -117,8 +118,12 @@ class Simulation {
   // Brings the state back to the end of step_ (the last good one) by loading the newest
   // checkpoint and taking the same steps again (they are deterministic).
   void replayToLastGoodState();
-  // Writes the state after step_ to a checkpoint (Checkpoint.h) and drops the oldest of its kind.
+  // Writes the state after step_ to a checkpoint (Checkpoint.h), drops the oldest of its kind
+  // and writes report.html.
   void writeCheckpoint(Collective, CheckpointKind kind);
+  // Rank 0: report.html of the output directory (RunReport.h) with `status`; a failure to write
+  // it is a warning on stderr, not a stop (history.csv and the outputs it reads are intact).
+  void writeReport(const std::string& status);
   // Loads the newest complete checkpoint of the restart directory; returns its path.
   std::string loadNewestCheckpoint();
   // Loads one checkpoint (Checkpoint.h; the output series and history only if `outputs`) and
@@ -138,8 +143,9 @@ class Simulation {
   double t_ = 0, dt_ = 0;
   double lastStepDt_ = 0;  // the dt the last step took (an implicit one may retake it smaller)
   double substepMultiplier_ = 1;  // <timestep_multiplier>: an implicit run's diffusion sub-steps
-  StableTimestep::Limit dtLimit_ = StableTimestep::Mechanics;   // the limit that set dt_
-  std::array<long, StableTimestep::kLimits> stepsLimitedBy_{};  // steps of this process's run
+  StableTimestep::Limit dtLimit_ = StableTimestep::Mechanics;  // the limit that set dt_
+  bool dtSetByTimeControl_ = false;           // <Time>'s clamps changed that limit's dt
+  std::array<long, kDtRules> stepsByRule_{};  // steps of this process's run per DtRule
   long step_ = 0;
   long inputMaxTimesteps_ = 0;  // <max_Timesteps> (0: none), before --max-timesteps
   double stateOfCharge_ = 0;    // of the last history row

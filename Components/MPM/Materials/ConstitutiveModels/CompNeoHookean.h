@@ -42,7 +42,8 @@ class CompNeoHookean : public ConstitutiveModel {
   StateArrays stateArrays(ParticleSet& p) const { return StateArrays(p); }
   bool swells() const override { return eta_ != 0; }
   double swellingCoefficient() const override { return eta_; }
-  double dilatationalModulus() const override { return K_ + 4.0 * G_ / 3.0; }
+  double bulkModulus() const override { return K_; }
+  double shearModulus() const override { return G_; }
   ConcreteModel concrete() const override;
 
   // The Cauchy stress of Fnew after the concentration change dc (the old stress, L and dt are

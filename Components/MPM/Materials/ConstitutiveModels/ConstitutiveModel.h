@@ -23,8 +23,20 @@ class ConstitutiveModel {
   // eta: the swelling rate of deformation is eta dc/dt I (0 without swelling), so free swelling
   // from c = 0 to 1 stretches each axis by exp(eta).
   virtual double swellingCoefficient() const = 0;
+  // K and G, the <bulk_modulus> and <shear_modulus> the model read.
+  virtual double bulkModulus() const = 0;
+  virtual double shearModulus() const = 0;
   // K + 4G/3: the modulus of the dilatational wave speed (paper Eq. 41).
-  virtual double dilatationalModulus() const = 0;
+  double dilatationalModulus() const { return bulkModulus() + 4.0 * shearModulus() / 3.0; }
+  // The elastic energy per unit current volume that the Cauchy stress sigma stores in isotropic
+  // linear elasticity: p^2/(2K) + s:s/(4G), p the mean stress and s the deviator (exact for the
+  // small elastic strains of rf_elastic_plastic, first order in the elastic strain for
+  // comp_neo_hookean). history.csv's elastic_energy, the quasi-static check's denominator.
+  double elasticEnergyDensity(const Mat3& sigma) const {
+    const double p = sigma.trace() / 3.0;
+    const Mat3 s = sigma - p * Mat3::Identity();
+    return p * p / (2.0 * bulkModulus()) + s.squaredNorm() / (4.0 * shearModulus());
+  }
   // This model as its own type, for the particle update (dispatched once per material).
   virtual ConcreteModel concrete() const = 0;
 };

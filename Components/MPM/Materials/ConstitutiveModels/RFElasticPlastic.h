@@ -65,7 +65,8 @@ class RFElasticPlastic : public ConstitutiveModel {
   StateArrays stateArrays(ParticleSet& p) const { return {p, flow_.has_value()}; }
   bool swells() const override { return eta_ != 0; }
   double swellingCoefficient() const override { return eta_; }
-  double dilatationalModulus() const override { return K_ + 4.0 * G_ / 3.0; }
+  double bulkModulus() const override { return K_; }
+  double shearModulus() const override { return G_; }
   ConcreteModel concrete() const override;
 
   // Returns the new lab-frame stress; state.rotation is R of the old F on entry and R of Fnew on
