@@ -126,6 +126,42 @@ TEST(FluxSurfaceArea, SphereTakesUpItsAreaAndTheFrontIsRound) {
   }
 }
 
+// Uintah's rules for the flux source (docs/differences-from-uintah.md, for the study of the sharp
+// front): <flux_source_receivers>weights shares a node's source by S instead of m S R(c), and
+// <flux_source_in_cstar>false leaves it out of c*. Each leaves the first step as ours (c = 0:
+// R = 1, and c* first feeds the next step's gradient) and changes the particles' c after it;
+// the lithium taken up stays that of the flux within a few per cent.
+TEST(FluxSurfaceArea, UintahsFluxSourceRulesChangeOnlyWhatTheyName) {
+  RunOptions quiet;
+  quiet.progress = false;
+  const auto withFlags = [](const std::string& flags) {
+    std::string text = sphereOctant();
+    const std::string tag = "<use_load_curves>true</use_load_curves>";
+    text.insert(text.find(tag) + tag.size(), flags);
+    return text;
+  };
+  const auto concentrations = [](Simulation& sim) {
+    return diffusionParticles(sim.mpm().materials()[0].particles).concentration;
+  };
+  Simulation ours(withFlags(""), "ours.ups", quiet);
+  ours.advance();
+  const std::vector<double> first = concentrations(ours);
+  for (int k = 1; k < 10; ++k) ours.advance();
+  const double lithium = ours.mpm().summarize(Collective{}).totalLithium;
+  for (const std::string flags : {"<flux_source_receivers>weights</flux_source_receivers>",
+                                  "<flux_source_in_cstar>false</flux_source_in_cstar>"}) {
+    Simulation uintah(withFlags(flags), "uintah.ups", quiet);
+    uintah.advance();
+    EXPECT_EQ(concentrations(uintah), first) << flags;
+    for (int k = 1; k < 10; ++k) uintah.advance();
+    double largest = 0;
+    const std::vector<double> a = concentrations(ours), b = concentrations(uintah);
+    for (size_t i = 0; i < a.size(); ++i) largest = std::max(largest, std::abs(a[i] - b[i]));
+    EXPECT_GT(largest, 1e-6) << flags;
+    EXPECT_NEAR(uintah.mpm().summarize(Collective{}).totalLithium / lithium, 1.0, 0.05) << flags;
+  }
+}
+
 // The 2x2 pillar array (inputs/Pillar/PillarArray.ups) with one <surface material="silicon"
 // exclude="substrate"/> BC for its five: the flagged particles carry the four pillars' sides and
 // tops, 4 (2 pi r h + pi r^2), to round-off, not their bottoms on the substrate.

@@ -33,6 +33,24 @@ TEST(MPMFlags, GravityFromTheMPMBlockOnlyWithoutPhysicalConstants) {
   EXPECT_EQ(read("<MPM></MPM>").flags.gravity, Vec3::Zero());
 }
 
+TEST(MPMFlags, FluxSourceRulesDefaultToOursAndNameABadValue) {
+  EXPECT_TRUE(read("<MPM></MPM>").flags.restrictedFluxReceivers);
+  EXPECT_TRUE(read("<MPM></MPM>").flags.fluxSourceInCStar);
+  EXPECT_FALSE(read("<MPM><flux_source_receivers>weights</flux_source_receivers></MPM>")
+                   .flags.restrictedFluxReceivers);
+  EXPECT_FALSE(read("<MPM><flux_source_in_cstar>false</flux_source_in_cstar></MPM>")
+                   .flags.fluxSourceInCStar);
+  try {
+    read("<MPM><flux_source_receivers>uintah</flux_source_receivers></MPM>");
+    FAIL() << "a bad value must be an error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("flags.ups:1: <flux_source_receivers> must be restricted "
+                                         "or weights, found \"uintah\""),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(MPMFlags, SplittingWithoutMatlIsMaterialZeroWithAWarning) {
   const auto splitting = [](const std::string& matl) {
     return read(

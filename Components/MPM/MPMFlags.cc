@@ -138,6 +138,15 @@ MPMFlags MPMFlags::fromInput(const PSNode& root) {
       t.fail("<concentration_dirichlet> must be particle or nodal, found \"" + v + "\"");
     f.particleDirichlet = v == "particle";
   }
+  // This code's extensions for studies (docs/differences-from-uintah.md): Uintah's rules for the
+  // flux source.
+  if (const PSNode t = mpm.child("flux_source_receivers")) {
+    const std::string v = t.value<std::string>();
+    if (v != "restricted" && v != "weights")
+      t.fail("<flux_source_receivers> must be restricted or weights, found \"" + v + "\"");
+    f.restrictedFluxReceivers = v == "restricted";
+  }
+  f.fluxSourceInCStar = mpm.get<bool>("flux_source_in_cstar", true);
   f.refineParticles = mpm.get<bool>("refine_particles", false);
   readRefinementCriteria(root, f);
   rejectIfTrue(mpm, "DoPressureStabilization", "pressure stabilization");

@@ -20,6 +20,10 @@ struct MPMFlags {
   bool useLoadCurves = false;
   // SD-Type Dirichlet acting on particles by relaxation (true) or through Uintah's nodal rate.
   bool particleDirichlet = true;
+  // How a node's flux source G reaches particles (docs/diffusion.md step 5): by m S R(c)
+  // (`restricted`, default) or by m S as Uintah (`weights`); and whether G is in c* (Eq. 18).
+  bool restrictedFluxReceivers = true;
+  bool fluxSourceInCStar = true;
   // do_auto_cycle_bc: the flux sign flips when the concentration crosses these thresholds.
   bool autoCycle = false, autoCycleUseMinMax = false;
   double autoCycleMax = 0.9, autoCycleMin = 0.1;

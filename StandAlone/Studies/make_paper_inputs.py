@@ -143,7 +143,7 @@ def scenario(s):
             ),
         ]
     ):
-        flux_blocks += scalar_flux(i + 1, piece, time_points(load, "load"))
+        flux_blocks += scalar_flux(i + 1, piece, time_points(load, "load"), s.get("flux_extra", ""))
     archiver = data_archiver(
         s["name"],
         s.get("output", s["maxTime"] / 50),
@@ -179,7 +179,7 @@ def scenario(s):
   </Time>
 %s
   <MPM>
-    <interpolator>cpdi</interpolator>%s
+    <interpolator>cpdi</interpolator>%s%s
     <do_scalar_diffusion>true</do_scalar_diffusion>
     <use_load_curves>true</use_load_curves>
   </MPM>
@@ -234,6 +234,7 @@ def scenario(s):
             if implicit
             else ""
         ),
+        s.get("mpm_extra", ""),
         pillar,
         substrate,
         contact,
@@ -392,9 +393,67 @@ for D0, tag in [(5e-18, "5e-18"), (2e-18, "2e-18")]:
             density=2.33e24,
             D0=D0,
             flux=1e-9,
-            maxTime=3.0e7,
+            # Past 60% of the capacity (Fig. 6's panels: 15, 30, 45, 60%).
+            maxTime=3.5e7,
             output=1e6,
             model="hardening",
+        )
+    )
+# Not in the paper either: which of our departures from Uintah's flux rules, or beta's unit,
+# decides whether Flux_1e-9 has a sharp front (docs/paper/README.md, "The sharp front at 1e-9
+# m/s"). Flux_1e-9 to 35 s (past 60% of the capacity) with one rule switched to Uintah's (or beta
+# to 0) at a time.
+FRONT_CAUSES = [
+    ("ours", "our rules (Flux_1e-9 to 35 s)", {}),
+    (
+        "area_particle_face",
+        "each flagged particle's own face as flux area (Uintah's)",
+        dict(flux_extra="\n        <area_rule>particle_face</area_rule>"),
+    ),
+    (
+        "receivers_weights",
+        "the flux source shared by S, not m S R(c) (Uintah's)",
+        dict(mpm_extra="\n    <flux_source_receivers>weights</flux_source_receivers>"),
+    ),
+    (
+        "cstar_without_source",
+        "the flux source left out of c* (Uintah's)",
+        dict(mpm_extra="\n    <flux_source_in_cstar>false</flux_source_in_cstar>"),
+    ),
+    (
+        "uintah_flux_rules",
+        "all three of Uintah's flux rules above together",
+        dict(
+            flux_extra="\n        <area_rule>particle_face</area_rule>",
+            mpm_extra="\n    <flux_source_receivers>weights</flux_source_receivers>"
+            "\n    <flux_source_in_cstar>false</flux_source_in_cstar>",
+        ),
+    ),
+    ("beta_0", "beta = 0: no pressure term (a unit making beta p small)", dict(beta=0.0)),
+]
+for tag, what, changes in FRONT_CAUSES:
+    SCENARIOS.append(
+        dict(
+            dict(
+                name="Front_cause_" + tag,
+                section="§4.4, Figs. 6-7 (a study of ours)",
+                title="Flux 1e-9 m/s to 35 s: " + what,
+                notes=describe(
+                    COMMON
+                    + [
+                        "As Flux_1e-9 (D0 = 1e-17 m^2/s) to 35 s, with " + what + ":",
+                        "does it decide whether a sharp front forms? (not in the paper)",
+                    ]
+                ),
+                pillar=SMALL,
+                density=2.33e24,
+                D0=1e-17,
+                flux=1e-9,
+                maxTime=3.5e7,
+                output=1e6,
+                model="hardening",
+            ),
+            **changes,
         )
     )
 for beta in [0.0, 1.0]:

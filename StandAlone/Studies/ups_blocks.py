@@ -64,16 +64,18 @@ def data_archiver(name, interval, saves, more=""):
     )
 
 
-def scalar_flux(curve_id, geometry, time_points):
-    """A <scalar_flux> on the particles `geometry` selects, its load curve `curve_id` given by `time_points`."""
+def scalar_flux(curve_id, geometry, time_points, extra=""):
+    """A <scalar_flux> on the particles `geometry` selects, its load curve `curve_id` given by
+    `time_points`; `extra`: further tags of the block."""
     return """
       <scalar_flux>
         <geom_object>%s</geom_object>
-        <load_curve><id>%d</id>%s</load_curve>
+        <load_curve><id>%d</id>%s</load_curve>%s
       </scalar_flux>""" % (
         geometry,
         curve_id,
         time_points,
+        extra,
     )
 
 

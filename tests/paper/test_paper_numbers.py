@@ -1,7 +1,7 @@
 """The front of docs/paper/README.md (paper_numbers.front) on ring profiles of known shape, the
 cycle's c by height (State.height_profile) on particles of known layers, and a report's numbers.md
-merged with a later machine's (merge_numbers), and history.csv read as a stream (history_row_near,
-last_history_row)."""
+merged with a later machine's (merge_numbers), history.csv read as a stream (history_row_near,
+last_history_row), and the steepness measure of front_causes.py."""
 import os
 import sys
 import tempfile
@@ -12,6 +12,7 @@ import numpy as np
 sys.path.insert(
     0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "StandAlone", "Studies")
 )
+import front_causes  # noqa: E402
 import paper_numbers  # noqa: E402
 
 
@@ -32,6 +33,22 @@ class Front(unittest.TestCase):
     def test_smooth_profile_gives_a_one_ring_front(self):
         # A gradient without a jump of 0.1 between rings: the front is its first ring above 0.1.
         self.assertEqual(paper_numbers.front([0.01, 0.04, 0.07, 0.11, 0.16, 0.2]), (3, 1, 0.11))
+
+
+class Steepest(unittest.TestCase):
+    def test_largest_slope_between_rings_and_where(self):
+        # Rings 0.01 um apart, centres 0.005 ... 0.095 (R = 0.1): the jump of 0.3 between the
+        # rings at 0.075 and 0.085 is the steepest, 30 per um at r/R = 0.8.
+        radii = np.arange(10) * 0.01 + 0.005
+        profile = np.array([0.0, 0.0, 0.01, 0.02, 0.04, 0.07, 0.1, 0.2, 0.5, 0.6])
+        slope, where = front_causes.steepest(radii, profile)
+        self.assertAlmostEqual(slope, 30.0)
+        self.assertAlmostEqual(where, 0.8)
+
+    def test_flat_profile_has_no_slope(self):
+        radii = np.arange(4) * 0.01 + 0.005
+        slope, _ = front_causes.steepest(radii, np.full(4, 0.3))
+        self.assertAlmostEqual(slope, 0.0)
 
 
 class HeightProfile(unittest.TestCase):

@@ -43,10 +43,18 @@ class ConcentrationScatter {
   static constexpr int scatterWeightQuads = 2;
 
   // `reached` marks the nodes a source reaches (bit 1 inflow, bit 2 outflow; flux only), cmax is
-  // the material's max_concentration.
+  // the material's max_concentration; `restricted`: receivers weighted by m R(c), else by m
+  // (<flux_source_receivers>, docs/diffusion.md step 5).
   ConcentrationScatter(const ParticleSet& p, const InterpolationWeights& W,
-                       const unsigned char* reached, double cmax, ConcentrationScatterFields& grid)
-      : p_(p), d_(p), W_(W), reached_(reached), cmax_(cmax), grid_(&grid) {}
+                       const unsigned char* reached, double cmax, ConcentrationScatterFields& grid,
+                       bool restricted = true)
+      : p_(p),
+        d_(p),
+        W_(W),
+        reached_(reached),
+        cmax_(cmax),
+        restricted_(restricted),
+        grid_(&grid) {}
 
   // Particle i's terms: m c, m q (q = D grad c) and, with flux, m rate and m R(c) where a
   // source can reach.
@@ -63,8 +71,12 @@ class ConcentrationScatter {
       unsigned char reached = 0;
       for (int e = 0; e < W_.count[i]; ++e) reached |= reached_[W_.node[b + e]];
       const double c = d_.concentration[i] / cmax_;
-      if (reached & 1) terms[ConcentrationLane::receiverWeightIn] = mp * fluxRestriction(c, true);
-      if (reached & 2) terms[ConcentrationLane::receiverWeightOut] = mp * fluxRestriction(c, false);
+      if (reached & 1)
+        terms[ConcentrationLane::receiverWeightIn] =
+            mp * (restricted_ ? fluxRestriction(c, true) : 1.0);
+      if (reached & 2)
+        terms[ConcentrationLane::receiverWeightOut] =
+            mp * (restricted_ ? fluxRestriction(c, false) : 1.0);
     }
   }
 
@@ -86,6 +98,7 @@ class ConcentrationScatter {
   const InterpolationWeights& W_;
   const unsigned char* reached_;
   double cmax_;
+  bool restricted_;
   ConcentrationScatterFields* grid_;
 };
 
@@ -102,10 +115,11 @@ class ConcentrationGather {
     bool touchesWall = false;
   };
 
-  // `wallMask` is 1 on the Dirichlet nodes (Wall only); cmax the material's max_concentration.
+  // `wallMask` is 1 on the Dirichlet nodes (Wall only); cmax the material's max_concentration;
+  // `restricted` as ConcentrationScatter's.
   ConcentrationGather(ParticleSet& p, const ConcentrationGridFields& g, const double* wallMask,
-                      double cmax)
-      : p_(p), g_(g), wallMask_(wallMask), cmax_(cmax) {}
+                      double cmax, bool restricted = true)
+      : p_(p), g_(g), wallMask_(wallMask), cmax_(cmax), restricted_(restricted) {}
 
   // What the node's G2P quads hold of the concentration: c* and the nodal rate.
   void nodeValues(long k, double& concentration, double& rate) const {
@@ -126,8 +140,10 @@ class ConcentrationGather {
     p_.concentrationGradient[i] = sums.gradient;
     const double c0 = p_.concentration[i];
     double received = 0;
-    if (a.inflow != 0) received += a.inflow * fluxRestriction(c0 / cmax_, true);
-    if (a.outflow != 0) received += a.outflow * fluxRestriction(c0 / cmax_, false);
+    if (a.inflow != 0)
+      received += a.inflow * (restricted_ ? fluxRestriction(c0 / cmax_, true) : 1.0);
+    if (a.outflow != 0)
+      received += a.outflow * (restricted_ ? fluxRestriction(c0 / cmax_, false) : 1.0);
     const double c = a.touchesWall ? sums.value : c0 + dt * (sums.rate + received);
     const double dc = c - c0;
     p_.concentration[i] = c;
@@ -139,6 +155,7 @@ class ConcentrationGather {
   const ConcentrationGridFields& g_;
   const double* wallMask_;
   double cmax_;
+  bool restricted_;
 };
 
 }  // namespace anode

@@ -298,11 +298,13 @@ void ReactiveFlow::integrateConcentration(const std::vector<GridFields>& mechani
                                           const std::vector<NodeRange>& nodes) {
   // Eq. 18: c* = c + (R/m + G/m) dt, then the SD-Type BCs on c*. Unlike Uintah (UINTAH_UPS.md
   // §6 step 7) the flux source is part of c*, so the next step's gradient sees the lithium that
-  // entered. The nodal rate that drives the particles, (c° - c_noBC)/dt with c° = c + (R/m) dt
-  // under the same BCs, leaves the source out: each node hands its G to the particles it reaches
-  // in proportion to m S R, R the restriction of Eq. 17 at each particle's own c (R(1 - c) for
-  // an outflow), so a full (or emptied) particle receives nothing from its neighbours' sources
-  // and the node delivers all of G (G / W, W = sum m S R).
+  // entered (<flux_source_in_cstar>false leaves it out, as Uintah). The nodal rate that drives the
+  // particles, (c° - c_noBC)/dt with c° = c + (R/m) dt under the same BCs, leaves the source out:
+  // each node hands its G to the particles it reaches in proportion to m S R, R the restriction of
+  // Eq. 17 at each particle's own c (R(1 - c) for an outflow), so a full (or emptied) particle
+  // receives nothing from its neighbours' sources and the node delivers all of G (G / W, W = sum m
+  // S R). <flux_source_receivers>weights drops R from both (W = sum m S): every particle gets S G /
+  // m, Uintah's rule.
   for (size_t m = 0; m < fields_.size(); ++m) {
     if (!computesConcentration(m)) continue;
     ConcentrationGridFields& g = fields_[m];
@@ -316,7 +318,7 @@ void ReactiveFlow::integrateConcentration(const std::vector<GridFields>& mechani
       noSource[k] = g.concentration[k] + rate * dt;
       if (!source) return;
       const double G = g.fluxSource[k];
-      g.concentrationStar[k] = noSource[k] + G * invMass * dt;
+      g.concentrationStar[k] = noSource[k] + (flags_.fluxSourceInCStar ? G * invMass * dt : 0.0);
       const double receivers = G >= 0 ? g.receiverWeightIn[k] : g.receiverWeightOut[k];
       g.sourcePerWeight[k] = receivers > 0 ? G / receivers : 0.0;
     });

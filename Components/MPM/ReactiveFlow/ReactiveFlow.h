@@ -210,7 +210,8 @@ void ReactiveFlow::withScatter(size_t m, const ParticleSet& p, const Interpolati
   if (receivesFlux_[m]) {
     markSourceNodes(p, W, g.sourceReached, cleared);
     if (ghosts_) ghosts_->unionOverRanks(Collective{}, g.sourceReached);
-    f(ConcentrationScatter<true>(p, W, g.sourceReached.data(), cmax_[m], g));
+    f(ConcentrationScatter<true>(p, W, g.sourceReached.data(), cmax_[m], g,
+                                 flags_.restrictedFluxReceivers));
   } else {
     f(ConcentrationScatter<false>(p, W, nullptr, cmax_[m], g));
   }
@@ -226,9 +227,9 @@ void ReactiveFlow::withGather(size_t m, ParticleSet& p, F&& f) {
   const ConcentrationGridFields& g = fields_[m];
   if (receivesFlux_[m]) {
     if (wall)
-      f(ConcentrationGather<true, true>(p, g, wall, cmax_[m]));
+      f(ConcentrationGather<true, true>(p, g, wall, cmax_[m], flags_.restrictedFluxReceivers));
     else
-      f(ConcentrationGather<true, false>(p, g, wall, cmax_[m]));
+      f(ConcentrationGather<true, false>(p, g, wall, cmax_[m], flags_.restrictedFluxReceivers));
   } else {
     if (wall)
       f(ConcentrationGather<false, true>(p, g, wall, cmax_[m]));
