@@ -26,6 +26,7 @@ RUNS = [
     "Front_cause_cstar_without_source",
     "Front_cause_uintah_flux_rules",
     "Front_cause_beta_0",
+    "Front_cause_beta_2.07",
     "Front_D0_5e-18",
     "Front_D0_2e-18",
 ]

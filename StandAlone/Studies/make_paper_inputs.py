@@ -393,8 +393,9 @@ for D0, tag in [(5e-18, "5e-18"), (2e-18, "2e-18")]:
             density=2.33e24,
             D0=D0,
             flux=1e-9,
-            # Past 60% of the capacity (Fig. 6's panels: 15, 30, 45, 60%).
-            maxTime=3.5e7,
+            # Past 60% of the capacity (Fig. 6's panels: 15, 30, 45, 60%): 2e-18 fills more
+            # slowly (its surface is nearer the restriction's root).
+            maxTime=3.5e7 if D0 > 4e-18 else 5.0e7,
             output=1e6,
             model="hardening",
         )
@@ -430,6 +431,11 @@ FRONT_CAUSES = [
         ),
     ),
     ("beta_0", "beta = 0: no pressure term (a unit making beta p small)", dict(beta=0.0)),
+    (
+        "beta_2.07",
+        "beta = 2.07 (beta p 4 times ours; a value commented out in Uintah's pillar inputs)",
+        dict(beta=2.07),
+    ),
 ]
 for tag, what, changes in FRONT_CAUSES:
     SCENARIOS.append(
