@@ -416,9 +416,10 @@ StepSummary MPM::summarize(Collective) const {
   s.maxConcentration = -std::numeric_limits<double>::infinity();
   for (const MPMMaterial& mat : materials_) {
     const ParticleSet& p = mat.particles;
+    const double K = mat.model->bulkModulus(), G = mat.model->shearModulus();
     for (size_t i = 0; i < p.count(); ++i) {
       s.kineticEnergy += 0.5 * p.mass[i] * p.velocity[i].squaredNorm();
-      s.elasticEnergy += p.volume[i] * mat.model->elasticEnergyDensity(p.stress[i]);
+      s.elasticEnergy += p.volume[i] * ConstitutiveModel::elasticEnergyDensity(p.stress[i], K, G);
       const double J = p.volume[i] * mat.density / p.mass[i];
       s.minJ = std::min(s.minJ, J);
       s.maxJ = std::max(s.maxJ, J);

@@ -32,10 +32,12 @@ class ConstitutiveModel {
   // linear elasticity: p^2/(2K) + s:s/(4G), p the mean stress and s the deviator (exact for the
   // small elastic strains of rf_elastic_plastic, first order in the elastic strain for
   // comp_neo_hookean). history.csv's elastic_energy, the quasi-static check's denominator.
-  double elasticEnergyDensity(const Mat3& sigma) const {
+  // K and G are the model's (bulkModulus(), shearModulus()), passed in so a loop over particles
+  // reads them once.
+  static double elasticEnergyDensity(const Mat3& sigma, double K, double G) {
     const double p = sigma.trace() / 3.0;
-    const Mat3 s = sigma - p * Mat3::Identity();
-    return p * p / (2.0 * bulkModulus()) + s.squaredNorm() / (4.0 * shearModulus());
+    // s:s = sigma:sigma - 3 p^2 (no deviator built).
+    return p * p / (2.0 * K) + (sigma.squaredNorm() - 3.0 * p * p) / (4.0 * G);
   }
   // This model as its own type, for the particle update (dispatched once per material).
   virtual ConcreteModel concrete() const = 0;
