@@ -618,6 +618,24 @@ add_variant(
     **NEWTON_STEPS,
 )
 
+# §4.4's slower flux at the real density, quasi-static, to its end (100 s): with
+# QuasiStatic_Flux_1e-8, whether the faster flux's bulge near the base survives at the real
+# density (docs/paper/README.md, Figs. 6-7).
+add_variant(
+    "Flux_1e-9",
+    name="QuasiStatic_Flux_1e-9",
+    title="Quasi-static: flux 1e-9 m/s at 2.33e3 kg/m^3",
+    notes=describe(
+        COMMON
+        + [
+            "Linear hardening; alpha = 6, beta = 0.5; flux 1e-9 m/s, as Flux_1e-9, to 100 s.",
+            "Density 2.33e3 kg/m^3 (real silicon), quasi-static (implicit) steps of at most",
+            "1 s, dt by Newton's iterations alone as QuasiStatic_Fig4.",
+        ]
+    ),
+    **NEWTON_STEPS,
+)
+
 # §4.7's cycle at the real density, quasi-static: steps of at most 1 s as Figure 4's.
 add_variant(
     "Cycle_LargePillar",
