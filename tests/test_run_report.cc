@@ -16,6 +16,7 @@
 #include "StandAlone/Driver/HistoryDigest.h"
 #include "StandAlone/Driver/RunReport.h"
 #include "TestFiles.h"
+#include "vis/SvgPlot.h"
 
 namespace fs = std::filesystem;
 
@@ -157,7 +158,8 @@ TEST(RunReport, WrittenAtAStopAndByRenderVtu) {
 }
 
 // An implicit quasi-static run: the history's Newton and Krylov columns, their plots and totals
-// (the sums of the columns, as the end summary gives them), the quasi-static verdict.
+// (the sums of the columns; with no step retaken, the end summary's totals), the quasi-static
+// verdict.
 TEST(RunReport, ImplicitRunGivesNewtonAndKrylov) {
   const fs::path dir = scratch("implicit");
   const auto run =
@@ -195,6 +197,22 @@ TEST(RunReport, WrittenWhenAStepFails) {
       std::string::npos)
       << r.status;
   fs::remove_all(dir);
+}
+
+// Plots of a range too narrow to count ticks in (a few units in the last place), of one value
+// and of nothing are drawn (a loop over ticks once never ended on the first).
+TEST(RunReport, PlotsOfDegenerateRangesAreDrawn) {
+  for (const std::vector<double>& y :
+       {std::vector<double>{0.5, std::nextafter(0.5, 1.0)}, std::vector<double>{1.0, 1.0},
+        std::vector<double>{0.0, 0.0}, std::vector<double>{}}) {
+    PlotSpec plot;
+    plot.id = "p";
+    plot.series.push_back({"line", "#000000", std::vector<double>(y.size(), 1.0), y});
+    const std::string svg = svgPlot(plot);
+    tinyxml2::XMLDocument doc;
+    EXPECT_EQ(doc.Parse(svg.c_str()), tinyxml2::XML_SUCCESS) << svg;
+    EXPECT_LT(svg.size(), 20000u);
+  }
 }
 
 // An output directory without history.csv: render_vtu --report says so and exits 1.

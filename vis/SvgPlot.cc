@@ -46,12 +46,14 @@ struct Range {
     high = std::max(high, v);
   }
   bool empty() const { return !(low <= high); }
-  // A range of zero width widened so it can be drawn.
+  // A range too narrow to draw (zero width, or a few units in the last place, where ticks
+  // cannot be counted in doubles) widened around its middle.
   void widen() {
-    if (high > low) return;
-    const double pad = low != 0 ? std::abs(low) * 0.1 : 1.0;
-    low -= pad;
-    high += pad;
+    const double scale = std::max(std::abs(low), std::abs(high));
+    if (high - low > 1e-9 * scale) return;
+    const double middle = 0.5 * (low + high), pad = scale > 0 ? 0.1 * scale : 1.0;
+    low = middle - pad;
+    high = middle + pad;
   }
 };
 
@@ -61,14 +63,15 @@ std::string number(double v) {
   return text;
 }
 
-// Ticks at 1, 2 or 5 times a power of ten, about five within the range.
+// Ticks at 1, 2 or 5 times a power of ten, about five within the range (at most 12).
 std::vector<double> linearTicks(const Range& r) {
   const double raw = (r.high - r.low) / 5;
   const double power = std::pow(10.0, std::floor(std::log10(raw)));
   const double step = raw / power < 1.5 ? power : raw / power < 3.5 ? 2 * power : 5 * power;
+  const double first = std::ceil(r.low / step - 1e-9);
   std::vector<double> ticks;
-  for (double k = std::ceil(r.low / step - 1e-9); k * step <= r.high + 1e-9 * step; ++k)
-    ticks.push_back(k == 0 ? 0.0 : k * step);
+  for (int k = 0; k < 12 && (first + k) * step <= r.high + 1e-9 * step; ++k)
+    ticks.push_back(first + k == 0 ? 0.0 : (first + k) * step);
   return ticks;
 }
 
@@ -156,8 +159,10 @@ std::string svgPlot(const PlotSpec& spec) {
         << (s.dashed ? " stroke-dasharray=\"4,3\"" : "") << " points=\"";
     for (size_t i = 0; i < s.x.size(); ++i)
       if (drawn(s.x[i], s.y[i])) svg << px(s.x[i]) << ',' << py(yOf(s.y[i])) << ' ';
-    svg << "\"/>\n<text x=\"" << left + 8 << "\" y=\"" << legendY << "\" fill=\""
-        << escapeXml(s.colour) << "\">" << escapeXml(s.label) << "</text>\n";
+    svg << "\"/>\n";
+    if (s.label.empty()) continue;  // a second line of a series already named
+    svg << "<text x=\"" << left + 8 << "\" y=\"" << legendY << "\" fill=\"" << escapeXml(s.colour)
+        << "\">" << escapeXml(s.label) << "</text>\n";
     legendY += 14;
   }
   svg << "</svg>\n";

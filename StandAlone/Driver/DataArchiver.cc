@@ -126,7 +126,8 @@ const char* dtRuleName(int rule) {
     return StableTimestep::name(static_cast<StableTimestep::Limit>(rule));
   if (rule == kDtSetByTimeControl)
     return "time control (<delt_max>, <delt_init>, <delt_min>, <max_delt_increase>, <maxTime>)";
-  if (rule == kDtRetaken) return "retaken with a smaller dt (Newton did not converge)";
+  if (rule == kDtRetaken)
+    return "retaken with a smaller dt (Newton did not converge, or c changed too much)";
   return "unknown";
 }
 

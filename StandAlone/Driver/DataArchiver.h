@@ -29,7 +29,9 @@ struct HistoryRow {
 struct StepRecord {
   double elasticEnergy = 0;
   int dtRule = 0;
-  int newtonIterations = -1, krylovIterations = -1;  // -1: an explicit run (no columns)
+  // Of the attempt kept (a retaken step's earlier attempts are in the end summary's totals
+  // only); -1: an explicit run (no columns).
+  int newtonIterations = -1, krylovIterations = -1;
 };
 
 // history.csv's dt_limit: StableTimestep::Limit's codes (0 mechanics, Eq. 43; 1 diffusion, Eq.
@@ -37,7 +39,8 @@ struct StepRecord {
 enum DtRule {
   kDtSetByTimeControl = StableTimestep::kLimits,  // <delt_max>, <delt_init>, <delt_min>,
                                                   // <max_delt_increase> or the end at <maxTime>
-  kDtRetaken,  // an implicit step retaken with a smaller dt (Newton did not converge)
+  kDtRetaken,  // an implicit step retaken with a smaller dt (Newton did not converge, or c
+               // changed by more than twice <max_concentration_change>)
   kDtRules
 };
 // The rule's name, as the end summary and report.html write it.

@@ -10,6 +10,7 @@
 #include <map>
 #include <sstream>
 
+#include "Core/ProblemSpec/ProblemSpec.h"
 #include "Core/Util/AtomicFile.h"
 #include "StandAlone/Driver/HistoryDigest.h"
 #include "vis/SvgPlot.h"
@@ -20,7 +21,7 @@ namespace anode {
 
 namespace {
 
-constexpr size_t kPlotBins = 600;        // points of a plotted line: 2 per bin at most
+constexpr size_t kPlotBins = 600;        // a plotted line: one point per bin, 600 to 1,200 bins
 constexpr size_t kPicturesPerScene = 6;  // the first, the last and evenly between
 
 std::string base64(const std::string& bytes) {
@@ -75,8 +76,14 @@ InputFacts readInputFacts(const fs::path& input) {
   facts.title = textOf(root->FirstChildElement("Meta"), "title");
   facts.maxTime = textOf(root->FirstChildElement("Time"), "maxTime");
   const tinyxml2::XMLElement* mpm = root->FirstChildElement("MPM");
-  facts.quasiStatic =
-      textOf(mpm, "time_integrator") == "implicit" && textOf(mpm, "dynamic") == "false";
+  // As sus reads them (parseValue): <dynamic> absent is ImpMPM's default, true.
+  const std::string dynamic = textOf(mpm, "dynamic");
+  try {
+    facts.quasiStatic = textOf(mpm, "time_integrator") == "implicit" && !dynamic.empty() &&
+                        !parseValue<bool>(dynamic);
+  } catch (const std::invalid_argument&) {
+    facts.quasiStatic = false;  // sus would not have run it
+  }
   return facts;
 }
 
@@ -89,7 +96,9 @@ void addEnvelope(PlotSpec& plot, const HistoryDigest& d, const std::string& colu
   for (double& v : low.y) v *= scale;
   for (double& v : high.y) v *= scale;
   plot.series.push_back(std::move(low));
-  if (d.low[c] != d.high[c]) plot.series.push_back(std::move(high));
+  const auto same = [](double a, double b) { return a == b || (std::isnan(a) && std::isnan(b)); };
+  if (!std::equal(d.low[c].begin(), d.low[c].end(), d.high[c].begin(), same))
+    plot.series.push_back(std::move(high));
 }
 
 PlotSpec timePlot(const std::string& id, const std::string& title, const std::string& yLabel,

@@ -436,8 +436,11 @@ void Simulation::writeCheckpoint(Collective, CheckpointKind kind) {
   }
   collective::barrier();
   newestCheckpointWallTime_ = wallTime();
-  writeReport("Written at the checkpoint of step " + std::to_string(step_) +
-              " (the run went on from there, or stopped: see its log).");
+  // At the input's checkpoints and the start, not at the automatic ones every 10 minutes: the
+  // report reads the whole history.csv (a gigabyte after millions of steps).
+  if (kind == CheckpointKind::Scheduled || step_ == 0)
+    writeReport("Written at the checkpoint of step " + std::to_string(step_) +
+                " (the run went on from there, or stopped: see its log).");
 }
 
 void Simulation::writeReport(const std::string& status) {

@@ -119,7 +119,7 @@ class Simulation {
   // checkpoint and taking the same steps again (they are deterministic).
   void replayToLastGoodState();
   // Writes the state after step_ to a checkpoint (Checkpoint.h), drops the oldest of its kind
-  // and writes report.html.
+  // and, at a scheduled one or the start, writes report.html.
   void writeCheckpoint(Collective, CheckpointKind kind);
   // Rank 0: report.html of the output directory (RunReport.h) with `status`; a failure to write
   // it is a warning on stderr, not a stop (history.csv and the outputs it reads are intact).

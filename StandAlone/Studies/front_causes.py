@@ -1,5 +1,6 @@
 """What decides whether Flux_1e-9 has a sharp front (docs/paper/README.md, "The sharp front at
-1e-9 m/s"): the Front_cause_* runs (Flux_1e-9 to 30 s with one of Uintah's flux rules, or beta = 0)
+1e-9 m/s"): the Front_cause_* runs (Flux_1e-9 to 35 s with one of Uintah's flux rules, or beta = 0
+or 2.07)
 and Front_D0_* measured at 15, 30, 45 and 60% of the silicon's capacity (the output nearest each):
 the ring profile of the middle layers, the current front measure (paper_numbers.front: c behind
 the front) and a steepness measure, the largest dc/dr between neighbouring rings and where it is

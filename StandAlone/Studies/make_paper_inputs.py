@@ -423,7 +423,7 @@ FRONT_CAUSES = [
     ),
     (
         "uintah_flux_rules",
-        "all three of Uintah's flux rules above together",
+        "Uintah's three flux rules together (particle-face area, source by S, not in c*)",
         dict(
             flux_extra="\n        <area_rule>particle_face</area_rule>",
             mpm_extra="\n    <flux_source_receivers>weights</flux_source_receivers>"

@@ -32,11 +32,13 @@ struct ConcentrationScatterFields {
 struct ConcentrationGridFields : ConcentrationScatterFields {
   std::vector<double> concentrationNoBC;  // c = sum m c S / m (Eq. 5)
   std::vector<double> concentration;      // g.concentration: the same after the SD-Type BCs
-  std::vector<double> concentrationStar;  // c* = c + (R + G)/m dt (Eq. 18), then the SD-Type BCs
+  std::vector<double> concentrationStar;  // c* = c + (R + G)/m dt (Eq. 18; without G under
+                                          // <flux_source_in_cstar>false), then the SD-Type BCs
   std::vector<double> concentrationRate;  // g.concentrationRate: (c° - c_noBC)/dt, drives Eq. 8
   // Flux materials only.
   std::vector<double> concentrationNoSource;  // c° = c + R/m dt under the SD-Type BCs
-  std::vector<double> sourcePerWeight;        // G / W: what a receiving particle gets per m S R
+  std::vector<double> sourcePerWeight;  // G / W: what a receiving particle gets per m S R (per
+                                        // m S under <flux_source_receivers>weights)
   std::vector<unsigned char>
       sourceReached;  // bit 1 (2): an inflow (outflow) source reaches the node
 
