@@ -34,17 +34,6 @@ RUNS = [
 FRACTIONS = [0.15, 0.30, 0.45, 0.60]
 
 
-def rings(state):
-    """(ring radii in the reference configuration, mean c per ring) of the middle layers."""
-    height = state.top - state.base
-    middle = state.base + height / 2
-    X0, c = state.X0[state.silicon], state.c[state.silicon]
-    radius = np.round(np.hypot(X0[:, 0], X0[:, 1]), 7)
-    in_middle = np.abs(X0[:, 2] - middle) <= 0.1 * height
-    radii = np.unique(radius[in_middle])
-    return radii, np.array(pn.group_means(radius[in_middle], c[in_middle]))
-
-
 def steepest(radii, profile):
     """(largest dc/dr between neighbouring rings, in 1/um of reference radius, and the r / R of
     the middle between them)."""
@@ -62,7 +51,8 @@ def measure(run_dir):
             rows.append((fraction, None))
             continue
         state = pn.State(run_dir, t)
-        radii, profile = rings(state)
+        radii, profile = state.rings()
+        profile = np.array(profile)
         rows.append(
             (
                 fraction,

@@ -400,68 +400,6 @@ for D0, tag in [(5e-18, "5e-18"), (2e-18, "2e-18")]:
             model="hardening",
         )
     )
-# Not in the paper either: which of our departures from Uintah's flux rules, or beta's unit,
-# decides whether Flux_1e-9 has a sharp front (docs/paper/README.md, "The sharp front at 1e-9
-# m/s"). Flux_1e-9 to 35 s (past 60% of the capacity) with one rule switched to Uintah's (or beta
-# to 0) at a time.
-FRONT_CAUSES = [
-    ("ours", "our rules (Flux_1e-9 to 35 s)", {}),
-    (
-        "area_particle_face",
-        "each flagged particle's own face as flux area (Uintah's)",
-        dict(flux_extra="\n        <area_rule>particle_face</area_rule>"),
-    ),
-    (
-        "receivers_weights",
-        "the flux source shared by S, not m S R(c) (Uintah's)",
-        dict(mpm_extra="\n    <flux_source_receivers>weights</flux_source_receivers>"),
-    ),
-    (
-        "cstar_without_source",
-        "the flux source left out of c* (Uintah's)",
-        dict(mpm_extra="\n    <flux_source_in_cstar>false</flux_source_in_cstar>"),
-    ),
-    (
-        "uintah_flux_rules",
-        "Uintah's three flux rules together (particle-face area, source by S, not in c*)",
-        dict(
-            flux_extra="\n        <area_rule>particle_face</area_rule>",
-            mpm_extra="\n    <flux_source_receivers>weights</flux_source_receivers>"
-            "\n    <flux_source_in_cstar>false</flux_source_in_cstar>",
-        ),
-    ),
-    ("beta_0", "beta = 0: no pressure term (a unit making beta p small)", dict(beta=0.0)),
-    (
-        "beta_2.07",
-        "beta = 2.07 (beta p 4 times ours; a value commented out in Uintah's pillar inputs)",
-        dict(beta=2.07),
-    ),
-]
-for tag, what, changes in FRONT_CAUSES:
-    SCENARIOS.append(
-        dict(
-            dict(
-                name="Front_cause_" + tag,
-                section="§4.4, Figs. 6-7 (a study of ours)",
-                title="Flux 1e-9 m/s to 35 s: " + what,
-                notes=describe(
-                    COMMON
-                    + [
-                        "As Flux_1e-9 (D0 = 1e-17 m^2/s) to 35 s, with " + what + ":",
-                        "does it decide whether a sharp front forms? (not in the paper)",
-                    ]
-                ),
-                pillar=SMALL,
-                density=2.33e24,
-                D0=1e-17,
-                flux=1e-9,
-                maxTime=3.5e7,
-                output=1e6,
-                model="hardening",
-            ),
-            **changes,
-        )
-    )
 for beta in [0.0, 1.0]:
     SCENARIOS.append(
         dict(
@@ -568,6 +506,61 @@ def add_variant(base, **changes):
     """Appends the scenario named `base` with `changes`."""
     SCENARIOS.append(dict(next(s for s in SCENARIOS if s["name"] == base), **changes))
 
+
+# Not in the paper either: which of our departures from Uintah's flux rules, or beta's unit,
+# decides whether Flux_1e-9 has a sharp front (docs/paper/README.md, "The sharp front at 1e-9
+# m/s"). Flux_1e-9 to 35 s (past 60% of the capacity) with one rule switched to Uintah's (or beta
+# to 0) at a time.
+FRONT_CAUSES = [
+    ("ours", "our rules (Flux_1e-9 to 35 s)", {}),
+    (
+        "area_particle_face",
+        "each flagged particle's own face as flux area (Uintah's)",
+        dict(flux_extra="\n        <area_rule>particle_face</area_rule>"),
+    ),
+    (
+        "receivers_weights",
+        "the flux source shared by S, not m S R(c) (Uintah's)",
+        dict(mpm_extra="\n    <flux_source_receivers>weights</flux_source_receivers>"),
+    ),
+    (
+        "cstar_without_source",
+        "the flux source left out of c* (Uintah's)",
+        dict(mpm_extra="\n    <flux_source_in_cstar>false</flux_source_in_cstar>"),
+    ),
+    (
+        "uintah_flux_rules",
+        "Uintah's three flux rules together (particle-face area, source by S, not in c*)",
+        dict(
+            flux_extra="\n        <area_rule>particle_face</area_rule>",
+            mpm_extra="\n    <flux_source_receivers>weights</flux_source_receivers>"
+            "\n    <flux_source_in_cstar>false</flux_source_in_cstar>",
+        ),
+    ),
+    ("beta_0", "beta = 0: no pressure term (a unit making beta p small)", dict(beta=0.0)),
+    (
+        "beta_2.07",
+        "beta = 2.07 (beta p 4 times ours; a value commented out in Uintah's pillar inputs)",
+        dict(beta=2.07),
+    ),
+]
+for tag, what, changes in FRONT_CAUSES:
+    add_variant(
+        "Flux_1e-9",
+        name="Front_cause_" + tag,
+        section="§4.4, Figs. 6-7 (a study of ours)",
+        title="Flux 1e-9 m/s to 35 s: " + what,
+        notes=describe(
+            COMMON
+            + [
+                "As Flux_1e-9 (D0 = 1e-17 m^2/s) to 35 s, with " + what + ":",
+                "does it decide whether a sharp front forms? (not in the paper)",
+            ]
+        ),
+        maxTime=3.5e7,
+        output=1e6,
+        **changes,
+    )
 
 # Quasi-static runs at silicon's real density in steps of at most 1 s; with NEWTON_STEPS dt follows
 # Newton's iterations alone, growing again after a step of at most 7 of them.

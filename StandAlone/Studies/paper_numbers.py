@@ -204,14 +204,18 @@ class State:
             self.top - self.base
         ) - 1
 
-    def ring_profile(self):
-        """Mean c per ring of the middle layers, axis first."""
+    def rings(self):
+        """(the rings' reference radii, mean c per ring) of the middle layers, axis first."""
         height = self.top - self.base
         middle = self.base + height / 2
         X0, c = self.X0[self.silicon], self.c[self.silicon]
         radius = np.round(np.hypot(X0[:, 0], X0[:, 1]), 7)
         in_middle = np.abs(X0[:, 2] - middle) <= 0.1 * height
-        return group_means(radius[in_middle], c[in_middle])
+        return np.unique(radius[in_middle]), group_means(radius[in_middle], c[in_middle])
+
+    def ring_profile(self):
+        """Mean c per ring of the middle layers, axis first."""
+        return self.rings()[1]
 
     def height_profile(self, thickness):
         """Mean c of the silicon in slabs `thickness` thick by X0_z, from the base layer up."""
