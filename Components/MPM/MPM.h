@@ -185,17 +185,12 @@ class MPM {
   void checkParticlesOfRank(const CellBox& region) const;
   void keepParticlesOfBox(const CellBox& box);
   // The boxes of this rank count by recursive bisection (`earlier`, when it has as many, where a
-  // box cannot be cut); the counts per cell plane it cuts by: empty, one added, and those of the
-  // particles (of every rank's unless `allHere`).
-  Decomposition drawBoxes(const Decomposition::PlanesOfBoxes& planesOf,
+  // box cannot be cut) from the particles per cell: those of the particles (of every rank's
+  // unless `allHere`), or of seeds_ (setup's, before any particle is created).
+  Decomposition drawBoxes(const Decomposition::ParticleCounts& counts,
                           const Decomposition* earlier) const;
-  static std::vector<std::array<std::vector<double>, 3>> emptyPlanes(
-      const std::vector<CellBox>& boxes);
-  static void addToPlanes(const std::vector<CellBox>& boxes, int b, const Vec3i& cell, double count,
-                          std::vector<std::array<std::vector<double>, 3>>& planes);
-  Decomposition::PlanesOfBoxes particlePlanes(bool allHere) const;
-  // The counts per cell plane of seeds_ (setup's, before any particle is created).
-  Decomposition::PlanesOfBoxes seedPlanes() const;
+  Decomposition::ParticleCounts particleCounts(bool allHere) const;
+  Decomposition::ParticleCounts seedCounts() const;
   // The ghost layers of the interpolator for CPDI domains reaching `reach` cells.
   int ghostWidthFor(double reach) const;
   // The grid arrays the ghost sums after P2G complete.

@@ -39,19 +39,15 @@ CellBox MPM::setupBox() {
   if (ranks == 1) return {Vec3i::Zero(), whole_.cells};
   // The boxes from the particles the geom_objects lay out per cell, counted before any particle
   // is stored: the same on every rank, and the same boxes a fill of everything gives.
-  decomposition_ = drawBoxes(seedPlanes(), nullptr);
+  decomposition_ = drawBoxes(seedCounts(), nullptr);
   return decomposition_.box(Communicator::rank());
 }
 
-Decomposition::PlanesOfBoxes MPM::seedPlanes() const {
-  return [this](const std::vector<CellBox>& boxes, const std::function<int(const Vec3i&)>& partOf) {
-    std::vector<std::array<std::vector<double>, 3>> planes = emptyPlanes(boxes);
-    for (const MaterialSeeds& s : seeds_)
-      s.forEachOccupiedCell(whole_, [&](const Vec3i& cell, double count) {
-        addToPlanes(boxes, partOf(cell), cell, count, planes);
-      });
-    return planes;
-  };
+Decomposition::ParticleCounts MPM::seedCounts() const {
+  return {[this](const std::function<void(const Vec3i&, double)>& add) {
+            for (const MaterialSeeds& s : seeds_) s.forEachOccupiedCell(whole_, add);
+          },
+          nullptr};
 }
 
 CellBox MPM::grownBySetupReach(const CellBox& box) const {
@@ -103,51 +99,26 @@ void MPM::keepParticlesOfBox(const CellBox& box) {
   }
 }
 
-std::vector<std::array<std::vector<double>, 3>> MPM::emptyPlanes(
-    const std::vector<CellBox>& boxes) {
-  std::vector<std::array<std::vector<double>, 3>> planes(boxes.size());
-  for (size_t b = 0; b < boxes.size(); ++b)
-    for (int d = 0; d < 3; ++d) planes[b][d].assign(boxes[b].upper[d] - boxes[b].lower[d], 0.0);
-  return planes;
-}
-
-void MPM::addToPlanes(const std::vector<CellBox>& boxes, int b, const Vec3i& cell, double count,
-                      std::vector<std::array<std::vector<double>, 3>>& planes) {
-  if (b < 0) return;
-  for (int d = 0; d < 3; ++d) planes[b][d][cell[d] - boxes[b].lower[d]] += count;
-}
-
-Decomposition::PlanesOfBoxes MPM::particlePlanes(bool allHere) const {
-  return [this, allHere](const std::vector<CellBox>& boxes,
-                         const std::function<int(const Vec3i&)>& partOf) {
-    std::vector<std::array<std::vector<double>, 3>> planes = emptyPlanes(boxes);
+Decomposition::ParticleCounts MPM::particleCounts(bool allHere) const {
+  Decomposition::ParticleCounts counts;
+  counts.forEach = [this](const std::function<void(const Vec3i&, double)>& add) {
     for (const MPMMaterial& mat : materials_)
-      for (const Vec3& x : mat.particles.x) {
-        const Vec3i cell = whole_.interiorCell(x);
-        addToPlanes(boxes, partOf(cell), cell, 1.0, planes);
-      }
-    if (!allHere) {
-      // The counts of every rank's particles: one sum of all the level's planes.
-      std::vector<double> flat;
-      for (const auto& box : planes)
-        for (const std::vector<double>& axis : box)
-          flat.insert(flat.end(), axis.begin(), axis.end());
-      collective::sum(flat.data(), static_cast<int>(flat.size()));
-      size_t k = 0;
-      for (auto& box : planes)
-        for (std::vector<double>& axis : box)
-          for (double& v : axis) v = flat[k++];
-    }
-    return planes;
+      for (const Vec3& x : mat.particles.x) add(whole_.interiorCell(x), 1.0);
   };
+  // The counts of every rank's particles: one sum over the ranks.
+  if (!allHere)
+    counts.sumOverRanks = [](std::vector<double>& v) {
+      collective::sum(v.data(), static_cast<int>(v.size()));
+    };
+  return counts;
 }
 
-Decomposition MPM::drawBoxes(const Decomposition::PlanesOfBoxes& planesOf,
+Decomposition MPM::drawBoxes(const Decomposition::ParticleCounts& counts,
                              const Decomposition* earlier) const {
   // Recursive bisection; where a box cannot be cut for its ranks, the boxes drawn before (boxes
   // redrawn mid-run never fail where setup succeeded).
   try {
-    return Decomposition::bisected(whole_.cells, Communicator::size(), planesOf);
+    return Decomposition::bisected(whole_.cells, Communicator::size(), counts);
   } catch (const std::runtime_error&) {
     if (earlier && earlier->ranks() == Communicator::size()) return *earlier;
     throw;
@@ -185,7 +156,7 @@ void MPM::decompose(bool allHere) {
   }
   const Decomposition earlier = decomposition_;
   // The boxes drawn before (for this rank count once set up) are the fallback.
-  decomposition_ = drawBoxes(particlePlanes(allHere), &earlier);
+  decomposition_ = drawBoxes(particleCounts(allHere), &earlier);
   ghostWidth_ = computeGhostWidth(allHere);
   std::vector<std::string> send(ranks);
   for (MPMMaterial& mat : materials_) {
@@ -265,7 +236,7 @@ std::string MPM::describeDecomposition(int ranks) {
   std::optional<Decomposition> bisected;
   std::string bisectionError;
   try {
-    bisected = Decomposition::bisected(cells, ranks, seedPlanes());
+    bisected = Decomposition::bisected(cells, ranks, seedCounts());
   } catch (const std::runtime_error& e) {
     bisectionError = e.what();
   }

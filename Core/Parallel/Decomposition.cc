@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "Core/Parallel/Bisection.h"
+#include "Core/Parallel/BisectionSearch.h"
 
 namespace anode {
 
@@ -62,6 +63,71 @@ std::vector<int> quantileCuts(const std::vector<double>& counts, int cells, int 
   return cuts;
 }
 
+// Per box of a level, its particles per cell plane along each axis (planes[b][d][i]: plane
+// box.lower[d] + i), summed over the ranks.
+std::vector<std::array<std::vector<double>, 3>> planesOfLevel(
+    const std::vector<CellBox>& boxes, const std::function<int(const Vec3i&)>& partOf,
+    const Decomposition::ParticleCounts& counts) {
+  std::vector<std::array<std::vector<double>, 3>> planes(boxes.size());
+  for (size_t b = 0; b < boxes.size(); ++b)
+    for (int d = 0; d < 3; ++d) planes[b][d].assign(boxes[b].upper[d] - boxes[b].lower[d], 0.0);
+  counts.forEach([&](const Vec3i& cell, double n) {
+    const int b = partOf(cell);
+    if (b >= 0)
+      for (int d = 0; d < 3; ++d) planes[b][d][cell[d] - boxes[b].lower[d]] += n;
+  });
+  if (counts.sumOverRanks) {
+    std::vector<double> flat;
+    for (const auto& box : planes)
+      for (const std::vector<double>& axis : box) flat.insert(flat.end(), axis.begin(), axis.end());
+    counts.sumOverRanks(flat);
+    size_t k = 0;
+    for (auto& box : planes)
+      for (std::vector<double>& axis : box)
+        for (double& v : axis) v = flat[k++];
+  }
+  return planes;
+}
+
+// The cells of `box` between its first and last cell plane holding particles along each axis
+// (none when it holds none).
+CellBox occupiedRegion(const CellBox& box, const std::array<std::vector<double>, 3>& planes) {
+  CellBox region = box;
+  for (int d = 0; d < 3; ++d) {
+    const auto& p = planes[d];
+    const auto first = std::find_if(p.begin(), p.end(), [](double v) { return v > 0; });
+    if (first == p.end()) return CellBox{};
+    const auto last = std::find_if(p.rbegin(), p.rend(), [](double v) { return v > 0; });
+    region.lower[d] = box.lower[d] + static_cast<int>(first - p.begin());
+    region.upper[d] = box.lower[d] + static_cast<int>(p.rend() - last);
+  }
+  return region;
+}
+
+// Per region (regions[b] lies in the box partOf names b), its particles per cell, summed over the
+// ranks (RegionCounts' order).
+std::vector<std::vector<double>> cellsOfRegions(const std::vector<CellBox>& regions,
+                                                const std::function<int(const Vec3i&)>& partOf,
+                                                const Decomposition::ParticleCounts& counts) {
+  std::vector<size_t> offset(regions.size() + 1, 0);
+  for (size_t b = 0; b < regions.size(); ++b)
+    offset[b + 1] = offset[b] + static_cast<size_t>(regions[b].cellCount());
+  if (offset.back() == 0) return std::vector<std::vector<double>>(regions.size());
+  std::vector<double> flat(offset.back(), 0.0);
+  counts.forEach([&](const Vec3i& cell, double n) {
+    const int b = partOf(cell);
+    if (b < 0 || !regions[b].contains(cell)) return;
+    const Vec3i e = regions[b].upper - regions[b].lower, c = cell - regions[b].lower;
+    flat[offset[b] + (static_cast<size_t>(c.z()) * e.y() + c.y()) * e.x() + c.x()] += n;
+  });
+  if (counts.sumOverRanks) counts.sumOverRanks(flat);
+  std::vector<std::vector<double>> out(regions.size());
+  for (size_t b = 0; b < regions.size(); ++b)
+    out[b].assign(flat.begin() + static_cast<long>(offset[b]),
+                  flat.begin() + static_cast<long>(offset[b + 1]));
+  return out;
+}
+
 }  // namespace
 
 Decomposition::Decomposition(const Vec3i& cells) : cells_(cells) {
@@ -107,8 +173,7 @@ Decomposition Decomposition::fromCuts(const std::array<std::vector<int>, 3>& cut
   return out;
 }
 
-Decomposition Decomposition::bisected(const Vec3i& cells, int ranks,
-                                      const PlanesOfBoxes& planesOf) {
+Decomposition Decomposition::bisected(const Vec3i& cells, int ranks, const ParticleCounts& counts) {
   Decomposition out(cells);
   if (ranks == 1) return out;
   out.boxes_.assign(ranks, CellBox{});
@@ -118,17 +183,44 @@ Decomposition Decomposition::bisected(const Vec3i& cells, int ranks,
     CellBox box;
     int ranks, first, parent, side;
   };
+  const auto link = [&out](const Part& p, int child) {
+    if (p.parent >= 0) (p.side == 0 ? out.tree_[p.parent].low : out.tree_[p.parent].high) = child;
+  };
+  const auto addLeaf = [&](const Part& p) {
+    out.boxes_[p.first] = p.box;
+    link(p, -p.first - 1);
+  };
+  // The cut of a part as a node of the tree below its parent; the two parts it makes.
+  const auto addCut = [&](const Part& p, const BisectionCut& cut) {
+    const int node = static_cast<int>(out.tree_.size());
+    out.tree_.push_back({cut.axis, cut.at, 0, 0});
+    link(p, node);
+    CellBox low = p.box, high = p.box;
+    low.upper[cut.axis] = high.lower[cut.axis] = cut.at;
+    return std::array<Part, 2>{Part{low, cut.left, p.first, node, 0},
+                               Part{high, p.ranks - cut.left, p.first + cut.left, node, 1}};
+  };
+  // A part's whole subtree as `search` cuts it.
+  const std::function<void(const Part&, BisectionSearch&)> addSearched =
+      [&](const Part& p, BisectionSearch& search) {
+        if (p.ranks == 1) return addLeaf(p);
+        for (const Part& half : addCut(p, search.cut(p.box, p.ranks))) addSearched(half, search);
+      };
   std::vector<Part> level{{CellBox{Vec3i::Zero(), cells}, ranks, 0, -1, 0}};
   // While a level is cut, a child below -ranks points to the part -child - ranks - 1 of the
   // level's parts to cut.
   const auto pending = [ranks](int k) { return -ranks - 1 - k; };
   while (!level.empty()) {
     std::vector<CellBox> toCut;
+    std::vector<Part> parts;
     for (Part& p : level) {
-      const int self = p.ranks == 1 ? -p.first - 1 : pending(static_cast<int>(toCut.size()));
-      if (p.ranks > 1) toCut.push_back(p.box);
-      if (p.ranks == 1) out.boxes_[p.first] = p.box;
-      if (p.parent >= 0) (p.side == 0 ? out.tree_[p.parent].low : out.tree_[p.parent].high) = self;
+      if (p.ranks == 1) {
+        addLeaf(p);
+        continue;
+      }
+      link(p, pending(static_cast<int>(toCut.size())));
+      toCut.push_back(p.box);
+      parts.push_back(p);
     }
     if (toCut.empty()) break;
     const auto partOf = [&](const Vec3i& cell) {
@@ -144,20 +236,29 @@ Decomposition Decomposition::bisected(const Vec3i& cells, int ranks,
         }
       }
     };
-    const std::vector<std::array<std::vector<double>, 3>> planes = planesOf(toCut, partOf);
+    const std::vector<std::array<std::vector<double>, 3>> planes =
+        planesOfLevel(toCut, partOf, counts);
+    // The parts of few ranks: the cells their particles occupy, counted.
+    std::vector<CellBox> regions(toCut.size());
+    std::vector<bool> search(toCut.size(), false);
+    for (size_t k = 0; k < toCut.size(); ++k) {
+      if (parts[k].ranks > kSearchedRanks) continue;
+      const CellBox region = occupiedRegion(toCut[k], planes[k]);
+      search[k] = region.cellCount() <= kSearchedCellsPerRank * parts[k].ranks;
+      if (search[k]) regions[k] = region;
+    }
+    const std::vector<std::vector<double>> perCell = cellsOfRegions(regions, partOf, counts);
     std::vector<Part> next;
-    size_t k = 0;
-    for (const Part& p : level) {
-      if (p.ranks == 1) continue;
-      const BisectionCut cut = bisectionCut(p.box, planes[k++], p.ranks);
-      const int left = cut.left;
-      const int node = static_cast<int>(out.tree_.size());
-      out.tree_.push_back({cut.axis, cut.at, 0, 0});
-      if (p.parent >= 0) (p.side == 0 ? out.tree_[p.parent].low : out.tree_[p.parent].high) = node;
-      CellBox low = p.box, high = p.box;
-      low.upper[cut.axis] = high.lower[cut.axis] = cut.at;
-      next.push_back({low, left, p.first, node, 0});
-      next.push_back({high, p.ranks - left, p.first + left, node, 1});
+    for (size_t k = 0; k < parts.size(); ++k) {
+      if (search[k]) {
+        const RegionCounts region(regions[k], perCell[k]);
+        BisectionSearch searcher(region);
+        addSearched(parts[k], searcher);
+        continue;
+      }
+      for (const Part& half :
+           addCut(parts[k], bisectionCut(parts[k].box, planes[k], parts[k].ranks)))
+        next.push_back(half);
     }
     level.swap(next);
   }

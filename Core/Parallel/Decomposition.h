@@ -29,16 +29,24 @@ class Decomposition {
                                 const std::array<std::vector<double>, 3>& planeCounts,
                                 const Decomposition* earlier = nullptr);
 
-  // Per box of a level of recursive bisection, its particles per cell plane along each axis
-  // (planes[b][d][i]: plane box.lower[d] + i); `partOf(cell)` names the box of `boxes` a cell
-  // lies in (-1: one that is not cut further). Called once per level, on every rank alike (a
-  // distributed caller sums its particles' counts over the ranks there).
-  using PlanesOfBoxes = std::function<std::vector<std::array<std::vector<double>, 3>>(
-      const std::vector<CellBox>& boxes, const std::function<int(const Vec3i&)>& partOf)>;
+  // The particles per cell the boxes are drawn from: `forEach(add)` calls add(cell, particles)
+  // for the cells this rank counts; `sumOverRanks` sums a vector over the ranks in place, the
+  // same on every rank (null when every rank counts every particle).
+  struct ParticleCounts {
+    std::function<void(const std::function<void(const Vec3i&, double)>&)> forEach;
+    std::function<void(std::vector<double>&)> sumOverRanks;
+  };
+  // Parts of at most kSearchedRanks ranks whose particles lie within kSearchedCellsPerRank cells
+  // per rank are cut by BisectionSearch, their subtree searched whole (where a rank holds more
+  // cells, a cell plane moves few of its particles, and counting each cell would cost memory).
+  static constexpr int kSearchedRanks = 16;
+  static constexpr long kSearchedCellsPerRank = 1L << 16;
   // `ranks` boxes by recursive coordinate bisection (Core/Parallel/Bisection.h): the grid and
-  // its ranks cut in two, each half again, level by level. Throws std::runtime_error when a box
-  // cannot be cut for its ranks.
-  static Decomposition bisected(const Vec3i& cells, int ranks, const PlanesOfBoxes& planesOf);
+  // its ranks cut in two, each half again, level by level, from the counts per cell plane of
+  // each level's boxes (one pass over `counts` and one sum per level); a part of few ranks and
+  // cells (above) is cut as BisectionSearch finds from its particles per cell (one more pass and
+  // sum). Throws std::runtime_error when a box cannot be cut for its ranks.
+  static Decomposition bisected(const Vec3i& cells, int ranks, const ParticleCounts& counts);
 
   // The boxes `cuts` (per axis: the first cell of each box and, last, the cell count) draw.
   static Decomposition fromCuts(const std::array<std::vector<int>, 3>& cuts);
