@@ -112,7 +112,8 @@ std::string svgPlot(const PlotSpec& spec) {
   for (const PlotSpec::Reference& ref : spec.references)
     if (!yr.empty() && drawn(xr.low, ref.y)) yr.add(yOf(ref.y));
 
-  const int left = 78, right = 16, top = 28, bottom = 46;
+  // The right margin holds half of the last x tick's label (labels are centred on their tick).
+  const int left = 78, right = 36, top = 28, bottom = 46;
   const int w = spec.width, h = spec.height;
   const double plotW = w - left - right, plotH = h - top - bottom;
   std::ostringstream svg;
