@@ -37,10 +37,11 @@ class Decomposition {
     std::function<void(std::vector<double>&)> sumOverRanks;
   };
   // Parts of at most kSearchedRanks ranks whose particles lie within kSearchedCellsPerRank cells
-  // per rank are cut by BisectionSearch, their subtree searched whole (where a rank holds more
-  // cells, a cell plane moves few of its particles, and counting each cell would cost memory).
+  // per rank are cut by BisectionSearch, their subtree searched whole. Where a rank holds more
+  // cells a cell plane moves few of its particles; and every rank counts the cells of every
+  // searched part while it draws the boxes: at most 4096 cells (64 kB) per rank of the run.
   static constexpr int kSearchedRanks = 16;
-  static constexpr long kSearchedCellsPerRank = 1L << 16;
+  static constexpr long kSearchedCellsPerRank = 4096;
   // `ranks` boxes by recursive coordinate bisection (Core/Parallel/Bisection.h): the grid and
   // its ranks cut in two, each half again, level by level, from the counts per cell plane of
   // each level's boxes (one pass over `counts` and one sum per level); a part of few ranks and
