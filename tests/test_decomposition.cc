@@ -344,7 +344,7 @@ TEST(BisectionSearch, FindsTheBestTreeOfCuts) {
     const CellBox region{Vec3i(1, 2, 0), Vec3i(5, 5, 2)};  // 4 x 3 x 2 cells
     std::vector<double> perCell(static_cast<size_t>(region.cellCount()));
     for (double& n : perCell) n = trial % 4 == 0 && count(random) < 5 ? 0 : count(random);
-    const RegionCounts counts(region, perCell);
+    const RegionCounts counts(region, perCell.data());
     const CellBox reaching{Vec3i(0, 3, -1), Vec3i(3, 9, 1)};
     double inside = 0;
     for (int k = 0; k < 1; ++k)
@@ -396,6 +396,38 @@ TEST(Bisection, SearchSharesAGranularPillarBetter) {
     EXPECT_LE(searched, levelByLevel - 0.1);
     EXPECT_LE(searched, 1.25);
   }
+}
+
+// Where cuts chosen level by level find boxes, the search finds boxes too, and shares at least as
+// evenly: random fills of 0, 1, 9 or 36 particles a cell on 4 x 7 cells at 14 ranks (2 cells a
+// rank, where some of the search's early cuts leave parts that cannot be cut), and a row of 10
+// cells whose particles all lie in its first cell at 5 ranks (cuts through empty cells).
+TEST(Bisection, SearchFindsBoxesWhereverCuttingLevelByLevelDoes) {
+  std::mt19937 random(11);
+  std::uniform_int_distribution<int> pick(0, 3);
+  const double fills[4] = {0, 1, 9, 36};
+  const Vec3i cells(4, 7, 1);
+  int compared = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    std::vector<double> perCell(cells.prod());
+    for (double& n : perCell) n = fills[pick(random)];
+    double levelByLevel = 0;
+    try {
+      levelByLevel = busiestCutLevelByLevel(cells, perCell, CellBox{Vec3i::Zero(), cells}, 14);
+    } catch (const std::runtime_error&) {
+      continue;
+    }
+    SCOPED_TRACE(trial);
+    std::vector<double> counts;
+    ASSERT_NO_THROW(counts = particlesPerBox(cells, bisectCells(cells, 14, perCell), perCell));
+    EXPECT_LE(*std::max_element(counts.begin(), counts.end()), levelByLevel);
+    ++compared;
+  }
+  EXPECT_GT(compared, 100);
+  std::vector<double> row(10, 0.0);
+  row[0] = 7;
+  const std::vector<CellBox> boxes = bisectCells(Vec3i(10, 1, 1), 5, row);
+  EXPECT_EQ(particlesPerBox(Vec3i(10, 1, 1), boxes, row), (std::vector<double>{7, 0, 0, 0, 0}));
 }
 
 }  // namespace

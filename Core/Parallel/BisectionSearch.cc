@@ -1,6 +1,7 @@
 #include "Core/Parallel/BisectionSearch.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <stdexcept>
@@ -8,10 +9,8 @@
 
 namespace anode {
 
-RegionCounts::RegionCounts(const CellBox& region, const std::vector<double>& perCell)
+RegionCounts::RegionCounts(const CellBox& region, const double* perCell)
     : region_(region), n_(region.upper - region.lower) {
-  if (static_cast<long>(perCell.size()) != region.cellCount())
-    throw std::logic_error("RegionCounts: one count per cell of the region");
   const Vec3i m = n_ + Vec3i::Ones();
   prefix_.assign(static_cast<size_t>(m.cast<long>().prod()), 0.0);
   const auto at = [&](int i, int j, int k) {
@@ -44,7 +43,11 @@ BisectionSearch::BisectionSearch(const RegionCounts& counts, long budget)
     : counts_(counts), budget_(budget) {}
 
 BisectionCut BisectionSearch::cut(const CellBox& box, int ranks) {
-  return best(box, ranks).cut;
+  const BisectionCut chosen = best(box, ranks).cut;
+  if (chosen.axis < 0)
+    throw std::runtime_error("recursive bisection: a box of " + std::to_string(box.cellCount()) +
+                             " cells cannot hold " + std::to_string(ranks) + " ranks");
+  return chosen;
 }
 
 BisectionSearch::Choice BisectionSearch::best(const CellBox& box, int ranks) {
@@ -60,8 +63,22 @@ BisectionSearch::Choice BisectionSearch::best(const CellBox& box, int ranks) {
     int evenness;
     BisectionCut cut;
   };
-  std::vector<Candidate> candidates;
   const double total = counts_.in(box);
+  if (total <= 0) {
+    // No particles: the middle of an axis, the ranks halved, as a level-by-level cut.
+    const Vec3i extent = box.upper - box.lower;
+    const std::array<std::vector<double>, 3> none{std::vector<double>(extent.x(), 0.0),
+                                                  std::vector<double>(extent.y(), 0.0),
+                                                  std::vector<double>(extent.z(), 0.0)};
+    Choice empty{INFINITY, {}};
+    try {
+      empty = {0.0, bisectionCut(box, none, ranks)};
+    } catch (const std::runtime_error&) {
+    }
+    known_.emplace(key, empty);
+    return empty;
+  }
+  std::vector<Candidate> candidates;
   for (int d = 0; d < 3; ++d) {
     const int extent = box.upper[d] - box.lower[d];
     if (extent < 2) continue;
@@ -70,7 +87,7 @@ BisectionSearch::Choice BisectionSearch::best(const CellBox& box, int ranks) {
       CellBox low = box;
       low.upper[d] = box.lower[d] + j;
       const double below = counts_.in(low);
-      const double share = total > 0 ? below / total * ranks : 0.5 * ranks;
+      const double share = below / total * ranks;
       const int down = static_cast<int>(std::floor(share)), up = static_cast<int>(std::ceil(share));
       int tried[5] = {ranks / 2, down, up, down - 1, up + 1};
       std::sort(tried, tried + 5);
@@ -83,16 +100,15 @@ BisectionSearch::Choice BisectionSearch::best(const CellBox& box, int ranks) {
       }
     }
   }
-  if (candidates.empty())
-    throw std::runtime_error("recursive bisection: a box of " + std::to_string(box.cellCount()) +
-                             " cells cannot hold " + std::to_string(ranks) + " ranks");
   std::sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) {
     return std::tie(a.bound, a.evenness, a.cut.axis, a.cut.at, a.cut.left) <
            std::tie(b.bound, b.evenness, b.cut.axis, b.cut.at, b.cut.left);
   });
+  // No cut, or none whose parts can be cut in turn: infinitely busy (cut() throws).
   Choice chosen{INFINITY, {}};
   for (const Candidate& c : candidates) {
-    // Sorted by bound: no later cut can leave fewer particles on the busiest rank.
+    // Sorted by bound: no later cut can leave fewer particles on the busiest rank. Beyond the
+    // budget, the first cut whose parts can be cut.
     if (c.bound >= chosen.busiest || (budget_ <= 0 && chosen.cut.axis >= 0)) break;
     --budget_;
     CellBox low = box, high = box;

@@ -17,8 +17,9 @@ namespace anode {
 // The particles per cell of a region of the grid, summed over any box in O(1) (a prefix sum).
 class RegionCounts {
  public:
-  // perCell[((k - lower.z) * n.y + (j - lower.y)) * n.x + (i - lower.x)], n = region's extent.
-  RegionCounts(const CellBox& region, const std::vector<double>& perCell);
+  // perCell[((k - lower.z) * n.y + (j - lower.y)) * n.x + (i - lower.x)] for the region's cells
+  // (n its extent); read here, not kept.
+  RegionCounts(const CellBox& region, const double* perCell);
   // The particles of `box`'s cells inside the region.
   double in(const CellBox& box) const;
 
@@ -30,12 +31,12 @@ class RegionCounts {
 
 class BisectionSearch {
  public:
-  // Searches at most `budget` subtrees in all; beyond it, each box takes its first candidate
-  // (the cut of the most even share), so the search is the same on every rank and bounded.
+  // Searches at most `budget` subtrees in all; beyond it, each box takes the most even cut whose
+  // parts can be cut in turn, so the search is the same on every rank and bounded.
   explicit BisectionSearch(const RegionCounts& counts, long budget = 10'000);
   // The cut of `box` for `ranks` > 1 ranks, each part at least a cell per rank, after which the
-  // busiest rank of the subtree holds the fewest particles. Throws std::runtime_error when no
-  // axis has such a cut.
+  // busiest rank of the subtree holds the fewest particles. Throws std::runtime_error when it
+  // finds no tree of such cuts (it finds one wherever cutting level by level does).
   BisectionCut cut(const CellBox& box, int ranks);
   // The particles the busiest of `ranks` ranks holds when `box` is cut as `cut` chooses.
   double busiest(const CellBox& box, int ranks) { return best(box, ranks).busiest; }

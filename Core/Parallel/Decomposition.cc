@@ -104,15 +104,16 @@ CellBox occupiedRegion(const CellBox& box, const std::array<std::vector<double>,
   return region;
 }
 
-// Per region (regions[b] lies in the box partOf names b), its particles per cell, summed over the
-// ranks (RegionCounts' order).
-std::vector<std::vector<double>> cellsOfRegions(const std::vector<CellBox>& regions,
-                                                const std::function<int(const Vec3i&)>& partOf,
-                                                const Decomposition::ParticleCounts& counts) {
-  std::vector<size_t> offset(regions.size() + 1, 0);
+// The particles per cell of each region (regions[b] lies in the box partOf names b), summed
+// over the ranks, one after another in RegionCounts' order: region b's from offset[b].
+std::vector<double> cellsOfRegions(const std::vector<CellBox>& regions,
+                                   const std::function<int(const Vec3i&)>& partOf,
+                                   const Decomposition::ParticleCounts& counts,
+                                   std::vector<size_t>& offset) {
+  offset.assign(regions.size() + 1, 0);
   for (size_t b = 0; b < regions.size(); ++b)
     offset[b + 1] = offset[b] + static_cast<size_t>(regions[b].cellCount());
-  if (offset.back() == 0) return std::vector<std::vector<double>>(regions.size());
+  if (offset.back() == 0) return {};
   std::vector<double> flat(offset.back(), 0.0);
   counts.forEach([&](const Vec3i& cell, double n) {
     const int b = partOf(cell);
@@ -121,11 +122,7 @@ std::vector<std::vector<double>> cellsOfRegions(const std::vector<CellBox>& regi
     flat[offset[b] + (static_cast<size_t>(c.z()) * e.y() + c.y()) * e.x() + c.x()] += n;
   });
   if (counts.sumOverRanks) counts.sumOverRanks(flat);
-  std::vector<std::vector<double>> out(regions.size());
-  for (size_t b = 0; b < regions.size(); ++b)
-    out[b].assign(flat.begin() + static_cast<long>(offset[b]),
-                  flat.begin() + static_cast<long>(offset[b + 1]));
-  return out;
+  return flat;
 }
 
 }  // namespace
@@ -238,20 +235,25 @@ Decomposition Decomposition::bisected(const Vec3i& cells, int ranks, const Parti
     };
     const std::vector<std::array<std::vector<double>, 3>> planes =
         planesOfLevel(toCut, partOf, counts);
-    // The parts of few ranks: the cells their particles occupy, counted.
+    // The parts of few ranks and cells: the cells their particles occupy, counted.
     std::vector<CellBox> regions(toCut.size());
     std::vector<bool> search(toCut.size(), false);
+    long searchedCells = 0;
     for (size_t k = 0; k < toCut.size(); ++k) {
       if (parts[k].ranks > kSearchedRanks) continue;
       const CellBox region = occupiedRegion(toCut[k], planes[k]);
-      search[k] = region.cellCount() <= kSearchedCellsPerRank * parts[k].ranks;
-      if (search[k]) regions[k] = region;
+      search[k] = region.cellCount() <= kSearchedCellsPerRank * parts[k].ranks &&
+                  searchedCells + region.cellCount() <= kSearchedCells;
+      if (!search[k]) continue;
+      regions[k] = region;
+      searchedCells += region.cellCount();
     }
-    const std::vector<std::vector<double>> perCell = cellsOfRegions(regions, partOf, counts);
+    std::vector<size_t> offset;
+    const std::vector<double> perCell = cellsOfRegions(regions, partOf, counts, offset);
     std::vector<Part> next;
     for (size_t k = 0; k < parts.size(); ++k) {
       if (search[k]) {
-        const RegionCounts region(regions[k], perCell[k]);
+        const RegionCounts region(regions[k], perCell.data() + offset[k]);
         BisectionSearch searcher(region);
         addSearched(parts[k], searcher);
         continue;

@@ -37,11 +37,13 @@ class Decomposition {
     std::function<void(std::vector<double>&)> sumOverRanks;
   };
   // Parts of at most kSearchedRanks ranks whose particles lie within kSearchedCellsPerRank cells
-  // per rank are cut by BisectionSearch, their subtree searched whole. Where a rank holds more
-  // cells a cell plane moves few of its particles; and every rank counts the cells of every
-  // searched part while it draws the boxes: at most 4096 cells (64 kB) per rank of the run.
+  // per rank are cut by BisectionSearch, their subtree searched whole (where a rank holds more
+  // cells, a cell plane moves few of its particles), as long as the searched parts of a level
+  // hold at most kSearchedCells cells: every rank counts them all while it draws the boxes
+  // (8 bytes a cell, and 8 more for the part being searched).
   static constexpr int kSearchedRanks = 16;
   static constexpr long kSearchedCellsPerRank = 4096;
+  static constexpr long kSearchedCells = 1L << 22;
   // `ranks` boxes by recursive coordinate bisection (Core/Parallel/Bisection.h): the grid and
   // its ranks cut in two, each half again, level by level, from the counts per cell plane of
   // each level's boxes (one pass over `counts` and one sum per level); a part of few ranks and
