@@ -62,11 +62,10 @@ Candidate cutAlong(const CellBox& box, const std::vector<double>& planes, int d,
   double below = 0;
   for (int k = 1; k < extent[d]; ++k) {
     below += planes[k - 1];
-    const double share = below / total * ranks;
-    for (int left :
-         {ranks / 2, static_cast<int>(std::floor(share)), static_cast<int>(std::ceil(share))}) {
-      if (left < 1 || left >= ranks) continue;
-      if (k * across < left || (extent[d] - k) * across < ranks - left) continue;
+    const RankShares shares =
+        sharesOfRanks(below, total, ranks, k * across, (extent[d] - k) * across, false);
+    for (int i = 0; i < shares.count; ++i) {
+      const int left = shares.left[i];
       const double load =
           std::max(below / left, (total - below) / (ranks - left)) / (total / ranks);
       const Candidate c{k, left, load, preference};
@@ -77,6 +76,23 @@ Candidate cutAlong(const CellBox& box, const std::vector<double>& planes, int d,
 }
 
 }  // namespace
+
+RankShares sharesOfRanks(double below, double total, int ranks, long cellsBelow, long cellsAbove,
+                         bool further) {
+  const double share = below / total * ranks;
+  const int down = static_cast<int>(std::floor(share)), up = static_cast<int>(std::ceil(share));
+  int tried[5] = {ranks / 2, down, up, down - 1, up + 1};
+  const int candidates = further ? 5 : 3;
+  std::sort(tried, tried + candidates);
+  RankShares out;
+  for (int t = 0; t < candidates; ++t) {
+    const int left = tried[t];
+    if ((t > 0 && left == tried[t - 1]) || left < 1 || left >= ranks) continue;
+    if (cellsBelow < left || cellsAbove < ranks - left) continue;
+    out.left[out.count++] = left;
+  }
+  return out;
+}
 
 BisectionCut bisectionCut(const CellBox& box, const std::array<std::vector<double>, 3>& planes,
                           int ranks) {

@@ -18,6 +18,17 @@ struct BisectionCut {
   int axis = -1, at = 0, left = 0;
 };
 
+// The shares of a box's `ranks` ranks a cut may give its first part, which holds `below` of the
+// box's `total` > 0 particles in `cellsBelow` of its cells (`cellsAbove` in the other): the ranks
+// halved, or shared as the cut shares the particles, rounded either way, and with `further` one
+// rank beyond each rounding too; each part at least a cell per rank. In ascending order.
+struct RankShares {
+  int left[5];
+  int count = 0;
+};
+RankShares sharesOfRanks(double below, double total, int ranks, long cellsBelow, long cellsAbove,
+                         bool further);
+
 // The cut of `box` (planes[d]: its particles per cell plane along axis d, from box.lower[d]) and
 // its `ranks` ranks in two parts, each at least a cell per rank, that loads the busier part least
 // (particles per rank): the ranks halved, or shared as the cut shares the particles; throws

@@ -87,14 +87,11 @@ BisectionSearch::Choice BisectionSearch::best(const CellBox& box, int ranks) {
       CellBox low = box;
       low.upper[d] = box.lower[d] + j;
       const double below = counts_.in(low);
-      const double share = below / total * ranks;
-      const int down = static_cast<int>(std::floor(share)), up = static_cast<int>(std::ceil(share));
-      int tried[5] = {ranks / 2, down, up, down - 1, up + 1};
-      std::sort(tried, tried + 5);
-      for (int t = 0; t < 5; ++t) {
-        const int left = tried[t];
-        if ((t > 0 && left == tried[t - 1]) || left < 1 || left >= ranks) continue;
-        if (j * across < left || (extent - j) * across < ranks - left) continue;
+      // The level-by-level cut's shares and one rank beyond: every level-by-level cut is here.
+      const RankShares shares =
+          sharesOfRanks(below, total, ranks, j * across, (extent - j) * across, true);
+      for (int i = 0; i < shares.count; ++i) {
+        const int left = shares.left[i];
         const double bound = std::max(below / left, (total - below) / (ranks - left));
         candidates.push_back({bound, std::abs(2 * left - ranks), {d, box.lower[d] + j, left}});
       }

@@ -92,14 +92,13 @@ std::vector<std::array<std::vector<double>, 3>> planesOfLevel(
 // The cells of `box` between its first and last cell plane holding particles along each axis
 // (none when it holds none).
 CellBox occupiedRegion(const CellBox& box, const std::array<std::vector<double>, 3>& planes) {
+  if (std::none_of(planes[0].begin(), planes[0].end(), [](double n) { return n > 0; }))
+    return CellBox{};
   CellBox region = box;
   for (int d = 0; d < 3; ++d) {
-    const auto& p = planes[d];
-    const auto first = std::find_if(p.begin(), p.end(), [](double v) { return v > 0; });
-    if (first == p.end()) return CellBox{};
-    const auto last = std::find_if(p.rbegin(), p.rend(), [](double v) { return v > 0; });
-    region.lower[d] = box.lower[d] + static_cast<int>(first - p.begin());
-    region.upper[d] = box.lower[d] + static_cast<int>(p.rend() - last);
+    const auto [first, last] = occupiedPlanes(planes[d]);
+    region.lower[d] = box.lower[d] + first;
+    region.upper[d] = box.lower[d] + last + 1;
   }
   return region;
 }
