@@ -86,6 +86,13 @@ class EquilibriumSolver {
   // residual only (the line search's trials).
   void assemble(const EquilibriumProblem& problem, double dt, double stabilization,
                 bool withTangent);
+  // A quasi-static body faces hold only in part (or not at all) has rigid modes no equation sets:
+  // of each field, the part of the correction du (by block row) that moves it rigidly in a way
+  // its fixed components allow (translations and rotations vanishing on all of them) is removed,
+  // by mass, so an inexact solve does not move the body. K's regularization alpha m I keeps
+  // those modes solvable, not the residual.
+  void removeRigidMotionOfFreeBodies(const EquilibriumProblem& problem,
+                                     std::vector<double>& du) const;
   // u += scale du (du by block row).
   void addToDisplacement(const std::vector<double>& du, double scale);
   // Newton's update u += step du with the line search's step; `residualNorm` is |r|^2 at u.
