@@ -379,6 +379,26 @@ TEST(QuasiStatic, StepThatDoesNotConvergeStops) {
   EXPECT_NE(capped.find("20 retakes with a smaller dt failed"), std::string::npos) << capped;
 }
 
+// <clamp_time_to_output>: a step that would pass an output time (every 0.07) ends on it, and the
+// next one takes the dt ImpMPM's rule gives from the dt before that clamp (delt_max 0.05 here).
+TEST(QuasiStatic, StepsEndOnOutputTimesWhenClamped) {
+  std::string input = swellingInput("comp_neo_hook", "");
+  const auto replace = [&input](const std::string& from, const std::string& to) {
+    ASSERT_NE(input.find(from), std::string::npos) << from;
+    input.replace(input.find(from), from.size(), to);
+  };
+  replace("<max_Timesteps>10</max_Timesteps>", "<clamp_time_to_output>true</clamp_time_to_output>");
+  replace("<outputTimestepInterval>1000</outputTimestepInterval>",
+          "<outputInterval>0.07</outputInterval>");
+  RunOptions o;
+  o.progress = false;
+  Simulation sim(input, "swell.ups", o);
+  for (const double t : {0.05, 0.07, 0.12, 0.14, 0.19, 0.21}) {
+    sim.advance();
+    EXPECT_NEAR(sim.time(), t, 1e-12) << "step " << sim.step();
+  }
+}
+
 TEST(QuasiStatic, ImplicitOptionsFollowImpMPMsTimeStepRule) {
   ImplicitOptions o;
   EXPECT_DOUBLE_EQ(o.nextTimestep(1.0, 4), 2.0);

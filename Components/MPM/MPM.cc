@@ -366,9 +366,8 @@ StableTimestep MPM::computeStableTimestep(Collective) const {
   StableTimestep limits;
   if (flags_.implicit) {  // ImpMPM's rule; the first step takes <delt_max> (or <delt_init>)
     limits.bound[StableTimestep::Newton] =
-        lastQuasiStaticDt_ > 0
-            ? flags_.implicit->nextTimestep(lastQuasiStaticDt_, newton_.lastIterations)
-            : std::numeric_limits<double>::max();
+        newtonRuleDt_ > 0 ? flags_.implicit->nextTimestep(newtonRuleDt_, newton_.lastIterations)
+                          : std::numeric_limits<double>::max();
     if (maxConcentrationChange_ > 0)  // the accuracy bound on c (docs/quasi-static.md)
       limits.bound[StableTimestep::ConcentrationChange] =
           lastQuasiStaticDt_ * flags_.implicit->maxConcentrationChange / maxConcentrationChange_;

@@ -48,8 +48,12 @@ class MPM {
   // dt in sub-steps of substepMultiplier times its explicit limits, then Newton on the grid for
   // the equilibrium at t + dt; a step Newton does not converge in is retaken with dt times
   // <delT_decrease_factor>, and below dtMin the run stops (SimulationError). Returns the dt taken.
-  double advanceQuasiStatic(Collective, double t, double dt, double dtMin,
+  // ruleDt: the dt the limits chose, of which dt may be a part (<clamp_time_to_output> shortens
+  // a step to end on an output time); the next step's dt follows Newton's iterations from it.
+  double advanceQuasiStatic(Collective, double t, double dt, double ruleDt, double dtMin,
                             double substepMultiplier);
+  // The last quasi-static step's ruleDt (its dt where it was retaken).
+  double lastRuleDt() const { return newtonRuleDt_; }
   // Newton's iterations: of the last step, and the totals of the steps (and retaken attempts)
   // of this process.
   struct NewtonCounts {
@@ -253,6 +257,7 @@ class MPM {
   std::vector<int> fieldOf_;
   std::vector<std::vector<double>> concentrationChange_;  // per material: dc of the step
   double lastQuasiStaticDt_ = 0;
+  double newtonRuleDt_ = 0;  // what ImpMPM's rule scales: the last step's dt, or its ruleDt
   // The largest |dc| of a particle in the last quasi-static step (with diffusion).
   double maxConcentrationChange_ = 0;
   NewtonCounts newton_;

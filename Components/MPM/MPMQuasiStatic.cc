@@ -204,7 +204,7 @@ void MPM::diffuseOverStep(double t, double dt, double substepMultiplier) {
   }
 }
 
-double MPM::advanceQuasiStatic(Collective, double t, double dt, double dtMin,
+double MPM::advanceQuasiStatic(Collective, double t, double dt, double ruleDt, double dtMin,
                                double substepMultiplier) {
   {
     ScopedTimer s(timers_, tasks_.interpolationWeights);
@@ -277,6 +277,7 @@ double MPM::advanceQuasiStatic(Collective, double t, double dt, double dtMin,
     }
     if (Communicator::isRoot()) std::fprintf(stderr, "%s\n", note.str().c_str());
     dt = smaller;
+    ruleDt = smaller;
     for (size_t m = 0; m < start.size(); ++m) materials_[m].particles = start[m];
     if (diffusion_) {
       diffusion_->restoreStepState(*diffusionAtStart);
@@ -297,6 +298,7 @@ double MPM::advanceQuasiStatic(Collective, double t, double dt, double dtMin,
     migrateParticles();  // particles that left the rank's box go to its owner
   }
   lastQuasiStaticDt_ = dt;
+  newtonRuleDt_ = ruleDt;
   return dt;
 }
 

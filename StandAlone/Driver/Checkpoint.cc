@@ -172,7 +172,7 @@ constexpr char kCheckpointMagic[] = "anode-mpm checkpoint";
 // A distributed run's checkpoint: the manifest under the checkpoint's name, one part per rank.
 constexpr char kDistributedCheckpointMagic[] = "anode-mpm distributed checkpoint";
 constexpr char kCheckpointPartMagic[] = "anode-mpm checkpoint part";
-constexpr uint32_t kCheckpointVersion = 6;
+constexpr uint32_t kCheckpointVersion = 7;
 
 // This rank's part of a distributed checkpoint; returns its hash.
 uint64_t writePart(const std::string& checkpoint, const MPM& mpm) {
@@ -208,6 +208,7 @@ CheckpointHeader readCheckpoint(const std::string& path, DataArchiver* outputs, 
   header.inputHash = in.value<uint64_t>();
   header.t = in.value<double>();
   header.dt = in.value<double>();
+  header.ruleDt = in.value<double>();
   header.dtLimit = static_cast<StableTimestep::Limit>(in.value<int32_t>());
   if (header.dtLimit < 0 || header.dtLimit >= StableTimestep::kLimits)
     throw std::runtime_error(path + ": unknown time-step limit " + std::to_string(header.dtLimit));
@@ -301,6 +302,7 @@ void writeCheckpoint(Collective, const std::string& path, const CheckpointHeader
         out.value(header.inputHash);
         out.value(header.t);
         out.value(header.dt);
+        out.value(header.ruleDt);
         out.value<int32_t>(header.dtLimit);
         out.value<int32_t>(header.dtSetByTimeControl ? 1 : 0);
         out.value(header.step);

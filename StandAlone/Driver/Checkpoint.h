@@ -65,6 +65,7 @@ struct CheckpointHeader {
   int ranks = 1;           // its ranks (writing: Communicator::size())
   uint64_t inputHash = 0;  // fileHash of its input
   double t = 0, dt = 0;    // the state's time and the next step's dt
+  double ruleDt = 0;       // the dt the limits chose, of which dt is a part (Simulation::ruleDt_)
   StableTimestep::Limit dtLimit = StableTimestep::Mechanics;  // the limit that set dt
   bool dtSetByTimeControl = false;  // <Time>'s clamps changed the limit's dt (DtRule)
   long step = 0;

@@ -125,7 +125,8 @@ const char* dtRuleName(int rule) {
   if (rule >= 0 && rule < StableTimestep::kLimits)
     return StableTimestep::name(static_cast<StableTimestep::Limit>(rule));
   if (rule == kDtSetByTimeControl)
-    return "time control (<delt_max>, <delt_init>, <delt_min>, <max_delt_increase>, <maxTime>)";
+    return "time control (<delt_max>, <delt_init>, <delt_min>, <max_delt_increase>, <maxTime>, "
+           "<clamp_time_to_output>)";
   if (rule == kDtRetaken)
     return "retaken with a smaller dt (Newton did not converge, or c changed too much)";
   return "unknown";
@@ -242,6 +243,11 @@ bool DataArchiver::isOutputStep(long step, double time) const {
   // The first step at or after each multiple of the interval (Uintah, UINTAH_UPS.md P21).
   const double next = (std::floor(lastOutputTime_ / *interval_ + 1e-9) + 1) * *interval_;
   return time >= next * (1 - 1e-12);
+}
+
+std::optional<double> DataArchiver::nextOutputTimeAfter(double time) const {
+  if (stepInterval_ > 0 || !interval_) return std::nullopt;
+  return (std::floor(time / *interval_ + 1e-9) + 1) * *interval_;
 }
 
 void DataArchiver::writeOutput(Collective, long step, double time, const MPM& mpm) {

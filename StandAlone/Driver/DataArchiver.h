@@ -38,7 +38,8 @@ struct StepRecord {
 // 44; 2 flux restriction; 3 Newton iterations; 4 change of c per step), then these two.
 enum DtRule {
   kDtSetByTimeControl = StableTimestep::kLimits,  // <delt_max>, <delt_init>, <delt_min>,
-                                                  // <max_delt_increase> or the end at <maxTime>
+                                                  // <max_delt_increase>, the end at <maxTime>,
+                                                  // or <clamp_time_to_output>
   kDtRetaken,  // an implicit step retaken with a smaller dt (Newton did not converge, or c
                // changed by more than twice <max_concentration_change>)
   kDtRules
@@ -70,6 +71,9 @@ class DataArchiver {
 
   // True if the step that ended at `time` (number `step`) is an output step.
   bool isOutputStep(long step, double time) const;
+  // With <outputInterval>: the first multiple of the interval after `time` (a multiple within
+  // round-off of it excluded).
+  std::optional<double> nextOutputTimeAfter(double time) const;
   // Writes particles (and grid, if asked) for this state and records it in the .pvd series; in a
   // distributed run every rank writes its piece and rank 0 the .pvtu (.pvti) over them, then the
   // .pvd.

@@ -75,11 +75,21 @@ void Simulation::takeStableTimestep(double previousDt) {
   dt_ = time_.nextTimestep(stable.dt(), previousDt, t_);
   dtLimit_ = stable.binding();
   dtSetByTimeControl_ = dt_ != time_.multiplier * stable.dt();
+  ruleDt_ = dt_;
+  // <clamp_time_to_output>: a step that would pass an output time ends on it, so the outputs fall
+  // at the times the input asks for (without it, on the first step after each, as Uintah's).
+  if (!time_.clampTimeToOutput) return;
+  if (const std::optional<double> next = archiver_.nextOutputTimeAfter(t_))
+    if (t_ + dt_ > *next * (1 + 1e-12)) {
+      dt_ = *next - t_;
+      dtSetByTimeControl_ = true;
+    }
 }
 
 void Simulation::stepMPM() {
   if (mpm_.flags().implicit)
-    dt_ = mpm_.advanceQuasiStatic(Collective{}, t_, dt_, time_.deltMin, substepMultiplier_);
+    dt_ =
+        mpm_.advanceQuasiStatic(Collective{}, t_, dt_, ruleDt_, time_.deltMin, substepMultiplier_);
   else
     mpm_.timeAdvance(Collective{}, t_, dt_);
 }
@@ -103,7 +113,7 @@ void Simulation::advance() {
 void Simulation::finishStep() {
   t_ += dt_;
   ++step_;
-  takeStableTimestep(dt_);
+  takeStableTimestep(mpm_.flags().implicit ? mpm_.lastRuleDt() : dt_);
 }
 
 void Simulation::run() {
@@ -423,7 +433,7 @@ void Simulation::writeCheckpoint(Collective, CheckpointKind kind) {
   newestCheckpoint_ = checkpointPath(dir, step_, kind);
   anode::writeCheckpoint(
       Collective{}, newestCheckpoint_,
-      {omp_get_max_threads(), Communicator::size(), inputHash_, t_, dt_, dtLimit_,
+      {omp_get_max_threads(), Communicator::size(), inputHash_, t_, dt_, ruleDt_, dtLimit_,
        dtSetByTimeControl_, step_, particleSteps_, wallSeconds, lastCheckpointTime_},
       archiver_, mpm_);
   if (Communicator::isRoot()) {
@@ -459,6 +469,7 @@ void Simulation::loadCheckpoint(Collective, const std::string& path, bool output
       anode::loadCheckpoint(Collective{}, path, outputs ? &archiver_ : nullptr, mpm_);
   t_ = read.t;
   dt_ = read.dt;
+  ruleDt_ = read.ruleDt;
   dtLimit_ = read.dtLimit;
   dtSetByTimeControl_ = read.dtSetByTimeControl;
   step_ = read.step;

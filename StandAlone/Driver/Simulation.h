@@ -141,6 +141,7 @@ class Simulation {
   CheckpointSchedule checkpoints_;
   std::string newestCheckpoint_;  // of either kind: where a replay to the last good state starts
   double t_ = 0, dt_ = 0;
+  double ruleDt_ = 0;      // the dt the limits chose; dt_ is less where clamped to an output time
   double lastStepDt_ = 0;  // the dt the last step took (an implicit one may retake it smaller)
   double substepMultiplier_ = 1;  // <timestep_multiplier>: an implicit run's diffusion sub-steps
   StableTimestep::Limit dtLimit_ = StableTimestep::Mechanics;  // the limit that set dt_

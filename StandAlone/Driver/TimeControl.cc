@@ -42,8 +42,7 @@ TimeControl TimeControl::fromInput(const PSNode& time) {
   tc.initialDeltRange = time.get<double>("initial_delt_range", 0.0);
   tc.endAtMaxTimeExactly = time.get<bool>("end_at_max_time_exactly", false);
   tc.maxWallTime = time.get<double>("max_wall_time", 0.0);
-  if (const PSNode clamp = time.child("clamp_time_to_output"))
-    if (clamp.value<bool>()) clamp.unsupported("<clamp_time_to_output>true");
+  tc.clampTimeToOutput = time.get<bool>("clamp_time_to_output", false);
   // A restart goes on with the checkpoint's dt; 0, Uintah's default, asks for nothing else.
   if (const PSNode restartDelt = time.child("override_restart_delt"))
     if (restartDelt.value<double>() != 0)

@@ -16,7 +16,8 @@ struct TimeControl {
   std::optional<double> deltInit;
   double initialDeltRange = 0;
   bool endAtMaxTimeExactly = false;
-  double maxWallTime = 0;  // seconds, 0: no limit
+  bool clampTimeToOutput = false;  // a step that would pass an output time ends on it
+  double maxWallTime = 0;          // seconds, 0: no limit
 
   static TimeControl fromInput(const PSNode& timeNode);
 
