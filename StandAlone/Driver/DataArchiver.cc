@@ -241,8 +241,7 @@ bool DataArchiver::isOutputStep(long step, double time) const {
   if (stepInterval_ > 0) return step % stepInterval_ == 0;
   if (!interval_) return false;
   // The first step at or after each multiple of the interval (Uintah, UINTAH_UPS.md P21).
-  const double next = (std::floor(lastOutputTime_ / *interval_ + 1e-9) + 1) * *interval_;
-  return time >= next * (1 - 1e-12);
+  return time >= *nextOutputTimeAfter(lastOutputTime_) * (1 - 1e-12);
 }
 
 std::optional<double> DataArchiver::nextOutputTimeAfter(double time) const {
