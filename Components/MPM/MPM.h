@@ -207,6 +207,8 @@ class MPM {
   // Implicit dynamics: the problem's nodal velocities and accelerations of the step's start, from
   // the particles (momentum from the P2G of the step, sum m a S here; Implicit/Newmark.h).
   void addStartOfStepMotion(EquilibriumProblem& problem, double dt);
+  // A quasi-static step's predicted increments: the start-of-step nodal velocity times dt.
+  void addPredictedIncrement(EquilibriumProblem& problem, double dt);
   // P2G and, distributed, its sums completed on the shared nodes.
   void interpolateAndSumOverRanks();
   // Diffusion over the quasi-static step in explicit sub-steps on its start-of-step configuration;

@@ -63,8 +63,8 @@ void MPM::checkImplicitSetup(const PSNode& root) const {
 EquilibriumProblem MPM::equilibriumProblem(double dt) {
   const int nodes = grid_.numNodes();
   const int fields = 1 + *std::max_element(fieldOf_.begin(), fieldOf_.end());
-  EquilibriumProblem problem{grid_,          materials_, weights_, fieldOf_, {}, {},
-                             flags_.gravity, {},         nullptr,  {},       {}, {}};
+  EquilibriumProblem problem{grid_, materials_, weights_, fieldOf_, {}, {}, flags_.gravity,
+                             {},    nullptr,    {},       {},       {}, {}};
   if (distributed_) {
     // A node's unknowns belong to the rank owning the cell of the node's index.
     problem.ghosts = &ghosts_;
@@ -91,8 +91,23 @@ EquilibriumProblem MPM::equilibriumProblem(double dt) {
       for (int a = 0; a < 3; ++a)
         if (!std::isnan(set[k][a])) problem.prescribed[f][k][a] = set[k][a] * dt;
   }
-  if (flags_.implicit->dynamic) addStartOfStepMotion(problem, dt);
+  if (flags_.implicit->dynamic)
+    addStartOfStepMotion(problem, dt);
+  else
+    addPredictedIncrement(problem, dt);
   return problem;
+}
+
+void MPM::addPredictedIncrement(EquilibriumProblem& problem, double dt) {
+  const int nodes = grid_.numNodes();
+  problem.predicted.assign(problem.mass.size(), std::vector<Vec3>(nodes, Vec3::Zero()));
+  for (size_t m = 0; m < materials_.size(); ++m) {
+    std::vector<Vec3>& momentum = problem.predicted[fieldOf_[m]];
+    forEachNode(active_.rows, [&](long k) { momentum[k] += fields_[m].momentum[k]; });
+  }
+  for (size_t f = 0; f < problem.predicted.size(); ++f)
+    for (int k = 0; k < nodes; ++k)
+      if (problem.mass[f][k] > 0) problem.predicted[f][k] *= dt / problem.mass[f][k];
 }
 
 void MPM::addStartOfStepMotion(EquilibriumProblem& problem, double dt) {

@@ -83,24 +83,55 @@ void EquilibriumSolver::numberUnknowns(const EquilibriumProblem& problem) {
       throw std::logic_error("a shared unknown node without its owner's row (GhostNodes reach)");
     rows_.globalRow[r] = static_cast<int>(global[r]);
   }
-  std::vector<std::vector<int>> columns(unknown_.size());
-  for (int r = 0; r < rows_.owned; ++r) columns[r].push_back(r);  // the owner's diagonal
-  for (size_t m = 0; m < problem.materials.size(); ++m) {
-    const InterpolationWeights& W = problem.weights[m];
-    const std::vector<int>& row = row_[problem.fieldOf[m]];
-    for (size_t i = 0; i < problem.materials[m].particles.count(); ++i)
-      for (size_t e = W.offset[i]; e < W.offset[i] + W.count[i]; ++e) {
-        if (row[W.node[e]] < 0) continue;
-        std::vector<int>& c = columns[row[W.node[e]]];
-        for (size_t g = W.offset[i]; g < W.offset[i] + W.count[i]; ++g)
-          if (row[W.node[g]] >= 0) c.push_back(row[W.node[g]]);
-      }
+  // The particles reaching each row (numbered over the materials from each material's
+  // particleStart), then each row's columns as the union of those particles' unknown nodes (marked
+  // per row, no duplicates stored).
+  const int rows = static_cast<int>(unknown_.size());
+  std::vector<long> particleStart(problem.materials.size() + 1, 0);
+  for (size_t m = 0; m < problem.materials.size(); ++m)
+    particleStart[m + 1] =
+        particleStart[m] + static_cast<long>(problem.materials[m].particles.count());
+  std::vector<long> reachStart(rows + 1, 0);
+  const auto eachReach = [&](const auto& visit) {
+    for (size_t m = 0; m < problem.materials.size(); ++m) {
+      const InterpolationWeights& W = problem.weights[m];
+      const std::vector<int>& row = row_[problem.fieldOf[m]];
+      for (size_t i = 0; i < problem.materials[m].particles.count(); ++i)
+        for (size_t e = W.offset[i]; e < W.offset[i] + W.count[i]; ++e)
+          if (row[W.node[e]] >= 0) visit(row[W.node[e]], particleStart[m] + static_cast<long>(i));
+    }
+  };
+  eachReach([&](int r, long) { ++reachStart[r + 1]; });
+  for (int r = 0; r < rows; ++r) reachStart[r + 1] += reachStart[r];
+  std::vector<long> reaching(reachStart[rows]);
+  {
+    std::vector<long> next(reachStart.begin(), reachStart.end() - 1);
+    eachReach([&](int r, long particle) { reaching[next[r]++] = particle; });
   }
   K_ = BlockMatrix();
-  for (std::vector<int>& c : columns) {
-    std::sort(c.begin(), c.end());
-    c.erase(std::unique(c.begin(), c.end()), c.end());
-    K_.column.insert(K_.column.end(), c.begin(), c.end());
+  std::vector<int> markedFor(rows, -1), columns;
+  for (int r = 0; r < rows; ++r) {
+    columns.clear();
+    if (r < rows_.owned) {  // the owner's diagonal
+      columns.push_back(r);
+      markedFor[r] = r;
+    }
+    for (long k = reachStart[r]; k < reachStart[r + 1]; ++k) {
+      const size_t m = std::upper_bound(particleStart.begin(), particleStart.end(), reaching[k]) -
+                       particleStart.begin() - 1;
+      const size_t i = static_cast<size_t>(reaching[k] - particleStart[m]);
+      const InterpolationWeights& W = problem.weights[m];
+      const std::vector<int>& row = row_[problem.fieldOf[m]];
+      for (size_t g = W.offset[i]; g < W.offset[i] + W.count[i]; ++g) {
+        const int c = row[W.node[g]];
+        if (c >= 0 && markedFor[c] != r) {
+          markedFor[c] = r;
+          columns.push_back(c);
+        }
+      }
+    }
+    std::sort(columns.begin(), columns.end());
+    K_.column.insert(K_.column.end(), columns.begin(), columns.end());
     K_.rowStart.push_back(static_cast<int>(K_.column.size()));
   }
   K_.block.assign(K_.column.size(), Mat3::Zero());
@@ -288,7 +319,9 @@ void EquilibriumSolver::addInternalForce(const EquilibriumProblem& problem, size
   const ParticleSet& p = problem.materials[m].particles;
   const InterpolationWeights& W = problem.weights[m];
   const std::vector<int>& row = row_[problem.fieldOf[m]];
-  Eigen::Matrix<double, 3, 9> T;
+  // Tm(a + 3 c, f) = V sum_d ge_d A(3 a + d, 3 c + f): the block (e, g) of K, column-major as a
+  // Mat3 stores it, is Tm gg.
+  Eigen::Matrix<double, 9, 3> Tm;
   std::vector<std::pair<int, int>> columns;  // (column, g) of the particle's unknown nodes, sorted
   for (size_t i = 0; i < p.count(); ++i) {
     const double V = p.volume[i];
@@ -297,7 +330,9 @@ void EquilibriumSolver::addInternalForce(const EquilibriumProblem& problem, size
       columns.clear();
       for (int g = 0; g < W.count[i]; ++g)
         if (row[W.node[b + g]] >= 0) columns.emplace_back(row[W.node[b + g]], g);
-      std::sort(columns.begin(), columns.end());
+      // The nodes come in grid order, and so do the rows of one rank's own nodes.
+      if (!std::is_sorted(columns.begin(), columns.end()))
+        std::sort(columns.begin(), columns.end());
     }
     for (int e = 0; e < W.count[i]; ++e) {
       const int r = row[W.node[b + e]];
@@ -306,20 +341,17 @@ void EquilibriumSolver::addInternalForce(const EquilibriumProblem& problem, size
       const Vec3 force = V * P_[m][i] * ge;  // f_int of this particle at node e
       for (int a = 0; a < 3; ++a) residual_[3 * r + a] -= force[a];
       if (!withTangent) continue;
-      // T(a, 3 b + g) = V sum_d ge_d A(3 a + d, 3 b + g)
       const Mat9& A = A_[m][i];
       for (int a = 0; a < 3; ++a)
-        T.row(a) = V * (ge[0] * A.row(3 * a) + ge[1] * A.row(3 * a + 1) + ge[2] * A.row(3 * a + 2));
+        for (int c = 0; c < 3; ++c)
+          for (int f = 0; f < 3; ++f)
+            Tm(a + 3 * c, f) = V * (ge[0] * A(3 * a, 3 * c + f) + ge[1] * A(3 * a + 1, 3 * c + f) +
+                                    ge[2] * A(3 * a + 2, 3 * c + f));
       // Row r holds every column of the particle's nodes: one pass along it finds their blocks.
       int j = K_.rowStart[r];
       for (const auto& [column, g] : columns) {
         while (K_.column[j] < column) ++j;
-        const Vec3& gg = W.gradient[b + g];
-        Mat3 k;
-        for (int a = 0; a < 3; ++a)
-          for (int c = 0; c < 3; ++c)
-            k(a, c) = T(a, 3 * c) * gg[0] + T(a, 3 * c + 1) * gg[1] + T(a, 3 * c + 2) * gg[2];
-        K_.block[j] += k;
+        Eigen::Map<Eigen::Matrix<double, 9, 1>>(K_.block[j].data()) += Tm * W.gradient[b + g];
       }
     }
   }
@@ -396,6 +428,33 @@ void EquilibriumSolver::takeStep(const EquilibriumProblem& problem, double dt, d
   addToDisplacement(du, best);
 }
 
+void EquilibriumSolver::tryPrediction(const EquilibriumProblem& problem, double dt,
+                                      double stabilization, double& normReference,
+                                      double& energyReference) {
+  if (problem.predicted.empty()) return;
+  std::optional<ScopedTimer> s;
+  if (timers_) s.emplace(*timers_, assemblyTask_);
+  std::vector<double> step(residual_.size(), 0.0);
+  for (size_t r = 0; r < unknown_.size(); ++r) {
+    const auto [f, k] = unknown_[r];
+    for (int a = 0; a < 3; ++a)
+      if (std::isnan(problem.prescribed[f][k][a])) step[3 * r + a] = problem.predicted[f][k][a];
+  }
+  const double startNorm = ownedDot(residual_, residual_);
+  const double size = ownedDot(step, step), work = std::abs(ownedDot(step, residual_));
+  if (!(size > 0)) return;
+  std::vector<double> startResidual = residual_;
+  addToDisplacement(step, 1.0);
+  assemble(problem, dt, stabilization, false);
+  if (ownedDot(residual_, residual_) < startNorm) {  // false for NaN
+    normReference = size;
+    energyReference = work;
+    return;
+  }
+  addToDisplacement(step, -1.0);
+  residual_ = std::move(startResidual);
+}
+
 void EquilibriumSolver::computeEndOfStepAcceleration(const EquilibriumProblem& problem, double dt) {
   acceleration_.assign(row_.size(), std::vector<Vec3>(problem.grid.numNodes(), Vec3::Zero()));
   for (const auto& [f, k] : unknown_)
@@ -405,6 +464,8 @@ void EquilibriumSolver::computeEndOfStepAcceleration(const EquilibriumProblem& p
 
 NewtonReport EquilibriumSolver::solve(const EquilibriumProblem& problem, double dt,
                                       const ImplicitOptions& options) {
+  std::optional<ScopedTimer> setUp;
+  if (timers_) setUp.emplace(*timers_, assemblyTask_);
   numberUnknowns(problem);
   u_.assign(row_.size(), std::vector<Vec3>(problem.grid.numNodes(), Vec3::Zero()));
   for (size_t f = 0; f < row_.size(); ++f)
@@ -413,6 +474,7 @@ NewtonReport EquilibriumSolver::solve(const EquilibriumProblem& problem, double 
         if (!std::isnan(problem.prescribed[f][k][a])) u_[f][k][a] = problem.prescribed[f][k][a];
   hourglass_.clear();
   LinearSolver linearSolver(K_, rows_, fixed_, coordinates_);
+  setUp.reset();
   NewtonReport report;
   double normMax = 0, qNorm0 = 0, lastResidualNorm = 0;
   std::vector<double> du;
@@ -428,6 +490,8 @@ NewtonReport EquilibriumSolver::solve(const EquilibriumProblem& problem, double 
       if (timers_) s.emplace(*timers_, assemblyTask_);
       assemble(problem, dt, options.hourglassStabilization, true);
     }
+    if (report.iterations == 1)
+      tryPrediction(problem, dt, options.hourglassStabilization, normMax, qNorm0);
     const double residualNorm = ownedDot(residual_, residual_);
     const double tolerance = report.iterations == 1
                                  ? kLinearToleranceMost
@@ -451,7 +515,7 @@ NewtonReport EquilibriumSolver::solve(const EquilibriumProblem& problem, double 
     removeRigidMotionOfFreeBodies(problem, du);
     const double norm = ownedDot(du, du), qNorm = ownedDot(du, residual_);
     normMax = std::max(normMax, norm);
-    if (report.iterations == 1) qNorm0 = std::abs(qNorm);
+    if (report.iterations == 1) qNorm0 = std::max(qNorm0, std::abs(qNorm));
     // The ratios measure the whole correction, the distance Newton still sees to the
     // equilibrium, whatever fraction of it the line search takes.
     const double dispRatio = norm / (normMax + 1e-100), energyRatio = qNorm / (qNorm0 + 1e-100);
@@ -466,16 +530,19 @@ NewtonReport EquilibriumSolver::solve(const EquilibriumProblem& problem, double 
       report.failure = "a negative energy norm du.r (the Jacobian is not positive there)";
       return report;
     }
-    takeStep(problem, dt, options.hourglassStabilization, du, residualNorm);
     const bool dispDone =
         dispRatio <= options.convergenceDisp || normMax <= options.convergenceDisp;
     const bool energyDone =
         std::abs(energyRatio) <= options.convergenceEnergy || qNorm0 <= options.convergenceEnergy;
     if (dispDone && energyDone) {
+      // The last correction is taken whole: within Newton's tolerance the line search has
+      // nothing to choose.
+      addToDisplacement(du, 1.0);
       report.converged = true;
       if (!problem.velocity.empty()) computeEndOfStepAcceleration(problem, dt);
       return report;
     }
+    takeStep(problem, dt, options.hourglassStabilization, du, residualNorm);
   }
 }
 

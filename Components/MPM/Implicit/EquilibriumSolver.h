@@ -43,6 +43,9 @@ struct EquilibriumProblem {
   // Implicit dynamics (<dynamic>true; Implicit/Newmark.h): per field and node, the velocity and
   // acceleration of the step's start. Empty in a quasi-static step.
   std::vector<std::vector<Vec3>> velocity, acceleration;
+  // A quasi-static step: per field and node, the increment the start-of-step nodal velocity would
+  // give (v dt), Newton's first iterate where it lowers the residual. Empty: none.
+  std::vector<std::vector<Vec3>> predicted;
 };
 
 // How Newton went in one attempt at a step.
@@ -109,6 +112,13 @@ class EquilibriumSolver {
   // The hourglass forces -(hourglass_ u + hourglassLoad_) into the rows [first, last) of the
   // residual (and hourglass_ I into K).
   void applyHourglassStiffness(int first, int last, bool withTangent);
+
+  // After the first assembly (at the start-of-step u): u moves to the predicted increments of
+  // the unknowns when their residual is lower (the first solve then uses the tangent of the
+  // start), and the references of the convergence ratios become those of the step's size, as a
+  // Newton from the start would have them: |predicted|^2 and predicted.r at the start.
+  void tryPrediction(const EquilibriumProblem& problem, double dt, double stabilization,
+                     double& normReference, double& energyReference);
 
   // The end-of-step accelerations of implicit dynamics (Newmark) into acceleration_.
   void computeEndOfStepAcceleration(const EquilibriumProblem& problem, double dt);
