@@ -427,6 +427,25 @@ TEST(QuasiStatic, StepsEndOnOutputTimesWhenClamped) {
     sim.advance();
     EXPECT_NEAR(sim.time(), t, 1e-12) << "step " << sim.step();
   }
+  EXPECT_TRUE(sim.warnings().empty());
+}
+
+// With outputs by steps there is no output time to end a step on: as in Uintah the clamp does
+// nothing, and setup warns at its line.
+TEST(QuasiStatic, ClampWithOutputsByStepsClampsNothingAndWarns) {
+  std::string input = swellingInput("comp_neo_hook", "");
+  const std::string from = "<max_Timesteps>10</max_Timesteps>";
+  input.replace(input.find(from), from.size(), "<clamp_time_to_output>true</clamp_time_to_output>");
+  RunOptions o;
+  o.progress = false;
+  Simulation sim(input, "swell.ups", o);
+  ASSERT_EQ(sim.warnings().size(), 1u);
+  EXPECT_NE(sim.warnings()[0].find("swell.ups:1:"), std::string::npos) << sim.warnings()[0];
+  EXPECT_NE(sim.warnings()[0].find("clamps no step"), std::string::npos) << sim.warnings()[0];
+  for (int k = 1; k <= 3; ++k) {
+    sim.advance();
+    EXPECT_NEAR(sim.time(), 0.05 * k, 1e-12) << "step " << k;
+  }
 }
 
 TEST(QuasiStatic, ImplicitOptionsFollowImpMPMsTimeStepRule) {

@@ -245,7 +245,7 @@ bool DataArchiver::isOutputStep(long step, double time) const {
 }
 
 std::optional<double> DataArchiver::nextOutputTimeAfter(double time) const {
-  if (stepInterval_ > 0 || !interval_) return std::nullopt;
+  if (!outputsByTime()) return std::nullopt;
   return (std::floor(time / *interval_ + 1e-9) + 1) * *interval_;
 }
 

@@ -71,6 +71,8 @@ class DataArchiver {
 
   // True if the step that ended at `time` (number `step`) is an output step.
   bool isOutputStep(long step, double time) const;
+  // Outputs fall at times (<outputInterval>), not every N steps.
+  bool outputsByTime() const { return stepInterval_ == 0 && interval_.has_value(); }
   // With <outputInterval>: the first multiple of the interval after `time` (a multiple within
   // round-off of it excluded).
   std::optional<double> nextOutputTimeAfter(double time) const;

@@ -57,6 +57,13 @@ void Simulation::readInput() {
   archiver_ =
       DataArchiver::fromInput(root.requireChild("DataArchiver"), mpm_.flags().doScalarDiffusion,
                               static_cast<int>(mpm_.materials().size()));
+  // As in Uintah, outputs by steps leave the clamp nothing to end a step on.
+  if (time_.clampTimeToOutput && !archiver_.outputsByTime())
+    root.requireChild("Time")
+        .requireChild("clamp_time_to_output")
+        .warn(
+            "<clamp_time_to_output>true clamps no step: the outputs come every "
+            "<outputTimestepInterval> steps, not at times (<outputInterval>)");
   if (mpm_.diffusion())
     archiver_.setMaterialColumns(mpm_.materials(), mpm_.diffusion()->lithiumTakingMaterials());
   checkpoints_ = CheckpointSchedule::fromInput(root.requireChild("DataArchiver"));
