@@ -235,6 +235,36 @@ TEST(Restart, AnOutputItCannotRestoreStopsItWithEveryOutputKept) {
   EXPECT_EQ(listCheckpoints(run.string()).size(), 3u);
 }
 
+// A fresh run into the directory of an earlier, longer one: the earlier run's checkpoints (steps
+// 600, 900, 1000) go first, so the fresh run keeps its own newest ones and a restart continues it,
+// not the earlier run. With them left, the restart took the earlier run's step 900.
+TEST(Checkpoint, AFreshRunRemovesAnEarlierRunsCheckpoints) {
+  Scratch s("rerun");
+  const fs::path run = s.dir / "run";
+  const std::string input = kSource + "/tests/checkpoint/AutoCycleSlab.ups";
+  ASSERT_EQ(sus({"--max-timesteps", "1000", "-o", run.string(), input}).exitCode, 0);
+  ASSERT_EQ(listCheckpoints(run.string()).size(), 3u);  // 1000 (the stop's), 900, 600
+  const testing::SusResult again = sus({"--max-timesteps", "400", "-o", run.string(), input});
+  ASSERT_EQ(again.exitCode, 0) << again.output;
+  EXPECT_NE(again.output.find("removed 3 checkpoint(s) of an earlier run"), std::string::npos)
+      << again.output;
+  const std::vector<std::string> left = listCheckpoints(run.string());
+  ASSERT_FALSE(left.empty());
+  EXPECT_NE(left[0].find("auto_step_000400.ckpt"), std::string::npos) << left[0];
+  for (const std::string& c : left) {
+    const std::smatch m = [&] {
+      std::smatch found;
+      std::regex_search(c, found, std::regex(R"(step_(\d+)\.ckpt$)"));
+      return found;
+    }();
+    ASSERT_FALSE(m.empty()) << c;
+    EXPECT_LE(std::stol(m[1].str()), 400) << c;
+  }
+  const testing::SusResult restart = sus({"--max-timesteps", "450", "-restart", run.string()});
+  ASSERT_EQ(restart.exitCode, 0) << restart.output;
+  EXPECT_NE(restart.output.find("(step 400,"), std::string::npos) << restart.output;
+}
+
 // The end summary of a restarted run gives the particle-steps per second of its own steps (not of
 // every step since step 0 over its own wall time), and the whole run's beside them.
 TEST(Restart, SummaryRateCountsTheStepsOfThisRun) {

@@ -217,12 +217,12 @@ void Simulation::start(Collective, bool restart) {
     restartedFrom = restartFromNewestCheckpoint(Collective{});
   } else {
     // Rank 0 picks the directory (the next free version) for all.
-    archiver_.open(
-        collective::broadcast(Communicator::isRoot()
-                                  ? chooseOutputDirectory(options_.outputDir, archiver_.filebase())
-                                  : "",
-                              0),
-        options_.input);
+    const std::string dir = collective::broadcast(
+        Communicator::isRoot() ? chooseOutputDirectory(options_.outputDir, archiver_.filebase())
+                               : "",
+        0);
+    removeEarlierRunsCheckpoints(Collective{}, dir);
+    archiver_.open(dir, options_.input);
   }
   outputTask_ = mpm_.timers().task("output");
   checkpointTask_ = mpm_.timers().task("checkpoint");
@@ -250,6 +250,28 @@ bool Simulation::reachedInputEnd() const {
 bool Simulation::finished(Collective) const {
   return t_ >= time_.maxTime || (time_.maxTimesteps > 0 && step_ >= time_.maxTimesteps) ||
          (time_.maxWallTime > 0 && collective::any(wallTime() >= time_.maxWallTime));
+}
+
+void Simulation::removeEarlierRunsCheckpoints(Collective, const std::string& dir) {
+  std::string error;
+  if (Communicator::isRoot()) {
+    try {
+      const size_t earlier = listCheckpoints(dir).size();
+      removeOldCheckpoints(dir, CheckpointKind::Scheduled, 0);
+      removeOldCheckpoints(dir, CheckpointKind::Automatic, 0);
+      removeUnfinishedCheckpointParts(dir);
+      if (earlier > 0)
+        std::fprintf(stderr,
+                     "sus: removed %zu checkpoint(s) of an earlier run from %s/checkpoints: this "
+                     "run's history and outputs replace that run's\n",
+                     earlier, dir.c_str());
+    } catch (const std::exception& e) {
+      error = e.what();
+    }
+  }
+  if (collective::any(!error.empty()))
+    throw std::runtime_error(
+        Communicator::isRoot() ? error : "rank 0 could not remove an earlier run's checkpoints");
 }
 
 std::string Simulation::restartFromNewestCheckpoint(Collective) {

@@ -86,6 +86,12 @@ class Simulation {
   // Whether the run reached the end the input sets (maxTime or <max_Timesteps>), not a limit of
   // this process (--max-timesteps, <max_wall_time>) after which a restart continues.
   bool reachedInputEnd() const;
+  // A fresh run's directory may hold an earlier run's checkpoints (an -o used before): rank 0
+  // removes them before this run writes anything (its history and outputs replace that run's, so
+  // those checkpoints would restart into a history that is no longer theirs, and their step
+  // numbers would count before this run's own where only the newest are kept). An error there
+  // stops every rank.
+  void removeEarlierRunsCheckpoints(Collective, const std::string& dir);
   // Continues the run of the restart directory from its newest complete checkpoint; returns its
   // path.
   std::string restartFromNewestCheckpoint(Collective);
