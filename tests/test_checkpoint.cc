@@ -205,16 +205,25 @@ TEST(Restart, SkipsADamagedNewestCheckpoint) {
   expectSameOutputs(s.dir / "whole", s.dir / "parts");
 }
 
+const std::string kSlab = kSource + "/tests/checkpoint/AutoCycleSlab.ups";
+
+// AutoCycleSlab stopped at step 1000 (--max-timesteps) in DIR/run, which it returns: its
+// checkpoints are the stop's (1000) and the schedule's 900 and 600 (cycle = 2).
+fs::path slabStoppedAtStep1000(const Scratch& s) {
+  const fs::path run = s.dir / "run";
+  EXPECT_EQ(sus({"--max-timesteps", "1000", "-o", run.string(), kSlab}).exitCode, 0);
+  EXPECT_EQ(listCheckpoints(run.string()).size(), 3u);
+  return run;
+}
+
 // An output the restart cannot restore (here history.csv, which a directory stands in for: as
 // root no file permission stops a write) stops it with exit 1 naming the file, and every output
 // stays: an I/O error is not a damaged checkpoint, to be answered by going back to an older one
 // and removing what came after it.
 TEST(Restart, AnOutputItCannotRestoreStopsItWithEveryOutputKept) {
   Scratch s("unwritable");
-  const fs::path run = s.dir / "run";
-  const std::string input = kSource + "/tests/checkpoint/AutoCycleSlab.ups";
-  ASSERT_EQ(sus({"--max-timesteps", "1000", "-o", run.string(), input}).exitCode, 0);
-  ASSERT_EQ(listCheckpoints(run.string()).size(), 3u);  // 1000 (the stop's), 900, 600
+  const fs::path run = slabStoppedAtStep1000(s);
+  ASSERT_FALSE(::testing::Test::HasFailure());
   const auto files = [&] {
     std::vector<std::string> names;
     for (const fs::directory_entry& e : fs::recursive_directory_iterator(run))
@@ -240,11 +249,9 @@ TEST(Restart, AnOutputItCannotRestoreStopsItWithEveryOutputKept) {
 // not the earlier run. With them left, the restart took the earlier run's step 900.
 TEST(Checkpoint, AFreshRunRemovesAnEarlierRunsCheckpoints) {
   Scratch s("rerun");
-  const fs::path run = s.dir / "run";
-  const std::string input = kSource + "/tests/checkpoint/AutoCycleSlab.ups";
-  ASSERT_EQ(sus({"--max-timesteps", "1000", "-o", run.string(), input}).exitCode, 0);
-  ASSERT_EQ(listCheckpoints(run.string()).size(), 3u);  // 1000 (the stop's), 900, 600
-  const testing::SusResult again = sus({"--max-timesteps", "400", "-o", run.string(), input});
+  const fs::path run = slabStoppedAtStep1000(s);
+  ASSERT_FALSE(::testing::Test::HasFailure());
+  const testing::SusResult again = sus({"--max-timesteps", "400", "-o", run.string(), kSlab});
   ASSERT_EQ(again.exitCode, 0) << again.output;
   EXPECT_NE(again.output.find("removed 3 checkpoint(s) of an earlier run"), std::string::npos)
       << again.output;
