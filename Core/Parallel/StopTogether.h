@@ -65,6 +65,22 @@ void readTogether(Phase&& phase) {
   throw SetupFailedOnAnotherRank(first, failing, shared[0] == '2', shared.substr(1));
 }
 
+// Runs `task` on rank 0 alone (file work the other ranks wait for); it returns an error message
+// (empty: none) or throws. On an error every rank throws std::runtime_error after it: rank 0
+// with the error, the others with `elsewhere`. One reduction of a bool.
+template <class Task>
+void onRootTogether(Task&& task, const std::string& elsewhere) {
+  std::string error;
+  if (Communicator::isRoot()) {
+    try {
+      error = task();
+    } catch (const std::exception& e) {
+      error = e.what();
+    }
+  }
+  if (any(!error.empty())) throw std::runtime_error(Communicator::isRoot() ? error : elsewhere);
+}
+
 // Runs `phase`; when it throws a SimulationError on any rank, every rank throws after it: the
 // lowest such rank its own error, the others StoppedOnAnotherRank. One reduction of an int
 // (nothing on a run of one rank).

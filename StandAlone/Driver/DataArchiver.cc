@@ -14,6 +14,7 @@
 #include <sstream>
 
 #include "Core/Parallel/Communicator.h"
+#include "Core/Parallel/StopTogether.h"
 #include "Core/Util/AtomicFile.h"
 #include "StandAlone/Driver/OutputLabels.h"
 
@@ -398,25 +399,20 @@ std::string truncateHistory(const std::string& path, long step) {
 }  // namespace
 
 void DataArchiver::restoreOutputsTo(long step) {
-  std::string error;
-  // On rank 0, history.csv first: when it cannot be restored the restart stops with every output
-  // kept. Its errors reach every rank (the others wait in the reduction below).
-  if (Communicator::isRoot()) {
-    try {
-      error = truncateHistory((fs::path(dir_) / "history.csv").string(), step);
-      if (error.empty()) {
-        removeOutputFilesAfter(step);
-        writeIndexFiles();
-      }
-    } catch (const std::exception& e) {
-      error = e.what();
-    }
-  }
   unwritten_.clear();
   historyStarted_ = true;
-  if (collective::any(!error.empty()))
-    throw std::runtime_error(Communicator::isRoot() ? error
-                                                    : "rank 0 could not restore the outputs");
+  // On rank 0, history.csv first: when it cannot be restored the restart stops with every output
+  // kept. Its errors reach every rank.
+  collective::onRootTogether(
+      [&] {
+        const std::string error = truncateHistory((fs::path(dir_) / "history.csv").string(), step);
+        if (error.empty()) {
+          removeOutputFilesAfter(step);
+          writeIndexFiles();
+        }
+        return error;
+      },
+      "rank 0 could not restore the outputs");
 }
 
 void DataArchiver::removeOutputFilesAfter(long step) const {

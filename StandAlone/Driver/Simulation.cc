@@ -253,25 +253,20 @@ bool Simulation::finished(Collective) const {
 }
 
 void Simulation::removeEarlierRunsCheckpoints(Collective, const std::string& dir) {
-  std::string error;
-  if (Communicator::isRoot()) {
-    try {
-      const size_t earlier = listCheckpoints(dir).size();
-      removeOldCheckpoints(dir, CheckpointKind::Scheduled, 0);
-      removeOldCheckpoints(dir, CheckpointKind::Automatic, 0);
-      removeUnfinishedCheckpointParts(dir);
-      if (earlier > 0)
-        std::fprintf(stderr,
-                     "sus: removed %zu checkpoint(s) of an earlier run from %s/checkpoints: this "
-                     "run's history and outputs replace that run's\n",
-                     earlier, dir.c_str());
-    } catch (const std::exception& e) {
-      error = e.what();
-    }
-  }
-  if (collective::any(!error.empty()))
-    throw std::runtime_error(
-        Communicator::isRoot() ? error : "rank 0 could not remove an earlier run's checkpoints");
+  collective::onRootTogether(
+      [&] {
+        const size_t earlier = listCheckpoints(dir).size();
+        removeOldCheckpoints(dir, CheckpointKind::Scheduled, 0);
+        removeOldCheckpoints(dir, CheckpointKind::Automatic, 0);
+        removeUnfinishedCheckpointParts(dir);
+        if (earlier > 0)
+          std::fprintf(stderr,
+                       "sus: removed %zu checkpoint(s) of an earlier run from %s/checkpoints: "
+                       "this run's history and outputs replace that run's\n",
+                       earlier, dir.c_str());
+        return std::string();
+      },
+      "rank 0 could not remove an earlier run's checkpoints");
 }
 
 std::string Simulation::restartFromNewestCheckpoint(Collective) {
