@@ -1,7 +1,11 @@
 // render_figure: draws a <figure> file (docs/rendering.md, "Figures") from finished runs' output:
 // each panel the output nearest its time, all with the figure's scene and one colour range (its
 // <range>, else the span of every panel's values), laid out with letters and one colour bar.
+// With --visible-only DIR it also writes into DIR the particles each panel shows and a figure of
+// them that draws the same picture (docs/rendering.md, "Figures").
 // Exit codes: 0 done, 1 I/O or rendering error, 2 bad options or figure file.
+#include <tinyxml2.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -16,6 +20,7 @@
 #include "vis/SceneRenderer.h"
 #include "vis/Sprites.h"
 #include "vis/VTKReaders.h"
+#include "vis/VTKWriters.h"
 
 namespace fs = std::filesystem;
 using namespace anode;
@@ -23,10 +28,12 @@ using namespace anode;
 namespace {
 
 const char* kUsage =
-    "usage: render_figure -o OUT.png FIGURE.xml\n"
+    "usage: render_figure -o OUT.png [--visible-only DIR] FIGURE.xml\n"
     "  FIGURE.xml   a <figure>: <title>, <columns>, <time_scale>, <time_unit>, one <scene>\n"
     "               (the tags of docs/input-reference.md) and <panel>s of <data> (a run's\n"
-    "               particles.pvd), <time> and <label>; see docs/rendering.md\n";
+    "               particles.pvd), <time> and <label>; see docs/rendering.md\n"
+    "  --visible-only DIR  also writes DIR/figure.xml, which draws the same picture from\n"
+    "               DIR/panel_*.vtu: each panel's particles that colour a pixel, nothing else\n";
 
 // The entry of a .pvd whose time is nearest to t.
 std::pair<double, std::string> nearestOutput(
@@ -36,21 +43,104 @@ std::pair<double, std::string> nearestOutput(
   });
 }
 
-int draw(const std::string& figureFile, const std::string& png) {
+std::string number(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.17g", v);
+  return text;
+}
+
+std::string vectorText(const Vec3& v) {
+  return "[" + number(v[0]) + ", " + number(v[1]) + ", " + number(v[2]) + "]";
+}
+
+// One child element of `parent` named `tag` holding `text` (replacing any it had).
+void setChildText(tinyxml2::XMLElement* parent, const char* tag, const std::string& text) {
+  tinyxml2::XMLElement* e = parent->FirstChildElement(tag);
+  if (!e) e = parent->InsertNewChildElement(tag);
+  e->SetText(text.c_str());
+}
+
+// What --visible-only writes: per panel the particles it shows (in their order) as
+// DIR/panel_X.vtu with a one-entry DIR/panel_X.pvd at the drawn output's time, and DIR/figure.xml,
+// the figure file with those panels, each with the box its camera was made from, and the colour
+// range of all the particles.
+struct VisibleOnly {
+  std::string folder;
+  std::vector<ParticleData> shown;
+  std::vector<SpriteExtent> extents;
+
+  void write(const std::string& figureFile, const std::vector<double>& times,
+             std::pair<double, double> range) const {
+    fs::create_directories(folder);
+    tinyxml2::XMLDocument doc;
+    if (doc.LoadFile(figureFile.c_str()) != tinyxml2::XML_SUCCESS)
+      throw std::runtime_error("cannot read " + figureFile);
+    tinyxml2::XMLElement* root = doc.RootElement();
+    tinyxml2::XMLElement* figure =
+        root && std::string(root->Name()) == "figure" ? root : root->FirstChildElement("figure");
+    setChildText(figure->FirstChildElement("scene"), "range",
+                 "[" + number(range.first) + ", " + number(range.second) + "]");
+    size_t k = 0;
+    for (tinyxml2::XMLElement* panel = figure->FirstChildElement("panel"); panel;
+         panel = panel->NextSiblingElement("panel"), ++k) {
+      const std::string letter = panelLetter(k).substr(1, panelLetter(k).size() - 2);
+      const std::string vtu = "panel_" + letter + ".vtu", pvd = "panel_" + letter + ".pvd";
+      writeParticlesVTU((fs::path(folder) / vtu).string(), shown[k]);
+      PVDSeries series;
+      series.add(times[k], vtu);
+      series.write((fs::path(folder) / pvd).string());
+      setChildText(panel, "data", pvd);
+      setChildText(panel, "time", number(times[k]));
+      setChildText(panel, "box_min", vectorText(extents[k].lo));
+      setChildText(panel, "box_max", vectorText(extents[k].hi));
+    }
+    const std::string out = (fs::path(folder) / "figure.xml").string();
+    if (doc.SaveFile(out.c_str()) != tinyxml2::XML_SUCCESS)
+      throw std::runtime_error("cannot write " + out);
+    std::printf("%s\n", out.c_str());
+  }
+};
+
+// The particles of `data` with these indices (ascending), every array with them.
+ParticleData subset(const ParticleData& data, const std::vector<size_t>& keep) {
+  ParticleData out;
+  for (size_t i : keep)
+    out.points.insert(out.points.end(), &data.points[3 * i], &data.points[3 * i + 3]);
+  for (const NamedArray& a : data.arrays) {
+    NamedArray b{a.name, a.components, {}, {}};
+    for (size_t i : keep) {
+      const size_t first = i * a.components;
+      if (a.isInteger())
+        b.integer.insert(b.integer.end(), a.integer.begin() + first,
+                         a.integer.begin() + first + a.components);
+      else
+        b.real.insert(b.real.end(), a.real.begin() + first, a.real.begin() + first + a.components);
+    }
+    out.arrays.push_back(std::move(b));
+  }
+  return out;
+}
+
+int draw(const std::string& figureFile, const std::string& png, const std::string& visibleOnly) {
   ProblemSpec spec(figureFile, false, "figure");
   const Figure figure = readFigure(spec.root());
   spec.checkAllUsed();
   const fs::path folder = fs::path(figureFile).parent_path();
   std::map<std::string, std::vector<std::pair<double, std::string>>> series;
+  std::vector<ParticleData> data;
   std::vector<SpriteSet> sprites;
+  std::vector<SpriteExtent> extents;
   std::vector<double> times;
   const std::vector<std::string> arrays = {figure.scene.field.label, "p.volume", "material"};
   for (const FigurePanel& panel : figure.panels) {
-    const std::string data = (folder / panel.data).lexically_normal().string();
-    if (!series.count(data)) series[data] = readPVD(data);
-    if (series[data].empty()) throw std::runtime_error(data + " lists no files");
-    const auto [time, file] = nearestOutput(series[data], panel.time);
-    sprites.push_back(makeSprites(figure.scene, readParticlesVTU(file, arrays)));
+    const std::string pvd = (folder / panel.data).lexically_normal().string();
+    if (!series.count(pvd)) series[pvd] = readPVD(pvd);
+    if (series[pvd].empty()) throw std::runtime_error(pvd + " lists no files");
+    const auto [time, file] = nearestOutput(series[pvd], panel.time);
+    data.push_back(readParticlesVTU(file, arrays));
+    sprites.push_back(makeSprites(figure.scene, data.back()));
+    extents.push_back(SpriteExtent::of(sprites.back()));
+    if (panel.box) std::tie(extents.back().lo, extents.back().hi) = *panel.box;
     times.push_back(time);
     std::printf("%s %s (t = %g for %g)\n", panelLetter(times.size() - 1).c_str(), file.c_str(),
                 time, panel.time);
@@ -64,19 +154,33 @@ int draw(const std::string& figureFile, const std::string& png) {
   }
   SceneRenderer renderer;
   std::vector<Canvas> panels;
-  for (size_t k = 0; k < sprites.size(); ++k)
-    panels.push_back(renderer.render(scene, sprites[k], times[k], Overlay::None).canvas);
+  VisibleOnly visible{visibleOnly, {}, extents};
+  for (size_t k = 0; k < sprites.size(); ++k) {
+    const PixelLayer layer = renderer.drawLayer(scene, sprites[k], extents[k], Overlay::None);
+    panels.push_back(
+        SceneRenderer::finish(scene, layer, extents[k], times[k], Overlay::None).canvas);
+    if (visibleOnly.empty()) continue;
+    // Without volumes a sprite's radius comes from all the particles' box: a subset's differs.
+    if (std::none_of(data[k].arrays.begin(), data[k].arrays.end(),
+                     [](const NamedArray& a) { return a.name == "p.volume"; }))
+      throw std::runtime_error("--visible-only needs p.volume in every panel's data");
+    std::vector<size_t> shown;
+    for (size_t s : renderer.visibleSprites(scene, sprites[k], extents[k], Overlay::None))
+      shown.push_back(sprites[k].particle[s]);
+    visible.shown.push_back(subset(data[k], shown));
+  }
   if (!png.empty() && fs::path(png).has_parent_path())
     fs::create_directories(fs::path(png).parent_path());
   writePNG(composeFigure(figure, panels, times, *scene.range), png);
   std::printf("%s\n", png.c_str());
+  if (!visibleOnly.empty()) visible.write(figureFile, times, *scene.range);
   return 0;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string figure, png;
+  std::string figure, png, visibleOnly;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "-h" || a == "--help") {
@@ -84,6 +188,8 @@ int main(int argc, char** argv) {
       return 0;
     } else if (a == "-o" && i + 1 < argc) {
       png = argv[++i];
+    } else if (a == "--visible-only" && i + 1 < argc) {
+      visibleOnly = argv[++i];
     } else if (figure.empty() && !a.empty() && a[0] != '-') {
       figure = a;
     } else {
@@ -96,7 +202,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   try {
-    return draw(figure, png);
+    return draw(figure, png, visibleOnly);
   } catch (const InputError& e) {
     std::fprintf(stderr, "%s\n", e.what());
     return 2;

@@ -45,6 +45,26 @@ TEST(Figure, ReadsItsTagsAndPanels) {
   EXPECT_EQ(f.panels[0].time, 4e6);
   EXPECT_EQ(f.panels[0].label, "A");
   EXPECT_EQ(f.panels[1].label, "");
+  EXPECT_FALSE(f.panels[0].box);
+}
+
+TEST(Figure, APanelMayGiveTheBoxItsCameraIsMadeFrom) {
+  const Figure f = readText(std::string("<figure>") + kScene +
+                            "<panel><data>a.pvd</data><time>0</time><box_min>[-1, -2, -3]</box_min>"
+                            "<box_max>[1, 2, 3.5]</box_max></panel></figure>");
+  ASSERT_TRUE(f.panels[0].box);
+  EXPECT_EQ(f.panels[0].box->first, Vec3(-1, -2, -3));
+  EXPECT_EQ(f.panels[0].box->second, Vec3(1, 2, 3.5));
+  EXPECT_NE(errorOf(std::string("<figure>") + kScene +
+                    "\n<panel><data>a</data><time>0</time><box_min>[0, 0, 0]</box_min></panel>"
+                    "</figure>")
+                .find("fig.xml:3: a <panel> gives both <box_min> and <box_max> or neither"),
+            std::string::npos);
+  EXPECT_NE(errorOf(std::string("<figure>") + kScene +
+                    "<panel><data>a</data><time>0</time>\n<box_min>[0, 2, 0]</box_min>"
+                    "<box_max>[1, 1, 1]</box_max></panel></figure>")
+                .find("fig.xml:3: <box_min> must not exceed <box_max>"),
+            std::string::npos);
 }
 
 TEST(Figure, ErrorsNameFileAndLine) {

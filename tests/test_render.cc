@@ -20,6 +20,7 @@
 #include "TestInputs.h"
 #include "vis/ColourMap.h"
 #include "vis/SceneRenderer.h"
+#include "vis/VTKReaders.h"
 #include "vis/VTKWriters.h"
 
 namespace fs = std::filesystem;
@@ -262,6 +263,71 @@ TEST(Render, ClipPlaneRemovesOneSide) {
   EXPECT_TRUE(
       isBackground(clipped.canvas, static_cast<int>(clipped.project(Vec3(n * h / 4, 0, 0))[0]),
                    static_cast<int>(clipped.project(Vec3(n * h / 4, 0, 0))[1]), scene.background));
+}
+
+// A solid block seen from the front shows its front faces only: the visible sprites are a small
+// part of them, every one of them is drawn where the picture shows it, and drawing them alone
+// (with the whole set's extent) gives the same picture, pixel for pixel.
+TEST(Render, VisibleSpritesAloneDrawTheSamePicture) {
+  const int n = 16;
+  const ParticleData data = block(n, 0.01);
+  Scene scene = frontScene();
+  scene.camera.preset = CameraPreset::Custom;
+  scene.camera.position = Vec3(0.3, -0.5, 0.2);
+  scene.camera.focalPoint = Vec3::Zero();
+  scene.clip = ClipPlane{Vec3::Zero(), Vec3(0, 1, 0)};  // a cut-away: y > 0 removed
+  const SpriteSet all = makeSprites(scene, data);
+  ASSERT_EQ(all.count(), static_cast<size_t>(n * n * n / 2));
+  for (size_t s = 0; s < all.count(); ++s)  // each sprite knows its particle
+    EXPECT_EQ(all.position[3 * s + 1], data.points[3 * all.particle[s] + 1]);
+  const SpriteExtent extent = SpriteExtent::of(all);
+  SceneRenderer renderer;
+  const PixelLayer whole = renderer.drawLayer(scene, all, extent, Overlay::None);
+  const std::vector<size_t> visible = renderer.visibleSprites(scene, all, extent, Overlay::None);
+  ASSERT_FALSE(visible.empty());
+  EXPECT_TRUE(std::is_sorted(visible.begin(), visible.end()));
+  // The faces towards the camera: about 3 n^2 / 2 of the n^3 / 2 sprites, none from the inside.
+  EXPECT_LT(visible.size(), all.count() / 3);
+  EXPECT_GT(visible.size(), static_cast<size_t>(n * n));
+  for (size_t s : visible) {
+    const double* x = &all.position[3 * s];
+    const double h = 0.01, face = n * h / 2 - h;  // the outermost particles' centres, less one
+    EXPECT_TRUE(x[0] > face || x[1] < -face || x[2] > face || x[1] > -h) << "an inner sprite " << s;
+  }
+  SpriteSet shown;
+  for (size_t s : visible) {
+    shown.position.insert(shown.position.end(), &all.position[3 * s], &all.position[3 * s + 3]);
+    shown.value.push_back(all.value[s]);
+    shown.radius.push_back(all.radius[s]);
+    shown.particle.push_back(all.particle[s]);
+  }
+  EXPECT_EQ(renderer.drawLayer(scene, shown, extent, Overlay::None), whole);
+  // Without one visible sprite the picture changes.
+  shown.position.erase(shown.position.begin(), shown.position.begin() + 3);
+  shown.value.erase(shown.value.begin());
+  shown.radius.erase(shown.radius.begin());
+  EXPECT_NE(renderer.drawLayer(scene, shown, extent, Overlay::None), whole);
+}
+
+// A distributed run's output (.pvtu) reads as its pieces one after the other, as one .vtu.
+TEST(Render, ParticlesOfADistributedOutputReadInPieceOrder) {
+  const fs::path dir = fs::temp_directory_path() / ("anode_pvtu_" + std::to_string(getpid()));
+  fs::create_directories(dir);
+  const ParticleData first = block(3, 0.01), second = block(2, 0.02);
+  writeParticlesVTU((dir / "step.r0000.vtu").string(), first);
+  writeParticlesVTU((dir / "step.r0001.vtu").string(), second);
+  writeParticlesPVTU((dir / "step.pvtu").string(), {"step.r0000.vtu", "step.r0001.vtu"}, first);
+  const ParticleData read =
+      readParticlesVTU((dir / "step.pvtu").string(), {"p.concentration", "material", "p.nothing"});
+  ASSERT_EQ(read.count(), first.count() + second.count());
+  std::vector<double> points = first.points;
+  points.insert(points.end(), second.points.begin(), second.points.end());
+  EXPECT_EQ(read.points, points);
+  ASSERT_EQ(read.arrays.size(), 2u);  // the arrays asked for that the file holds
+  EXPECT_EQ(read.arrays[0].name, "p.concentration");
+  EXPECT_EQ(read.arrays[0].real.back(), second.arrays[0].real.back());
+  EXPECT_EQ(read.arrays[1].integer.size(), read.count());
+  fs::remove_all(dir);
 }
 
 TEST(Render, MaterialsNotDrawnAreLeftOut) {

@@ -35,6 +35,15 @@ Figure readFigure(const PSNode& node) {
     panel.data = p.require<std::string>("data");
     panel.time = p.require<double>("time");
     panel.label = p.get<std::string>("label", "");
+    const PSNode lo = p.child("box_min"), hi = p.child("box_max");
+    if (static_cast<bool>(lo) != static_cast<bool>(hi))
+      p.fail("a <panel> gives both <box_min> and <box_max> or neither");
+    if (lo) {
+      panel.box = std::make_pair(p.require<Vec3>("box_min"), p.require<Vec3>("box_max"));
+      for (int d = 0; d < 3; ++d)
+        if (!(panel.box->first[d] <= panel.box->second[d]))
+          lo.fail("<box_min> must not exceed <box_max> in any coordinate");
+    }
     f.panels.push_back(panel);
   }
   if (f.panels.empty()) node.fail("a <figure> needs at least one <panel>");

@@ -3,10 +3,12 @@
 // bar for all. Read from a <figure> file (docs/rendering.md, "Figures"); drawn by render_figure.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "Core/Math/Types.h"
 #include "Core/ProblemSpec/ProblemSpec.h"
 #include "vis/Canvas.h"
 #include "vis/SceneSpec.h"
@@ -17,6 +19,10 @@ struct FigurePanel {
   std::string data;   // a run's particles.pvd (relative paths: from the figure file's folder)
   double time = 0;    // the output nearest to this time is drawn
   std::string label;  // written after the panel's letter
+  // The box the camera's origin and depth range are made from: the one around the drawn
+  // spheres (SpriteExtent) unless given (<box_min>, <box_max>: a panel of a figure's visible
+  // particles only, drawn as the figure of all of them was).
+  std::optional<std::pair<Vec3, Vec3>> box;
 };
 
 struct Figure {

@@ -24,7 +24,9 @@ std::atomic<int> contextCount{0};
 
 // Sprites: the vertex shader sizes each point to its sphere's projected diameter; the fragment
 // shader keeps the unit disc, lights it as a sphere under a headlight (full colour at the centre,
-// so the centre shows the colour map exactly) and writes the depth of the sphere's surface.
+// so the centre shows the colour map exactly) and writes the depth of the sphere's surface. With
+// `identify` set it writes instead each sprite's index + 1 in the four bytes of the pixel (the
+// same depth, so the same sprite wins each pixel as in the picture).
 const char* kVertexShader = R"(#version 330 core
 layout(location = 0) in vec3 position;
 layout(location = 1) in float fraction;
@@ -35,9 +37,11 @@ uniform float pointScale;
 out float vFraction;
 out float vRadius;
 out vec3 vCentre;
+flat out int vIndex;
 void main() {
   vec4 eye = view * vec4(position, 1.0);
   vCentre = eye.xyz;
+  vIndex = gl_VertexID;
   vFraction = fraction;
   vRadius = radius;
   gl_Position = projection * eye;
@@ -49,8 +53,10 @@ const char* kFragmentShader = R"(#version 330 core
 in float vFraction;
 in float vRadius;
 in vec3 vCentre;
+flat in int vIndex;
 uniform mat4 projection;
 uniform sampler2D colours;
+uniform int identify;
 out vec4 colour;
 void main() {
   vec2 p = 2.0 * gl_PointCoord - 1.0;
@@ -60,6 +66,11 @@ void main() {
   float nz = sqrt(1.0 - rr);
   vec3 base = texture(colours, vec2(vFraction, 0.5)).rgb;
   colour = vec4(base * (0.3 + 0.7 * nz), 1.0);
+  if (identify != 0) {
+    uint k = uint(vIndex) + 1u;
+    colour = vec4(float(k & 255u), float((k >> 8) & 255u), float((k >> 16) & 255u),
+                  float(k >> 24)) / 255.0;
+  }
   vec4 surface = projection * vec4(vCentre + vRadius * vec3(p, nz), 1.0);
   gl_FragDepth = 0.5 + 0.5 * surface.z / surface.w;
 }
@@ -265,7 +276,7 @@ struct SceneRenderer::GLState {
   OSMesaContext context = nullptr;
   std::vector<unsigned char> buffer;
   GLuint program = 0, vao = 0, vbo = 0, texture = 0;
-  GLint uView = -1, uProjection = -1, uPointScale = -1, uColours = -1;
+  GLint uView = -1, uProjection = -1, uPointScale = -1, uColours = -1, uIdentify = -1;
 
   GLState() {
     // Mesa keeps a shader cache under the home directory unless told otherwise.
@@ -314,6 +325,7 @@ struct SceneRenderer::GLState {
     uProjection = glGetUniformLocation(program, "projection");
     uPointScale = glGetUniformLocation(program, "pointScale");
     uColours = glGetUniformLocation(program, "colours");
+    uIdentify = glGetUniformLocation(program, "identify");
     glGenVertexArrays(1, &vao);
     glGenBuffers(1, &vbo);
     glBindVertexArray(vao);
@@ -393,20 +405,24 @@ View viewOf(const Scene& scene, const SpriteExtent& extent, Overlay overlay) {
 
 }  // namespace
 
-PixelLayer SceneRenderer::drawLayer(const Scene& scene, const SpriteSet& sprites,
-                                    const SpriteExtent& extent, Overlay overlay) {
+void SceneRenderer::drawSprites(const Scene& scene, const SpriteSet& sprites,
+                                const SpriteExtent& extent, Overlay overlay, bool identify) {
   const int W = scene.width, H = scene.height;
-  const RGB background = {scene.background[0], scene.background[1], scene.background[2]};
   const std::array<int, 4> viewport = pictureLayout(scene, overlay).viewport;
   const std::pair<double, double> range = colourRange(scene, extent);
   const ColourMap colours(scene.colourMap);
+  if (identify && sprites.count() >= std::numeric_limits<uint32_t>::max())
+    throw std::runtime_error("too many sprites to tell apart in a picture's four bytes");
   if (!gl_) gl_ = std::make_unique<GLState>();
   gl_->makeCurrent(W, H);
   const View view = viewOf(scene, extent, overlay);
 
   glViewport(0, 0, W, H);
-  glClearColor(static_cast<float>(background[0]), static_cast<float>(background[1]),
-               static_cast<float>(background[2]), 1);
+  if (identify)
+    glClearColor(0, 0, 0, 0);
+  else
+    glClearColor(static_cast<float>(scene.background[0]), static_cast<float>(scene.background[1]),
+                 static_cast<float>(scene.background[2]), 1);
   glClearDepth(1.0);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   if (sprites.count() > 0) {
@@ -430,6 +446,7 @@ PixelLayer SceneRenderer::drawLayer(const Scene& scene, const SpriteSet& sprites
     glUniformMatrix4fv(gl_->uView, 1, GL_FALSE, viewF.data());  // Eigen is column-major, as GL
     glUniformMatrix4fv(gl_->uProjection, 1, GL_FALSE, projectionF.data());
     glUniform1f(gl_->uPointScale, static_cast<float>(view.projection(1, 1) * viewport[3]));
+    glUniform1i(gl_->uIdentify, identify ? 1 : 0);
     glActiveTexture(GL_TEXTURE0);
     glBindTexture(GL_TEXTURE_2D, gl_->texture);
     const std::vector<unsigned char> table = colours.rgba8();
@@ -446,6 +463,12 @@ PixelLayer SceneRenderer::drawLayer(const Scene& scene, const SpriteSet& sprites
   if (const GLenum error = glGetError(); error != GL_NO_ERROR)
     throw std::runtime_error("OpenGL error " + std::to_string(error) +
                              " while drawing the particles");
+}
+
+PixelLayer SceneRenderer::drawLayer(const Scene& scene, const SpriteSet& sprites,
+                                    const SpriteExtent& extent, Overlay overlay) {
+  drawSprites(scene, sprites, extent, overlay, false);
+  const int W = scene.width, H = scene.height;
   GLint depthWidth = 0, depthHeight = 0, bytesPerValue = 0;
   void* depth = nullptr;
   if (!OSMesaGetDepthBuffer(gl_->context, &depthWidth, &depthHeight, &bytesPerValue, &depth) ||
@@ -460,6 +483,27 @@ PixelLayer SceneRenderer::drawLayer(const Scene& scene, const SpriteSet& sprites
     layer[p] = packPixel(z, rgba + 4 * p);
   }
   return layer;
+}
+
+std::vector<size_t> SceneRenderer::visibleSprites(const Scene& scene, const SpriteSet& sprites,
+                                                  const SpriteExtent& extent, Overlay overlay) {
+  drawSprites(scene, sprites, extent, overlay, true);
+  std::vector<char> seen(sprites.count(), 0);
+  const unsigned char* rgba = gl_->buffer.data();
+  for (size_t p = 0; p < gl_->buffer.size() / 4; ++p) {
+    const unsigned char* b = rgba + 4 * p;
+    const uint32_t k =
+        uint32_t{b[0]} | uint32_t{b[1]} << 8 | uint32_t{b[2]} << 16 | uint32_t{b[3]} << 24;
+    if (k == 0) continue;  // the background
+    if (k > sprites.count())
+      throw std::runtime_error("a pixel names sprite " + std::to_string(k - 1) + " of " +
+                               std::to_string(sprites.count()));
+    seen[k - 1] = 1;
+  }
+  std::vector<size_t> visible;
+  for (size_t i = 0; i < seen.size(); ++i)
+    if (seen[i]) visible.push_back(i);
+  return visible;
 }
 
 RenderedScene SceneRenderer::finish(const Scene& scene, const PixelLayer& layer,

@@ -70,6 +70,12 @@ class SceneRenderer {
   // of the picture).
   PixelLayer drawLayer(const Scene& scene, const SpriteSet& sprites, const SpriteExtent& extent,
                        Overlay overlay = Overlay::TitleAndColourBar);
+  // The sprites that colour at least one pixel of the picture drawLayer makes of them (by index,
+  // ascending). Drawing only those gives the same picture, pixel for pixel: each pixel shows the
+  // first-drawn nearest sphere, and none of the others is that anywhere.
+  std::vector<size_t> visibleSprites(const Scene& scene, const SpriteSet& sprites,
+                                     const SpriteExtent& extent,
+                                     Overlay overlay = Overlay::TitleAndColourBar);
   // The picture of a layer (of all the sprites): its colours, and the title and colour bar.
   static RenderedScene finish(const Scene& scene, const PixelLayer& layer,
                               const SpriteExtent& extent, double time,
@@ -81,6 +87,9 @@ class SceneRenderer {
  private:
   struct GLState;
   std::unique_ptr<GLState> gl_;
+  // Draws the sprites into the context's buffers: their colours, or (`identify`) their indices.
+  void drawSprites(const Scene& scene, const SpriteSet& sprites, const SpriteExtent& extent,
+                   Overlay overlay, bool identify);
 };
 
 // Colour-bar ticks: round numbers within [lo, hi], about `target` of them.

@@ -71,6 +71,7 @@ SpriteSet makeSprites(const Scene& scene, const ParticleData& data) {
     s.position.insert(s.position.end(), x, x + 3);
     s.value.push_back(scene.scale * field.evaluate(&values->real[i * field.components]));
     s.radius.push_back(volume ? spriteRadius(volume->real[i]) : fallbackRadius);
+    s.particle.push_back(i);
   }
   return s;
 }

@@ -13,6 +13,7 @@ struct SpriteSet {
   std::vector<double> position;  // x0 y0 z0 x1 ...
   std::vector<double> value;     // the scene's field, times the scene's scale
   std::vector<double> radius;    // spriteRadius of the particle's volume
+  std::vector<size_t> particle;  // the particle's index in the data the sprites were made of
   size_t count() const { return value.size(); }
 };
 

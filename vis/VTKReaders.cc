@@ -7,6 +7,7 @@
 #include <vtkPoints.h>
 #include <vtkSmartPointer.h>
 #include <vtkUnstructuredGrid.h>
+#include <vtkXMLPUnstructuredGridReader.h>
 #include <vtkXMLUnstructuredGridReader.h>
 
 #include <filesystem>
@@ -16,14 +17,19 @@ namespace anode {
 
 ParticleData readParticlesVTU(const std::string& path, const std::vector<std::string>& arrays) {
   if (!std::filesystem::is_regular_file(path)) throw std::runtime_error("cannot open " + path);
-  auto reader = vtkSmartPointer<vtkXMLUnstructuredGridReader>::New();
+  // A distributed run's output (.pvtu): its pieces one after the other, in the file's order.
+  vtkSmartPointer<vtkXMLReader> reader;
+  if (std::filesystem::path(path).extension() == ".pvtu")
+    reader = vtkSmartPointer<vtkXMLPUnstructuredGridReader>::New();
+  else
+    reader = vtkSmartPointer<vtkXMLUnstructuredGridReader>::New();
   reader->SetFileName(path.c_str());
   reader->UpdateInformation();
   vtkDataArraySelection* selection = reader->GetPointDataArraySelection();
   selection->DisableAllArrays();
   for (const std::string& name : arrays) selection->EnableArray(name.c_str());
   reader->Update();
-  vtkUnstructuredGrid* grid = reader->GetOutput();
+  vtkUnstructuredGrid* grid = vtkUnstructuredGrid::SafeDownCast(reader->GetOutputDataObject(0));
   if (!grid || !grid->GetPoints())
     throw std::runtime_error(path + " holds no particles VTK can read");
 

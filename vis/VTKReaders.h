@@ -9,8 +9,8 @@
 
 namespace anode {
 
-// The points of a particle .vtu and those of the named point arrays it holds; other arrays are
-// not read. Throws std::runtime_error if the file cannot be read.
+// The points of a particle .vtu (or .pvtu: its pieces in order) and those of the named point
+// arrays it holds; other arrays are not read. Throws std::runtime_error if the file cannot be read.
 ParticleData readParticlesVTU(const std::string& path, const std::vector<std::string>& arrays);
 
 // The (time, file) entries of a .pvd collection, files as paths usable from the working directory.

@@ -8,6 +8,7 @@ A panel's time is either a simulation time (us) or a state of its run found in i
 import os
 import subprocess
 
+import paper_carry
 import paper_numbers
 
 # Cut-away views (the half y < 0 removed) with a fixed camera per figure, so swelling shows.
@@ -271,14 +272,26 @@ def panels_reached(figure, runs, finished):
 
 
 def make_all(args, runs, finished):
-    """Draws every figure whose runs have finished, or the rows its runs still going have reached,
-    and writes numbers.md; returns the files."""
+    """Draws every figure whose runs have finished (with --pack-figures, carrying what its panels
+    show), else from the carry (--carry) when it holds the figure, else the rows its runs still
+    going have reached; writes numbers.md; returns the files."""
     out = os.path.join(args.out, "figures")
     os.makedirs(out, exist_ok=True)
     made = []
     for figure in FIGURES:
         name = figure["name"]
         panels, going = panels_reached(figure, runs, finished)
+        png = os.path.join(out, name + ".png")
+        carried = (
+            paper_carry.restore_figure(args.carry, name, os.path.join(out, "carried"))
+            if going and args.carry
+            else None
+        )
+        if carried:
+            subprocess.run([args.render, "-o", png, carried], check=True, stdout=subprocess.DEVNULL)
+            print("%-22s %s (from %s)" % (name, png, paper_carry.figure_folder(args.carry, name)))
+            made.append(png)
+            continue
         if not panels:
             print("%-22s not drawn: waiting for %s" % (name, ", ".join(going)), flush=True)
             continue
@@ -296,10 +309,13 @@ def make_all(args, runs, finished):
         spec = os.path.join(out, name + ".xml")
         with open(spec, "w") as f:
             f.write(figure_xml(figure, runs))
-        png = os.path.join(out, name + ".png")
         subprocess.run([args.render, "-o", png, spec], check=True, stdout=subprocess.DEVNULL)
         print("%-22s %s" % (name, png), flush=True)
         made.append(png)
+        if args.pack_figures and not going:
+            print(
+                "packed " + paper_carry.pack_figure(args.render, spec, name, args.carry), flush=True
+            )
     numbers = os.path.join(args.out, "numbers.md")
     paper_numbers.write_numbers(
         numbers,

@@ -3,7 +3,7 @@
 
   python3 StandAlone/Studies/reproduce_paper.py [--out DIR] [--threads N] [--jobs N] [--only NAME ...]
                                                 [--figures-only] [--quick STEPS] [--report DIR]
-                                                [--carry DIR [--pack]]
+                                                [--carry DIR [--pack | --pack-figures]]
 
 1. Runs every scenario of inputs/Paper/ that a figure needs into DIR/runs/NAME (default DIR:
    out/paper), cheapest first, --jobs of them at a time. It is resumable: a finished run (DIR/runs/NAME/complete.json) is
@@ -20,6 +20,9 @@
 
 --carry DIR restores, before running, each run this machine has nothing of from DIR/NAME, and
 --carry DIR --pack writes the runs there for a session on another machine (paper_carry.py).
+--carry DIR --pack-figures writes, for each figure drawn from finished runs, the particles its
+panels show into DIR/figures/NAME; a figure whose runs this machine lacks is then drawn from there
+(the same PNG, byte for byte).
 
 --quick STEPS runs each scenario afresh for STEPS steps only (into DIR, which must not hold full
 runs) and makes every figure from what that gives: the pipeline's test (tests/CMakeLists.txt).
@@ -316,7 +319,15 @@ def main():
         action="store_true",
         help="with --carry: write the runs (--only, else all) into DIR for a later session, run nothing",
     )
+    parser.add_argument(
+        "--pack-figures",
+        action="store_true",
+        help="with --carry: write what each figure drawn from finished runs shows into "
+        "DIR/figures/NAME, from which --carry DIR draws it again without the runs",
+    )
     args = parser.parse_args()
+    if args.pack_figures and not args.carry:
+        parser.error("--pack-figures needs --carry DIR")
     for option, value in (
         ("--threads", args.threads),
         ("--jobs", args.jobs),

@@ -1,0 +1,78 @@
+"""Figures carried without their runs (paper_carry.pack_figure, restore_figure): after
+paper_pipeline_quick has drawn every figure from its 3-step runs and packed what each panel shows
+(--carry DIR --pack-figures), a fresh output folder draws every figure from DIR alone
+(--figures-only --carry DIR) into the same PNG, byte for byte, and the carried panels hold fewer
+particles than the runs' outputs.
+
+  test_figure_carry.py QUICK_OUT CARRY RENDER
+"""
+import os
+import subprocess
+import sys
+import tempfile
+import unittest
+import xml.etree.ElementTree as ET
+
+STUDIES = os.path.join(
+    os.path.dirname(os.path.abspath(__file__)), "..", "..", "StandAlone", "Studies"
+)
+sys.path.insert(0, STUDIES)
+import paper_figures  # noqa: E402
+
+QUICK_OUT, CARRY, RENDER = sys.argv[1:4]
+
+
+def points_of(vtu_or_xz):
+    """NumberOfPoints of a .vtu (or its .xz) as its head says."""
+    import lzma
+
+    opener = lzma.open if vtu_or_xz.endswith(".xz") else open
+    with opener(vtu_or_xz, "rb") as f:
+        head = f.read(4096).decode("latin-1")
+    return int(head.split('NumberOfPoints="')[1].split('"')[0])
+
+
+class FiguresFromTheCarry(unittest.TestCase):
+    def test_every_figure_is_drawn_again_from_the_carry_alone(self):
+        names = [f["name"] for f in paper_figures.FIGURES]
+        with tempfile.TemporaryDirectory() as out:
+            subprocess.run(
+                [
+                    sys.executable,
+                    os.path.join(STUDIES, "reproduce_paper.py"),
+                    "--figures-only",
+                    "--carry",
+                    CARRY,
+                    "--out",
+                    out,
+                    "--render",
+                    RENDER,
+                ],
+                check=True,
+                stdout=subprocess.DEVNULL,
+            )
+            for name in names:
+                with self.subTest(figure=name):
+                    with open(os.path.join(QUICK_OUT, "figures", name + ".png"), "rb") as f:
+                        original = f.read()
+                    with open(os.path.join(out, "figures", name + ".png"), "rb") as f:
+                        redrawn = f.read()
+                    self.assertEqual(original, redrawn)
+
+    def test_the_carried_panels_hold_only_what_they_show(self):
+        for figure in paper_figures.FIGURES:
+            folder = os.path.join(CARRY, "figures", figure["name"])
+            spec = ET.parse(os.path.join(folder, "figure.xml")).getroot()
+            panels = spec.findall("panel")
+            self.assertEqual(len(panels), len(figure["panels"]))
+            for panel, (run, _, _) in zip(panels, figure["panels"]):
+                shown = points_of(os.path.join(folder, panel.find("data").text[:-4] + ".vtu.xz"))
+                whole = points_of(
+                    os.path.join(QUICK_OUT, "runs", run, "particles", "step_000000.vtu")
+                )
+                self.assertGreater(shown, 0)
+                self.assertLess(shown, whole / 2, figure["name"])  # a cut-away shows under half
+
+
+if __name__ == "__main__":
+    unittest.main(argv=sys.argv[:1])
