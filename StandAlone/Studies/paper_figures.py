@@ -199,7 +199,36 @@ FIGURES = [
         columns=5,
         time_scale=1e-6,
         time_unit="s",
-        title="Fig. 10 (4.7): the large pillar's lithiation (to 40 s) and delithiation (to 80 s)",
+        colour=dict(materials="[0]"),
+        title="Fig. 10 (4.7): the large pillar's full cycle at 2.33e3 kg/m^3, in to 130 s (a-e), "
+        "out to 260 s (f-j); silicon only",
+        panels=[
+            ("QuasiStatic_FullCycle_LargePillar", t * 1e6, "")
+            for t in (0, 30, 60, 90, 130, 150, 175, 200, 230, 260)
+        ],
+    ),
+    dict(
+        name="fig10_plastic_strain",
+        measure=None,
+        view=LARGE_VIEW,
+        columns=3,
+        time_scale=1e-6,
+        time_unit="s",
+        colour=PLASTIC_STRAIN,
+        title="Fig. 10 as plastic strain: the pillar and its substrate before, lithiated and after",
+        panels=[
+            ("QuasiStatic_FullCycle_LargePillar", t * 1e6, label)
+            for t, label in ((0, "before"), (130, "lithiated"), (260, "after the cycle"))
+        ],
+    ),
+    dict(
+        name="fig10_partial",
+        measure="cycle",
+        view=LARGE_VIEW,
+        columns=5,
+        time_scale=1e-6,
+        time_unit="s",
+        title="Fig. 10 in part: in for 40 s, out to 80 s, explicit at 2.33e24 kg/m^3",
         panels=[("Cycle_LargePillar", t * 1e6, "") for t in (0, 8, 16, 24, 32, 40, 48, 60, 72, 80)],
     ),
 ]

@@ -313,9 +313,6 @@ def shape(run_dir, time):
 CYCLE_SLAB = (
     0.005  # um: two particle layers of the large pillar (dz = 2.5 nm), as the small pillar's rings
 )
-CYCLE_PROFILE_TIMES = [
-    t * 1e6 for t in (8, 16, 24, 32, 40, 48, 60, 72, 80)
-]  # us: Fig. 10's panels after t = 0
 PAPER_CYCLE = "27,472 steps, 48.57 h on 9 cores (Intel Xeon E5-2667, 2.9 GHz)"
 
 
@@ -514,17 +511,19 @@ def front_section(runs, panels, time_of, scale, unit):
     )
 
 
-def cycle_section(runs, scale, unit):
-    """Lithium in and out, and the silicon's c, J (its volume over its volume at t = 0, matched by
-    particle ID) and plastic strain at the outputs nearest 40 s and 80 s."""
-    run_dir = os.path.join(runs, "Cycle_LargePillar")
-    history = list(history_rows(run_dir))  # the cycle's 14,815 steps
+def cycle_section(runs, panels, scale, unit):
+    """Of the cycle the panels show (one run): lithium in and out, and the silicon's c, J (its
+    volume over its volume at t = 0, matched by particle ID) and plastic strain at the outputs
+    nearest the most lithium and the end; c by height at each panel's time after t = 0."""
+    run_dir = os.path.join(runs, panels[0][0])
+    history = list(history_rows(run_dir))
     capacity = silicon_capacity(run_dir)
     state = functools.lru_cache(maxsize=None)(lambda t: State(run_dir, t))  # each output read once
     start = state(0.0)
     initial_volume = start.volume[start.silicon]
+    peak, end = max(history, key=lambda h: h["total_lithium"]), history[-1]
     rows = []
-    for t in (40e6, 80e6):
+    for t in (peak["time"], end["time"]):
         s = state(t)
         r = min(history, key=lambda h: abs(h["time"] - s.time))
         c = s.c[s.silicon]
@@ -543,7 +542,7 @@ def cycle_section(runs, scale, unit):
             ]
         )
     profiles = []
-    for t in CYCLE_PROFILE_TIMES:
+    for t in sorted({when for _, when, _ in panels if when > 0}):
         s = state(t)
         profile = s.height_profile(CYCLE_SLAB)
         f = front(profile)
@@ -557,7 +556,6 @@ def cycle_section(runs, scale, unit):
                 "%.2f" % (max(profile) - min(profile)),
             ]
         )
-    peak, end = max(history, key=lambda h: h["total_lithium"]), history[-1]
     held, out = (
         peak["total_lithium"] / capacity,
         (peak["total_lithium"] - end["total_lithium"]) / capacity,
@@ -631,7 +629,7 @@ def write_numbers(path, runs, finished, figures, time_of):
         )
         + "\n\n"
         + shape_section(runs, f["panels"], time_of, scale, unit),
-        "cycle": lambda f, scale, unit: cycle_section(runs, scale, unit),
+        "cycle": lambda f, scale, unit: cycle_section(runs, f["panels"], scale, unit),
     }
     for figure in figures:
         if figure["measure"] is None:  # drawn to show what another figure's numbers measure
