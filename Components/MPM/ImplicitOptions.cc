@@ -42,6 +42,20 @@ ImplicitOptions ImplicitOptions::fromInput(const PSNode& mpm) {
   if (!(o.maxConcentrationChange > 0 && o.maxConcentrationChange <= 1))
     mpm.requireChild("max_concentration_change")
         .fail("<max_concentration_change> must be in (0, 1]");
+  if (const PSNode coupling = mpm.child("concentration_coupling")) {
+    const std::string name = coupling.value<std::string>();
+    if (name == "trapezoidal")
+      o.concentrationCoupling = ConcentrationCoupling::Trapezoidal;
+    else if (name != "staggered")
+      coupling.fail("<concentration_coupling> must be staggered or trapezoidal, found \"" + name +
+                    "\"");
+    else
+      o.concentrationCoupling = ConcentrationCoupling::Staggered;
+    if (o.dynamic && o.concentrationCoupling == ConcentrationCoupling::Trapezoidal)
+      coupling.unsupported(
+          "<concentration_coupling>trapezoidal with <dynamic>true (it serves "
+          "quasi-static steps)");
+  }
   if (const PSNode solver = mpm.child("solver")) {
     const std::string name = solver.value<std::string>();
     if (name == "simple")

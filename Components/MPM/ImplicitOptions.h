@@ -25,6 +25,13 @@ struct ImplicitOptions {
   // <max_concentration_change> (ours): with diffusion, the next dt is at most the one whose
   // largest change of a particle's c would be this (the last step's change scaled linearly).
   double maxConcentrationChange = 0.05;
+  // <concentration_coupling> (ours): how a quasi-static step's diffusion sees the mechanics.
+  // Staggered: the diffusion sub-steps run on the particles of the step's start, then Newton.
+  // Trapezoidal: a Newton solve to kPredictorConvergence predicts the step's end; the sub-steps
+  // run again on those particles from the start's c; the step takes the mean of the two changes of
+  // c and solves Newton for it from the prediction (docs/quasi-static.md).
+  enum class ConcentrationCoupling { Staggered, Trapezoidal };
+  ConcentrationCoupling concentrationCoupling = ConcentrationCoupling::Staggered;
 
   // Reads the ImpMPM tags of <MPM> (only with <time_integrator>implicit).
   static ImplicitOptions fromInput(const PSNode& mpm);

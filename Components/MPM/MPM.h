@@ -57,10 +57,13 @@ class MPM {
   // Newton's iterations: of the last step, and the totals of the steps (and retaken attempts)
   // of this process.
   struct NewtonCounts {
-    int lastIterations = 0, lastKrylov = 0;
+    // The last step's: its equilibrium's Newton iterations (those the dt rule counts), the
+    // prediction's (<concentration_coupling>trapezoidal) and the Krylov iterations of both.
+    int lastIterations = 0, lastPredictorIterations = 0, lastKrylov = 0;
     long iterations = 0, krylov = 0, retakes = 0, diffusionSubsteps = 0;
     std::vector<std::pair<double, double>> lastRatios;  // NewtonReport::ratios of the last step
-    // "Newton 4, Krylov 31": the last step, for the progress line.
+    // "Newton 4, Krylov 31" ("Newton 4 + 2 predicting, ..."): the last step, for the progress
+    // line.
     std::string lastStep() const;
     // The totals over `steps` steps, for the end summary.
     std::string summary(long steps) const;
@@ -214,6 +217,16 @@ class MPM {
   // Diffusion over the quasi-static step in explicit sub-steps on its start-of-step configuration;
   // concentrationChange_ receives each particle's change.
   void diffuseOverStep(double t, double dt, double substepMultiplier);
+  // <concentration_coupling>trapezoidal: after diffuseOverStep on the step's start (`start`, the
+  // diffusion's `atStart`), a Newton solve to kPredictorConvergence predicts the step's end; the
+  // sub-steps run again on those particles from the start's c, and the particles are set back to
+  // the start with c changed by the mean of the two passes (concentrationChange_ too). Returns the
+  // prediction's Newton (a failed one: the step is retaken) and its increments by field in
+  // `predicted`, the final solve's first iterate.
+  NewtonReport averageConcentrationChangeOverStep(double t, double dt, double substepMultiplier,
+                                                  const std::vector<ParticleSet>& start,
+                                                  const ReactiveFlow::StepState& atStart,
+                                                  std::vector<std::vector<Vec3>>& predicted);
   // The largest |dc| of a particle over the diffusion of the step.
   double largestConcentrationChange() const;
   // The particles after the converged step (positions, F, stress, the models' state).

@@ -337,13 +337,15 @@ size_t Simulation::recordHistoryRow(double stepDt, int dtRule) {
   const double lithiumRate =
       stepDt > 0 ? (s.totalLithium - archiver_.lastHistoryRow().totalLithium) / stepDt : 0.0;
   stateOfCharge_ = s.lithiumCapacity > 0 ? s.chargeableLithium / s.lithiumCapacity : 0.0;
-  archiver_.recordHistory(
-      {step_, s.particles, t_, stepDt, s.kineticEnergy, s.minJ, s.maxJ,
-       earlierWallSeconds_ + wallTime(), s.diffusion, s.totalLithium, s.minConcentration,
-       s.maxConcentration, lithiumRate, stateOfCharge_},
-      {s.elasticEnergy, dtRule, mpm_.flags().implicit ? mpm_.newtonCounts().lastIterations : -1,
-       mpm_.flags().implicit ? mpm_.newtonCounts().lastKrylov : -1},
-      s.perMaterial);
+  archiver_.recordHistory({step_, s.particles, t_, stepDt, s.kineticEnergy, s.minJ, s.maxJ,
+                           earlierWallSeconds_ + wallTime(), s.diffusion, s.totalLithium,
+                           s.minConcentration, s.maxConcentration, lithiumRate, stateOfCharge_},
+                          {s.elasticEnergy, dtRule,
+                           mpm_.flags().implicit ? mpm_.newtonCounts().lastIterations +
+                                                       mpm_.newtonCounts().lastPredictorIterations
+                                                 : -1,
+                           mpm_.flags().implicit ? mpm_.newtonCounts().lastKrylov : -1},
+                          s.perMaterial);
   return s.particles;
 }
 

@@ -204,7 +204,7 @@ FIGURES = [
         "out to 260 s (f-j); silicon only",
         panels=[
             ("QuasiStatic_FullCycle_LargePillar", t * 1e6, "")
-            for t in (0, 30, 60, 90, 130, 150, 175, 200, 230, 260)
+            for t in (0, 30, 60, 90, 130, 150, 180, 200, 230, 260)
         ],
     ),
     dict(

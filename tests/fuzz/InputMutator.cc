@@ -223,9 +223,10 @@ const std::vector<std::string> kAttributeValues = {"",
                                                    "implicit"};
 // Values of the ImpMPM tags: negative, zero, huge, not a number, text, empty, and valid ones.
 const std::vector<std::string> kImplicitValues = {
-    "-1",          "0",      "-0",  "1e300", "1e400", "nan",   "inf",      "2147483648",
-    "-2147483649", "1e-300", "abc", "",      "true",  "false", "implicit", "explicit",
-    "petsc",       "simple", "0.5", "1",     "12",    "25",    "[1,2,3]"};
+    "-1",         "0",           "-0",        "1e300",      "1e400", "nan",  "inf",
+    "2147483648", "-2147483649", "1e-300",    "abc",        "",      "true", "false",
+    "implicit",   "explicit",    "petsc",     "simple",     "0.5",   "1",    "12",
+    "25",         "[1,2,3]",     "staggered", "trapezoidal"};
 const std::vector<std::string> kComponents = {"impm", "mpm", "amrmpm", "implicit", "", "IMPM"};
 const std::vector<std::string> kHugeVectors = {"[100000,100000,100000]",
                                                "[2147483647,1,1]",
@@ -343,7 +344,8 @@ const std::vector<std::string>& implicitTags() {
                                                 "delT_increase_factor",
                                                 "solver",
                                                 "hourglass_stabilization",
-                                                "max_concentration_change"};
+                                                "max_concentration_change",
+                                                "concentration_coupling"};
   return tags;
 }
 
