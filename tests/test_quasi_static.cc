@@ -375,9 +375,8 @@ TEST(QuasiStatic, RetakenStepRestoresTheDiffusivityCurve) {
 // quasi-static steps. Staggered, each step's diffusion sees the bar of the step's start: the flux
 // enters the unswollen surface particles, and steps of 0.25 take up 4.4% more lithium by t = 1
 // than steps of 0.01 (measured). Trapezoidal, the diffusion runs again on the predicted end and
-// the step takes the mean: 1.4% more with the same steps (measured), and it tends to the small
-// steps' answer.
-std::string lithiatedBar(const std::string& coupling, double dt) {
+// the step takes the mean: 1.0% more with the same steps, 0.15% in steps of 0.05 (measured).
+std::string lithiatedBar(const std::string& coupling, double dt, const std::string& extra = "") {
   std::ostringstream s;
   s.precision(17);
   s << "<Uintah_specification><SimulationComponent type=\"impm\"/><Time><maxTime>1</maxTime>"
@@ -386,8 +385,8 @@ std::string lithiatedBar(const std::string& coupling, double dt) {
     << "</delt_max><timestep_multiplier>0.4</timestep_multiplier></Time><DataArchiver>"
        "<filebase>bar.uda</filebase><outputTimestepInterval>1000</outputTimestepInterval>"
        "</DataArchiver><MPM><time_integrator>implicit</time_integrator><dynamic>false</dynamic>"
-       "<max_concentration_change>1</max_concentration_change><concentration_coupling>"
-    << coupling
+       "<max_concentration_change>1</max_concentration_change>"
+    << extra << "<concentration_coupling>" << coupling
     << "</concentration_coupling><interpolator>gimp</interpolator><do_scalar_diffusion>true"
        "</do_scalar_diffusion><use_load_curves>true</use_load_curves></MPM><MaterialProperties>"
        "<MPM><material><density>1</density><constitutive_model type=\"rf_elastic_plastic\">"
@@ -434,14 +433,50 @@ TEST(QuasiStatic, TrapezoidalCouplingTakesTheStepsEnd) {
   const BarRun staggered = runBar("staggered", 0.25), trapezoidal = runBar("trapezoidal", 0.25);
   const double staggeredError = staggered.lithium / reference - 1;
   const double trapezoidalError = trapezoidal.lithium / reference - 1;
-  EXPECT_GT(staggeredError, 0.03);              // measured 0.044
-  EXPECT_LT(std::abs(trapezoidalError), 0.02);  // measured 0.014
+  EXPECT_GT(staggeredError, 0.03);               // measured 0.044
+  EXPECT_LT(std::abs(trapezoidalError), 0.015);  // measured 0.010
   EXPECT_LT(std::abs(trapezoidalError), 0.4 * staggeredError);
   EXPECT_EQ(staggered.counts.lastPredictorIterations, 0);
   EXPECT_GT(trapezoidal.counts.lastPredictorIterations, 0);
   // Smaller steps: closer still.
   const double finer = runBar("trapezoidal", 0.05).lithium / reference - 1;
-  EXPECT_LT(std::abs(finer), 0.4 * std::abs(trapezoidalError));  // measured 0.0027
+  EXPECT_LT(std::abs(finer), 0.4 * std::abs(trapezoidalError));  // measured 0.0015
+}
+
+// A trapezoidal step whose Newton solves may take at most 3 iterations: the bar's first step, dt
+// 1.5, does not converge in them and is retaken at 0.9 (measured). The retake starts again from
+// the step's start (particles, their lagged gradient of c, the diffusion's state, the weights), so
+// the run equals one whose first step is the retaken dt.
+TEST(QuasiStatic, TrapezoidalRetakeStartsAgainFromTheStepsStart) {
+  const auto input = [](const std::string& firstDt) {
+    std::string text = lithiatedBar(
+        "trapezoidal", 1.5, "<iters_before_timestep_restart>3</iters_before_timestep_restart>");
+    text.replace(text.find("<maxTime>1</maxTime>"), 20, "<maxTime>3</maxTime>" + firstDt);
+    return text;
+  };
+  RunOptions o;
+  o.progress = false;
+  Simulation retaken(input(""), "bar.ups", o);
+  retaken.advance();
+  ASSERT_GE(retaken.mpm().newtonCounts().retakes, 1);
+  const double dt = retaken.time();
+  ASSERT_LT(dt, 1.5);
+  char first[64];
+  std::snprintf(first, sizeof first, "<delt_init>%.17g</delt_init>", dt);
+  Simulation direct(input(first), "bar.ups", o);
+  direct.advance();
+  ASSERT_EQ(direct.mpm().newtonCounts().retakes, 0);
+  ASSERT_EQ(direct.time(), dt);
+  retaken.advance();
+  direct.advance();
+  ASSERT_EQ(retaken.time(), direct.time());
+  const ParticleSet& a = retaken.mpm().materials()[0].particles;
+  const ParticleSet& b = direct.mpm().materials()[0].particles;
+  for (size_t i = 0; i < a.count(); ++i) {
+    EXPECT_EQ(diffusionParticles(a).concentration[i], diffusionParticles(b).concentration[i])
+        << "particle " << i;
+    EXPECT_EQ(a.x[i], b.x[i]) << "particle " << i;
+  }
 }
 
 TEST(QuasiStatic, ImpmNeedsTheImplicitIntegrator) {

@@ -655,7 +655,7 @@ add_variant(
 # Cycle_LargePillar's 40 s reach 42% of the capacity, Substrate_deformable's 100 s 77.6%, about
 # 0.56% a second from 52 s on. In for 130 s (about 90% at that rate), then out for as long; steps
 # of at most 2 s with the trapezoidal coupling (on Figure 4's pillar at 4 s, mean abs(c - the
-# explicit 2.33e24 run) 0.0020 in steps of 2 s, where the staggered steps of 1 s give 0.0063:
+# explicit 2.33e24 run) 0.0018 in steps of 2 s, where the staggered steps of 1 s give 0.0063:
 # docs/quasi-static.md).
 add_variant(
     "QuasiStatic_Cycle_LargePillar",
