@@ -77,7 +77,8 @@ struct VisibleOnly {
       throw std::runtime_error("cannot read " + figureFile);
     tinyxml2::XMLElement* root = doc.RootElement();
     tinyxml2::XMLElement* figure =
-        root && std::string(root->Name()) == "figure" ? root : root->FirstChildElement("figure");
+        !root || std::string(root->Name()) == "figure" ? root : root->FirstChildElement("figure");
+    if (!figure) throw std::runtime_error(figureFile + " holds no <figure>");
     setChildText(figure->FirstChildElement("scene"), "range",
                  "[" + number(range.first) + ", " + number(range.second) + "]");
     size_t k = 0;
@@ -104,8 +105,10 @@ struct VisibleOnly {
 // The particles of `data` with these indices (ascending), every array with them.
 ParticleData subset(const ParticleData& data, const std::vector<size_t>& keep) {
   ParticleData out;
-  for (size_t i : keep)
-    out.points.insert(out.points.end(), &data.points[3 * i], &data.points[3 * i + 3]);
+  for (size_t i : keep) {
+    const auto first = data.points.begin() + 3 * static_cast<std::ptrdiff_t>(i);
+    out.points.insert(out.points.end(), first, first + 3);
+  }
   for (const NamedArray& a : data.arrays) {
     NamedArray b{a.name, a.components, {}, {}};
     for (size_t i : keep) {

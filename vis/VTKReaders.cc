@@ -30,8 +30,9 @@ ParticleData readParticlesVTU(const std::string& path, const std::vector<std::st
   for (const std::string& name : arrays) selection->EnableArray(name.c_str());
   reader->Update();
   vtkUnstructuredGrid* grid = vtkUnstructuredGrid::SafeDownCast(reader->GetOutputDataObject(0));
-  if (!grid || !grid->GetPoints())
+  if (!grid || (!grid->GetPoints() && grid->GetNumberOfPoints() > 0))
     throw std::runtime_error(path + " holds no particles VTK can read");
+  if (!grid->GetPoints()) return {};  // a file of no particles (a panel that shows none)
 
   ParticleData data;
   const vtkIdType n = grid->GetNumberOfPoints();

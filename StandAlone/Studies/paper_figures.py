@@ -5,6 +5,7 @@ A panel's time is either a simulation time (us) or a state of its run found in i
 ("lithium", f) is the first time the silicon holds the fraction f of its capacity (rho V0, c = 1),
 ("end",) its last output. Each figure is written as DIR/figures/figN.xml and drawn to figN.png.
 """
+import json
 import os
 import subprocess
 
@@ -277,6 +278,12 @@ def figure_xml(figure, runs):
     return "\n".join(lines) + "\n"
 
 
+def definition(figure):
+    """What a figure shows as FIGURES says it (runs, panel times or states, view, colours, title),
+    in one line of text (paper_carry keeps it with a carried figure)."""
+    return json.dumps(figure, sort_keys=True) + "\n"
+
+
 def panels_reached(figure, runs, finished):
     """The panels of `figure` that can be drawn now, in whole rows, and the runs still going. Once
     its runs have finished: all of them. Before, for rows at fixed times (Fig. 4 waits days for
@@ -312,8 +319,10 @@ def make_all(args, runs, finished):
         panels, going = panels_reached(figure, runs, finished)
         png = os.path.join(out, name + ".png")
         carried = (
-            paper_carry.restore_figure(args.carry, name, os.path.join(out, "carried"))
-            if going and args.carry
+            paper_carry.restore_figure(
+                args.carry, name, os.path.join(out, "carried"), definition(figure)
+            )
+            if going and args.carry and not args.quick
             else None
         )
         if carried:
@@ -342,9 +351,10 @@ def make_all(args, runs, finished):
         print("%-22s %s" % (name, png), flush=True)
         made.append(png)
         if args.pack_figures and not going:
-            print(
-                "packed " + paper_carry.pack_figure(args.render, spec, name, args.carry), flush=True
+            packed = paper_carry.pack_figure(
+                args.render, spec, name, args.carry, definition(figure)
             )
+            print("packed " + packed, flush=True)
     numbers = os.path.join(args.out, "numbers.md")
     paper_numbers.write_numbers(
         numbers,

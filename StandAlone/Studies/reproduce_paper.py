@@ -341,6 +341,13 @@ def main():
     args = parser.parse_args()
     if args.pack_figures and not args.carry:
         parser.error("--pack-figures needs --carry DIR")
+    repository_carry = os.path.join(ROOT, "docs", "paper", "carry")
+    if (
+        args.pack_figures
+        and args.quick
+        and os.path.realpath(args.carry) == os.path.realpath(repository_carry)
+    ):
+        parser.error("--quick --pack-figures would carry 3-step figures in docs/paper/carry")
     for option, value in (
         ("--threads", args.threads),
         ("--jobs", args.jobs),

@@ -1,12 +1,13 @@
 """Figures carried without their runs (paper_carry.pack_figure, restore_figure): after
 paper_pipeline_quick has drawn every figure from its 3-step runs and packed what each panel shows
 (--carry DIR --pack-figures), a fresh output folder draws every figure from DIR alone
-(--figures-only --carry DIR) into the same PNG, byte for byte, and the carried panels hold fewer
-particles than the runs' outputs.
+(--figures-only --carry DIR) into the same PNG, byte for byte, the carried panels hold fewer
+particles than the runs' outputs, and a carried figure whose definition has changed is not drawn.
 
   test_figure_carry.py QUICK_OUT CARRY RENDER
 """
 import os
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -58,6 +59,33 @@ class FiguresFromTheCarry(unittest.TestCase):
                     with open(os.path.join(out, "figures", name + ".png"), "rb") as f:
                         redrawn = f.read()
                     self.assertEqual(original, redrawn)
+
+    def test_a_figure_carried_under_another_definition_is_not_drawn(self):
+        with tempfile.TemporaryDirectory() as d:
+            carry = os.path.join(d, "carry")
+            shutil.copytree(CARRY, carry)
+            with open(os.path.join(carry, "figures", "fig7", "definition.txt"), "a") as f:
+                f.write("a panel moved\n")
+            out = os.path.join(d, "out")
+            printed = subprocess.run(
+                [
+                    sys.executable,
+                    os.path.join(STUDIES, "reproduce_paper.py"),
+                    "--figures-only",
+                    "--carry",
+                    carry,
+                    "--out",
+                    out,
+                    "--render",
+                    RENDER,
+                ],
+                check=True,
+                capture_output=True,
+                text=True,
+            ).stdout
+            self.assertIn("fig7                   the carried figure shows what an older", printed)
+            self.assertFalse(os.path.exists(os.path.join(out, "figures", "fig7.png")))
+            self.assertTrue(os.path.exists(os.path.join(out, "figures", "fig6.png")))
 
     def test_the_carried_panels_hold_only_what_they_show(self):
         for figure in paper_figures.FIGURES:
