@@ -9,7 +9,7 @@ import json
 import os
 import subprocess
 
-import paper_carry
+import figure_carry
 import paper_numbers
 
 # Cut-away views (the half y < 0 removed) with a fixed camera per figure, so swelling shows.
@@ -280,7 +280,7 @@ def figure_xml(figure, runs):
 
 def definition(figure):
     """What a figure shows as FIGURES says it (runs, panel times or states, view, colours, title),
-    in one line of text (paper_carry keeps it with a carried figure)."""
+    in one line of text (figure_carry keeps it with a carried figure)."""
     return json.dumps(figure, sort_keys=True) + "\n"
 
 
@@ -319,7 +319,7 @@ def make_all(args, runs, finished):
         panels, going = panels_reached(figure, runs, finished)
         png = os.path.join(out, name + ".png")
         carried = (
-            paper_carry.restore_figure(
+            figure_carry.restore_figure(
                 args.carry, name, os.path.join(out, "carried"), definition(figure)
             )
             if going and args.carry and not args.quick
@@ -327,7 +327,7 @@ def make_all(args, runs, finished):
         )
         if carried:
             subprocess.run([args.render, "-o", png, carried], check=True, stdout=subprocess.DEVNULL)
-            print("%-22s %s (from %s)" % (name, png, paper_carry.figure_folder(args.carry, name)))
+            print("%-22s %s (from %s)" % (name, png, figure_carry.figure_folder(args.carry, name)))
             made.append(png)
             continue
         if not panels:
@@ -351,7 +351,7 @@ def make_all(args, runs, finished):
         print("%-22s %s" % (name, png), flush=True)
         made.append(png)
         if args.pack_figures and not going:
-            packed = paper_carry.pack_figure(
+            packed = figure_carry.pack_figure(
                 args.render, spec, name, args.carry, definition(figure)
             )
             print("packed " + packed, flush=True)

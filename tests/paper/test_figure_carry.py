@@ -1,4 +1,4 @@
-"""Figures carried without their runs (paper_carry.pack_figure, restore_figure): after
+"""Figures carried without their runs (figure_carry.pack_figure, restore_figure): after
 paper_pipeline_quick has drawn every figure from its 3-step runs and packed what each panel shows
 (--carry DIR --pack-figures), a fresh output folder draws every figure from DIR alone
 (--figures-only --carry DIR) into the same PNG, byte for byte, the carried panels hold fewer
