@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "Core/ProblemSpec/ProblemSpec.h"
+#include "Core/ProblemSpec/UpsText.h"
 #include "Core/Util/Errors.h"
 #include "vis/Figure.h"
 #include "vis/SceneRenderer.h"
@@ -41,16 +42,6 @@ std::pair<double, std::string> nearestOutput(
   return *std::min_element(files.begin(), files.end(), [t](const auto& a, const auto& b) {
     return std::abs(a.first - t) < std::abs(b.first - t);
   });
-}
-
-std::string number(double v) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.17g", v);
-  return text;
-}
-
-std::string vectorText(const Vec3& v) {
-  return "[" + number(v[0]) + ", " + number(v[1]) + ", " + number(v[2]) + "]";
 }
 
 // One child element of `parent` named `tag` holding `text` (replacing any it had).
@@ -80,7 +71,7 @@ struct VisibleOnly {
         !root || std::string(root->Name()) == "figure" ? root : root->FirstChildElement("figure");
     if (!figure) throw std::runtime_error(figureFile + " holds no <figure>");
     setChildText(figure->FirstChildElement("scene"), "range",
-                 "[" + number(range.first) + ", " + number(range.second) + "]");
+                 "[" + upsNumber(range.first) + "," + upsNumber(range.second) + "]");
     size_t k = 0;
     for (tinyxml2::XMLElement* panel = figure->FirstChildElement("panel"); panel;
          panel = panel->NextSiblingElement("panel"), ++k) {
@@ -91,9 +82,11 @@ struct VisibleOnly {
       series.add(times[k], vtu);
       series.write((fs::path(folder) / pvd).string());
       setChildText(panel, "data", pvd);
-      setChildText(panel, "time", number(times[k]));
-      setChildText(panel, "box_min", vectorText(extents[k].lo));
-      setChildText(panel, "box_max", vectorText(extents[k].hi));
+      setChildText(panel, "time", upsNumber(times[k]));
+      setChildText(panel, "box_min",
+                   upsVector(extents[k].lo[0], extents[k].lo[1], extents[k].lo[2]));
+      setChildText(panel, "box_max",
+                   upsVector(extents[k].hi[0], extents[k].hi[1], extents[k].hi[2]));
     }
     const std::string out = (fs::path(folder) / "figure.xml").string();
     if (doc.SaveFile(out.c_str()) != tinyxml2::XML_SUCCESS)

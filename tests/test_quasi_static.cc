@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <memory>
 #include <sstream>
 #include <string>
@@ -337,28 +338,44 @@ std::string diffCurveSlab(const std::string& firstDt) {
          "</BoundaryConditions></Grid></Uintah_specification>";
 }
 
+// A run whose first step is retaken (`input("")`) and a run of the same input whose first step is
+// the dt that retake took (`input("<delt_init>...</delt_init>")`, no retake), both then taking
+// `more` steps to the same time; the retaken dt must be below `below`. A retake that starts again
+// from the step's start makes the two runs alike.
+struct RetakenAndDirect {
+  std::unique_ptr<Simulation> retaken, direct;
+};
+void runRetakenAndDirect(const std::function<std::string(const std::string&)>& input,
+                         const std::string& file, double below, int more, RetakenAndDirect& runs) {
+  RunOptions o;
+  o.progress = false;
+  runs.retaken = std::make_unique<Simulation>(input(""), file, o);
+  runs.retaken->advance();
+  ASSERT_GE(runs.retaken->mpm().newtonCounts().retakes, 1);
+  const double dt = runs.retaken->time();
+  ASSERT_LT(dt, below);
+  char first[64];
+  std::snprintf(first, sizeof first, "<delt_init>%.17g</delt_init>", dt);
+  runs.direct = std::make_unique<Simulation>(input(first), file, o);
+  runs.direct->advance();
+  ASSERT_EQ(runs.direct->mpm().newtonCounts().retakes, 0);
+  ASSERT_EQ(runs.direct->time(), dt);
+  for (int step = 0; step < more; ++step) {
+    runs.retaken->advance();
+    runs.direct->advance();
+  }
+  ASSERT_EQ(runs.retaken->time(), runs.direct->time());
+}
+
 // The failed attempt's diffusion passes t = 2.5, where the curve's interval advances; the retake
 // starts again from the interval of the step's start, so its D is computed, not frozen, and the
 // run equals one whose first step is the retaken dt (<delt_init>).
 TEST(QuasiStatic, RetakenStepRestoresTheDiffusivityCurve) {
-  RunOptions o;
-  o.progress = false;
-  Simulation retaken(diffCurveSlab(""), "dc.ups", o);
-  retaken.advance();
-  ASSERT_GE(retaken.mpm().newtonCounts().retakes, 1);  // twice: dt 3, 0.3, then 0.066
-  const double dt = retaken.time();
-  ASSERT_LT(dt, 2.5);
-  char first[64];
-  std::snprintf(first, sizeof first, "<delt_init>%.17g</delt_init>", dt);
-  Simulation direct(diffCurveSlab(first), "dc.ups", o);
-  direct.advance();
-  ASSERT_EQ(direct.mpm().newtonCounts().retakes, 0);
-  ASSERT_EQ(direct.time(), dt);
-  for (int step = 0; step < 2; ++step) {
-    retaken.advance();
-    direct.advance();
-  }
-  ASSERT_EQ(retaken.time(), direct.time());
+  RetakenAndDirect runs;
+  // twice: dt 3, 0.3, then 0.066
+  ASSERT_NO_FATAL_FAILURE(runRetakenAndDirect(diffCurveSlab, "dc.ups", 2.5, 2, runs));
+  Simulation& retaken = *runs.retaken;
+  Simulation& direct = *runs.direct;
   const ParticleSet& a = retaken.mpm().materials()[0].particles;
   const ParticleSet& b = direct.mpm().materials()[0].particles;
   const std::vector<double>& Da = diffusionParticles(a).diffusivity;
@@ -454,22 +471,10 @@ TEST(QuasiStatic, TrapezoidalRetakeStartsAgainFromTheStepsStart) {
     text.replace(text.find("<maxTime>1</maxTime>"), 20, "<maxTime>3</maxTime>" + firstDt);
     return text;
   };
-  RunOptions o;
-  o.progress = false;
-  Simulation retaken(input(""), "bar.ups", o);
-  retaken.advance();
-  ASSERT_GE(retaken.mpm().newtonCounts().retakes, 1);
-  const double dt = retaken.time();
-  ASSERT_LT(dt, 1.5);
-  char first[64];
-  std::snprintf(first, sizeof first, "<delt_init>%.17g</delt_init>", dt);
-  Simulation direct(input(first), "bar.ups", o);
-  direct.advance();
-  ASSERT_EQ(direct.mpm().newtonCounts().retakes, 0);
-  ASSERT_EQ(direct.time(), dt);
-  retaken.advance();
-  direct.advance();
-  ASSERT_EQ(retaken.time(), direct.time());
+  RetakenAndDirect runs;
+  ASSERT_NO_FATAL_FAILURE(runRetakenAndDirect(input, "bar.ups", 1.5, 1, runs));
+  Simulation& retaken = *runs.retaken;
+  Simulation& direct = *runs.direct;
   const ParticleSet& a = retaken.mpm().materials()[0].particles;
   const ParticleSet& b = direct.mpm().materials()[0].particles;
   for (size_t i = 0; i < a.count(); ++i) {

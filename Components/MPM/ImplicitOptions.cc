@@ -49,8 +49,6 @@ ImplicitOptions ImplicitOptions::fromInput(const PSNode& mpm) {
     else if (name != "staggered")
       coupling.fail("<concentration_coupling> must be staggered or trapezoidal, found \"" + name +
                     "\"");
-    else
-      o.concentrationCoupling = ConcentrationCoupling::Staggered;
     if (o.dynamic && o.concentrationCoupling == ConcentrationCoupling::Trapezoidal)
       coupling.unsupported(
           "<concentration_coupling>trapezoidal with <dynamic>true (it serves "

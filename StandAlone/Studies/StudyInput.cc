@@ -5,16 +5,6 @@
 
 namespace anode {
 
-std::string upsNumber(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
-
-std::string upsVector(double x, double y, double z) {
-  return "[" + upsNumber(x) + "," + upsNumber(y) + "," + upsNumber(z) + "]";
-}
-
 void requireInterpolator(const std::string& problem, const std::string& interpolator) {
   if (interpolator != "linear" && interpolator != "gimp" && interpolator != "cpdi")
     throw std::invalid_argument(problem + ": interpolator must be linear, gimp or cpdi");

@@ -6,12 +6,9 @@
 
 #include <string>
 
-namespace anode {
+#include "Core/ProblemSpec/UpsText.h"
 
-// Enough digits to read back the same double (%.17g).
-std::string upsNumber(double v);
-// "[x,y,z]", each with upsNumber.
-std::string upsVector(double x, double y, double z);
+namespace anode {
 
 // Throws std::invalid_argument("<problem>: interpolator must be linear, gimp or cpdi").
 void requireInterpolator(const std::string& problem, const std::string& interpolator);

@@ -8,11 +8,12 @@ about 13,000 of its 342,940 particles). definition.txt holds the figure as paper
 defined it when packed; a figure whose definition has changed since is not drawn from the carry.
 Runs carried between machines: paper_carry.py.
 """
-import lzma
 import os
 import shutil
 import subprocess
 import tempfile
+
+import xz_files
 
 
 def figure_folder(carry, name):
@@ -51,10 +52,7 @@ def pack_figure(render, spec, name, carry, definition):
         for file in sorted(os.listdir(shown)):
             source = os.path.join(shown, file)
             if file.endswith(".vtu"):
-                with open(source, "rb") as src, lzma.open(
-                    os.path.join(target, file + ".xz"), "wb", preset=9
-                ) as dst:
-                    shutil.copyfileobj(src, dst)
+                xz_files.compress(source, os.path.join(target, file + ".xz"), preset=9)
             else:
                 shutil.copy(source, target)
         with open(os.path.join(target, DEFINITION), "w") as f:
@@ -82,10 +80,7 @@ def restore_figure(carry, name, into, definition):
     os.makedirs(target)
     for file in os.listdir(source):
         if file.endswith(".xz"):
-            with lzma.open(os.path.join(source, file), "rb") as src, open(
-                os.path.join(target, file[:-3]), "wb"
-            ) as dst:
-                shutil.copyfileobj(src, dst)
+            xz_files.decompress(os.path.join(source, file), os.path.join(target, file[:-3]))
         else:
             shutil.copy(os.path.join(source, file), target)
     return os.path.join(target, "figure.xml")

@@ -24,6 +24,7 @@ import xml.etree.ElementTree as ET
 
 import paper_figures
 import paper_numbers
+import xz_files
 
 HISTORY_ROWS = 20000
 THIN = 1000
@@ -117,12 +118,11 @@ def pack(name, runs, carry):
         f.write(thinned_history(os.path.join(run_dir, "history.csv")))
     if checkpoint:
         os.makedirs(os.path.join(target, "checkpoints"))
-        with open(checkpoint, "rb") as src, lzma.open(
+        xz_files.compress(
+            checkpoint,
             os.path.join(target, "checkpoints", os.path.basename(checkpoint) + ".xz"),
-            "wb",
             preset=6,
-        ) as dst:
-            shutil.copyfileobj(src, dst)
+        )
     size = sum(os.path.getsize(os.path.join(d, f)) for d, _, fs in os.walk(target) for f in fs)
     state = "finished" if finished else "at " + os.path.basename(checkpoint)
     return "%s: %s, %d outputs, %.1f MB" % (name, state, len(frames), size / 1e6)
@@ -144,8 +144,5 @@ def restore(name, runs, carry):
             if file.endswith(".xz"):
                 relative = os.path.relpath(os.path.join(folder, file), source)[:-3]
                 os.makedirs(os.path.dirname(os.path.join(run_dir, relative)), exist_ok=True)
-                with lzma.open(os.path.join(folder, file), "rb") as src, open(
-                    os.path.join(run_dir, relative), "wb"
-                ) as dst:
-                    shutil.copyfileobj(src, dst)
+                xz_files.decompress(os.path.join(folder, file), os.path.join(run_dir, relative))
     return True
