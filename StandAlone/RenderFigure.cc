@@ -125,6 +125,7 @@ int draw(const std::string& figureFile, const std::string& png, const std::strin
   std::map<std::string, std::vector<std::pair<double, std::string>>> series;
   std::vector<ParticleData> data;
   std::vector<SpriteSet> sprites;
+  std::vector<std::vector<size_t>> drawn;  // --visible-only: each sprite's particle
   std::vector<SpriteExtent> extents;
   std::vector<double> times;
   const std::vector<std::string> arrays = {figure.scene.field.label, "p.volume", "material"};
@@ -134,7 +135,9 @@ int draw(const std::string& figureFile, const std::string& png, const std::strin
     if (series[pvd].empty()) throw std::runtime_error(pvd + " lists no files");
     const auto [time, file] = nearestOutput(series[pvd], panel.time);
     data.push_back(readParticlesVTU(file, arrays));
-    sprites.push_back(makeSprites(figure.scene, data.back()));
+    drawn.emplace_back();
+    sprites.push_back(
+        makeSprites(figure.scene, data.back(), visibleOnly.empty() ? nullptr : &drawn.back()));
     extents.push_back(SpriteExtent::of(sprites.back()));
     if (panel.box) std::tie(extents.back().lo, extents.back().hi) = *panel.box;
     times.push_back(time);
@@ -162,7 +165,7 @@ int draw(const std::string& figureFile, const std::string& png, const std::strin
       throw std::runtime_error("--visible-only needs p.volume in every panel's data");
     std::vector<size_t> shown;
     for (size_t s : renderer.visibleSprites(scene, sprites[k], extents[k], Overlay::None))
-      shown.push_back(sprites[k].particle[s]);
+      shown.push_back(drawn[k][s]);
     visible.shown.push_back(subset(data[k], shown));
   }
   if (!png.empty() && fs::path(png).has_parent_path())

@@ -276,10 +276,12 @@ TEST(Render, VisibleSpritesAloneDrawTheSamePicture) {
   scene.camera.position = Vec3(0.3, -0.5, 0.2);
   scene.camera.focalPoint = Vec3::Zero();
   scene.clip = ClipPlane{Vec3::Zero(), Vec3(0, 1, 0)};  // a cut-away: y > 0 removed
-  const SpriteSet all = makeSprites(scene, data);
+  std::vector<size_t> drawn;
+  const SpriteSet all = makeSprites(scene, data, &drawn);
   ASSERT_EQ(all.count(), static_cast<size_t>(n * n * n / 2));
+  ASSERT_EQ(drawn.size(), all.count());
   for (size_t s = 0; s < all.count(); ++s)  // each sprite knows its particle
-    EXPECT_EQ(all.position[3 * s + 1], data.points[3 * all.particle[s] + 1]);
+    EXPECT_EQ(all.position[3 * s + 1], data.points[3 * drawn[s] + 1]);
   const SpriteExtent extent = SpriteExtent::of(all);
   SceneRenderer renderer;
   const PixelLayer whole = renderer.drawLayer(scene, all, extent, Overlay::None);
@@ -299,7 +301,6 @@ TEST(Render, VisibleSpritesAloneDrawTheSamePicture) {
     shown.position.insert(shown.position.end(), &all.position[3 * s], &all.position[3 * s + 3]);
     shown.value.push_back(all.value[s]);
     shown.radius.push_back(all.radius[s]);
-    shown.particle.push_back(all.particle[s]);
   }
   EXPECT_EQ(renderer.drawLayer(scene, shown, extent, Overlay::None), whole);
   // Without one visible sprite the picture changes.

@@ -45,7 +45,8 @@ double spriteRadius(double volume) {
   return 0.5 * std::sqrt(3.0) * std::cbrt(std::max(volume, 0.0));
 }
 
-SpriteSet makeSprites(const Scene& scene, const ParticleData& data) {
+SpriteSet makeSprites(const Scene& scene, const ParticleData& data, std::vector<size_t>* drawn) {
+  if (drawn) drawn->clear();
   if (data.points.empty()) return {};  // a rank holding none of the scene's particles
   const FieldSpec& field = scene.field;
   const NamedArray* values = findArray(data, field.label);
@@ -71,7 +72,7 @@ SpriteSet makeSprites(const Scene& scene, const ParticleData& data) {
     s.position.insert(s.position.end(), x, x + 3);
     s.value.push_back(scene.scale * field.evaluate(&values->real[i * field.components]));
     s.radius.push_back(volume ? spriteRadius(volume->real[i]) : fallbackRadius);
-    s.particle.push_back(i);
+    if (drawn) drawn->push_back(i);
   }
   return s;
 }

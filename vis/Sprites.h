@@ -13,7 +13,6 @@ struct SpriteSet {
   std::vector<double> position;  // x0 y0 z0 x1 ...
   std::vector<double> value;     // the scene's field, times the scene's scale
   std::vector<double> radius;    // spriteRadius of the particle's volume
-  std::vector<size_t> particle;  // the particle's index in the data the sprites were made of
   size_t count() const { return value.size(); }
 };
 
@@ -22,7 +21,9 @@ struct SpriteSet {
 // (data without a material array is taken to hold only the scene's materials).
 // Without p.volume every particle gets the radius of an equal share of the bounding box.
 // Throws std::runtime_error when the field array is missing or has the wrong component count.
-SpriteSet makeSprites(const Scene& scene, const ParticleData& data);
+// `drawn`, when given, receives each sprite's particle: its index in `data`.
+SpriteSet makeSprites(const Scene& scene, const ParticleData& data,
+                      std::vector<size_t>* drawn = nullptr);
 
 // The radius of the sphere of volume v.
 double sphereRadius(double volume);
