@@ -56,10 +56,11 @@ std::string MPM::NewtonCounts::summary(long steps) const {
   char line[320];
   std::snprintf(line, sizeof line,
                 "Newton iterations %ld (%.2f per step), Krylov iterations %ld (%.1f per Newton "
-                "iteration), steps retaken with a smaller dt %ld, diffusion sub-steps %ld",
+                "iteration, %ld preconditioner set-ups), steps retaken with a smaller dt %ld, "
+                "diffusion sub-steps %ld",
                 iterations, static_cast<double>(iterations) / std::max(steps, 1L), krylov,
-                iterations > 0 ? static_cast<double>(krylov) / iterations : 0.0, retakes,
-                diffusionSubsteps);
+                iterations > 0 ? static_cast<double>(krylov) / iterations : 0.0,
+                preconditionerSetUps, retakes, diffusionSubsteps);
   return line;
 }
 
@@ -246,9 +247,12 @@ NewtonReport MPM::averageConcentrationChangeOverStep(double t, double dt, double
   ImplicitOptions loose = *flags_.implicit;
   loose.convergenceDisp = std::max(kPredictorConvergence, loose.convergenceDisp);
   loose.convergenceEnergy = std::max(4 * kPredictorConvergence, loose.convergenceEnergy);
-  NewtonReport report = equilibrium_.solve(equilibriumProblem(dt), dt, loose);
+  EquilibriumProblem problem = equilibriumProblem(dt);
+  problem.keepLinearSolver = true;  // for the step's own solve from the same start
+  NewtonReport report = equilibrium_.solve(problem, dt, loose);
   newton_.iterations += report.iterations;
   newton_.krylov += report.krylovIterations;
+  newton_.preconditionerSetUps += report.preconditionerSetUps;
   if (!report.converged) return report;
   predicted.clear();
   const int fields = 1 + *std::max_element(fieldOf_.begin(), fieldOf_.end());
@@ -366,10 +370,14 @@ double MPM::advanceQuasiStatic(Collective, double t, double dt, double ruleDt, d
     if (report.failure.empty()) {
       // 3: Newton, retaken with a smaller dt until it converges
       EquilibriumProblem problem = equilibriumProblem(dt);
-      if (!predicted.empty()) problem.predicted = std::move(predicted);
+      if (!predicted.empty()) {
+        problem.predicted = std::move(predicted);
+        problem.useKeptLinearSolver = true;
+      }
       report = equilibrium_.solve(problem, dt, *flags_.implicit);
       newton_.iterations += report.iterations;
       newton_.krylov += report.krylovIterations;
+      newton_.preconditionerSetUps += report.preconditionerSetUps;
       if (report.converged) {
         newton_.lastIterations = report.iterations;
         newton_.lastPredictorIterations = prediction.iterations;

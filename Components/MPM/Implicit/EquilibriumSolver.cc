@@ -462,6 +462,20 @@ void EquilibriumSolver::computeEndOfStepAcceleration(const EquilibriumProblem& p
         newmarkAcceleration(u_[f][k], problem.velocity[f][k], problem.acceleration[f][k], dt);
 }
 
+EquilibriumSolver::UnknownsPattern EquilibriumSolver::unknownsPattern() const {
+  return {unknown_, rows_.globalRow, K_.rowStart, K_.column, fixed_};
+}
+
+void EquilibriumSolver::prepareLinearSolver(const EquilibriumProblem& problem) {
+  if (problem.useKeptLinearSolver) {
+    const bool same = linearSolver_ && unknownsPattern() == linearSolverPattern_;
+    if (collective::minimum(same ? 1.0 : 0.0) > 0) return;
+  }
+  linearSolver_.reset();  // its PETSc objects freed before the new ones are made
+  linearSolver_ = std::make_unique<LinearSolver>(K_, rows_, fixed_, coordinates_);
+  linearSolverPattern_ = problem.keepLinearSolver ? unknownsPattern() : UnknownsPattern{};
+}
+
 NewtonReport EquilibriumSolver::solve(const EquilibriumProblem& problem, double dt,
                                       const ImplicitOptions& options) {
   std::optional<ScopedTimer> setUp;
@@ -473,8 +487,16 @@ NewtonReport EquilibriumSolver::solve(const EquilibriumProblem& problem, double 
       for (int a = 0; a < 3; ++a)
         if (!std::isnan(problem.prescribed[f][k][a])) u_[f][k][a] = problem.prescribed[f][k][a];
   hourglass_.clear();
-  LinearSolver linearSolver(K_, rows_, fixed_, coordinates_);
+  prepareLinearSolver(problem);
   setUp.reset();
+  // Every return frees the linear solver unless the next solve is to take it.
+  struct Release {
+    std::unique_ptr<LinearSolver>& solver;
+    bool keep;
+    ~Release() {
+      if (!keep) solver.reset();
+    }
+  } release{linearSolver_, problem.keepLinearSolver};
   NewtonReport report;
   double normMax = 0, qNorm0 = 0, lastResidualNorm = 0;
   std::vector<double> du;
@@ -502,11 +524,12 @@ NewtonReport EquilibriumSolver::solve(const EquilibriumProblem& problem, double 
     {
       std::optional<ScopedTimer> s;
       if (timers_) s.emplace(*timers_, solveTask_);
-      linear = linearSolver.solve(K_, residual_, tolerance, du);
+      linear = linearSolver_->solve(K_, residual_, tolerance, du);
       du.resize(residual_.size());
       completeOverRanks(problem, du, 3, true);
     }
     report.krylovIterations += linear.iterations;
+    if (linear.newPreconditioner) ++report.preconditionerSetUps;
     if (!linear.converged) {
       report.failure = "the linear solve did not converge (" + linear.reason + ", " +
                        std::to_string(linear.iterations) + " iterations)";

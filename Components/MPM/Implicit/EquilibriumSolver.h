@@ -7,6 +7,7 @@
 // components. ImpMPM's convergence test.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -46,12 +47,18 @@ struct EquilibriumProblem {
   // A quasi-static step: per field and node, the increment the start-of-step nodal velocity would
   // give (v dt), Newton's first iterate where it lowers the residual. Empty: none.
   std::vector<std::vector<Vec3>> predicted;
+  // The trapezoidal step's prediction and its main solve, both from the step's start (the same
+  // unknowns): the prediction keeps its linear solver (PETSc's matrix layout and GAMG's
+  // preconditioner) for the main solve, which takes it when its unknowns and pattern are the
+  // prediction's on every rank. Otherwise each solve builds its own and frees it at its end.
+  bool keepLinearSolver = false, useKeptLinearSolver = false;
 };
 
 // How Newton went in one attempt at a step.
 struct NewtonReport {
   bool converged = false;
   int iterations = 0, krylovIterations = 0;
+  int preconditionerSetUps = 0;  // GAMG built for a matrix (docs/quasi-static.md, linear solves)
   // Per iteration: |du|^2 / max, du.r / first (ImpMPM's two ratios).
   std::vector<std::pair<double, double>> ratios;
   std::string failure;  // why it did not converge
@@ -123,6 +130,22 @@ class EquilibriumSolver {
   // The end-of-step accelerations of implicit dynamics (Newmark) into acceleration_.
   void computeEndOfStepAcceleration(const EquilibriumProblem& problem, double dt);
 
+  // Collective. linearSolver_ for this solve's unknowns: the kept one when the problem asks for
+  // it and every rank's unknowns and pattern are those it was built for, else a new one.
+  void prepareLinearSolver(const EquilibriumProblem& problem);
+
+  // What a linear solver is built for: the unknowns, their global rows, K's pattern, the fixed
+  // components.
+  struct UnknownsPattern {
+    std::vector<std::pair<int, int>> unknown;
+    std::vector<int> globalRow, rowStart, column, fixed;
+    bool operator==(const UnknownsPattern& o) const {
+      return unknown == o.unknown && globalRow == o.globalRow && rowStart == o.rowStart &&
+             column == o.column && fixed == o.fixed;
+    }
+  };
+  UnknownsPattern unknownsPattern() const;
+
   std::vector<std::vector<Vec3>> u_;             // per field, by node
   std::vector<std::vector<Vec3>> acceleration_;  // per field, by node (implicit dynamics)
   std::vector<std::vector<int>> row_;            // per field, by node: block row, or -1
@@ -137,6 +160,8 @@ class EquilibriumSolver {
   // The hourglass stiffness, fixed for the step: a scalar per block entry of K_ (times the 3 x 3
   // identity), and the constant force of the nodes left out of the unknowns (3 per block row).
   std::vector<double> hourglass_, hourglassLoad_;
+  std::unique_ptr<LinearSolver> linearSolver_;
+  UnknownsPattern linearSolverPattern_;  // what linearSolver_ was built for
   TaskTimers* timers_ = nullptr;
   int assemblyTask_ = -1, solveTask_ = -1;
 };
