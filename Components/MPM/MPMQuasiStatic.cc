@@ -250,9 +250,7 @@ NewtonReport MPM::averageConcentrationChangeOverStep(double t, double dt, double
   EquilibriumProblem problem = equilibriumProblem(dt);
   problem.keepLinearSolver = true;  // for the step's own solve from the same start
   NewtonReport report = equilibrium_.solve(problem, dt, loose);
-  newton_.iterations += report.iterations;
-  newton_.krylov += report.krylovIterations;
-  newton_.preconditionerSetUps += report.preconditionerSetUps;
+  newton_.add(report);
   if (!report.converged) return report;
   predicted.clear();
   const int fields = 1 + *std::max_element(fieldOf_.begin(), fieldOf_.end());
@@ -375,9 +373,7 @@ double MPM::advanceQuasiStatic(Collective, double t, double dt, double ruleDt, d
         problem.useKeptLinearSolver = true;
       }
       report = equilibrium_.solve(problem, dt, *flags_.implicit);
-      newton_.iterations += report.iterations;
-      newton_.krylov += report.krylovIterations;
-      newton_.preconditionerSetUps += report.preconditionerSetUps;
+      newton_.add(report);
       if (report.converged) {
         newton_.lastIterations = report.iterations;
         newton_.lastPredictorIterations = prediction.iterations;
