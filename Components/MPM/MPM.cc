@@ -235,10 +235,11 @@ void MPM::scatterMaterial(size_t m, const Concentration& concentration) {
   }
 }
 
-void MPM::interpolateParticlesToGrid() {
+void MPM::interpolateParticlesToGrid(bool concentrationOnly) {
   const std::vector<NodeRange> cleared =
       ActiveNodes::of(grid_, hullOf(active_.box, previous_)).rows;
   for (size_t m = 0; m < materials_.size(); ++m) {
+    if (concentrationOnly && !diffusion_->computesConcentration(m)) continue;
     forEachNodeRange(cleared, [&](long begin, long end) { fields_[m].clearAll(begin, end); });
     withScatterKernel(diffusion_.get(), m, materials_[m].particles, weights_[m], cleared,
                       [&](const auto& concentration) { scatterMaterial(m, concentration); });

@@ -170,15 +170,17 @@ class MPM {
   // Material m's particle i reaches beyond the stored nodes: off the grid, or (distributed)
   // beyond the ghost layer.
   [[noreturn]] void throwOutsideWindow(size_t m, long i) const;
-  void interpolateParticlesToGrid();
+  // P2G; `concentrationOnly`: of the materials whose concentration changes only (diffusion on).
+  void interpolateParticlesToGrid(bool concentrationOnly = false);
   void exchangeMomentumInterpolated();
   void integrateGridMomentum(double dt);
   void setGridBoundaryConditions(double dt);
   void interpolateToParticlesAndUpdate(double dt);
   void splitParticles();
   void migrateParticles();
-  // Completes the nodal sums of P2G on the nodes shared with other ranks.
-  void sumGhostNodes();
+  // Completes the nodal sums of P2G on the nodes shared with other ranks (`concentrationOnly`:
+  // as interpolateParticlesToGrid's).
+  void sumGhostNodes(bool concentrationOnly = false);
   void computeNodalVelocityAndConcentration();
   // Keeps this rank's particles (all of the problem's are here when `allHere`) under a new
   // decomposition from the particle counts per cell plane, and lays out its window.
@@ -207,7 +209,7 @@ class MPM {
   // The ghost layers of the interpolator for CPDI domains reaching `reach` cells.
   int ghostWidthFor(double reach) const;
   // The grid arrays the ghost sums after P2G complete.
-  std::vector<NodeArray> ghostSumArrays();
+  std::vector<NodeArray> ghostSumArrays(bool concentrationOnly = false);
   // Rank of the box holding material m's particle i.
   int ownerOf(const ParticleSet& p, size_t i) const;
   // The equilibrium problem of the step: fields, nodal masses, the displacement increments the
@@ -218,8 +220,9 @@ class MPM {
   void addStartOfStepMotion(EquilibriumProblem& problem, double dt);
   // A quasi-static step's predicted increments: the start-of-step nodal velocity times dt.
   void addPredictedIncrement(EquilibriumProblem& problem, double dt);
-  // P2G and, distributed, its sums completed on the shared nodes.
-  void interpolateAndSumOverRanks();
+  // P2G and, distributed, its sums completed on the shared nodes (`concentrationOnly`: as
+  // interpolateParticlesToGrid's, for a diffusion sub-step after the first of a pass).
+  void interpolateAndSumOverRanks(bool concentrationOnly = false);
   // Diffusion over the quasi-static step in explicit sub-steps on its start-of-step configuration;
   // concentrationChange_ receives each particle's change.
   void diffuseOverStep(double t, double dt, double substepMultiplier);

@@ -189,14 +189,14 @@ void MPM::updateParticlesFromEquilibrium(double dt) {
   }
 }
 
-void MPM::interpolateAndSumOverRanks() {
+void MPM::interpolateAndSumOverRanks(bool concentrationOnly) {
   {
     ScopedTimer s(timers_, tasks_.particlesToGrid);
-    interpolateParticlesToGrid();
+    interpolateParticlesToGrid(concentrationOnly);
   }
   if (distributed_) {
     ScopedTimer s(timers_, tasks_.communication);
-    sumGhostNodes();
+    sumGhostNodes(concentrationOnly);
   }
 }
 
@@ -213,8 +213,9 @@ void MPM::diffuseOverStep(double t, double dt, double substepMultiplier) {
     // The last sub-step ends at t + dt exactly (a remainder below 1e-12 dt joins the one before).
     double h = std::min(limit, dt - done);
     if (dt - done - h < 1e-12 * dt) h = dt - done;
-    if (done > 0)
-      interpolateAndSumOverRanks();  // the concentration's sums of the start-of-step particles
+    // The concentration's sums of the start-of-step particles, again for the materials whose c
+    // changes (the others' P2G stands, as their particles do).
+    if (done > 0) interpolateAndSumOverRanks(true);
     {
       ScopedTimer s(timers_, tasks_.particlesToGrid);
       computeNodalVelocityAndConcentration();  // Eq. 5 and the diffusion interface

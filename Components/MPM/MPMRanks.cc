@@ -196,9 +196,11 @@ double MPM::imbalance(Collective) const {
   return total > 0 ? most / (total / Communicator::size()) : 1.0;
 }
 
-std::vector<NodeArray> MPM::ghostSumArrays() {
+std::vector<NodeArray> MPM::ghostSumArrays(bool concentrationOnly) {
   std::vector<NodeArray> sums;
-  for (GridFields& g : fields_) {
+  for (size_t m = 0; m < fields_.size(); ++m) {
+    if (concentrationOnly && !diffusion_->computesConcentration(m)) continue;
+    GridFields& g = fields_[m];
     sums.push_back({g.mass.data(), 1});
     sums.push_back({g.momentum.data()->data(), 3});
     sums.push_back({g.internalForce.data()->data(), 3});
@@ -207,8 +209,8 @@ std::vector<NodeArray> MPM::ghostSumArrays() {
   return sums;
 }
 
-void MPM::sumGhostNodes() {
-  ghosts_.sumOverRanks(Collective{}, ghostSumArrays());
+void MPM::sumGhostNodes(bool concentrationOnly) {
+  ghosts_.sumOverRanks(Collective{}, ghostSumArrays(concentrationOnly));
 }
 
 std::string MPM::describeDecomposition(int ranks) {
