@@ -134,7 +134,6 @@ void EquilibriumSolver::numberUnknowns(const EquilibriumProblem& problem) {
     K_.column.insert(K_.column.end(), columns.begin(), columns.end());
     K_.rowStart.push_back(static_cast<int>(K_.column.size()));
   }
-  K_.block.assign(K_.column.size(), Mat3::Zero());
   coordinates_.resize(3 * static_cast<size_t>(rows_.owned));
   fixed_.clear();
   for (size_t r = 0; r < unknown_.size(); ++r) {
@@ -466,11 +465,13 @@ EquilibriumSolver::UnknownsPattern EquilibriumSolver::unknownsPattern() const {
   return {unknown_, rows_.globalRow, K_.rowStart, K_.column, fixed_};
 }
 
-void EquilibriumSolver::prepareLinearSolver(const EquilibriumProblem& problem) {
-  if (problem.useKeptLinearSolver) {
-    const bool same = linearSolver_ && unknownsPattern() == linearSolverPattern_;
-    if (collective::minimum(same ? 1.0 : 0.0) > 0) return;
-  }
+bool EquilibriumSolver::takesKeptLinearSolver(const EquilibriumProblem& problem) const {
+  if (!problem.useKeptLinearSolver) return false;
+  const bool same = linearSolver_ && unknownsPattern() == linearSolverPattern_;
+  return collective::minimum(same ? 1.0 : 0.0) > 0;
+}
+
+void EquilibriumSolver::buildLinearSolver(const EquilibriumProblem& problem) {
   linearSolver_.reset();  // its PETSc objects freed before the new ones are made
   linearSolver_ = std::make_unique<LinearSolver>(K_, rows_, fixed_, coordinates_);
   linearSolverPattern_ = problem.keepLinearSolver ? unknownsPattern() : UnknownsPattern{};
@@ -486,8 +487,20 @@ NewtonReport EquilibriumSolver::solve(const EquilibriumProblem& problem, double 
     for (int k = 0; k < problem.grid.numNodes(); ++k)
       for (int a = 0; a < 3; ++a)
         if (!std::isnan(problem.prescribed[f][k][a])) u_[f][k][a] = problem.prescribed[f][k][a];
-  hourglass_.clear();
-  prepareLinearSolver(problem);
+  // A kept solver's unknowns and pattern are this solve's, and so are its solve's last tangent
+  // and the hourglass stiffness of the same start: the first iteration assembles the residual.
+  const bool solverKept = takesKeptLinearSolver(problem);
+  const bool tangentKept = solverKept && !kept_.block.empty();
+  if (tangentKept) {
+    K_.block = std::move(kept_.block);
+    hourglass_ = std::move(kept_.hourglass);
+    hourglassLoad_ = std::move(kept_.hourglassLoad);
+  } else {
+    K_.block.assign(K_.column.size(), Mat3::Zero());
+    hourglass_.clear();
+  }
+  kept_ = KeptTangent{};
+  if (!solverKept) buildLinearSolver(problem);
   setUp.reset();
   // Every return frees the linear solver unless the next solve is to take it.
   struct Release {
@@ -510,7 +523,8 @@ NewtonReport EquilibriumSolver::solve(const EquilibriumProblem& problem, double 
     {
       std::optional<ScopedTimer> s;
       if (timers_) s.emplace(*timers_, assemblyTask_);
-      assemble(problem, dt, options.hourglassStabilization, true);
+      assemble(problem, dt, options.hourglassStabilization,
+               !(tangentKept && report.iterations == 1));
     }
     if (report.iterations == 1)
       tryPrediction(problem, dt, options.hourglassStabilization, normMax, qNorm0);
@@ -562,6 +576,8 @@ NewtonReport EquilibriumSolver::solve(const EquilibriumProblem& problem, double 
       // nothing to choose.
       addToDisplacement(du, 1.0);
       report.converged = true;
+      if (problem.keepLinearSolver)
+        kept_ = KeptTangent{std::move(K_.block), std::move(hourglass_), std::move(hourglassLoad_)};
       if (!problem.velocity.empty()) computeEndOfStepAcceleration(problem, dt);
       return report;
     }

@@ -122,17 +122,20 @@ class EquilibriumSolver {
 
   // After the first assembly (at the start-of-step u): u moves to the predicted increments of
   // the unknowns when their residual is lower (the first solve then uses the tangent of the
-  // start), and the references of the convergence ratios become those of the step's size, as a
-  // Newton from the start would have them: |predicted|^2 and predicted.r at the start.
+  // start, or the one kept from the prediction's solve), and the references of the convergence
+  // ratios become those of the step's size, as a Newton from the start would have them:
+  // |predicted|^2 and predicted.r at the start.
   void tryPrediction(const EquilibriumProblem& problem, double dt, double stabilization,
                      double& normReference, double& energyReference);
 
   // The end-of-step accelerations of implicit dynamics (Newmark) into acceleration_.
   void computeEndOfStepAcceleration(const EquilibriumProblem& problem, double dt);
 
-  // Collective. linearSolver_ for this solve's unknowns: the kept one when the problem asks for
-  // it and every rank's unknowns and pattern are those it was built for, else a new one.
-  void prepareLinearSolver(const EquilibriumProblem& problem);
+  // Collective: the problem asks for the kept linear solver and every rank's unknowns and pattern
+  // are those it was built for.
+  bool takesKeptLinearSolver(const EquilibriumProblem& problem) const;
+  // A new linearSolver_ for this solve's unknowns (the old one freed first).
+  void buildLinearSolver(const EquilibriumProblem& problem);
 
   // What a linear solver is built for: the unknowns, their global rows, K's pattern, the fixed
   // components.
@@ -161,6 +164,13 @@ class EquilibriumSolver {
   // identity), and the constant force of the nodes left out of the unknowns (3 per block row).
   std::vector<double> hourglass_, hourglassLoad_;
   std::unique_ptr<LinearSolver> linearSolver_;
+  // What a converged solve that keeps its linear solver leaves the next solve from the same
+  // start: K's values of its last iteration (the tangent near its solution) and the step's
+  // hourglass stiffness. Taken (or freed) by the next solve.
+  struct KeptTangent {
+    std::vector<Mat3> block;
+    std::vector<double> hourglass, hourglassLoad;
+  } kept_;
   UnknownsPattern linearSolverPattern_;  // what linearSolver_ was built for
   TaskTimers* timers_ = nullptr;
   int assemblyTask_ = -1, solveTask_ = -1;
