@@ -239,7 +239,7 @@ void MPM::interpolateParticlesToGrid(bool concentrationOnly) {
   const std::vector<NodeRange> cleared =
       ActiveNodes::of(grid_, hullOf(active_.box, previous_)).rows;
   for (size_t m = 0; m < materials_.size(); ++m) {
-    if (concentrationOnly && !diffusion_->computesConcentration(m)) continue;
+    if (!scatters(m, concentrationOnly)) continue;
     forEachNodeRange(cleared, [&](long begin, long end) { fields_[m].clearAll(begin, end); });
     withScatterKernel(diffusion_.get(), m, materials_[m].particles, weights_[m], cleared,
                       [&](const auto& concentration) { scatterMaterial(m, concentration); });

@@ -172,6 +172,10 @@ class MPM {
   [[noreturn]] void throwOutsideWindow(size_t m, long i) const;
   // P2G; `concentrationOnly`: of the materials whose concentration changes only (diffusion on).
   void interpolateParticlesToGrid(bool concentrationOnly = false);
+  // Material m takes part in that P2G (and its ghost sums).
+  bool scatters(size_t m, bool concentrationOnly) const {
+    return !concentrationOnly || diffusion_->computesConcentration(m);
+  }
   void exchangeMomentumInterpolated();
   void integrateGridMomentum(double dt);
   void setGridBoundaryConditions(double dt);

@@ -495,11 +495,12 @@ NewtonReport EquilibriumSolver::solve(const EquilibriumProblem& problem, double 
     K_.block = std::move(kept_.block);
     hourglass_ = std::move(kept_.hourglass);
     hourglassLoad_ = std::move(kept_.hourglassLoad);
-  } else {
+  }
+  kept_ = KeptTangent{};  // freed before a new K's values are allocated
+  if (!tangentKept) {
     K_.block.assign(K_.column.size(), Mat3::Zero());
     hourglass_.clear();
   }
-  kept_ = KeptTangent{};
   if (!solverKept) buildLinearSolver(problem);
   setUp.reset();
   // Every return frees the linear solver unless the next solve is to take it.
