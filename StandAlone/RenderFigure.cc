@@ -51,10 +51,10 @@ void setChildText(tinyxml2::XMLElement* parent, const char* tag, const std::stri
   e->SetText(text.c_str());
 }
 
-// What --visible-only writes: per panel the particles it shows (in their order) as
-// DIR/panel_X.vtu with a one-entry DIR/panel_X.pvd at the drawn output's time, and DIR/figure.xml,
-// the figure file with those panels, each with the box its camera was made from, and the colour
-// range of all the particles.
+// What --visible-only writes: per panel the particles it shows (in their order, in single
+// precision: makeSprites draws the same from it) as DIR/panel_X.vtu with a one-entry
+// DIR/panel_X.pvd at the drawn output's time, and DIR/figure.xml, the figure file with those
+// panels, each with the box its camera was made from, and the colour range of all the particles.
 struct VisibleOnly {
   std::string folder;
   std::vector<ParticleData> shown;
@@ -77,7 +77,7 @@ struct VisibleOnly {
          panel = panel->NextSiblingElement("panel"), ++k) {
       const std::string letter = panelLetter(k).substr(1, panelLetter(k).size() - 2);
       const std::string vtu = "panel_" + letter + ".vtu", pvd = "panel_" + letter + ".pvd";
-      writeParticlesVTU((fs::path(folder) / vtu).string(), shown[k]);
+      writeParticlesVTU((fs::path(folder) / vtu).string(), shown[k], Precision::Single);
       PVDSeries series;
       series.add(times[k], vtu);
       series.write((fs::path(folder) / pvd).string());

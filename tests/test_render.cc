@@ -186,8 +186,9 @@ TEST(Render, FixedAndDataRanges) {
   Scene scene = frontScene();
   SceneRenderer renderer;
   scene.range.reset();
+  // The data's span, as single precision holds it (makeSprites).
   EXPECT_EQ(renderer.render(scene, makeSprites(scene, data), 0.0).range,
-            std::make_pair(0.05, 0.95));
+            std::make_pair(double{0.05f}, double{0.95f}));
   scene.range = std::make_pair(-1.0, 2.0);
   const RenderedScene r = renderer.render(scene, makeSprites(scene, data), 0.0);
   EXPECT_EQ(r.range, std::make_pair(-1.0, 2.0));
@@ -281,7 +282,7 @@ TEST(Render, VisibleSpritesAloneDrawTheSamePicture) {
   ASSERT_EQ(all.count(), static_cast<size_t>(n * n * n / 2));
   ASSERT_EQ(drawn.size(), all.count());
   for (size_t s = 0; s < all.count(); ++s)  // each sprite knows its particle
-    EXPECT_EQ(all.position[3 * s + 1], data.points[3 * drawn[s] + 1]);
+    EXPECT_EQ(all.position[3 * s + 1], static_cast<float>(data.points[3 * drawn[s] + 1]));
   const SpriteExtent extent = SpriteExtent::of(all);
   SceneRenderer renderer;
   const PixelLayer whole = renderer.drawLayer(scene, all, extent, Overlay::None);
@@ -413,6 +414,50 @@ std::string run(const std::string& command) {
   const int status = pipe ? pclose(pipe) : -1;
   if (status != 0) output += "\n[exit status " + std::to_string(status) + "]";
   return output;
+}
+
+// Sprites take the particles' data as single precision holds it, so the same particles written as
+// Float32 (Precision::Single, what a carried figure's panels are) draw the very same sprites as
+// the run's Float64: positions, values and radii equal to the bit.
+TEST(Render, Float32DataDrawsTheSpritesOfFloat64) {
+  ParticleData data = block(6, 0.01);
+  for (size_t k = 0; k < data.points.size(); ++k)  // no value a float holds exactly
+    data.points[k] += 1e-9 * std::sin(1.0 + static_cast<double>(k));
+  for (NamedArray& a : data.arrays)
+    for (size_t k = 0; k < a.real.size(); ++k) a.real[k] *= 1 + 1e-9 * std::cos(double(k));
+  TempDir dir("float32");
+  const std::string full = (dir.path / "double.vtu").string(),
+                    half = (dir.path / "single.vtu").string();
+  writeParticlesVTU(full, data);
+  writeParticlesVTU(half, data, Precision::Single);
+  std::ifstream head(half);
+  const std::string text((std::istreambuf_iterator<char>(head)), std::istreambuf_iterator<char>());
+  const std::string xml = text.substr(0, text.find("<AppendedData"));
+  EXPECT_EQ(xml.find("type=\"Float64\""), std::string::npos);
+  EXPECT_EQ(xml.find("type=\"Int64\""), std::string::npos);
+  EXPECT_NE(xml.find("type=\"Float32\" Name=\"Points\""), std::string::npos);
+  EXPECT_LT(fs::file_size(half), fs::file_size(full) * 3 / 5);
+  const std::vector<std::string> arrays = {"p.concentration", "p.volume", "material"};
+  const SpriteSet a = makeSprites(frontScene(), readParticlesVTU(full, arrays));
+  const SpriteSet b = makeSprites(frontScene(), readParticlesVTU(half, arrays));
+  ASSERT_EQ(a.count(), data.count());
+  EXPECT_EQ(a.position, b.position);
+  EXPECT_EQ(a.value, b.value);
+  EXPECT_EQ(a.radius, b.radius);
+  for (size_t k = 0; k < a.position.size(); ++k)  // as a float holds them
+    ASSERT_EQ(a.position[k], static_cast<double>(static_cast<float>(data.points[k]))) << k;
+}
+
+TEST(Render, Float32RefusesWhatItCannotHold) {
+  TempDir dir("float32");
+  ParticleData data = block(2, 0.01);
+  data.arrays[1].real[3] = 1e60;  // a volume beyond a float
+  EXPECT_THROW(writeParticlesVTU((dir.path / "v.vtu").string(), data, Precision::Single),
+               std::runtime_error);
+  data = block(2, 0.01);
+  data.arrays[2].integer[0] = int64_t{1} << 40;
+  EXPECT_THROW(writeParticlesVTU((dir.path / "m.vtu").string(), data, Precision::Single),
+               std::runtime_error);
 }
 
 TEST(RenderTool, RendersAVTUInAnEmptyEnvironment) {

@@ -1,6 +1,9 @@
 #include "vis/VTKWriters.h"
 
 #include <algorithm>
+#include <cfloat>
+#include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <functional>
@@ -86,12 +89,54 @@ std::string fileHeader(const std::string& type) {
 
 }  // namespace
 
-void writeParticlesVTU(const std::string& path, const ParticleData& data) {
+namespace {
+
+// The single-precision copies of one file's arrays (ArrayList keeps pointers: they outlive it).
+struct SinglePrecision {
+  std::vector<std::vector<float>> reals;
+  std::vector<std::vector<int32_t>> integers;
+
+  const std::vector<float>& of(const std::vector<double>& v) {
+    for (double x : v)
+      if (std::isfinite(x) && std::abs(x) > FLT_MAX)  // below FLT_MIN: subnormal or 0
+        throw std::runtime_error("a real number beyond Float32's range: " + std::to_string(x));
+    return reals.emplace_back(v.begin(), v.end());
+  }
+  const std::vector<int32_t>& of(const std::vector<int64_t>& v) {
+    for (int64_t x : v)
+      if (x < INT32_MIN || x > INT32_MAX)
+        throw std::runtime_error("an integer out of Int32's range cannot be written as Int32");
+    return integers.emplace_back(v.begin(), v.end());
+  }
+};
+
+}  // namespace
+
+void writeParticlesVTU(const std::string& path, const ParticleData& data, Precision precision) {
   const size_t n = data.count();
+  const bool single = precision == Precision::Single;
+  SinglePrecision copies;
   ArrayList arrays;
-  for (const NamedArray& a : data.arrays) arrays.add(a, n);
+  auto addReals = [&](const std::string& name, int components, const std::vector<double>& v) {
+    if (single)
+      arrays.add("Float32", name, components, copies.of(v).data(), v.size() * sizeof(float));
+    else
+      arrays.add("Float64", name, components, v.data(), v.size() * sizeof(double));
+  };
+  auto addIntegers = [&](const std::string& name, int components, const std::vector<int64_t>& v) {
+    if (single)
+      arrays.add("Int32", name, components, copies.of(v).data(), v.size() * sizeof(int32_t));
+    else
+      arrays.add("Int64", name, components, v.data(), v.size() * sizeof(int64_t));
+  };
+  for (const NamedArray& a : data.arrays) {
+    if (a.isInteger())
+      addIntegers(a.name, a.components, a.integer);
+    else
+      addReals(a.name, a.components, a.real);
+  }
   const size_t pointData = arrays.size();
-  arrays.add("Float64", "Points", 3, data.points.data(), 3 * n * sizeof(double));
+  addReals("Points", 3, data.points);
   // One vertex cell per particle (VTK_VERTEX = 1).
   std::vector<int64_t> connectivity(n), cellEnds(n);
   for (size_t i = 0; i < n; ++i) {
@@ -99,8 +144,8 @@ void writeParticlesVTU(const std::string& path, const ParticleData& data) {
     cellEnds[i] = static_cast<int64_t>(i) + 1;
   }
   const std::vector<uint8_t> types(n, 1);
-  arrays.add("Int64", "connectivity", 1, connectivity.data(), n * sizeof(int64_t));
-  arrays.add("Int64", "offsets", 1, cellEnds.data(), n * sizeof(int64_t));
+  addIntegers("connectivity", 1, connectivity);
+  addIntegers("offsets", 1, cellEnds);
   arrays.add("UInt8", "types", 1, types.data(), n);
   writeVTKFile(path, arrays, [&](const std::vector<uint64_t>& offsets) {
     std::ostringstream s;

@@ -10,8 +10,14 @@
 
 namespace anode {
 
+// How real and integer arrays are stored: Double (Float64, Int64) keeps every bit; Single
+// (Float32, Int32) is for pictures' data, at under half the size: a value beyond the type's range
+// is an error (std::runtime_error), reals below FLT_MIN become subnormal or 0.
+enum class Precision { Double, Single };
+
 // Particles as an unstructured grid of vertices (.vtu), opened directly by ParaView.
-void writeParticlesVTU(const std::string& path, const ParticleData& data);
+void writeParticlesVTU(const std::string& path, const ParticleData& data,
+                       Precision precision = Precision::Double);
 // Grid nodes as image data (.vti).
 void writeGridVTI(const std::string& path, const GridData& data);
 
