@@ -77,7 +77,7 @@ struct VisibleOnly {
          panel = panel->NextSiblingElement("panel"), ++k) {
       const std::string letter = panelLetter(k).substr(1, panelLetter(k).size() - 2);
       const std::string vtu = "panel_" + letter + ".vtu", pvd = "panel_" + letter + ".pvd";
-      writeParticlesVTU((fs::path(folder) / vtu).string(), shown[k], Precision::Single);
+      writeParticlesVTU((fs::path(folder) / vtu).string(), shown[k], VTUData::Picture);
       PVDSeries series;
       series.add(times[k], vtu);
       series.write((fs::path(folder) / pvd).string());

@@ -79,4 +79,17 @@ std::vector<uint64_t> writeAppendedData(std::FILE* out, const std::vector<RawArr
   return offsets;
 }
 
+std::vector<uint64_t> writeUncompressedData(std::FILE* out, const std::vector<RawArray>& arrays) {
+  std::vector<uint64_t> offsets;
+  uint64_t at = 0;
+  for (const RawArray& a : arrays) {
+    offsets.push_back(at);
+    const uint64_t bytes = a.bytes;
+    check(std::fwrite(&bytes, 8, 1, out) == 1, "write failed");
+    check(std::fwrite(a.data, 1, a.bytes, out) == a.bytes, "write failed");
+    at += 8 + bytes;
+  }
+  return offsets;
+}
+
 }  // namespace anode

@@ -24,5 +24,8 @@ constexpr size_t kAppendedBlockSize = 1 << 15;  // VTK's own writer's block size
 // size, is filled in after its blocks). Returns each array's offset from the section's start,
 // the `offset` attribute of its <DataArray>. Throws std::runtime_error if zlib or a write fails.
 std::vector<uint64_t> writeAppendedData(std::FILE* out, const std::vector<RawArray>& arrays);
+// The same without compression (a file with no compressor attribute): each array its UInt64 byte
+// count, then its bytes.
+std::vector<uint64_t> writeUncompressedData(std::FILE* out, const std::vector<RawArray>& arrays);
 
 }  // namespace anode

@@ -21,7 +21,7 @@ struct SpriteSet {
 // (data without a material array is taken to hold only the scene's materials).
 // Without p.volume every particle gets the radius of an equal share of the bounding box.
 // Positions, field and volume are taken as single precision holds them, so that data stored as
-// Float32 (writeParticlesVTU's Precision::Single) draws the same picture as the run's Float64.
+// Float32 (writeParticlesVTU's VTUData::Picture) draws the same picture as the run's Float64.
 // Throws std::runtime_error when the field array is missing or has the wrong component count.
 // `drawn`, when given, receives each sprite's particle: its index in `data`.
 SpriteSet makeSprites(const Scene& scene, const ParticleData& data,

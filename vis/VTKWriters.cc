@@ -59,9 +59,10 @@ class ArrayList {
   std::vector<RawArray> raw_;
 };
 
-// The XML head (`head(offsets)`), then the appended section, written atomically; the head is
-// written first with zero offsets and again once the arrays are written and their offsets known.
-void writeVTKFile(const std::string& path, const ArrayList& arrays,
+// The XML head (`head(offsets)`), then the appended section (zlib blocks, or each array's UInt64
+// byte count and its bytes), written atomically; the head is written first with zero offsets and
+// again once the arrays are written and their offsets known.
+void writeVTKFile(const std::string& path, const ArrayList& arrays, bool compressed,
                   const std::function<std::string(const std::vector<uint64_t>&)>& head) {
   writeAtomically(path, [&](const std::string& tmp) {
     std::unique_ptr<std::FILE, int (*)(std::FILE*)> out(std::fopen(tmp.c_str(), "wb"),
@@ -71,7 +72,8 @@ void writeVTKFile(const std::string& path, const ArrayList& arrays,
         head(std::vector<uint64_t>(arrays.size(), 0)) + "  <AppendedData encoding=\"raw\">\n   _";
     const std::string close = "\n  </AppendedData>\n</VTKFile>\n";
     bool ok = std::fwrite(open.data(), 1, open.size(), out.get()) == open.size();
-    const std::string filled = head(writeAppendedData(out.get(), arrays.raw()));
+    const std::string filled = head(compressed ? writeAppendedData(out.get(), arrays.raw())
+                                               : writeUncompressedData(out.get(), arrays.raw()));
     ok = ok && std::fwrite(close.data(), 1, close.size(), out.get()) == close.size();
     ok = ok && std::fseek(out.get(), 0, SEEK_SET) == 0;
     ok = ok && std::fwrite(filled.data(), 1, filled.size(), out.get()) == filled.size();
@@ -80,11 +82,11 @@ void writeVTKFile(const std::string& path, const ArrayList& arrays,
   });
 }
 
-// The file's first lines: a VTK XML file of `type` with UInt64 headers and zlib blocks.
-std::string fileHeader(const std::string& type) {
+// The file's first lines: a VTK XML file of `type` with UInt64 headers (and zlib blocks).
+std::string fileHeader(const std::string& type, bool compressed = true) {
   return "<?xml version=\"1.0\"?>\n<VTKFile type=\"" + type +
-         "\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\" "
-         "compressor=\"vtkZLibDataCompressor\">\n";
+         "\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\"" +
+         (compressed ? " compressor=\"vtkZLibDataCompressor\"" : "") + ">\n";
 }
 
 }  // namespace
@@ -112,9 +114,9 @@ struct SinglePrecision {
 
 }  // namespace
 
-void writeParticlesVTU(const std::string& path, const ParticleData& data, Precision precision) {
+void writeParticlesVTU(const std::string& path, const ParticleData& data, VTUData form) {
   const size_t n = data.count();
-  const bool single = precision == Precision::Single;
+  const bool single = form == VTUData::Picture;
   SinglePrecision copies;
   ArrayList arrays;
   auto addReals = [&](const std::string& name, int components, const std::vector<double>& v) {
@@ -147,10 +149,11 @@ void writeParticlesVTU(const std::string& path, const ParticleData& data, Precis
   addIntegers("connectivity", 1, connectivity);
   addIntegers("offsets", 1, cellEnds);
   arrays.add("UInt8", "types", 1, types.data(), n);
-  writeVTKFile(path, arrays, [&](const std::vector<uint64_t>& offsets) {
+  writeVTKFile(path, arrays, !single, [&](const std::vector<uint64_t>& offsets) {
     std::ostringstream s;
-    s << fileHeader("UnstructuredGrid") << "  <UnstructuredGrid>\n    <Piece NumberOfPoints=\"" << n
-      << "\" NumberOfCells=\"" << n << "\">\n      <PointData>\n"
+    s << fileHeader("UnstructuredGrid", !single)
+      << "  <UnstructuredGrid>\n    <Piece NumberOfPoints=\"" << n << "\" NumberOfCells=\"" << n
+      << "\">\n      <PointData>\n"
       << arrays.xml(0, pointData, offsets) << "      </PointData>\n      <Points>\n"
       << arrays.xml(pointData, pointData + 1, offsets) << "      </Points>\n      <Cells>\n"
       << arrays.xml(pointData + 1, arrays.size(), offsets)
@@ -166,7 +169,7 @@ void writeGridVTI(const std::string& path, const GridData& data) {
   std::ostringstream extent;
   for (int d = 0; d < 3; ++d)
     extent << (d ? " " : "") << data.first[d] << " " << data.first[d] + data.dims[d] - 1;
-  writeVTKFile(path, arrays, [&](const std::vector<uint64_t>& offsets) {
+  writeVTKFile(path, arrays, true, [&](const std::vector<uint64_t>& offsets) {
     std::ostringstream s;
     s << std::setprecision(17) << fileHeader("ImageData") << "  <ImageData WholeExtent=\""
       << extent.str() << "\" Origin=\"" << data.origin[0] << " " << data.origin[1] << " "

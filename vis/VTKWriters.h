@@ -10,14 +10,16 @@
 
 namespace anode {
 
-// How real and integer arrays are stored: Double (Float64, Int64) keeps every bit; Single
-// (Float32, Int32) is for pictures' data, at under half the size: a value beyond the type's range
-// is an error (std::runtime_error), reals below FLT_MIN become subnormal or 0.
-enum class Precision { Double, Single };
+// What a .vtu holds. Full: Float64 and Int64 arrays in zlib blocks, every bit of a run's output.
+// Picture: Float32 and Int32, uncompressed, the data a picture is drawn from (makeSprites draws
+// the same from it as from Full), for files compressed whole afterwards (xz packs raw numbers
+// tighter than zlib blocks): a value beyond Float32's or Int32's range is an error
+// (std::runtime_error), reals below FLT_MIN become subnormal or 0.
+enum class VTUData { Full, Picture };
 
 // Particles as an unstructured grid of vertices (.vtu), opened directly by ParaView.
 void writeParticlesVTU(const std::string& path, const ParticleData& data,
-                       Precision precision = Precision::Double);
+                       VTUData form = VTUData::Full);
 // Grid nodes as image data (.vti).
 void writeGridVTI(const std::string& path, const GridData& data);
 
