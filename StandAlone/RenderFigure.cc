@@ -51,17 +51,25 @@ void setChildText(tinyxml2::XMLElement* parent, const char* tag, const std::stri
   e->SetText(text.c_str());
 }
 
+// A field drawn from a vector or tensor ("p.stress:von_mises") is carried as the scalar it draws,
+// in an array of this name ("p.stress.von_mises").
+std::string reducedLabel(const FieldSpec& field) {
+  return field.label + "." + field.text.substr(field.text.find(':') + 1);
+}
+
 // What --visible-only writes: per panel the particles it shows (in their order, in single
-// precision: makeSprites draws the same from it) as DIR/panel_X.vtu with a one-entry
-// DIR/panel_X.pvd at the drawn output's time, and DIR/figure.xml, the figure file with those
-// panels, each with the box its camera was made from, and the colour range of all the particles.
+// precision: makeSprites draws the same from it; a reduced field as its scalar) as
+// DIR/panel_X.vtu with a one-entry DIR/panel_X.pvd at the drawn output's time, and
+// DIR/figure.xml, the figure file with those panels, each with the box its camera was made from,
+// the colour range of all the particles and (a reduced field) the scalar's array, under the
+// field's name.
 struct VisibleOnly {
   std::string folder;
   std::vector<ParticleData> shown;
   std::vector<SpriteExtent> extents;
 
   void write(const std::string& figureFile, const std::vector<double>& times,
-             std::pair<double, double> range) const {
+             std::pair<double, double> range, const Scene& scene) const {
     fs::create_directories(folder);
     tinyxml2::XMLDocument doc;
     if (doc.LoadFile(figureFile.c_str()) != tinyxml2::XML_SUCCESS)
@@ -70,8 +78,13 @@ struct VisibleOnly {
     tinyxml2::XMLElement* figure =
         !root || std::string(root->Name()) == "figure" ? root : root->FirstChildElement("figure");
     if (!figure) throw std::runtime_error(figureFile + " holds no <figure>");
-    setChildText(figure->FirstChildElement("scene"), "range",
+    tinyxml2::XMLElement* sceneSpec = figure->FirstChildElement("scene");
+    setChildText(sceneSpec, "range",
                  "[" + upsNumber(range.first) + "," + upsNumber(range.second) + "]");
+    if (scene.field.reduce != FieldSpec::Reduce::Scalar) {
+      setChildText(sceneSpec, "field", reducedLabel(scene.field));
+      setChildText(sceneSpec, "field_name", scene.barName());
+    }
     size_t k = 0;
     for (tinyxml2::XMLElement* panel = figure->FirstChildElement("panel"); panel;
          panel = panel->NextSiblingElement("panel"), ++k) {
@@ -95,14 +108,22 @@ struct VisibleOnly {
   }
 };
 
-// The particles of `data` with these indices (ascending), every array with them.
-ParticleData subset(const ParticleData& data, const std::vector<size_t>& keep) {
+// The particles of `data` with these indices (ascending), every array with them; `field`'s array,
+// when the field reduces it (a component, a magnitude, von Mises), as the scalar a picture draws.
+ParticleData subset(const ParticleData& data, const std::vector<size_t>& keep,
+                    const FieldSpec& field) {
   ParticleData out;
   for (size_t i : keep) {
     const auto first = data.points.begin() + 3 * static_cast<std::ptrdiff_t>(i);
     out.points.insert(out.points.end(), first, first + 3);
   }
   for (const NamedArray& a : data.arrays) {
+    if (a.name == field.label && field.reduce != FieldSpec::Reduce::Scalar) {
+      NamedArray b{reducedLabel(field), 1, {}, {}};
+      for (size_t i : keep) b.real.push_back(pictureValue(field, &a.real[i * a.components]));
+      out.arrays.push_back(std::move(b));
+      continue;
+    }
     NamedArray b{a.name, a.components, {}, {}};
     for (size_t i : keep) {
       const size_t first = i * a.components;
@@ -166,13 +187,13 @@ int draw(const std::string& figureFile, const std::string& png, const std::strin
     std::vector<size_t> shown;
     for (size_t s : renderer.visibleSprites(scene, sprites[k], extents[k], Overlay::None))
       shown.push_back(drawn[k][s]);
-    visible.shown.push_back(subset(data[k], shown));
+    visible.shown.push_back(subset(data[k], shown, scene.field));
   }
   if (!png.empty() && fs::path(png).has_parent_path())
     fs::create_directories(fs::path(png).parent_path());
   writePNG(composeFigure(figure, panels, times, *scene.range), png);
   std::printf("%s\n", png.c_str());
-  if (!visibleOnly.empty()) visible.write(figureFile, times, *scene.range);
+  if (!visibleOnly.empty()) visible.write(figureFile, times, *scene.range, scene);
   return 0;
 }
 

@@ -57,6 +57,7 @@ TEST(SceneSpec, ReadsEveryTag) {
   <background>[0, 0, 0.2]</background>
   <title>Cut-away</title>
   <units>kPa</units>
+  <field_name>sigma_zy</field_name>
   <time_unit>s</time_unit>
   <time_scale>1e-6</time_scale>
 </scene>)");
@@ -89,6 +90,7 @@ TEST(SceneSpec, ReadsEveryTag) {
   EXPECT_EQ(s.background, Vec3(0, 0, 0.2));
   EXPECT_EQ(s.title, "Cut-away");
   EXPECT_EQ(s.units, "kPa");
+  EXPECT_EQ(s.barName(), "sigma_zy");  // else the field as written
   EXPECT_EQ(s.timeUnit, "s");
   EXPECT_EQ(s.timeScale, 1e-6);
   EXPECT_EQ(s.imageFile(2.5), "images/cut_2.5.png");    // the file keeps the simulation time

@@ -68,7 +68,7 @@ Canvas composeFigure(const Figure& figure, const std::vector<Canvas>& panels,
   // Room for the colour bar with its values, and for the field's name and units above it.
   const int barArea =
       std::max({std::clamp(W * 35 / 100, 150, 400),
-                Canvas::textSize(scene.field.text, labelSize)[0] + barWidth,
+                Canvas::textSize(scene.barName(), labelSize)[0] + barWidth,
                 Canvas::textSize("[" + scene.units + "]", labelSize)[0] + barWidth});
   const int width = columns * W + barArea;
   // The title's size: H/16, smaller where that would not fit the figure's width.
@@ -102,7 +102,7 @@ Canvas composeFigure(const Figure& figure, const std::vector<Canvas>& panels,
   const int x0 = columns * W + barWidth / 2;
   const int panelsHeight = rows * H;
   drawColourBar(out, {x0, panelsHeight * 15 / 100, x0 + barWidth, panelsHeight * 75 / 100}, range,
-                scene.colourMap, scene.field.text, scene.units, ink, labelSize);
+                scene.colourMap, scene.barName(), scene.units, ink, labelSize);
   return out;
 }
 

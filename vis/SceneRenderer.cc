@@ -537,8 +537,8 @@ RenderedScene SceneRenderer::finish(const Scene& scene, const PixelLayer& layer,
   const int barWidth = std::max(10, W / 48);
   const int x0 = W - barArea + barWidth / 2;
   out.colourBar = {x0, H * 12 / 100, x0 + barWidth, H * 70 / 100};
-  drawColourBar(out.canvas, out.colourBar, out.range, scene.colourMap, scene.field.text,
-                scene.units, ink, labelSize);
+  drawColourBar(out.canvas, out.colourBar, out.range, scene.colourMap, scene.barName(), scene.units,
+                ink, labelSize);
   return out;
 }
 

@@ -143,6 +143,7 @@ const std::vector<std::string>& sceneTags() {
                                                 "background",
                                                 "title",
                                                 "units",
+                                                "field_name",
                                                 "time_unit",
                                                 "time_scale"};
   return tags;
@@ -241,6 +242,8 @@ void setSceneValue(Scene& s, const std::string& tag, const std::string& raw) {
     s.title = v;
   } else if (tag == "units") {
     s.units = v;
+  } else if (tag == "field_name") {
+    s.fieldName = v;
   } else if (tag == "time_unit") {
     s.timeUnit = v;
   } else if (tag == "time_scale") {

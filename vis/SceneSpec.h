@@ -62,12 +62,14 @@ struct Scene {
   Camera camera;
   int width = 1024, height = 768;
   Vec3 background = Vec3(1, 1, 1);
-  std::string title;     // empty: the scene name
-  std::string units;     // shown with the field name on the colour bar
-  std::string timeUnit;  // shown after the time in the title
-  double timeScale = 1;  // the title's time is the simulation time times this (1e-6: us in s)
+  std::string title;      // empty: the scene name
+  std::string units;      // shown with the field name on the colour bar
+  std::string fieldName;  // the field's name on the colour bar; empty: the field as written
+  std::string timeUnit;   // shown after the time in the title
+  double timeScale = 1;   // the title's time is the simulation time times this (1e-6: us in s)
 
   bool drawsMaterial(int material) const;
+  const std::string& barName() const { return fieldName.empty() ? field.text : fieldName; }
   // False for a point on the cut-away side of the clip plane (of a section: off its slab).
   bool keeps(const double* x) const {
     if (!clip) return true;

@@ -55,6 +55,12 @@ double spriteRadius(double volume) {
   return 0.5 * std::sqrt(3.0) * std::cbrt(std::max(volume, 0.0));
 }
 
+double pictureValue(const FieldSpec& field, const double* tuple) {
+  double components[9];
+  for (int c = 0; c < field.components; ++c) components[c] = single(tuple[c]);
+  return single(field.evaluate(components));
+}
+
 SpriteSet makeSprites(const Scene& scene, const ParticleData& data, std::vector<size_t>* drawn) {
   if (drawn) drawn->clear();
   if (data.points.empty()) return {};  // a rank holding none of the scene's particles
@@ -75,16 +81,13 @@ SpriteSet makeSprites(const Scene& scene, const ParticleData& data, std::vector<
 
   SpriteSet s;
   const size_t n = data.count();
-  std::vector<double> components(static_cast<size_t>(field.components));
   for (size_t i = 0; i < n; ++i) {
     const double x[3] = {single(data.points[3 * i]), single(data.points[3 * i + 1]),
                          single(data.points[3 * i + 2])};
     if (material && !scene.drawsMaterial(static_cast<int>(material->integer[i]))) continue;
     if (!scene.keeps(x)) continue;
     s.position.insert(s.position.end(), x, x + 3);
-    for (size_t c = 0; c < components.size(); ++c)
-      components[c] = single(values->real[i * components.size() + c]);
-    s.value.push_back(scene.scale * field.evaluate(components.data()));
+    s.value.push_back(scene.scale * pictureValue(field, &values->real[i * field.components]));
     s.radius.push_back(volume ? spriteRadius(single(volume->real[i])) : fallbackRadius);
     if (drawn) drawn->push_back(i);
   }

@@ -24,6 +24,10 @@ struct SpriteSet {
 // Float32 (writeParticlesVTU's VTUData::Picture) draws the same picture as the run's Float64.
 // Throws std::runtime_error when the field array is missing or has the wrong component count.
 // `drawn`, when given, receives each sprite's particle: its index in `data`.
+// A particle's value as a picture draws it, before the scene's scale: the field of its tuple of
+// field.components numbers, each and the result as single precision holds them.
+double pictureValue(const FieldSpec& field, const double* tuple);
+
 SpriteSet makeSprites(const Scene& scene, const ParticleData& data,
                       std::vector<size_t>* drawn = nullptr);
 
