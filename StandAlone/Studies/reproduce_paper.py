@@ -11,7 +11,8 @@
    `sus -restart`, so the command can be stopped at any moment (Ctrl-C or SIGTERM stops the run
    too, which writes a checkpoint at the end of its step, and records its time) and started again. Each session's wall time is appended to
    DIR/runs/NAME.wall; a session killed outright (SIGKILL) is recorded from its last heartbeat
-   (DIR/runs/NAME.wall.running, every 30 s) when the run is continued.
+   (DIR/runs/NAME.wall.running, every 30 s) when the run is continued. A run whose heartbeat is
+   fresh is running in another runner and is skipped (two processes never share its folder).
 2. Renders each figure as one PNG (DIR/figures/figN.png) through the project's renderer
    (`render_figure`: panels side by side, a shared colour bar, panel letters and times).
 3. Measures the numbers of each figure from the VTU files (paper_numbers.py) into
@@ -112,10 +113,18 @@ def record_killed_session(run_dir):
     os.remove(beat)
 
 
+def running_elsewhere(run_dir):
+    """Whether another runner is running this run now: its heartbeat is fresh."""
+    beat = run_dir + ".wall.running"
+    return os.path.exists(beat) and time.time() - os.path.getmtime(beat) < 2 * HEARTBEAT
+
+
 def wait_with_heartbeat(child, run_dir, start):
-    """Waits for the run, rewriting DIR/runs/NAME.wall.running with its wall time so far."""
+    """Waits for the run, writing DIR/runs/NAME.wall.running with its wall time so far at once and
+    every HEARTBEAT seconds."""
     beat = run_dir + ".wall.running"
     started = datetime.datetime.fromtimestamp(start).isoformat(timespec="seconds")
+    write_whole(beat, "%s %.1f\n" % (started, time.time() - start))
     while True:
         try:
             code = child.wait(timeout=HEARTBEAT)
@@ -165,6 +174,9 @@ def run_scenario(name, args, runs):
     if done and not args.quick and not done["quick"]:
         print("%-22s done" % name, flush=True)
         return True
+    if running_elsewhere(run_dir):  # another runner has it: not a second process on its folder
+        print("%-22s running in another runner: skipped" % name, flush=True)
+        return False
     sus = [args.sus, "--threads", str(args.threads)]
     if args.quick:
         sus += ["--max-timesteps", str(quick_steps(name, args.quick))]
@@ -289,8 +301,7 @@ def pack_runs(names, args, runs):
         sys.exit("reproduce_paper.py: --pack needs --carry DIR")
     for name in names:
         run_dir = os.path.join(runs, name)
-        beat = run_dir + ".wall.running"
-        if os.path.exists(beat) and time.time() - os.path.getmtime(beat) < 2 * HEARTBEAT:
+        if running_elsewhere(run_dir):
             sys.exit("reproduce_paper.py: %s is running; stop the runner before --pack" % name)
         record_killed_session(run_dir)
         packed = paper_carry.pack(name, runs, args.carry)

@@ -1,8 +1,10 @@
 """The runner (reproduce_paper.py): a session killed outright is counted from its last heartbeat
-when the run is continued, a running run's heartbeat is rewritten, and a run carried to another
+when the run is continued, a running run's heartbeat is rewritten, a run another runner is
+running is left to it, and a run carried to another
 machine (paper_carry.py) comes back with its checkpoint, wall time and the outputs its figures
 show. A figure whose run is still going is drawn as far as that run has reached
 (paper_figures.panels_reached)."""
+import argparse
 import os
 import subprocess
 import sys
@@ -57,6 +59,22 @@ class WallTime(unittest.TestCase):
             self.assertGreaterEqual(len(beats), 2)
             self.assertEqual(beats, sorted(beats))
             self.assertFalse(os.path.exists(run_dir + ".wall.running"))
+
+    def test_a_run_another_runner_is_running_is_left_to_it(self):
+        with tempfile.TemporaryDirectory() as runs:
+            run_dir = os.path.join(runs, "Run")
+            os.makedirs(os.path.join(run_dir, "checkpoints"))
+            open(os.path.join(run_dir, "checkpoints", "step_000010.ckpt"), "w").close()
+            with open(run_dir + ".wall.running", "w") as f:
+                f.write("2026-12-02T14:09:55 120.0\n")  # fresh: written just now
+            args = argparse.Namespace(sus="/nonexistent/sus", threads=1, quick=0)
+            self.assertFalse(reproduce_paper.run_scenario("Run", args, runs))
+            self.assertTrue(os.path.exists(run_dir + ".wall.running"))
+            self.assertFalse(os.path.exists(run_dir + ".wall"))  # not taken for a killed session
+            self.assertFalse(os.path.exists(run_dir + ".log"))  # nothing started
+            stale = time.time() - 3 * reproduce_paper.HEARTBEAT
+            os.utime(run_dir + ".wall.running", (stale, stale))
+            self.assertFalse(reproduce_paper.running_elsewhere(run_dir))
 
 
 def write_pvd(run_dir, times):
