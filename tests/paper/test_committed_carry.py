@@ -5,7 +5,6 @@ from it alone into a fresh folder, as a fresh clone does.
   test_committed_carry.py RENDER
 """
 import os
-import subprocess
 import sys
 import tempfile
 import unittest
@@ -16,6 +15,7 @@ CARRY = os.path.join(ROOT, "docs", "paper", "carry")
 BUDGET = 25e6  # bytes: docs/paper/carry/README.md
 sys.path.insert(0, STUDIES)
 import paper_figures  # noqa: E402
+from figures_only import draw_from_carry  # noqa: E402
 
 RENDER = sys.argv[1]
 
@@ -36,22 +36,7 @@ class CommittedCarry(unittest.TestCase):
         carried = set(os.listdir(os.path.join(CARRY, "figures")))
         runs = {d for d in os.listdir(CARRY) if os.path.isdir(os.path.join(CARRY, d))}
         with tempfile.TemporaryDirectory() as out:
-            printed = subprocess.run(
-                [
-                    sys.executable,
-                    os.path.join(STUDIES, "reproduce_paper.py"),
-                    "--figures-only",
-                    "--carry",
-                    CARRY,
-                    "--out",
-                    out,
-                    "--render",
-                    RENDER,
-                ],
-                check=True,
-                capture_output=True,
-                text=True,
-            ).stdout
+            printed = draw_from_carry(CARRY, out, RENDER)
             for figure in paper_figures.FIGURES:
                 name = figure["name"]
                 if name not in carried and not {r for r, _, _ in figure["panels"]} <= runs:

@@ -8,7 +8,6 @@ particles than the runs' outputs, and a carried figure whose definition has chan
 """
 import os
 import shutil
-import subprocess
 import sys
 import tempfile
 import unittest
@@ -19,6 +18,7 @@ STUDIES = os.path.join(
 )
 sys.path.insert(0, STUDIES)
 import paper_figures  # noqa: E402
+from figures_only import draw_from_carry  # noqa: E402
 
 QUICK_OUT, CARRY, RENDER = sys.argv[1:4]
 
@@ -37,21 +37,7 @@ class FiguresFromTheCarry(unittest.TestCase):
     def test_every_figure_is_drawn_again_from_the_carry_alone(self):
         names = [f["name"] for f in paper_figures.FIGURES]
         with tempfile.TemporaryDirectory() as out:
-            subprocess.run(
-                [
-                    sys.executable,
-                    os.path.join(STUDIES, "reproduce_paper.py"),
-                    "--figures-only",
-                    "--carry",
-                    CARRY,
-                    "--out",
-                    out,
-                    "--render",
-                    RENDER,
-                ],
-                check=True,
-                stdout=subprocess.DEVNULL,
-            )
+            draw_from_carry(CARRY, out, RENDER)
             for name in names:
                 with self.subTest(figure=name):
                     with open(os.path.join(QUICK_OUT, "figures", name + ".png"), "rb") as f:
@@ -67,22 +53,7 @@ class FiguresFromTheCarry(unittest.TestCase):
             with open(os.path.join(carry, "figures", "fig7", "definition.txt"), "a") as f:
                 f.write("a panel moved\n")
             out = os.path.join(d, "out")
-            printed = subprocess.run(
-                [
-                    sys.executable,
-                    os.path.join(STUDIES, "reproduce_paper.py"),
-                    "--figures-only",
-                    "--carry",
-                    carry,
-                    "--out",
-                    out,
-                    "--render",
-                    RENDER,
-                ],
-                check=True,
-                capture_output=True,
-                text=True,
-            ).stdout
+            printed = draw_from_carry(carry, out, RENDER)
             self.assertIn("fig7                   the carried figure shows what an older", printed)
             self.assertFalse(os.path.exists(os.path.join(out, "figures", "fig7.png")))
             self.assertTrue(os.path.exists(os.path.join(out, "figures", "fig6.png")))
