@@ -342,7 +342,9 @@ def runs_table(runs, finished):
                 s["steps"],
                 "%.4g" % s["time"],
                 "%.0f" % s["wall_seconds"],
-                s["threads"],
+                s["threads"]
+                if s.get("ranks", 1) == 1
+                else "%d x %d ranks" % (s["threads"], s["ranks"]),
                 s.get("stopped") or "its maxTime",
             ]
         )

@@ -1,18 +1,22 @@
 #!/usr/bin/env python3
 """Remakes Gritton et al.'s Figures 3-10 and the numbers of docs/paper/README.md.
 
-  python3 StandAlone/Studies/reproduce_paper.py [--out DIR] [--threads N] [--jobs N] [--only NAME ...]
+  python3 StandAlone/Studies/reproduce_paper.py [--out DIR] [--threads N] [--ranks N] [--jobs N]
+                                                [--only NAME ...]
                                                 [--figures-only] [--quick STEPS] [--report DIR]
                                                 [--carry DIR [--pack | --pack-figures]]
 
 1. Runs every scenario of inputs/Paper/ that a figure needs into DIR/runs/NAME (default DIR:
-   out/paper), cheapest first, --jobs of them at a time. It is resumable: a finished run (DIR/runs/NAME/complete.json) is
-   skipped, a run with a checkpoint (sus keeps one of its own every 10 minutes) is continued with
-   `sus -restart`, so the command can be stopped at any moment (Ctrl-C or SIGTERM stops the run
-   too, which writes a checkpoint at the end of its step, and records its time) and started again. Each session's wall time is appended to
-   DIR/runs/NAME.wall; a session killed outright (SIGKILL) is recorded from its last heartbeat
-   (DIR/runs/NAME.wall.running, every 30 s) when the run is continued. A run whose heartbeat is
-   fresh is running in another runner and is skipped (two processes never share its folder).
+   out/paper), cheapest first, --jobs of them at a time; with --ranks N each run is
+   `mpirun -np N sus` (an implicit run's linear solves then use the cores too). It is
+   resumable: a finished run (DIR/runs/NAME/complete.json) is skipped, a run with a checkpoint
+   (sus keeps one of its own every 10 minutes) is continued with `sus -restart`, on any rank
+   count, so the command can be stopped at any moment (Ctrl-C or SIGTERM stops the run too,
+   which writes a checkpoint at the end of its step, and records its time) and started again.
+   Each session's wall time is appended to DIR/runs/NAME.wall; a session killed outright
+   (SIGKILL) is recorded from its last heartbeat (DIR/runs/NAME.wall.running, every 30 s) when
+   the run is continued. A run whose heartbeat is fresh is running in another runner and is
+   skipped (two processes never share its folder).
 2. Renders each figure as one PNG (DIR/figures/figN.png) through the project's renderer
    (`render_figure`: panels side by side, a shared colour bar, panel letters and times).
 3. Measures the numbers of each figure from the VTU files (paper_numbers.py) into
@@ -168,6 +172,19 @@ def quick_steps(name, steps):
     return 1 if implicit else steps
 
 
+def sus_command(name, args, run_dir, restart):
+    """The command of a run: sus on --threads, under mpirun with --ranks above 1; a restart from
+    the run's newest checkpoint, else afresh from its input (--quick: for its quick steps)."""
+    command = ["mpirun", "-np", str(args.ranks)] if args.ranks > 1 else []
+    command.append(args.sus)
+    if restart:
+        return command + ["-restart", run_dir, "--threads", str(args.threads)]
+    command += ["--threads", str(args.threads)]
+    if args.quick:
+        command += ["--max-timesteps", str(quick_steps(name, args.quick))]
+    return command + ["-o", run_dir, input_of(name)]
+
+
 def run_scenario(name, args, runs):
     run_dir = os.path.join(runs, name)
     done = finished_run(run_dir)
@@ -177,20 +194,17 @@ def run_scenario(name, args, runs):
     if running_elsewhere(run_dir):  # another runner has it: not a second process on its folder
         print("%-22s running in another runner: skipped" % name, flush=True)
         return False
-    sus = [args.sus, "--threads", str(args.threads)]
-    if args.quick:
-        sus += ["--max-timesteps", str(quick_steps(name, args.quick))]
-    if not args.quick and has_checkpoint(run_dir):
+    restart = not args.quick and has_checkpoint(run_dir)
+    if restart:
         record_killed_session(run_dir)
-        command = [args.sus, "-restart", run_dir, "--threads", str(args.threads)]
         how = "continued from its newest checkpoint"
     else:  # afresh: what an earlier attempt left is not part of this run
         shutil.rmtree(run_dir, ignore_errors=True)
         for leftover in (run_dir + ".wall", run_dir + ".wall.running", run_dir + ".log"):
             if os.path.exists(leftover):
                 os.remove(leftover)
-        command = sus + ["-o", run_dir, input_of(name)]
         how = "started"
+    command = sus_command(name, args, run_dir, restart)
     with RUNNING_LOCK:
         if STOPPING.is_set():
             return False
@@ -254,6 +268,7 @@ def run_scenario(name, args, runs):
         particles=int(last["particles"]),
         wall_seconds=wall_seconds(run_dir),
         threads=args.threads,
+        ranks=args.ranks,
         quick=args.quick,
         stopped=stopped,
     )
@@ -290,7 +305,9 @@ def run_all(names, args, runs):
             with RUNNING_LOCK:
                 STOPPING.set()
                 for child in RUNNING:
-                    child.terminate()
+                    # mpirun passes SIGUSR1 on to the ranks (a SIGTERM would kill them); sus
+                    # stops on either at the end of its step, with a checkpoint there.
+                    child.send_signal(signal.SIGUSR1 if args.ranks > 1 else signal.SIGTERM)
             concurrent.futures.wait(futures)
             sys.exit("reproduce_paper.py: stopped; run the command again to continue")
 
@@ -320,6 +337,9 @@ def main():
         "--render", default=os.path.join(ROOT, "build", "StandAlone", "render_figure")
     )
     parser.add_argument("--threads", type=int, default=os.cpu_count(), help="threads of each run")
+    parser.add_argument(
+        "--ranks", type=int, default=1, help="MPI ranks of each run (mpirun -np N; default 1)"
+    )
     parser.add_argument(
         "--jobs",
         type=int,
@@ -361,6 +381,7 @@ def main():
         parser.error("--quick --pack-figures would carry 3-step figures in docs/paper/carry")
     for option, value in (
         ("--threads", args.threads),
+        ("--ranks", args.ranks),
         ("--jobs", args.jobs),
         ("--quick", args.quick + 1),
     ):

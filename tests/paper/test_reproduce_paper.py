@@ -1,6 +1,6 @@
 """The runner (reproduce_paper.py): a session killed outright is counted from its last heartbeat
 when the run is continued, a running run's heartbeat is rewritten, a run another runner is
-running is left to it, and a run carried to another
+running is left to it, a run on --ranks goes under mpirun, and a run carried to another
 machine (paper_carry.py) comes back with its checkpoint, wall time and the outputs its figures
 show. A figure whose run is still going is drawn as far as that run has reached
 (paper_figures.panels_reached)."""
@@ -67,7 +67,7 @@ class WallTime(unittest.TestCase):
             open(os.path.join(run_dir, "checkpoints", "step_000010.ckpt"), "w").close()
             with open(run_dir + ".wall.running", "w") as f:
                 f.write("2026-12-02T14:09:55 120.0\n")  # fresh: written just now
-            args = argparse.Namespace(sus="/nonexistent/sus", threads=1, quick=0)
+            args = argparse.Namespace(sus="/nonexistent/sus", threads=1, ranks=1, quick=0)
             self.assertFalse(reproduce_paper.run_scenario("Run", args, runs))
             self.assertTrue(os.path.exists(run_dir + ".wall.running"))
             self.assertFalse(os.path.exists(run_dir + ".wall"))  # not taken for a killed session
@@ -75,6 +75,20 @@ class WallTime(unittest.TestCase):
             stale = time.time() - 3 * reproduce_paper.HEARTBEAT
             os.utime(run_dir + ".wall.running", (stale, stale))
             self.assertFalse(reproduce_paper.running_elsewhere(run_dir))
+
+    def test_a_run_on_ranks_is_started_and_continued_under_mpirun(self):
+        args = argparse.Namespace(sus="sus", threads=1, ranks=2, quick=0)
+        start = reproduce_paper.sus_command("Flux_1e-9", args, "/r/Flux_1e-9", restart=False)
+        self.assertEqual(start[:5], ["mpirun", "-np", "2", "sus", "--threads"])
+        self.assertEqual(start[-3:], ["-o", "/r/Flux_1e-9", reproduce_paper.input_of("Flux_1e-9")])
+        again = reproduce_paper.sus_command("Flux_1e-9", args, "/r/Flux_1e-9", restart=True)
+        self.assertEqual(
+            again, ["mpirun", "-np", "2", "sus", "-restart", "/r/Flux_1e-9", "--threads", "1"]
+        )
+        args.ranks = 1
+        self.assertEqual(
+            reproduce_paper.sus_command("Flux_1e-9", args, "/r/Flux_1e-9", restart=True)[0], "sus"
+        )
 
 
 def write_pvd(run_dir, times):
