@@ -129,10 +129,16 @@ TEST(ParticleFill, BoundingBoxFillPlacesTheSameParticlesAsAWholeGridScan) {
 // A rank fills only the cells of its box (docs/parallel.md, "Setup per box"): over boxes that
 // tile the grid unevenly, each box's points are those of the whole fill lying in its cells, in
 // the same order, each with its place in the whole fill; the counts per box and per cell (summed
-// per cell plane) are those of the points.
+// per cell plane) are those of the points. The box ends below x cell 13: the boxes beyond it in x
+// but beside it in y and z hold none of its points (and read nothing past its cells: the
+// sanitizer pass).
 TEST(ParticleFill, FillsOfBoxesTilingTheGridAreTheWholeFillShared) {
   const Grid grid = fillTestGrid();
-  for (const GeometryPieceP& piece : std::vector<GeometryPieceP>{testSphere(), testCylinder()}) {
+  auto lowX = std::make_shared<BoxPiece>();
+  lowX->lo = Vec3(-0.9, 0.2, 0.7);
+  lowX->hi = Vec3(-0.45, 1.3, 1.9);
+  for (const GeometryPieceP& piece :
+       std::vector<GeometryPieceP>{testSphere(), testCylinder(), lowX}) {
     const Vec3i res(2, 3, 2);
     const PieceLattice lattice(grid, piece, res);
     std::vector<Vec3> whole;

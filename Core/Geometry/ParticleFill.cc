@@ -212,6 +212,9 @@ void PieceLattice::forEachOccupiedCell(
 void PieceLattice::forEachPoint(const CellBox& region,
                                 const std::function<void(const Vec3&, int64_t)>& visit) const {
   const Vec3i lo = region.lower.cwiseMax(first_), hi = region.upper.cwiseMin(last_ + Vec3i::Ones());
+  // A region beside the lattice in x has none of its points (and the count of the cells before
+  // it would run past the row).
+  if (lo.x() >= hi.x()) return;
   const size_t rowLength = static_cast<size_t>(last_.x() - first_.x() + 1);
   for (int k = lo.z(); k < hi.z(); ++k)
     for (int j = lo.y(); j < hi.y(); ++j) {
