@@ -73,6 +73,7 @@ SCENARIOS = [
     "Substrate_fixed",
     "Substrate_deformable",
     "Cycle_LargePillar",
+    "FullCycle_LargePillar",
     "QuasiStatic_FullCycle_LargePillar",
     "Density_2.33e3",
     "Density_2.33e18",
