@@ -201,10 +201,10 @@ FIGURES = [
         time_scale=1e-6,
         time_unit="s",
         colour=dict(materials="[0]"),
-        title="Fig. 10 (4.7): the large pillar's full cycle, explicit at 2.33e24 kg/m^3, in to 130 s "
-        "(a-e), out to 260 s (f-j); silicon only",
+        title="Fig. 10 (4.7): the large pillar's full cycle (a quarter), explicit at 2.33e24 kg/m^3, "
+        "in to 130 s (a-e), out to 260 s (f-j); silicon only",
         panels=[
-            ("FullCycle_LargePillar", t * 1e6, "")
+            ("FullCycle_LargePillar_Quarter", t * 1e6, "")
             for t in (0, 30, 60, 90, 130, 150, 180, 200, 230, 260)
         ],
     ),
@@ -216,9 +216,10 @@ FIGURES = [
         time_scale=1e-6,
         time_unit="s",
         colour=PLASTIC_STRAIN,
-        title="Fig. 10 as plastic strain: the pillar and its substrate before, lithiated and after",
+        title="Fig. 10 as plastic strain (a quarter): the pillar and its substrate before, lithiated "
+        "and after",
         panels=[
-            ("FullCycle_LargePillar", t * 1e6, label)
+            ("FullCycle_LargePillar_Quarter", t * 1e6, label)
             for t, label in ((0, "before"), (130, "lithiated"), (260, "after the cycle"))
         ],
     ),
@@ -230,10 +231,10 @@ FIGURES = [
         time_scale=1e-6,
         time_unit="s",
         colour=dict(materials="[0]"),
-        title="Fig. 10 (4.7): the large pillar's full cycle at 2.33e3 kg/m^3, in to 130 s (a-e), "
-        "out to 260 s (f-j); silicon only",
+        title="Fig. 10 (4.7): the large pillar's full cycle (a quarter) at 2.33e3 kg/m^3, in to 130 s "
+        "(a-e), out to 260 s (f-j); silicon only",
         panels=[
-            ("QuasiStatic_FullCycle_LargePillar", t * 1e6, "")
+            ("QuasiStatic_FullCycle_LargePillar_Quarter", t * 1e6, "")
             for t in (0, 30, 60, 90, 130, 150, 180, 200, 230, 260)
         ],
     ),

@@ -73,8 +73,10 @@ SCENARIOS = [
     "Substrate_fixed",
     "Substrate_deformable",
     "Cycle_LargePillar",
-    "FullCycle_LargePillar",
+    "Cycle_LargePillar_Quarter",
+    "FullCycle_LargePillar_Quarter",
     "QuasiStatic_FullCycle_LargePillar",
+    "QuasiStatic_FullCycle_LargePillar_Quarter",
     "Density_2.33e3",
     "Density_2.33e18",
 ]
