@@ -515,7 +515,7 @@ def add_variant(base, **changes):
     SCENARIOS.append(dict(next(s for s in SCENARIOS if s["name"] == base), **changes))
 
 
-# A quarter of Cycle_LargePillar (x, y >= 0, symmetric planes x = 0 and y = 0; 85,735 particles
+# A quarter of Cycle_LargePillar (x, y >= 0, symmetric planes x = 0 and y = 0; 85,640 particles
 # instead of 342,940): the partial cycle again, to check the quarter against the whole.
 QUARTER_NOTES = [
     "A quarter of the pillar and its substrate (x, y >= 0: smoothcyl arc 0-90 degrees, 145",

@@ -28,6 +28,22 @@ VON_MISES = dict(
 )
 PLASTIC_STRAIN = dict(field="p.plasticStrain", range="data", colormap="blue_red", units=None)
 
+
+def full_cycle_figure(name, run, title):
+    """Figure 10's full cycle of `run`: the silicon at 0-130 s (in) and 150-260 s (out)."""
+    return dict(
+        name=name,
+        measure="cycle",
+        view=LARGE_VIEW,
+        columns=5,
+        time_scale=1e-6,
+        time_unit="s",
+        colour=dict(materials="[0]"),
+        title=title,
+        panels=[(run, t * 1e6, "") for t in (0, 30, 60, 90, 130, 150, 180, 200, 230, 260)],
+    )
+
+
 FIGURES = [
     dict(
         name="fig3",
@@ -193,20 +209,11 @@ FIGURES = [
             )
         ],
     ),
-    dict(
-        name="fig10",
-        measure="cycle",
-        view=LARGE_VIEW,
-        columns=5,
-        time_scale=1e-6,
-        time_unit="s",
-        colour=dict(materials="[0]"),
-        title="Fig. 10 (4.7): the large pillar's full cycle (a quarter), explicit at 2.33e24 kg/m^3, "
+    full_cycle_figure(
+        "fig10",
+        "FullCycle_LargePillar_Quarter",
+        "Fig. 10 (4.7): the large pillar's full cycle (a quarter), explicit at 2.33e24 kg/m^3, "
         "in to 130 s (a-e), out to 260 s (f-j); silicon only",
-        panels=[
-            ("FullCycle_LargePillar_Quarter", t * 1e6, "")
-            for t in (0, 30, 60, 90, 130, 150, 180, 200, 230, 260)
-        ],
     ),
     dict(
         name="fig10_plastic_strain",
@@ -223,20 +230,11 @@ FIGURES = [
             for t, label in ((0, "before"), (130, "lithiated"), (260, "after the cycle"))
         ],
     ),
-    dict(
-        name="fig10_real_density",
-        measure="cycle",
-        view=LARGE_VIEW,
-        columns=5,
-        time_scale=1e-6,
-        time_unit="s",
-        colour=dict(materials="[0]"),
-        title="Fig. 10 (4.7): the large pillar's full cycle (a quarter) at 2.33e3 kg/m^3, in to 130 s "
+    full_cycle_figure(
+        "fig10_real_density",
+        "QuasiStatic_FullCycle_LargePillar_Quarter",
+        "Fig. 10 (4.7): the large pillar's full cycle (a quarter) at 2.33e3 kg/m^3, in to 130 s "
         "(a-e), out to 260 s (f-j); silicon only",
-        panels=[
-            ("QuasiStatic_FullCycle_LargePillar_Quarter", t * 1e6, "")
-            for t in (0, 30, 60, 90, 130, 150, 180, 200, 230, 260)
-        ],
     ),
     dict(
         name="fig10_partial",
