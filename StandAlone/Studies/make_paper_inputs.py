@@ -711,6 +711,23 @@ add_variant(
     ),
 )
 
+# The same partial cycle on the quarter of Cycle_LargePillar_Quarter (a quarter of the particles),
+# checked against the whole (docs/quasi-static.md).
+add_variant(
+    "QuasiStatic_Cycle_LargePillar",
+    name="QuasiStatic_Cycle_LargePillar_Quarter",
+    title="Quasi-static: a quarter of the large pillar's cycle at 2.33e3 kg/m^3",
+    notes=describe(
+        QUARTER_NOTES
+        + [
+            "otherwise QuasiStatic_Cycle_LargePillar (flux 1e-9 m/s in for 40 s, out for 40 s,",
+            "at silicon's real density in quasi-static steps of at most 2 s with the",
+            "trapezoidal coupling), whose results it is checked against (docs/quasi-static.md).",
+        ]
+    ),
+    quarter=True,
+)
+
 # §4.7's full cycle at the real density: the paper lithiates fully (its durations are not stated);
 # Cycle_LargePillar's 40 s reach 42% of the capacity, Substrate_deformable's 100 s 77.6%, about
 # 0.56% a second from 52 s on. In for 130 s (about 90% at that rate), then out for as long, in
