@@ -515,43 +515,46 @@ def add_variant(base, **changes):
     SCENARIOS.append(dict(next(s for s in SCENARIOS if s["name"] == base), **changes))
 
 
-# A quarter of Cycle_LargePillar (x, y >= 0, symmetric planes x = 0 and y = 0; 85,640 particles
-# instead of 342,940): the partial cycle again, to check the quarter against the whole.
+# A quarter of the large pillar and its substrate (x, y >= 0, symmetric planes x = 0 and y = 0;
+# 85,640 particles instead of 342,940).
 QUARTER_NOTES = [
     "A quarter of the pillar and its substrate (x, y >= 0: smoothcyl arc 0-90 degrees, 145",
     "slices around; substrate and grid from x = y = 0), the planes x = 0 and y = 0 symmetric:",
 ]
-add_variant(
+
+
+def add_quarter(base, name, title, lines, **changes):
+    """Appends the scenario `base` on the quarter x, y >= 0, its notes QUARTER_NOTES + `lines`."""
+    add_variant(
+        base, name=name, title=title, notes=describe(QUARTER_NOTES + lines), quarter=True, **changes
+    )
+
+
+# The partial cycle again, to check the quarter against the whole.
+add_quarter(
     "Cycle_LargePillar",
-    name="Cycle_LargePillar_Quarter",
-    title="A quarter of the large pillar's partial cycle",
-    notes=describe(
-        QUARTER_NOTES
-        + [
-            "otherwise Cycle_LargePillar (explicit, density 2.33e24 kg/m^3, flux 1e-9 m/s in",
-            "for 40 s, out for 40 s), whose results it is checked against (docs/paper).",
-        ]
-    ),
-    quarter=True,
+    "Cycle_LargePillar_Quarter",
+    "A quarter of the large pillar's partial cycle",
+    [
+        "otherwise Cycle_LargePillar (explicit, density 2.33e24 kg/m^3, flux 1e-9 m/s in",
+        "for 40 s, out for 40 s), whose results it is checked against (docs/paper).",
+    ],
 )
 
 # §4.7's full cycle as the paper ran it, explicit at a raised density, on the quarter: in for
 # 130 s, out for 130 s, the durations of QuasiStatic_FullCycle_LargePillar (whose lithiation half
 # it checks).
-add_variant(
+add_quarter(
     "Cycle_LargePillar_Quarter",
-    name="FullCycle_LargePillar_Quarter",
-    title="A quarter of the large pillar's full cycle",
-    notes=describe(
-        QUARTER_NOTES
-        + [
-            "otherwise Cycle_LargePillar (explicit, density 2.33e24 kg/m^3) with flux 1e-9 m/s",
-            "in for 130 s (towards full lithiation, as the paper's cycle; not in the paper: the",
-            "durations), then out for 130 s with each particle's diffusivity at its last",
-            "lithiation value; outputs every 10 s, the durations and outputs of",
-            "QuasiStatic_FullCycle_LargePillar.",
-        ]
-    ),
+    "FullCycle_LargePillar_Quarter",
+    "A quarter of the large pillar's full cycle",
+    [
+        "otherwise Cycle_LargePillar (explicit, density 2.33e24 kg/m^3) with flux 1e-9 m/s",
+        "in for 130 s (towards full lithiation, as the paper's cycle; not in the paper: the",
+        "durations), then out for 130 s with each particle's diffusivity at its last",
+        "lithiation value; outputs every 10 s, the durations and outputs of",
+        "QuasiStatic_FullCycle_LargePillar.",
+    ],
     maxTime=2.6e8,
     lithiation_end=1.3e8,
     output=1e7,
@@ -713,19 +716,15 @@ add_variant(
 
 # The same partial cycle on the quarter of Cycle_LargePillar_Quarter (a quarter of the particles),
 # checked against the whole (docs/quasi-static.md).
-add_variant(
+add_quarter(
     "QuasiStatic_Cycle_LargePillar",
-    name="QuasiStatic_Cycle_LargePillar_Quarter",
-    title="Quasi-static: a quarter of the large pillar's cycle at 2.33e3 kg/m^3",
-    notes=describe(
-        QUARTER_NOTES
-        + [
-            "otherwise QuasiStatic_Cycle_LargePillar (flux 1e-9 m/s in for 40 s, out for 40 s,",
-            "at silicon's real density in quasi-static steps of at most 2 s with the",
-            "trapezoidal coupling), whose results it is checked against (docs/quasi-static.md).",
-        ]
-    ),
-    quarter=True,
+    "QuasiStatic_Cycle_LargePillar_Quarter",
+    "Quasi-static: a quarter of the large pillar's cycle at 2.33e3 kg/m^3",
+    [
+        "otherwise QuasiStatic_Cycle_LargePillar (flux 1e-9 m/s in for 40 s, out for 40 s,",
+        "at silicon's real density in quasi-static steps of at most 2 s with the",
+        "trapezoidal coupling), whose results it is checked against (docs/quasi-static.md).",
+    ],
 )
 
 # §4.7's full cycle at the real density: the paper lithiates fully (its durations are not stated);
@@ -754,19 +753,15 @@ add_variant(
 
 
 # The same full cycle on the quarter of Cycle_LargePillar_Quarter (a quarter of the cost).
-add_variant(
+add_quarter(
     "QuasiStatic_FullCycle_LargePillar",
-    name="QuasiStatic_FullCycle_LargePillar_Quarter",
-    title="Quasi-static: a quarter of the large pillar's full cycle at 2.33e3 kg/m^3",
-    notes=describe(
-        QUARTER_NOTES
-        + [
-            "otherwise QuasiStatic_FullCycle_LargePillar (flux 1e-9 m/s in for 130 s, out for",
-            "130 s, at silicon's real density in quasi-static steps of at most 2 s with the",
-            "trapezoidal coupling), whose lithiation half it is checked against (docs/paper).",
-        ]
-    ),
-    quarter=True,
+    "QuasiStatic_FullCycle_LargePillar_Quarter",
+    "Quasi-static: a quarter of the large pillar's full cycle at 2.33e3 kg/m^3",
+    [
+        "otherwise QuasiStatic_FullCycle_LargePillar (flux 1e-9 m/s in for 130 s, out for",
+        "130 s, at silicon's real density in quasi-static steps of at most 2 s with the",
+        "trapezoidal coupling), whose lithiation half it is checked against (docs/paper).",
+    ],
 )
 
 if __name__ == "__main__":
