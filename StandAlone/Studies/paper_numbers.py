@@ -27,6 +27,7 @@ Definitions (the report repeats them). Lengths in um, times in us as the runs wr
 import functools
 import json
 import os
+import sys
 import xml.etree.ElementTree as ET
 
 import numpy as np
@@ -246,6 +247,43 @@ def front(profile, threshold=0.1, rise=0.1):
     while last + 1 < len(profile) and profile[last + 1] - profile[last] >= rise:
         last += 1
     return first, last - first + 1, profile[last]
+
+
+def spread_within_cells(x, c, cell, among=None, fewest=4):
+    """How far particles' c stand from their cell's: (rms of c minus the mean c of the particles
+    in its grid cell (cubes of side `cell` from the origin, by current position x), over the
+    particles of cells holding at least `fewest`; the same over those of `among` (a mask) of them;
+    the most negative difference and the index of its particle). The grid sees only the cells'
+    means: a particle's difference from its cell's is what Eq. 8's update carries unchanged."""
+    cells = np.floor(np.asarray(x) / cell).astype(np.int64)
+    _, group, count = np.unique(cells, axis=0, return_inverse=True, return_counts=True)
+    group = group.reshape(-1)
+    difference = c - (np.bincount(group, weights=c) / count)[group]
+    counted = count[group] >= fewest
+    rms = lambda mask: float(np.sqrt(np.mean(difference[mask] ** 2))) if mask.any() else None
+    chosen = counted if among is None else counted & among
+    worst = int(np.argmin(np.where(counted, difference, np.inf)))
+    return rms(counted), rms(chosen), float(difference[worst]), worst
+
+
+def cell_spread(run_dir, time, cell, planes_within=3.0):
+    """spread_within_cells of the silicon at the output nearest `time`, `among` the particles
+    within `planes_within` degrees of the planes x = 0 and y = 0 (a quarter's symmetry planes), by
+    reference position; with the silicon's mean c and its worst particle's ID and c."""
+    s = state_of(run_dir, time)
+    si = s.silicon
+    angle = np.degrees(np.arctan2(s.X0[si, 1], s.X0[si, 0]))
+    near = (np.abs(angle) < planes_within) | (np.abs(angle - 90) < planes_within)
+    every, planes, lowest, k = spread_within_cells(s.x[si], s.c[si], cell, near)
+    return dict(
+        time=s.time,
+        mean_c=float(s.c[si].mean()),
+        rms=every,
+        rms_near_planes=planes,
+        lowest_difference=lowest,
+        particle=int(s.id[si][k]),
+        c=float(s.c[si][k]),
+    )
 
 
 @functools.lru_cache(maxsize=4)
@@ -691,3 +729,11 @@ def merge_numbers(old, new):
             body = before
         merged.append("\n".join(([heading] if heading else []) + body))
     return "\n".join(merged)
+
+
+if __name__ == "__main__":
+    # python3 paper_numbers.py spread RUN_DIR TIME CELL: cell_spread of one output
+    # (docs/paper/README.md, "Figure 10": the stop of the real-density full cycle).
+    if len(sys.argv) != 5 or sys.argv[1] != "spread":
+        sys.exit("usage: paper_numbers.py spread RUN_DIR TIME CELL (time in us, cell in um)")
+    print(json.dumps(cell_spread(sys.argv[2], float(sys.argv[3]), float(sys.argv[4]))))

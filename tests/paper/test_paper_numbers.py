@@ -79,6 +79,27 @@ class HeightProfile(unittest.TestCase):
         self.assertAlmostEqual(state.height_growth(), 0.5)
 
 
+class SpreadWithinCells(unittest.TestCase):
+    def test_differences_from_the_cells_mean(self):
+        # Cell [0, 0.01)^3 holds four particles, c 0.1, 0.2, 0.3, 0.4 (mean 0.25: differences
+        # -0.15, -0.05, 0.05, 0.15); cell [0.01, 0.02) x [0, 0.01)^2 holds two (too few: left out).
+        x = np.array([(0.002 * k, 0.005, 0.005) for k in range(1, 5)] + [(0.015, 0.005, 0.005)] * 2)
+        c = np.array([0.1, 0.2, 0.3, 0.4, 0.0, 1.0])
+        among = np.array([True, False, False, True, True, True])
+        every, chosen, lowest, worst = paper_numbers.spread_within_cells(x, c, 0.01, among)
+        self.assertAlmostEqual(every, np.sqrt((2 * 0.15**2 + 2 * 0.05**2) / 4))
+        self.assertAlmostEqual(chosen, 0.15)
+        self.assertAlmostEqual(lowest, -0.15)
+        self.assertEqual(worst, 0)
+
+    def test_uniform_cells_have_no_spread(self):
+        x = np.array([(0.001 * k, 0.0, 0.0) for k in range(8)])
+        every, chosen, lowest, _ = paper_numbers.spread_within_cells(x, np.full(8, 0.3), 0.01)
+        self.assertAlmostEqual(every, 0.0)
+        self.assertAlmostEqual(chosen, 0.0)
+        self.assertAlmostEqual(lowest, 0.0)
+
+
 class Merge(unittest.TestCase):
     OLD = "\n".join(
         [
