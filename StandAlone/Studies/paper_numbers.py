@@ -253,13 +253,16 @@ def spread_within_cells(x, c, cell, among=None, fewest=4):
     """How far particles' c stand from their cell's: (rms of c minus the mean c of the particles
     in its grid cell (cubes of side `cell` from the origin, by current position x), over the
     particles of cells holding at least `fewest`; the same over those of `among` (a mask) of them;
-    the most negative difference and the index of its particle). The grid sees only the cells'
-    means: a particle's difference from its cell's is what Eq. 8's update carries unchanged."""
+    the most negative difference and the index of its particle; all None when no cell holds
+    `fewest`). The grid sees only the cells' means: a particle's difference from its cell's is
+    what Eq. 8's update carries unchanged."""
     cells = np.floor(np.asarray(x) / cell).astype(np.int64)
     _, group, count = np.unique(cells, axis=0, return_inverse=True, return_counts=True)
     group = group.reshape(-1)
     difference = c - (np.bincount(group, weights=c) / count)[group]
     counted = count[group] >= fewest
+    if not counted.any():
+        return None, None, None, None
     rms = lambda mask: float(np.sqrt(np.mean(difference[mask] ** 2))) if mask.any() else None
     chosen = counted if among is None else counted & among
     worst = int(np.argmin(np.where(counted, difference, np.inf)))

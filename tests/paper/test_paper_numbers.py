@@ -99,6 +99,11 @@ class SpreadWithinCells(unittest.TestCase):
         self.assertAlmostEqual(chosen, 0.0)
         self.assertAlmostEqual(lowest, 0.0)
 
+    def test_no_cell_full_enough_measures_nothing(self):
+        x = np.array([(0.005, 0.005, 0.005), (0.015, 0.005, 0.005)])
+        result = paper_numbers.spread_within_cells(x, np.array([0.0, 1.0]), 0.01)
+        self.assertEqual(result, (None, None, None, None))
+
 
 class Merge(unittest.TestCase):
     OLD = "\n".join(
