@@ -54,6 +54,8 @@ ImplicitOptions ImplicitOptions::fromInput(const PSNode& mpm) {
           "<concentration_coupling>trapezoidal with <dynamic>true (it serves "
           "quasi-static steps)");
   }
+  o.subcellConcentrationRelaxation =
+      mpm.get<bool>("subcell_concentration_relaxation", o.subcellConcentrationRelaxation);
   if (const PSNode solver = mpm.child("solver")) {
     const std::string name = solver.value<std::string>();
     if (name == "simple")

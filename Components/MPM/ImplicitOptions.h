@@ -32,6 +32,10 @@ struct ImplicitOptions {
   // c and solves Newton for it from the prediction (docs/quasi-static.md).
   enum class ConcentrationCoupling { Staggered, Trapezoidal };
   ConcentrationCoupling concentrationCoupling = ConcentrationCoupling::Staggered;
+  // <subcell_concentration_relaxation> (ours): each step's diffusion first draws the particles
+  // towards the grid's c at their places, so differences the grid does not see fade
+  // (ReactiveFlow/SubcellRelaxation.h); off, Eq. 8 carries them unchanged.
+  bool subcellConcentrationRelaxation = false;
 
   // Reads the ImpMPM tags of <MPM> (only with <time_integrator>implicit).
   static ImplicitOptions fromInput(const PSNode& mpm);

@@ -17,6 +17,7 @@
 #include "Components/MPM/Materials/MPMMaterial.h"
 #include "Components/MPM/NodeQuads.h"
 #include "Components/MPM/ReactiveFlow/ReactiveFlow.h"
+#include "Components/MPM/ReactiveFlow/SubcellRelaxation.h"
 #include "Components/MPM/SplitParticle.h"
 #include "Components/MPM/StableTimestep.h"
 #include "Components/MPM/StepSummary.h"
@@ -230,6 +231,9 @@ class MPM {
   // Diffusion over the quasi-static step in explicit sub-steps on its start-of-step configuration;
   // concentrationChange_ receives each particle's change.
   void diffuseOverStep(double t, double dt, double substepMultiplier);
+  // <subcell_concentration_relaxation>: the particles drawn towards the grid's c of their P2G over
+  // dt (ReactiveFlow/SubcellRelaxation.h), their change added to concentrationChange_.
+  void relaxSubcellConcentration(double dt);
   // <concentration_coupling>trapezoidal: after diffuseOverStep on the step's start (`start`, the
   // diffusion's `atStart`), a Newton solve to kPredictorConvergence predicts the step's end; the
   // sub-steps run again on those particles from the start's c, and the particles are set back to
@@ -284,6 +288,7 @@ class MPM {
   EquilibriumSolver equilibrium_;
   std::vector<int> fieldOf_;
   std::vector<std::vector<double>> concentrationChange_;  // per material: dc of the step
+  std::vector<double> nodeMassDiffusivity_;               // relaxSubcellConcentration's sum S m D
   double lastQuasiStaticDt_ = 0;
   double newtonRuleDt_ = 0;  // what ImpMPM's rule scales: the last step's dt, or its ruleDt
   // The largest |dc| of a particle in the last quasi-static step (with diffusion).

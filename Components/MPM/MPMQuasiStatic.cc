@@ -78,6 +78,12 @@ void MPM::checkImplicitSetup(const PSNode& root) const {
         .warn(
             "<concentration_coupling>trapezoidal without <do_scalar_diffusion>true: there is "
             "no diffusion to couple, the steps are the staggered ones");
+  if (!diffusion_ && flags_.implicit->subcellConcentrationRelaxation)
+    root.requireChild("MPM")
+        .requireChild("subcell_concentration_relaxation")
+        .warn(
+            "<subcell_concentration_relaxation> without <do_scalar_diffusion>true: there is no "
+            "concentration to relax");
 }
 
 EquilibriumProblem MPM::equilibriumProblem(double dt) {
@@ -204,6 +210,10 @@ void MPM::diffuseOverStep(double t, double dt, double substepMultiplier) {
   concentrationChange_.resize(materials_.size());
   for (size_t m = 0; m < materials_.size(); ++m)
     concentrationChange_[m].assign(materials_[m].particles.count(), 0.0);
+  if (flags_.implicit->subcellConcentrationRelaxation) {
+    relaxSubcellConcentration(dt);
+    interpolateAndSumOverRanks(true);  // the sums of the relaxed c
+  }
   double done = 0;
   while (done < dt) {
     // Eq. 44 over every rank's particles: each rank's sub-steps are the same.
@@ -237,6 +247,23 @@ void MPM::diffuseOverStep(double t, double dt, double substepMultiplier) {
     ++newton_.diffusionSubsteps;
     ScopedTimer s(timers_, tasks_.diffusionState);
     diffusion_->updateDiffusionState(Collective{}, materials_, t + done);  // range, D, flux rates
+  }
+}
+
+void MPM::relaxSubcellConcentration(double dt) {
+  ScopedTimer s(timers_, tasks_.particleUpdate);
+  const double perDiffusivity = subcellRelaxationPerDiffusivity(dt, grid_.dx.maxCoeff());
+  for (size_t m = 0; m < materials_.size(); ++m) {
+    if (!diffusion_->computesConcentration(m)) continue;
+    ParticleSet& p = materials_[m].particles;
+    DiffusionParticles d = diffusionParticles(p);
+    const std::vector<double>& nodeMass = fields_[m].mass;
+    scatterMassDiffusivity(p.mass, d.diffusivity, weights_[m], nodeMass.size(),
+                           nodeMassDiffusivity_);
+    if (distributed_) ghosts_.sumOverRanks(Collective{}, {{nodeMassDiffusivity_.data(), 1}});
+    relaxSubcellDifferences(d.concentration, weights_[m],
+                            diffusion_->gridFields()[m].massConcentration, nodeMass,
+                            nodeMassDiffusivity_, perDiffusivity, concentrationChange_[m]);
   }
 }
 

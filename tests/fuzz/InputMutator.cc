@@ -345,7 +345,8 @@ const std::vector<std::string>& implicitTags() {
                                                 "solver",
                                                 "hourglass_stabilization",
                                                 "max_concentration_change",
-                                                "concentration_coupling"};
+                                                "concentration_coupling",
+                                                "subcell_concentration_relaxation"};
   return tags;
 }
 
