@@ -188,6 +188,8 @@ TEST(QuasiStatic, RejectsWhatItDoesNotSupport) {
       {"max_concentration_change", "0", "<max_concentration_change> must be in (0, 1]"},
       {"concentration_coupling", "upwind",
        "<concentration_coupling> must be staggered or trapezoidal, found \"upwind\""},
+      {"subcell_concentration_relaxation", "maybe",
+       "<subcell_concentration_relaxation>: expected true or false, found 'maybe'"},
   };
   for (const auto& [tag, value, words] : bad) {
     c.mpmFlags = std::string("<dynamic>false</dynamic><") + tag + ">" + value + "</" + tag + ">";

@@ -17,7 +17,6 @@
 #include "Components/MPM/Materials/MPMMaterial.h"
 #include "Components/MPM/NodeQuads.h"
 #include "Components/MPM/ReactiveFlow/ReactiveFlow.h"
-#include "Components/MPM/ReactiveFlow/SubcellRelaxation.h"
 #include "Components/MPM/SplitParticle.h"
 #include "Components/MPM/StableTimestep.h"
 #include "Components/MPM/StepSummary.h"

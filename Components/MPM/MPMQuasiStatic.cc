@@ -16,6 +16,7 @@
 #include "Components/MPM/MPM.h"
 #include "Components/MPM/Materials/ConstitutiveModels/ConcreteModels.h"
 #include "Components/MPM/ParticleLoops.h"
+#include "Components/MPM/ReactiveFlow/SubcellRelaxation.h"
 #include "Core/Parallel/Communicator.h"
 #include "Core/Parallel/StopTogether.h"
 #include "Core/Util/Errors.h"
