@@ -139,8 +139,6 @@ TEST(LinearSolver, APreconditionerBuiltAnewFitsItsOwnMatrix) {
   std::vector<double> x;
   LinearSolver alone(free, oneRankOwnsEveryRow(free), fixed, coordinates);
   const LinearSolve fresh = alone.solve(free, b, tolerance, x);
-  std::printf("DEBUG rows %d blocks %zu fixed %zu b %zu coords %zu\n", free.rows(),
-              free.block.size(), fixed.size(), b.size(), coordinates.size());
   ASSERT_TRUE(fresh.converged) << fresh.reason;
 
   LinearSolver solver(held, oneRankOwnsEveryRow(held), fixed, coordinates);

@@ -38,6 +38,10 @@ ImplicitOptions ImplicitOptions::fromInput(const PSNode& mpm) {
   o.hourglassStabilization = mpm.get<double>("hourglass_stabilization", o.hourglassStabilization);
   if (!(o.hourglassStabilization >= 0))
     mpm.requireChild("hourglass_stabilization").fail("<hourglass_stabilization> must be >= 0");
+  o.jacobianCouplingShare = mpm.get<double>("jacobian_coupling_share", o.jacobianCouplingShare);
+  if (!(o.jacobianCouplingShare >= 0 && o.jacobianCouplingShare <= 1e-3))
+    mpm.requireChild("jacobian_coupling_share")
+        .fail("<jacobian_coupling_share> must be in [0, 1e-3]");
   o.maxConcentrationChange = mpm.get<double>("max_concentration_change", o.maxConcentrationChange);
   if (!(o.maxConcentrationChange > 0 && o.maxConcentrationChange <= 1))
     mpm.requireChild("max_concentration_change")

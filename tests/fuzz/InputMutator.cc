@@ -344,6 +344,7 @@ const std::vector<std::string>& implicitTags() {
                                                 "delT_increase_factor",
                                                 "solver",
                                                 "hourglass_stabilization",
+                                                "jacobian_coupling_share",
                                                 "max_concentration_change",
                                                 "concentration_coupling",
                                                 "subcell_concentration_relaxation"};

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
 #include <optional>
 #include <stdexcept>
 #include <utility>
@@ -50,7 +51,8 @@ void EquilibriumSolver::useTimers(TaskTimers& timers) {
   solveTask_ = timers.task("solveLinearSystem");
 }
 
-void EquilibriumSolver::numberUnknowns(const EquilibriumProblem& problem) {
+void EquilibriumSolver::numberUnknowns(const EquilibriumProblem& problem,
+                                       double jacobianCouplingShare) {
   const int fields = 1 + *std::max_element(problem.fieldOf.begin(), problem.fieldOf.end());
   const int nodes = problem.grid.numNodes();
   const auto owns = [&](int k) { return problem.owned.empty() || problem.owned[k] != 0; };
@@ -83,9 +85,31 @@ void EquilibriumSolver::numberUnknowns(const EquilibriumProblem& problem) {
       throw std::logic_error("a shared unknown node without its owner's row (GhostNodes reach)");
     rows_.globalRow[r] = static_cast<int>(global[r]);
   }
+  // Which of each particle's unknown nodes it couples in Newton's Jacobian: those of which it
+  // holds at least jacobianCouplingShare of the mass. And the order the assembly takes the
+  // particles in: by their first node, so that consecutive particles add to nearby rows of K.
+  strong_.resize(problem.materials.size());
+  order_.resize(problem.materials.size());
+  for (size_t m = 0; m < problem.materials.size(); ++m) {
+    const InterpolationWeights& W = problem.weights[m];
+    const ParticleSet& p = problem.materials[m].particles;
+    const std::vector<double>& mass = problem.mass[problem.fieldOf[m]];
+    const std::vector<int>& row = row_[problem.fieldOf[m]];
+    strong_[m].assign(W.node.size(), 0);
+    order_[m].resize(p.count());
+    std::iota(order_[m].begin(), order_[m].end(), 0);
+    const auto firstNode = [&](size_t i) { return W.count[i] > 0 ? W.node[W.offset[i]] : -1; };
+    std::stable_sort(order_[m].begin(), order_[m].end(),
+                     [&](size_t a, size_t b) { return firstNode(a) < firstNode(b); });
+    for (size_t i = 0; i < p.count(); ++i)
+      for (size_t e = W.offset[i]; e < W.offset[i] + W.count[i]; ++e)
+        strong_[m][e] = row[W.node[e]] >= 0 &&
+                        p.mass[i] * W.weight[e] >= jacobianCouplingShare * mass[W.node[e]];
+  }
   // The particles reaching each row (numbered over the materials from each material's
-  // particleStart), then each row's columns as the union of those particles' unknown nodes (marked
-  // per row, no duplicates stored).
+  // particleStart, with whether they couple it), then each row's columns as the union of those
+  // particles' unknown nodes (marked per row, no duplicates stored): all of them in couplings_,
+  // in K_ those of the particles coupling the row, the strong ones.
   const int rows = static_cast<int>(unknown_.size());
   std::vector<long> particleStart(problem.materials.size() + 1, 0);
   for (size_t m = 0; m < problem.materials.size(); ++m)
@@ -98,23 +122,35 @@ void EquilibriumSolver::numberUnknowns(const EquilibriumProblem& problem) {
       const std::vector<int>& row = row_[problem.fieldOf[m]];
       for (size_t i = 0; i < problem.materials[m].particles.count(); ++i)
         for (size_t e = W.offset[i]; e < W.offset[i] + W.count[i]; ++e)
-          if (row[W.node[e]] >= 0) visit(row[W.node[e]], particleStart[m] + static_cast<long>(i));
+          if (row[W.node[e]] >= 0)
+            visit(row[W.node[e]], particleStart[m] + static_cast<long>(i), strong_[m][e]);
     }
   };
-  eachReach([&](int r, long) { ++reachStart[r + 1]; });
+  eachReach([&](int r, long, bool) { ++reachStart[r + 1]; });
   for (int r = 0; r < rows; ++r) reachStart[r + 1] += reachStart[r];
   std::vector<long> reaching(reachStart[rows]);
+  std::vector<char> couples(reachStart[rows]);
   {
     std::vector<long> next(reachStart.begin(), reachStart.end() - 1);
-    eachReach([&](int r, long particle) { reaching[next[r]++] = particle; });
+    eachReach([&](int r, long particle, bool strong) {
+      couples[next[r]] = strong;
+      reaching[next[r]++] = particle;
+    });
   }
   K_ = BlockMatrix();
-  std::vector<int> markedFor(rows, -1), columns;
+  couplings_ = BlockMatrix();
+  std::vector<int> inCouplings(rows, -1), inK(rows, -1), all, coupled;
+  const auto mark = [](std::vector<int>& marked, std::vector<int>& columns, int r, int c) {
+    if (marked[c] == r) return;
+    marked[c] = r;
+    columns.push_back(c);
+  };
   for (int r = 0; r < rows; ++r) {
-    columns.clear();
+    all.clear();
+    coupled.clear();
     if (r < rows_.owned) {  // the owner's diagonal
-      columns.push_back(r);
-      markedFor[r] = r;
+      mark(inCouplings, all, r, r);
+      mark(inK, coupled, r, r);
     }
     for (long k = reachStart[r]; k < reachStart[r + 1]; ++k) {
       const size_t m = std::upper_bound(particleStart.begin(), particleStart.end(), reaching[k]) -
@@ -124,16 +160,21 @@ void EquilibriumSolver::numberUnknowns(const EquilibriumProblem& problem) {
       const std::vector<int>& row = row_[problem.fieldOf[m]];
       for (size_t g = W.offset[i]; g < W.offset[i] + W.count[i]; ++g) {
         const int c = row[W.node[g]];
-        if (c >= 0 && markedFor[c] != r) {
-          markedFor[c] = r;
-          columns.push_back(c);
-        }
+        if (c < 0) continue;
+        mark(inCouplings, all, r, c);
+        // A particle not coupling row r keeps its stiffness there on the diagonal block.
+        if (c == r || (couples[k] && strong_[m][g])) mark(inK, coupled, r, c);
       }
     }
-    std::sort(columns.begin(), columns.end());
-    K_.column.insert(K_.column.end(), columns.begin(), columns.end());
-    K_.rowStart.push_back(static_cast<int>(K_.column.size()));
+    for (auto [pattern, columns] : {std::pair{&couplings_, &all}, std::pair{&K_, &coupled}}) {
+      std::sort(columns->begin(), columns->end());
+      pattern->column.insert(pattern->column.end(), columns->begin(), columns->end());
+      pattern->rowStart.push_back(static_cast<int>(pattern->column.size()));
+    }
   }
+  diagonal_.resize(rows);
+  for (int r = 0; r < rows; ++r)
+    diagonal_[r] = K_.rowStart[r + 1] > K_.rowStart[r] ? K_.indexOf(r, r) : -1;
   coordinates_.resize(3 * static_cast<size_t>(rows_.owned));
   fixed_.clear();
   for (size_t r = 0; r < unknown_.size(); ++r) {
@@ -261,7 +302,8 @@ void EquilibriumSolver::assemble(const EquilibriumProblem& problem, double dt, d
         problem.materials[m].model->concrete().model);
   const bool firstOfStep = stabilization > 0 && hourglass_.empty();
   if (firstOfStep) {
-    hourglass_.assign(K_.column.size(), 0.0);
+    hourglass_.assign(couplings_.column.size(), 0.0);
+    hourglassTangent_.assign(K_.column.size(), 0.0);
     hourglassLoad_.assign(3 * unknown_.size(), 0.0);
   }
   residual_.assign(3 * unknown_.size(), 0.0);
@@ -318,17 +360,18 @@ void EquilibriumSolver::addInternalForce(const EquilibriumProblem& problem, size
   const ParticleSet& p = problem.materials[m].particles;
   const InterpolationWeights& W = problem.weights[m];
   const std::vector<int>& row = row_[problem.fieldOf[m]];
+  const std::vector<char>& strong = strong_[m];
   // Tm(a + 3 c, f) = V sum_d ge_d A(3 a + d, 3 c + f): the block (e, g) of K, column-major as a
   // Mat3 stores it, is Tm gg.
   Eigen::Matrix<double, 9, 3> Tm;
-  std::vector<std::pair<int, int>> columns;  // (column, g) of the particle's unknown nodes, sorted
-  for (size_t i = 0; i < p.count(); ++i) {
+  std::vector<std::pair<int, int>> columns;  // (column, g) of the nodes it couples, sorted
+  for (const size_t i : order_[m]) {
     const double V = p.volume[i];
     const size_t b = W.offset[i];
     if (withTangent) {
       columns.clear();
       for (int g = 0; g < W.count[i]; ++g)
-        if (row[W.node[b + g]] >= 0) columns.emplace_back(row[W.node[b + g]], g);
+        if (strong[b + g]) columns.emplace_back(row[W.node[b + g]], g);
       // The nodes come in grid order, and so do the rows of one rank's own nodes.
       if (!std::is_sorted(columns.begin(), columns.end()))
         std::sort(columns.begin(), columns.end());
@@ -346,7 +389,12 @@ void EquilibriumSolver::addInternalForce(const EquilibriumProblem& problem, size
           for (int f = 0; f < 3; ++f)
             Tm(a + 3 * c, f) = V * (ge[0] * A(3 * a, 3 * c + f) + ge[1] * A(3 * a + 1, 3 * c + f) +
                                     ge[2] * A(3 * a + 2, 3 * c + f));
-      // Row r holds every column of the particle's nodes: one pass along it finds their blocks.
+      // A node the particle does not couple: its stiffness there on the diagonal block alone.
+      if (!strong[b + e]) {
+        Eigen::Map<Eigen::Matrix<double, 9, 1>>(K_.block[diagonal_[r]].data()) += Tm * ge;
+        continue;
+      }
+      // Row r holds every column of the nodes it couples: one pass along it finds their blocks.
       int j = K_.rowStart[r];
       for (const auto& [column, g] : columns) {
         while (K_.column[j] < column) ++j;
@@ -362,8 +410,10 @@ void EquilibriumSolver::addHourglassStiffness(const EquilibriumProblem& problem,
   const InterpolationWeights& W = problem.weights[m];
   const int f = problem.fieldOf[m];
   const std::vector<int>& row = row_[f];
+  const std::vector<char>& strong = strong_[m];
   const double h2 = problem.grid.dx.squaredNorm() / 3;
-  for (size_t i = 0; i < p.count(); ++i) {
+  std::vector<std::pair<int, int>> all, coupled;
+  for (const size_t i : order_[m]) {
     const size_t b = W.offset[i];
     const int n = W.count[i];
     bool reaches = false;
@@ -374,19 +424,42 @@ void EquilibriumSolver::addHourglassStiffness(const EquilibriumProblem& problem,
     // quadratic in u, and Newton's Jacobian exact.
     const double stiffness = stabilization * p.volume[i] * A_[m][i].trace() / 9 / h2;
     const Eigen::MatrixXd M = hourglassMatrix(problem.grid, W, static_cast<long>(i), p.x[i]);
+    // (column, k) of the particle's unknown nodes and of those it couples in K_, sorted: one pass
+    // along a row finds their entries.
+    all.clear();
+    coupled.clear();
+    for (int k = 0; k < n; ++k) {
+      const int c = row[W.node[b + k]];
+      if (c >= 0) all.emplace_back(c, k);
+      if (strong[b + k]) coupled.emplace_back(c, k);
+    }
+    if (!std::is_sorted(all.begin(), all.end())) {
+      std::sort(all.begin(), all.end());
+      std::sort(coupled.begin(), coupled.end());
+    }
     for (int j = 0; j < n; ++j) {
       const int r = row[W.node[b + j]];
       if (r < first || r >= last) continue;
-      for (int k = 0; k < n; ++k) {
-        const int c = row[W.node[b + k]];
-        const double s = stiffness * M(j, k);
-        if (c >= 0) {
-          hourglass_[K_.indexOf(r, c)] += s;
-        } else {  // a node left out: its u stays as set at the start
-          const Vec3 force = s * u_[f][W.node[b + k]];
+      int at = couplings_.rowStart[r];
+      for (const auto& [c, k] : all) {
+        while (couplings_.column[at] < c) ++at;
+        hourglass_[at] += stiffness * M(j, k);
+      }
+      // In the Jacobian as the particle's stiffness (addInternalForce).
+      if (strong[b + j]) {
+        at = K_.rowStart[r];
+        for (const auto& [c, k] : coupled) {
+          while (K_.column[at] < c) ++at;
+          hourglassTangent_[at] += stiffness * M(j, k);
+        }
+      } else {
+        hourglassTangent_[diagonal_[r]] += stiffness * M(j, j);
+      }
+      for (int k = 0; k < n; ++k)
+        if (row[W.node[b + k]] < 0) {  // a node left out: its u stays as set at the start
+          const Vec3 force = stiffness * M(j, k) * u_[f][W.node[b + k]];
           for (int a = 0; a < 3; ++a) hourglassLoad_[3 * r + a] += force[a];
         }
-      }
     }
   }
 }
@@ -394,12 +467,14 @@ void EquilibriumSolver::addHourglassStiffness(const EquilibriumProblem& problem,
 void EquilibriumSolver::applyHourglassStiffness(int first, int last, bool withTangent) {
   for (int r = first; r < last; ++r) {
     Vec3 force(hourglassLoad_[3 * r], hourglassLoad_[3 * r + 1], hourglassLoad_[3 * r + 2]);
-    for (int j = K_.rowStart[r]; j < K_.rowStart[r + 1]; ++j) {
-      const auto [f, k] = unknown_[K_.column[j]];
+    for (int j = couplings_.rowStart[r]; j < couplings_.rowStart[r + 1]; ++j) {
+      const auto [f, k] = unknown_[couplings_.column[j]];
       force += hourglass_[j] * u_[f][k];
-      if (withTangent) K_.block[j].diagonal().array() += hourglass_[j];
     }
     for (int a = 0; a < 3; ++a) residual_[3 * r + a] -= force[a];
+    if (withTangent)
+      for (int j = K_.rowStart[r]; j < K_.rowStart[r + 1]; ++j)
+        K_.block[j].diagonal().array() += hourglassTangent_[j];
   }
 }
 
@@ -481,7 +556,7 @@ NewtonReport EquilibriumSolver::solve(const EquilibriumProblem& problem, double 
                                       const ImplicitOptions& options) {
   std::optional<ScopedTimer> setUp;
   if (timers_) setUp.emplace(*timers_, assemblyTask_);
-  numberUnknowns(problem);
+  numberUnknowns(problem, options.jacobianCouplingShare);
   u_.assign(row_.size(), std::vector<Vec3>(problem.grid.numNodes(), Vec3::Zero()));
   for (size_t f = 0; f < row_.size(); ++f)
     for (int k = 0; k < problem.grid.numNodes(); ++k)
@@ -494,12 +569,14 @@ NewtonReport EquilibriumSolver::solve(const EquilibriumProblem& problem, double 
   if (tangentKept) {
     K_.block = std::move(kept_.block);
     hourglass_ = std::move(kept_.hourglass);
+    hourglassTangent_ = std::move(kept_.hourglassTangent);
     hourglassLoad_ = std::move(kept_.hourglassLoad);
   }
   kept_ = KeptTangent{};  // freed before a new K's values are allocated
   if (!tangentKept) {
     K_.block.assign(K_.column.size(), Mat3::Zero());
     hourglass_.clear();
+    hourglassTangent_.clear();
   }
   if (!solverKept) buildLinearSolver(problem);
   setUp.reset();
@@ -578,7 +655,8 @@ NewtonReport EquilibriumSolver::solve(const EquilibriumProblem& problem, double 
       addToDisplacement(du, 1.0);
       report.converged = true;
       if (problem.keepLinearSolver)
-        kept_ = KeptTangent{std::move(K_.block), std::move(hourglass_), std::move(hourglassLoad_)};
+        kept_ = KeptTangent{std::move(K_.block), std::move(hourglass_),
+                            std::move(hourglassTangent_), std::move(hourglassLoad_)};
       if (!problem.velocity.empty()) computeEndOfStepAcceleration(problem, dt);
       return report;
     }

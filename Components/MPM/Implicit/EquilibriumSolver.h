@@ -82,8 +82,10 @@ class EquilibriumSolver {
 
  private:
   // The unknown nodes (block rows: this rank's own first, then the ones it shares with their
-  // owners), their global rows, and the pattern of their couplings, from the weights.
-  void numberUnknowns(const EquilibriumProblem& problem);
+  // owners), their global rows, the pattern of their couplings (couplings_) and of the Jacobian
+  // (K_), from the weights: a particle couples a pair of nodes in K_ only where it holds at least
+  // `jacobianCouplingShare` of both nodes' mass (ImplicitOptions).
+  void numberUnknowns(const EquilibriumProblem& problem, double jacobianCouplingShare);
   // values (`width` per block row): on a distributed run, every rank's parts summed on the shared
   // rows; with `fromOwners`, the owned rows' values copied to the other ranks' rows of the same
   // nodes (the others' parts set to zero first).
@@ -155,21 +157,31 @@ class EquilibriumSolver {
   std::vector<std::pair<int, int>> unknown_;     // block row -> (field, node)
   RowLayout rows_;                               // which rows this rank owns; global rows
   BlockMatrix K_;
+  // Every pair of unknown nodes one particle reaches (the residual's couplings; no blocks), and
+  // per block row the place of its diagonal block in K_.
+  BlockMatrix couplings_;
+  std::vector<int> diagonal_;
+  // Per material and weight entry: 1 where the particle couples the entry's node in K_.
+  std::vector<std::vector<char>> strong_;
+  // Per material: its particles in the order the assembly adds them (by first node).
+  std::vector<std::vector<size_t>> order_;
   std::vector<double> residual_, coordinates_;  // coordinates: of the owned rows
   std::vector<int> fixed_;                      // fixed components of the rows
   // Per material and particle: the trial stress P and its tangent dP/dH.
   std::vector<std::vector<Mat3>> P_;
   std::vector<std::vector<Mat9>> A_;
-  // The hourglass stiffness, fixed for the step: a scalar per block entry of K_ (times the 3 x 3
-  // identity), and the constant force of the nodes left out of the unknowns (3 per block row).
-  std::vector<double> hourglass_, hourglassLoad_;
+  // The hourglass stiffness, fixed for the step: a scalar per block entry of couplings_ (times
+  // the 3 x 3 identity), its part in the Jacobian per block entry of K_ (the particles' couplings
+  // as for their own stiffness), and the constant force of the nodes left out of the unknowns (3
+  // per block row).
+  std::vector<double> hourglass_, hourglassTangent_, hourglassLoad_;
   std::unique_ptr<LinearSolver> linearSolver_;
   // What a converged solve that keeps its linear solver leaves the next solve from the same
   // start: K's values of its last iteration (the tangent near its solution) and the step's
   // hourglass stiffness. Taken (or freed) by the next solve.
   struct KeptTangent {
     std::vector<Mat3> block;
-    std::vector<double> hourglass, hourglassLoad;
+    std::vector<double> hourglass, hourglassTangent, hourglassLoad;
   } kept_;
   UnknownsPattern linearSolverPattern_;  // what linearSolver_ was built for
   TaskTimers* timers_ = nullptr;

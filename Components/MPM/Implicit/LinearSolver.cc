@@ -16,7 +16,9 @@ namespace {
 // then the preconditioner is built for the current matrix and the system solved again.
 constexpr int kReusedPreconditionerIterations = 100;
 // The preconditioner is also built anew for the next solve when the last one needed more than
-// this many times the iterations of the last solve with a new preconditioner.
+// this many times the iterations of the last solve with a new preconditioner (at least 5), those
+// scaled by the decades the residual had to fall when the last one's tolerance was tighter:
+// Newton's solves have tolerances from 0.1 to 1e-9.
 constexpr int kReusedPreconditionerSlowdown = 4;
 // A solve with a new preconditioner fails after this many: the ones that converge take at most
 // a few hundred (Figure 4's pillar: 197 in all 9 solves of its first step), and a failing one costs
@@ -341,18 +343,30 @@ LinearSolve LinearSolver::run(const std::vector<double>& b, double relativeToler
   return s;
 }
 
+namespace {
+
+// The decades a residual falls to reach `relativeTolerance` (at least one).
+double decadesOf(double relativeTolerance) {
+  return std::max(1.0, -std::log10(relativeTolerance));
+}
+
+}  // namespace
+
 LinearSolve LinearSolver::solve(const BlockMatrix& K, const std::vector<double>& b,
                                 double relativeTolerance, std::vector<double>& x) {
   setMatrix(K);
   LinearSolve s = run(b, relativeTolerance, freshIterations_ < 0, x);
-  if (s.newPreconditioner) {
-    freshIterations_ = s.iterations;
-  } else if (!s.converged) {
+  if (!s.newPreconditioner && !s.converged) {  // solved again with a new one
     const int spent = s.iterations;
     s = run(b, relativeTolerance, true, x);
-    freshIterations_ = s.iterations;
     s.iterations += spent;
-  } else if (s.iterations > kReusedPreconditionerSlowdown * std::max(freshIterations_, 5)) {
+    freshIterations_ = s.iterations - spent;
+    freshDecades_ = decadesOf(relativeTolerance);
+  } else if (s.newPreconditioner) {
+    freshIterations_ = s.iterations;
+    freshDecades_ = decadesOf(relativeTolerance);
+  } else if (s.iterations > kReusedPreconditionerSlowdown * std::max(freshIterations_, 5) *
+                                std::max(1.0, decadesOf(relativeTolerance) / freshDecades_)) {
     freshIterations_ = -1;
   }
   return s;

@@ -83,7 +83,10 @@ class LinearSolver {
   // For block e of an owned row of K and its row a: where its first column lies in PETSc's
   // arrays (>= 0: the own-column part's; else -1 - the place in the other part's).
   std::vector<int> entryAt_;
-  int freshIterations_ = -1;  // Krylov iterations of the last solve with a new preconditioner
+  // Krylov iterations of the last solve with a new preconditioner (< 0: the next solve builds
+  // one) and the decades its residual fell.
+  int freshIterations_ = -1;
+  double freshDecades_ = 1;
 };
 
 }  // namespace anode
