@@ -88,6 +88,7 @@ void EquilibriumSolver::numberUnknowns(const EquilibriumProblem& problem,
   // Which of each particle's unknown nodes it couples in Newton's Jacobian: those of which it
   // holds at least jacobianCouplingShare of the mass. And the order the assembly takes the
   // particles in: by their first node, so that consecutive particles add to nearby rows of K.
+  reduced_ = jacobianCouplingShare > 0;
   strong_.resize(problem.materials.size());
   order_.resize(problem.materials.size());
   for (size_t m = 0; m < problem.materials.size(); ++m) {
@@ -108,8 +109,9 @@ void EquilibriumSolver::numberUnknowns(const EquilibriumProblem& problem,
   }
   // The particles reaching each row (numbered over the materials from each material's
   // particleStart, with whether they couple it), then each row's columns as the union of those
-  // particles' unknown nodes (marked per row, no duplicates stored): all of them in couplings_,
-  // in K_ those of the particles coupling the row, the strong ones.
+  // particles' unknown nodes (marked per row, no duplicates stored): in K_ those of the particles
+  // coupling the row, the strong ones; all of them in couplings_ when the Jacobian is reduced
+  // (otherwise they are K_'s).
   const int rows = static_cast<int>(unknown_.size());
   std::vector<long> particleStart(problem.materials.size() + 1, 0);
   for (size_t m = 0; m < problem.materials.size(); ++m)
@@ -161,7 +163,7 @@ void EquilibriumSolver::numberUnknowns(const EquilibriumProblem& problem,
       for (size_t g = W.offset[i]; g < W.offset[i] + W.count[i]; ++g) {
         const int c = row[W.node[g]];
         if (c < 0) continue;
-        mark(inCouplings, all, r, c);
+        if (reduced_) mark(inCouplings, all, r, c);
         // A particle not coupling row r keeps its stiffness there on the diagonal block.
         if (c == r || (couples[k] && strong_[m][g])) mark(inK, coupled, r, c);
       }
@@ -302,8 +304,8 @@ void EquilibriumSolver::assemble(const EquilibriumProblem& problem, double dt, d
         problem.materials[m].model->concrete().model);
   const bool firstOfStep = stabilization > 0 && hourglass_.empty();
   if (firstOfStep) {
-    hourglass_.assign(couplings_.column.size(), 0.0);
-    hourglassTangent_.assign(K_.column.size(), 0.0);
+    hourglass_.assign(residualPattern().column.size(), 0.0);
+    if (reduced_) hourglassTangent_.assign(K_.column.size(), 0.0);
     hourglassLoad_.assign(3 * unknown_.size(), 0.0);
   }
   residual_.assign(3 * unknown_.size(), 0.0);
@@ -440,19 +442,20 @@ void EquilibriumSolver::addHourglassStiffness(const EquilibriumProblem& problem,
     for (int j = 0; j < n; ++j) {
       const int r = row[W.node[b + j]];
       if (r < first || r >= last) continue;
-      int at = couplings_.rowStart[r];
+      const BlockMatrix& pattern = residualPattern();
+      int at = pattern.rowStart[r];
       for (const auto& [c, k] : all) {
-        while (couplings_.column[at] < c) ++at;
+        while (pattern.column[at] < c) ++at;
         hourglass_[at] += stiffness * M(j, k);
       }
-      // In the Jacobian as the particle's stiffness (addInternalForce).
-      if (strong[b + j]) {
+      // In the Jacobian as the particle's stiffness (addInternalForce); all of it unless reduced.
+      if (reduced_ && strong[b + j]) {
         at = K_.rowStart[r];
         for (const auto& [c, k] : coupled) {
           while (K_.column[at] < c) ++at;
           hourglassTangent_[at] += stiffness * M(j, k);
         }
-      } else {
+      } else if (reduced_) {
         hourglassTangent_[diagonal_[r]] += stiffness * M(j, j);
       }
       for (int k = 0; k < n; ++k)
@@ -467,14 +470,15 @@ void EquilibriumSolver::addHourglassStiffness(const EquilibriumProblem& problem,
 void EquilibriumSolver::applyHourglassStiffness(int first, int last, bool withTangent) {
   for (int r = first; r < last; ++r) {
     Vec3 force(hourglassLoad_[3 * r], hourglassLoad_[3 * r + 1], hourglassLoad_[3 * r + 2]);
-    for (int j = couplings_.rowStart[r]; j < couplings_.rowStart[r + 1]; ++j) {
-      const auto [f, k] = unknown_[couplings_.column[j]];
+    const BlockMatrix& pattern = residualPattern();
+    for (int j = pattern.rowStart[r]; j < pattern.rowStart[r + 1]; ++j) {
+      const auto [f, k] = unknown_[pattern.column[j]];
       force += hourglass_[j] * u_[f][k];
     }
     for (int a = 0; a < 3; ++a) residual_[3 * r + a] -= force[a];
     if (withTangent)
       for (int j = K_.rowStart[r]; j < K_.rowStart[r + 1]; ++j)
-        K_.block[j].diagonal().array() += hourglassTangent_[j];
+        K_.block[j].diagonal().array() += (reduced_ ? hourglassTangent_ : hourglass_)[j];
   }
 }
 

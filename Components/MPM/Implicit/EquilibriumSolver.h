@@ -157,9 +157,12 @@ class EquilibriumSolver {
   std::vector<std::pair<int, int>> unknown_;     // block row -> (field, node)
   RowLayout rows_;                               // which rows this rank owns; global rows
   BlockMatrix K_;
-  // Every pair of unknown nodes one particle reaches (the residual's couplings; no blocks), and
-  // per block row the place of its diagonal block in K_.
+  // A Jacobian reduced by <jacobian_coupling_share>: then every pair of unknown nodes one particle
+  // reaches (the residual's couplings; no blocks) is in couplings_; otherwise they are K_'s
+  // pattern. And per block row the place of its diagonal block in K_.
+  bool reduced_ = false;
   BlockMatrix couplings_;
+  const BlockMatrix& residualPattern() const { return reduced_ ? couplings_ : K_; }
   std::vector<int> diagonal_;
   // Per material and weight entry: 1 where the particle couples the entry's node in K_.
   std::vector<std::vector<char>> strong_;
@@ -170,10 +173,10 @@ class EquilibriumSolver {
   // Per material and particle: the trial stress P and its tangent dP/dH.
   std::vector<std::vector<Mat3>> P_;
   std::vector<std::vector<Mat9>> A_;
-  // The hourglass stiffness, fixed for the step: a scalar per block entry of couplings_ (times
-  // the 3 x 3 identity), its part in the Jacobian per block entry of K_ (the particles' couplings
-  // as for their own stiffness), and the constant force of the nodes left out of the unknowns (3
-  // per block row).
+  // The hourglass stiffness, fixed for the step: a scalar per block entry of residualPattern()
+  // (times the 3 x 3 identity), its part in a reduced Jacobian per block entry of K_ (the
+  // particles' couplings as for their own stiffness; otherwise hourglass_ is that part), and the
+  // constant force of the nodes left out of the unknowns (3 per block row).
   std::vector<double> hourglass_, hourglassTangent_, hourglassLoad_;
   std::unique_ptr<LinearSolver> linearSolver_;
   // What a converged solve that keeps its linear solver leaves the next solve from the same
