@@ -566,6 +566,24 @@ TEST(QuasiStatic, SubcellRelaxationConservesLithiumAndNarrowsTheSpreadWithinCell
   EXPECT_LT(spread[1], 0.95 * spread[0]);  // measured 0.89
 }
 
+// Newton's first linear solve is to 0.1, and to 3e-3 from a solved prediction it took (a
+// trapezoidal step's predicted end): near the equilibrium a correction to 0.1 wastes the
+// iteration. The last step's motion, an extrapolation, keeps 0.1.
+TEST(QuasiStatic, NewtonFromASolvedPredictionSolvesItsFirstCorrectionTighter) {
+  RunOptions o;
+  o.progress = false;
+  Simulation staggered(lithiatedBar("staggered", 0.25), "bar.ups", o);
+  for (int step = 1; step <= 2; ++step) {  // from rest, then from the first step's motion
+    staggered.advance();
+    ASSERT_FALSE(staggered.mpm().newtonCounts().lastLinearTolerances.empty());
+    EXPECT_EQ(staggered.mpm().newtonCounts().lastLinearTolerances.front(), 0.1) << step;
+  }
+  Simulation trapezoidal(lithiatedBar("trapezoidal", 0.25), "bar.ups", o);
+  trapezoidal.advance();  // the own solve from the predicted end
+  ASSERT_FALSE(trapezoidal.mpm().newtonCounts().lastLinearTolerances.empty());
+  EXPECT_EQ(trapezoidal.mpm().newtonCounts().lastLinearTolerances.front(), 3e-3);
+}
+
 // The trapezoidal step's own solve starts from the step's start, as its prediction does: the same
 // unknowns and pattern, so it takes the prediction's linear solver and preconditioner instead of
 // setting GAMG up again for its first iteration.
@@ -658,6 +676,7 @@ TEST(QuasiStatic, StepThatDoesNotConvergeStops) {
       << atMin;
   EXPECT_NE(atMin.find("below <delt_min>"), std::string::npos) << atMin;
   EXPECT_NE(atMin.find("Newton's ratios"), std::string::npos) << atMin;
+  EXPECT_NE(atMin.find("linear solves' relative tolerances: 0.1"), std::string::npos) << atMin;
   const std::string capped = stopMessage(0);
   EXPECT_NE(capped.find("20 retakes with a smaller dt failed"), std::string::npos) << capped;
 }

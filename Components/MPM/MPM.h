@@ -62,6 +62,7 @@ class MPM {
     int lastIterations = 0, lastPredictorIterations = 0, lastKrylov = 0;
     long iterations = 0, krylov = 0, retakes = 0, diffusionSubsteps = 0, preconditionerSetUps = 0;
     std::vector<std::pair<double, double>> lastRatios;  // NewtonReport::ratios of the last step
+    std::vector<double> lastLinearTolerances;           // and its linearTolerances
     // One Newton solve's iterations, Krylov iterations and set-ups into the totals.
     void add(const NewtonReport& r) {
       iterations += r.iterations;

@@ -399,6 +399,7 @@ double MPM::advanceQuasiStatic(Collective, double t, double dt, double ruleDt, d
       EquilibriumProblem problem = equilibriumProblem(dt);
       if (!predicted.empty()) {
         problem.predicted = std::move(predicted);
+        problem.predictedIsSolved = true;
         problem.useKeptLinearSolver = true;
       }
       report = equilibrium_.solve(problem, dt, *flags_.implicit);
@@ -408,6 +409,7 @@ double MPM::advanceQuasiStatic(Collective, double t, double dt, double ruleDt, d
         newton_.lastPredictorIterations = prediction.iterations;
         newton_.lastKrylov = report.krylovIterations + prediction.krylovIterations;
         newton_.lastRatios = report.ratios;
+        newton_.lastLinearTolerances = report.linearTolerances;
         break;
       }
     }
@@ -422,6 +424,8 @@ double MPM::advanceQuasiStatic(Collective, double t, double dt, double ruleDt, d
                             : std::to_string(kMaxRetakes) + " retakes with a smaller dt failed")
         << ". Newton's ratios |du|^2/max, du.r/first by iteration:";
       for (const auto& [disp, energy] : report.ratios) s << " (" << disp << ", " << energy << ")";
+      s << "; their linear solves' relative tolerances:";
+      for (double tolerance : report.linearTolerances) s << " " << tolerance;
       // Every rank decides this alike (Newton's tests are sums over all ranks): rank 0 reports.
       if (!Communicator::isRoot()) throw StoppedOnAnotherRank(0);
       throw SimulationError(s.str());

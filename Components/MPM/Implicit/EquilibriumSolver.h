@@ -45,8 +45,10 @@ struct EquilibriumProblem {
   // acceleration of the step's start. Empty in a quasi-static step.
   std::vector<std::vector<Vec3>> velocity, acceleration;
   // A quasi-static step: per field and node, the increment the start-of-step nodal velocity would
-  // give (v dt), Newton's first iterate where it lowers the residual. Empty: none.
+  // give (v dt), Newton's first iterate where it lowers the residual. Empty: none. Solved: it is
+  // a converged Newton solve's (the trapezoidal step's prediction), not an extrapolation.
   std::vector<std::vector<Vec3>> predicted;
+  bool predictedIsSolved = false;
   // The trapezoidal step's prediction and its main solve, both from the step's start (the same
   // unknowns): the prediction keeps its linear solver (PETSc's matrix layout and GAMG's
   // preconditioner) for the main solve, which takes it when its unknowns and pattern are the
@@ -61,7 +63,8 @@ struct NewtonReport {
   int preconditionerSetUps = 0;  // GAMG built for a matrix (docs/quasi-static.md, linear solves)
   // Per iteration: |du|^2 / max, du.r / first (ImpMPM's two ratios).
   std::vector<std::pair<double, double>> ratios;
-  std::string failure;  // why it did not converge
+  std::vector<double> linearTolerances;  // per iteration: its linear solve's relative tolerance
+  std::string failure;                   // why it did not converge
 };
 
 // In a distributed run every rank solves together (the functions are collective): each owns the
@@ -126,8 +129,8 @@ class EquilibriumSolver {
   // the unknowns when their residual is lower (the first solve then uses the tangent of the
   // start, or the one kept from the prediction's solve), and the references of the convergence
   // ratios become those of the step's size, as a Newton from the start would have them:
-  // |predicted|^2 and predicted.r at the start.
-  void tryPrediction(const EquilibriumProblem& problem, double dt, double stabilization,
+  // |predicted|^2 and predicted.r at the start. Whether it moved.
+  bool tryPrediction(const EquilibriumProblem& problem, double dt, double stabilization,
                      double& normReference, double& energyReference);
 
   // The end-of-step accelerations of implicit dynamics (Newmark) into acceleration_.
