@@ -148,7 +148,7 @@ void EquilibriumSolver::numberUnknowns(const EquilibriumProblem& problem,
   }
   K_ = BlockMatrix();
   couplings_ = BlockMatrix();
-  std::vector<int> inCouplings(rows, -1), inK(rows, -1), all, coupled;
+  std::vector<int> inCouplings(reduced_ ? rows : 0, -1), inK(rows, -1), all, coupled;
   const auto mark = [](std::vector<int>& marked, std::vector<int>& columns, int r, int c) {
     if (marked[c] == r) return;
     marked[c] = r;
@@ -158,7 +158,7 @@ void EquilibriumSolver::numberUnknowns(const EquilibriumProblem& problem,
     all.clear();
     coupled.clear();
     if (r < rows_.owned) {  // the owner's diagonal
-      mark(inCouplings, all, r, r);
+      if (reduced_) mark(inCouplings, all, r, r);
       mark(inK, coupled, r, r);
     }
     for (long k = reachStart[r]; k < reachStart[r + 1]; ++k) {
@@ -176,6 +176,7 @@ void EquilibriumSolver::numberUnknowns(const EquilibriumProblem& problem,
       }
     }
     for (auto [pattern, columns] : {std::pair{&couplings_, &all}, std::pair{&K_, &coupled}}) {
+      if (pattern == &couplings_ && !reduced_) continue;
       std::sort(columns->begin(), columns->end());
       pattern->column.insert(pattern->column.end(), columns->begin(), columns->end());
       pattern->rowStart.push_back(static_cast<int>(pattern->column.size()));
@@ -421,6 +422,7 @@ void EquilibriumSolver::addHourglassStiffness(const EquilibriumProblem& problem,
   const std::vector<int>& row = row_[f];
   const std::vector<char>& strong = strong_[m];
   const double h2 = problem.grid.dx.squaredNorm() / 3;
+  const BlockMatrix& pattern = residualPattern();
   std::vector<std::pair<int, int>> all, coupled;
   for (const size_t i : order_[m]) {
     const size_t b = W.offset[i];
@@ -433,14 +435,14 @@ void EquilibriumSolver::addHourglassStiffness(const EquilibriumProblem& problem,
     // quadratic in u, and Newton's Jacobian exact.
     const double stiffness = stabilization * p.volume[i] * A_[m][i].trace() / 9 / h2;
     const Eigen::MatrixXd M = hourglassMatrix(problem.grid, W, static_cast<long>(i), p.x[i]);
-    // (column, k) of the particle's unknown nodes and of those it couples in K_, sorted: one pass
-    // along a row finds their entries.
+    // (column, k) of the particle's unknown nodes and, in a reduced Jacobian, of those it couples
+    // in K_, sorted: one pass along a row finds their entries.
     all.clear();
     coupled.clear();
     for (int k = 0; k < n; ++k) {
       const int c = row[W.node[b + k]];
       if (c >= 0) all.emplace_back(c, k);
-      if (strong[b + k]) coupled.emplace_back(c, k);
+      if (reduced_ && strong[b + k]) coupled.emplace_back(c, k);
     }
     if (!std::is_sorted(all.begin(), all.end())) {
       std::sort(all.begin(), all.end());
@@ -449,21 +451,23 @@ void EquilibriumSolver::addHourglassStiffness(const EquilibriumProblem& problem,
     for (int j = 0; j < n; ++j) {
       const int r = row[W.node[b + j]];
       if (r < first || r >= last) continue;
-      const BlockMatrix& pattern = residualPattern();
       int at = pattern.rowStart[r];
       for (const auto& [c, k] : all) {
         while (pattern.column[at] < c) ++at;
         hourglass_[at] += stiffness * M(j, k);
       }
-      // In the Jacobian as the particle's stiffness (addInternalForce); all of it unless reduced.
-      if (reduced_ && strong[b + j]) {
-        at = K_.rowStart[r];
-        for (const auto& [c, k] : coupled) {
-          while (K_.column[at] < c) ++at;
-          hourglassTangent_[at] += stiffness * M(j, k);
+      // In a reduced Jacobian as the particle's stiffness (addInternalForce); otherwise all of
+      // hourglass_ is in it.
+      if (reduced_) {
+        if (strong[b + j]) {
+          at = K_.rowStart[r];
+          for (const auto& [c, k] : coupled) {
+            while (K_.column[at] < c) ++at;
+            hourglassTangent_[at] += stiffness * M(j, k);
+          }
+        } else {
+          hourglassTangent_[diagonal_[r]] += stiffness * M(j, j);
         }
-      } else if (reduced_) {
-        hourglassTangent_[diagonal_[r]] += stiffness * M(j, j);
       }
       for (int k = 0; k < n; ++k)
         if (row[W.node[b + k]] < 0) {  // a node left out: its u stays as set at the start
@@ -475,9 +479,10 @@ void EquilibriumSolver::addHourglassStiffness(const EquilibriumProblem& problem,
 }
 
 void EquilibriumSolver::applyHourglassStiffness(int first, int last, bool withTangent) {
+  const BlockMatrix& pattern = residualPattern();
+  const std::vector<double>& tangent = reduced_ ? hourglassTangent_ : hourglass_;
   for (int r = first; r < last; ++r) {
     Vec3 force(hourglassLoad_[3 * r], hourglassLoad_[3 * r + 1], hourglassLoad_[3 * r + 2]);
-    const BlockMatrix& pattern = residualPattern();
     for (int j = pattern.rowStart[r]; j < pattern.rowStart[r + 1]; ++j) {
       const auto [f, k] = unknown_[pattern.column[j]];
       force += hourglass_[j] * u_[f][k];
@@ -485,7 +490,7 @@ void EquilibriumSolver::applyHourglassStiffness(int first, int last, bool withTa
     for (int a = 0; a < 3; ++a) residual_[3 * r + a] -= force[a];
     if (withTangent)
       for (int j = K_.rowStart[r]; j < K_.rowStart[r + 1]; ++j)
-        K_.block[j].diagonal().array() += (reduced_ ? hourglassTangent_ : hourglass_)[j];
+        K_.block[j].diagonal().array() += tangent[j];
   }
 }
 
@@ -616,10 +621,11 @@ NewtonReport EquilibriumSolver::solve(const EquilibriumProblem& problem, double 
       assemble(problem, dt, options.hourglassStabilization,
                !(tangentKept && report.iterations == 1));
     }
-    const bool fromSolvedPrediction =
-        report.iterations == 1 &&
-        tryPrediction(problem, dt, options.hourglassStabilization, normMax, qNorm0) &&
-        problem.predictedIsSolved;
+    bool fromSolvedPrediction = false;
+    if (report.iterations == 1)
+      fromSolvedPrediction =
+          tryPrediction(problem, dt, options.hourglassStabilization, normMax, qNorm0) &&
+          problem.predictedIsSolved;
     const double residualNorm = ownedDot(residual_, residual_);
     const double tolerance =
         report.iterations == 1

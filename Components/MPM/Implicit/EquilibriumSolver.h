@@ -85,9 +85,9 @@ class EquilibriumSolver {
 
  private:
   // The unknown nodes (block rows: this rank's own first, then the ones it shares with their
-  // owners), their global rows, the pattern of their couplings (couplings_) and of the Jacobian
-  // (K_), from the weights: a particle couples a pair of nodes in K_ only where it holds at least
-  // `jacobianCouplingShare` of both nodes' mass (ImplicitOptions).
+  // owners), their global rows, the pattern of their couplings (couplings_, in a reduced
+  // Jacobian) and of the Jacobian (K_), from the weights: a particle couples a pair of nodes in K_
+  // only where it holds at least `jacobianCouplingShare` of both nodes' mass (ImplicitOptions).
   void numberUnknowns(const EquilibriumProblem& problem, double jacobianCouplingShare);
   // values (`width` per block row): on a distributed run, every rank's parts summed on the shared
   // rows; with `fromOwners`, the owned rows' values copied to the other ranks' rows of the same
