@@ -42,6 +42,7 @@ ImplicitOptions ImplicitOptions::fromInput(const PSNode& mpm) {
   if (!(o.jacobianCouplingShare >= 0 && o.jacobianCouplingShare <= 1e-3))
     mpm.requireChild("jacobian_coupling_share")
         .fail("<jacobian_coupling_share> must be in [0, 1e-3]");
+  o.jacobianReuse = mpm.get<bool>("jacobian_reuse", o.jacobianReuse);
   o.maxConcentrationChange = mpm.get<double>("max_concentration_change", o.maxConcentrationChange);
   if (!(o.maxConcentrationChange > 0 && o.maxConcentrationChange <= 1))
     mpm.requireChild("max_concentration_change")

@@ -31,6 +31,12 @@ struct ImplicitOptions {
   // 1e-4. At most 1e-3: at 1e-2, on the CPDI compression of test_quasi_static, Newton stopped with
   // the stresses 43% from those of the full Jacobian (57 iterations against 12).
   double jacobianCouplingShare = 0;
+  // <jacobian_reuse> (ours): Newton keeps its last Jacobian for the next correction after a small,
+  // fast one (Implicit/EquilibriumSolver.cc, kKeptTangentRatio): an iteration without the
+  // particles' tangents, but its converged u is within Newton's criteria, not to round-off beyond
+  // them as a last quadratic iteration leaves it. False (the default, as ImpMPM): a new Jacobian
+  // every iteration.
+  bool jacobianReuse = false;
   // <max_concentration_change> (ours): with diffusion, the next dt is at most the one whose
   // largest change of a particle's c would be this (the last step's change scaled linearly).
   double maxConcentrationChange = 0.05;

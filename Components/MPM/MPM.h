@@ -60,14 +60,16 @@ class MPM {
     // The last step's: its equilibrium's Newton iterations (those the dt rule counts), the
     // prediction's (<concentration_coupling>trapezoidal) and the Krylov iterations of both.
     int lastIterations = 0, lastPredictorIterations = 0, lastKrylov = 0;
-    long iterations = 0, krylov = 0, retakes = 0, diffusionSubsteps = 0, preconditionerSetUps = 0;
+    long iterations = 0, krylov = 0, retakes = 0, diffusionSubsteps = 0, preconditionerSetUps = 0,
+         newTangents = 0;
     std::vector<std::pair<double, double>> lastRatios;  // NewtonReport::ratios of the last step
     std::vector<double> lastLinearTolerances;           // and its linearTolerances
-    // One Newton solve's iterations, Krylov iterations and set-ups into the totals.
+    // One Newton solve's iterations, new tangents, Krylov iterations and set-ups into the totals.
     void add(const NewtonReport& r) {
       iterations += r.iterations;
       krylov += r.krylovIterations;
       preconditionerSetUps += r.preconditionerSetUps;
+      newTangents += r.newTangents;
     }
     // "Newton 4, Krylov 31" ("Newton 4 + 2 predicting, ..."): the last step, for the progress
     // line.

@@ -54,13 +54,13 @@ std::string MPM::NewtonCounts::lastStep() const {
 }
 
 std::string MPM::NewtonCounts::summary(long steps) const {
-  char line[320];
+  char line[360];
   std::snprintf(line, sizeof line,
-                "Newton iterations %ld (%.2f per step), Krylov iterations %ld (%.1f per Newton "
-                "iteration, %ld preconditioner set-ups), steps retaken with a smaller dt %ld, "
-                "diffusion sub-steps %ld",
-                iterations, static_cast<double>(iterations) / std::max(steps, 1L), krylov,
-                iterations > 0 ? static_cast<double>(krylov) / iterations : 0.0,
+                "Newton iterations %ld (%.2f per step), %ld of them with a new Jacobian, Krylov "
+                "iterations %ld (%.1f per Newton iteration, %ld preconditioner set-ups), steps "
+                "retaken with a smaller dt %ld, diffusion sub-steps %ld",
+                iterations, static_cast<double>(iterations) / std::max(steps, 1L), newTangents,
+                krylov, iterations > 0 ? static_cast<double>(krylov) / iterations : 0.0,
                 preconditionerSetUps, retakes, diffusionSubsteps);
   return line;
 }

@@ -345,6 +345,7 @@ const std::vector<std::string>& implicitTags() {
                                                 "solver",
                                                 "hourglass_stabilization",
                                                 "jacobian_coupling_share",
+                                                "jacobian_reuse",
                                                 "max_concentration_change",
                                                 "concentration_coupling",
                                                 "subcell_concentration_relaxation"};

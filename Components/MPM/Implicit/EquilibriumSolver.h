@@ -60,6 +60,7 @@ struct EquilibriumProblem {
 struct NewtonReport {
   bool converged = false;
   int iterations = 0, krylovIterations = 0;
+  int newTangents = 0;  // iterations that assembled the Jacobian (the others kept the last one)
   int preconditionerSetUps = 0;  // GAMG built for a matrix (docs/quasi-static.md, linear solves)
   // Per iteration: |du|^2 / max, du.r / first (ImpMPM's two ratios).
   std::vector<std::pair<double, double>> ratios;
@@ -111,7 +112,9 @@ class EquilibriumSolver {
   // u += scale du (du by block row).
   void addToDisplacement(const std::vector<double>& du, double scale);
   // Newton's update u += step du with the line search's step; `residualNorm` is |r|^2 at u.
-  void takeStep(const EquilibriumProblem& problem, double dt, double stabilization,
+  // Whether residual_ is that of the new u (a trial lowered the norm; otherwise u takes the trial
+  // with the lowest norm, and residual_ is another trial's).
+  bool takeStep(const EquilibriumProblem& problem, double dt, double stabilization,
                 const std::vector<double>& du, double residualNorm);
   // Material m's particles' internal forces (and their stiffness) into the block rows [first,
   // last) of the residual (and K).

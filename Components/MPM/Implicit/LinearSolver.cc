@@ -353,8 +353,8 @@ double decadesOf(double relativeTolerance) {
 }  // namespace
 
 LinearSolve LinearSolver::solve(const BlockMatrix& K, const std::vector<double>& b,
-                                double relativeTolerance, std::vector<double>& x) {
-  setMatrix(K);
+                                double relativeTolerance, std::vector<double>& x, bool newValues) {
+  if (newValues) setMatrix(K);
   LinearSolve s = run(b, relativeTolerance, freshIterations_ < 0, x);
   if (!s.newPreconditioner && !s.converged) {  // solved again with a new one
     const int spent = s.iterations;

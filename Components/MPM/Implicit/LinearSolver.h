@@ -51,9 +51,10 @@ class LinearSolver {
 
   // Collective. Solves K x = b, K (this rank's parts, local rows) with the constructor's pattern,
   // b and x on the owned rows (b may hold more); `relativeTolerance` bounds the scaled residual
-  // relative to the scaled b's norm. The fixed components of x are exactly zero.
+  // relative to the scaled b's norm. The fixed components of x are exactly zero. Without
+  // `newValues` K is the one of the last solve, whose matrix (and preconditioner) it keeps.
   LinearSolve solve(const BlockMatrix& K, const std::vector<double>& b, double relativeTolerance,
-                    std::vector<double>& x);
+                    std::vector<double>& x, bool newValues = true);
 
  private:
   struct Objects;
