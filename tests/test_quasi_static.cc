@@ -243,6 +243,8 @@ TEST(QuasiStatic, RejectsWhatItDoesNotSupport) {
       {"delT_increase_factor", "0.5", "<delT_increase_factor> must be >= 1"},
       {"hourglass_stabilization", "-0.1", "<hourglass_stabilization> must be >= 0"},
       {"jacobian_coupling_share", "0.002", "<jacobian_coupling_share> must be in [0, 1e-3]"},
+      {"jacobian_reuse", "sometimes",
+       "<jacobian_reuse>: expected true or false, found 'sometimes'"},
       {"max_concentration_change", "0", "<max_concentration_change> must be in (0, 1]"},
       {"concentration_coupling", "upwind",
        "<concentration_coupling> must be staggered or trapezoidal, found \"upwind\""},
