@@ -194,8 +194,10 @@ void MPM::timeAdvance(Collective, double t, double dt) {
 }
 
 template <class Concentration>
-void MPM::scatterMaterial(size_t m, const Concentration& concentration) {
-  constexpr int perNode = ScatterTerms<Concentration::scatterWeightQuads>::quads;
+void MPM::scatterMaterial(size_t m, const Concentration& concentration, bool concentrationOnly) {
+  // The mechanics' and the kernel's quads, or the kernel's alone (ParticleLoops.h).
+  const int perNode = concentrationOnly ? kConcentrationScatterQuads
+                                        : ScatterTerms<Concentration::scatterWeightQuads>::quads;
   const ParticleSet& p = materials_[m].particles;
   GridFields& g = fields_[m];
   const long n = static_cast<long>(p.count());
@@ -220,17 +222,22 @@ void MPM::scatterMaterial(size_t m, const Concentration& concentration) {
         for (long k = r.begin; k < r.end; ++k) clearQuads(quads + k * perNode, perNode);
     }
 #pragma omp barrier
-    scatterToNodes(p, weights_[m], first, last, quads, concentration);
+    if (concentrationOnly)
+      scatterConcentrationToNodes(weights_[m], first, last, quads, concentration);
+    else
+      scatterToNodes(p, weights_[m], first, last, quads, concentration);
 #pragma omp barrier
     forEachNodeOfThread(active_.rows, t, threads, [&](long k) {
       NodeQuad* sum = sums + k * perNode;
       for (int u = 1; u < threads; ++u)
         if (touched[u].contains(k))
           addQuads(sum, threadScatter_[u - 1].data() + k * perNode, perNode);
-      g.mass[k] = sum[0].value[ScatterLane::mass];
-      g.momentum[k] = Vec3(sum[0].value + ScatterLane::momentum);
-      g.internalForce[k] = Vec3(sum[perNode - 1].value + ScatterLane::internalForce);
-      concentration.spread(k, sum);
+      if (!concentrationOnly) {
+        g.mass[k] = sum[0].value[ScatterLane::mass];
+        g.momentum[k] = Vec3(sum[0].value + ScatterLane::momentum);
+        g.internalForce[k] = Vec3(sum[perNode - 1].value + ScatterLane::internalForce);
+      }
+      concentration.spread(k, sum[perNode - 2], sum[perNode - 1]);
     });
   }
 }
@@ -240,9 +247,11 @@ void MPM::interpolateParticlesToGrid(bool concentrationOnly) {
       ActiveNodes::of(grid_, hullOf(active_.box, previous_)).rows;
   for (size_t m = 0; m < materials_.size(); ++m) {
     if (!scatters(m, concentrationOnly)) continue;
-    forEachNodeRange(cleared, [&](long begin, long end) { fields_[m].clearAll(begin, end); });
-    withScatterKernel(diffusion_.get(), m, materials_[m].particles, weights_[m], cleared,
-                      [&](const auto& concentration) { scatterMaterial(m, concentration); });
+    if (!concentrationOnly)
+      forEachNodeRange(cleared, [&](long begin, long end) { fields_[m].clearAll(begin, end); });
+    withScatterKernel(
+        diffusion_.get(), m, materials_[m].particles, weights_[m], cleared,
+        [&](const auto& concentration) { scatterMaterial(m, concentration, concentrationOnly); });
   }
 }
 
@@ -254,9 +263,14 @@ void MPM::computeNodalVelocityAndConcentration() {
     });
     applySymmetry(grid_, gridBCs_.symmetric, static_cast<int>(m), active_.box, g.velocity);
     applySymmetry(grid_, gridBCs_.symmetric, static_cast<int>(m), active_.box, g.internalForce);
-    if (diffusion_) diffusion_->computeNodalConcentration(m, g, active_.rows);  // Eq. 5
   }
-  if (diffusion_) diffusion_->applyDiffusionInterface(fields_, active_.rows);
+  if (diffusion_) computeNodalConcentration();
+}
+
+void MPM::computeNodalConcentration() {
+  for (size_t m = 0; m < materials_.size(); ++m)
+    diffusion_->computeNodalConcentration(m, fields_[m], active_.rows);  // Eq. 5
+  diffusion_->applyDiffusionInterface(fields_, active_.rows);
 }
 
 void MPM::exchangeMomentumInterpolated() {

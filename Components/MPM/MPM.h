@@ -173,7 +173,9 @@ class MPM {
   // Material m's particle i reaches beyond the stored nodes: off the grid, or (distributed)
   // beyond the ghost layer.
   [[noreturn]] void throwOutsideWindow(size_t m, long i) const;
-  // P2G; `concentrationOnly`: of the materials whose concentration changes only (diffusion on).
+  // P2G; `concentrationOnly`: the concentration's sums alone, of the materials whose
+  // concentration changes (diffusion on), after a full P2G of the same particles that changed
+  // nothing but their concentration since (the diffusion sub-steps of a quasi-static step).
   void interpolateParticlesToGrid(bool concentrationOnly = false);
   // Material m takes part in that P2G (and its ghost sums).
   bool scatters(size_t m, bool concentrationOnly) const {
@@ -189,6 +191,8 @@ class MPM {
   // as interpolateParticlesToGrid's).
   void sumGhostNodes(bool concentrationOnly = false);
   void computeNodalVelocityAndConcentration();
+  // Eq. 5 and the diffusion interface (diffusion on).
+  void computeNodalConcentration();
   // Keeps this rank's particles (all of the problem's are here when `allHere`) under a new
   // decomposition from the particle counts per cell plane, and lays out its window.
   void decompose(bool allHere);
@@ -215,7 +219,7 @@ class MPM {
   Decomposition::ParticleCounts seedCounts() const;
   // The ghost layers of the interpolator for CPDI domains reaching `reach` cells.
   int ghostWidthFor(double reach) const;
-  // The grid arrays the ghost sums after P2G complete.
+  // The grid arrays the ghost sums after P2G complete (`concentrationOnly`: the concentration's).
   std::vector<NodeArray> ghostSumArrays(bool concentrationOnly = false);
   // Rank of the box holding material m's particle i.
   int ownerOf(const ParticleSet& p, size_t i) const;
@@ -253,7 +257,7 @@ class MPM {
   // The setup checks of an implicit run: what it does not support is an input error.
   void checkImplicitSetup(const PSNode& root) const;
   template <class Concentration>
-  void scatterMaterial(size_t m, const Concentration& concentration);
+  void scatterMaterial(size_t m, const Concentration& concentration, bool concentrationOnly);
 
   MPMFlags flags_;
   Grid whole_;  // the problem's grid

@@ -224,12 +224,15 @@ void MPM::diffuseOverStep(double t, double dt, double substepMultiplier) {
     // The last sub-step ends at t + dt exactly (a remainder below 1e-12 dt joins the one before).
     double h = std::min(limit, dt - done);
     if (dt - done - h < 1e-12 * dt) h = dt - done;
-    // The concentration's sums of the start-of-step particles, again for the materials whose c
-    // changes (the others' P2G stands, as their particles do).
+    // The concentration's sums of the start-of-step particles, again, of the materials whose c
+    // changes (the rest of P2G stands: the particles change nothing else).
     if (done > 0) interpolateAndSumOverRanks(true);
     {
       ScopedTimer s(timers_, tasks_.particlesToGrid);
-      computeNodalVelocityAndConcentration();  // Eq. 5 and the diffusion interface
+      if (done > 0)
+        computeNodalConcentration();  // Eq. 5 and the diffusion interface
+      else
+        computeNodalVelocityAndConcentration();
     }
     {
       ScopedTimer s(timers_, tasks_.gridIntegration);

@@ -198,8 +198,7 @@ double MPM::imbalance(Collective) const {
 
 std::vector<NodeArray> MPM::ghostSumArrays(bool concentrationOnly) {
   std::vector<NodeArray> sums;
-  for (size_t m = 0; m < fields_.size(); ++m) {
-    if (!scatters(m, concentrationOnly)) continue;
+  for (size_t m = 0; m < fields_.size() && !concentrationOnly; ++m) {
     GridFields& g = fields_[m];
     sums.push_back({g.mass.data(), 1});
     sums.push_back({g.momentum.data()->data(), 3});

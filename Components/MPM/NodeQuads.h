@@ -38,6 +38,10 @@ constexpr int mass = 0, momentum = 1;
 constexpr int internalForce = 0;
 }  // namespace ScatterLane
 
+// P2G of a kernel's sums alone (scatterConcentrationToNodes): its last quad of weighted terms
+// and the quad of gradient terms, whose kernel lane it uses.
+constexpr int kConcentrationScatterQuads = 2;
+
 // The lane the mechanics leaves to a subcomponent's kernel: of P2G's last quad, and of both of
 // G2P's quads, where it holds the kernel's nodal value and rate (nodeValues).
 constexpr int kKernelLane = 3;

@@ -50,6 +50,32 @@ void scatterToNodes(const ParticleSet& p, const InterpolationWeights& W, long be
   }
 }
 
+// P2G of the concentration kernel's sums alone, kConcentrationScatterQuads per node (NodeQuads.h):
+// for particles that changed nothing but their concentration since the last full P2G.
+template <class Concentration>
+void scatterConcentrationToNodes(const InterpolationWeights& W, long begin, long end,
+                                 NodeQuad* quads, const Concentration& concentration) {
+  constexpr int weighted = Concentration::scatterWeightQuads;
+  if constexpr (weighted > 1) {  // a kernel with quads of its own
+    for (long i = begin; i < end; ++i) {
+      ScatterTerms<weighted> t;
+      concentration.addScatterTerms(i, t);
+      Quad byWeight, byGradient[3];
+      byWeight.copy_from(t.byWeight[weighted - 1], stdx::vector_aligned);
+      for (int d = 0; d < 3; ++d) byGradient[d].copy_from(t.byGradient[d], stdx::vector_aligned);
+      const size_t b = W.offset[i];
+      for (int e = 0; e < W.count[i]; ++e) {
+        NodeQuad* node = quads + static_cast<size_t>(W.node[b + e]) * kConcentrationScatterQuads;
+        const Vec3& grad = W.gradient[b + e];
+        store(load(node[0]) + byWeight * W.weight[b + e], node[0]);
+        store(load(node[1]) -
+                  (byGradient[0] * grad[0] + byGradient[1] * grad[1] + byGradient[2] * grad[2]),
+              node[1]);
+      }
+    }
+  }
+}
+
 // Writes the node quads G2P reads (NodeQuads.h) on the nodes of `nodes`, from the grid's
 // velocity_star and acceleration and the concentration kernel's nodal values.
 template <class Concentration>

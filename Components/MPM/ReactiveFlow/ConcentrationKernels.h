@@ -27,7 +27,7 @@ struct NoConcentration {
   static constexpr int scatterWeightQuads = 1;
   struct Particle {};
   void addScatterTerms(long, ScatterTerms<1>&) const {}
-  void spread(long, const NodeQuad*) const {}
+  void spread(long, const NodeQuad&, const NodeQuad&) const {}
   void nodeValues(long, double& concentration, double& rate) const { concentration = rate = 0.0; }
   void gather(Particle&, int, double) const {}
   double update(long, const Particle&, const GatheredKernelValue&, double) const { return 0.0; }
@@ -80,11 +80,12 @@ class ConcentrationScatter {
     }
   }
 
-  // Node k's sums from its quads into the grid's fields.
-  void spread(long k, const NodeQuad* quads) const {
-    const double* sums = quads[1].value;
+  // Node k's sums from its quads into the grid's fields: the kernel's quad of weighted terms and
+  // the quad of gradient terms, whose kernel lane it uses.
+  void spread(long k, const NodeQuad& weighted, const NodeQuad& byGradient) const {
+    const double* sums = weighted.value;
     grid_->massConcentration[k] = sums[ConcentrationLane::massConcentration];
-    grid_->diffusionRate[k] = quads[2].value[ConcentrationLane::diffusionRate];
+    grid_->diffusionRate[k] = byGradient.value[ConcentrationLane::diffusionRate];
     if constexpr (Flux) {
       grid_->fluxSource[k] = sums[ConcentrationLane::fluxSource];
       grid_->receiverWeightIn[k] = sums[ConcentrationLane::receiverWeightIn];
