@@ -609,8 +609,8 @@ TEST(QuasiStatic, NewtonFromASolvedPredictionSolvesItsFirstCorrectionTighter) {
 }
 
 // The trapezoidal step's own solve starts from the step's start, as its prediction does: the same
-// unknowns and pattern, so it takes the prediction's linear solver and preconditioner instead of
-// setting GAMG up again for its first iteration.
+// particles, weights and nodal masses, so it takes the prediction's unknowns, linear solver and
+// preconditioner instead of setting GAMG up again for its first iteration.
 TEST(QuasiStatic, TrapezoidalSolveTakesThePredictionsPreconditioner) {
   const BarRun staggered = runBar("staggered", 0.25), trapezoidal = runBar("trapezoidal", 0.25);
   EXPECT_GE(staggered.counts.preconditionerSetUps, 4);  // one a step at least (measured: 4)

@@ -5,6 +5,7 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <numeric>
 #include <optional>
@@ -573,35 +574,51 @@ void EquilibriumSolver::computeEndOfStepAcceleration(const EquilibriumProblem& p
         newmarkAcceleration(u_[f][k], problem.velocity[f][k], problem.acceleration[f][k], dt);
 }
 
-EquilibriumSolver::UnknownsPattern EquilibriumSolver::unknownsPattern() const {
-  return {unknown_, rows_.globalRow, K_.rowStart, K_.column, fixed_};
+namespace {
+
+// The same values bit for bit (the free components' NaN included).
+template <class T>
+bool sameBits(const std::vector<std::vector<T>>& a, const std::vector<std::vector<T>>& b) {
+  if (a.size() != b.size()) return false;
+  for (size_t f = 0; f < a.size(); ++f)
+    if (a[f].size() != b[f].size() ||
+        std::memcmp(a[f].data(), b[f].data(), a[f].size() * sizeof(T)) != 0)
+      return false;
+  return true;
 }
+
+}  // namespace
 
 bool EquilibriumSolver::takesKeptLinearSolver(const EquilibriumProblem& problem) const {
   if (!problem.useKeptLinearSolver) return false;
-  const bool same = linearSolver_ && unknownsPattern() == linearSolverPattern_;
+  const bool same = linearSolver_ && sameBits(problem.mass, numberedMass_) &&
+                    sameBits(problem.prescribed, numberedPrescribed_);
   return collective::minimum(same ? 1.0 : 0.0) > 0;
 }
 
 void EquilibriumSolver::buildLinearSolver(const EquilibriumProblem& problem) {
   linearSolver_.reset();  // its PETSc objects freed before the new ones are made
   linearSolver_ = std::make_unique<LinearSolver>(K_, rows_, fixed_, coordinates_);
-  linearSolverPattern_ = problem.keepLinearSolver ? unknownsPattern() : UnknownsPattern{};
+  numberedMass_.clear();
+  numberedPrescribed_.clear();
+  if (!problem.keepLinearSolver) return;
+  numberedMass_ = problem.mass;
+  numberedPrescribed_ = problem.prescribed;
 }
 
 NewtonReport EquilibriumSolver::solve(const EquilibriumProblem& problem, double dt,
                                       const ImplicitOptions& options) {
   std::optional<ScopedTimer> setUp;
   if (timers_) setUp.emplace(*timers_, assemblyTask_);
-  numberUnknowns(problem, options.jacobianCouplingShare);
+  // A kept solver's unknowns and pattern are this solve's, and so are its solve's last tangent
+  // and the hourglass stiffness of the same start: the first iteration assembles the residual.
+  const bool solverKept = takesKeptLinearSolver(problem);
+  if (!solverKept) numberUnknowns(problem, options.jacobianCouplingShare);
   u_.assign(row_.size(), std::vector<Vec3>(problem.grid.numNodes(), Vec3::Zero()));
   for (size_t f = 0; f < row_.size(); ++f)
     for (int k = 0; k < problem.grid.numNodes(); ++k)
       for (int a = 0; a < 3; ++a)
         if (!std::isnan(problem.prescribed[f][k][a])) u_[f][k][a] = problem.prescribed[f][k][a];
-  // A kept solver's unknowns and pattern are this solve's, and so are its solve's last tangent
-  // and the hourglass stiffness of the same start: the first iteration assembles the residual.
-  const bool solverKept = takesKeptLinearSolver(problem);
   const bool tangentKept = solverKept && !kept_.block.empty();
   if (tangentKept) {
     K_.block = std::move(kept_.block);

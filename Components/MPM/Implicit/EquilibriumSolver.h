@@ -50,9 +50,10 @@ struct EquilibriumProblem {
   std::vector<std::vector<Vec3>> predicted;
   bool predictedIsSolved = false;
   // The trapezoidal step's prediction and its main solve, both from the step's start (the same
-  // unknowns): the prediction keeps its linear solver (PETSc's matrix layout and GAMG's
-  // preconditioner) for the main solve, which takes it when its unknowns and pattern are the
-  // prediction's on every rank. Otherwise each solve builds its own and frees it at its end.
+  // particles and weights): the prediction keeps its unknowns and linear solver (PETSc's matrix
+  // layout and GAMG's preconditioner) for the main solve, which takes them when its nodal masses
+  // and prescribed components are the prediction's on every rank. Otherwise each solve numbers
+  // its own unknowns, builds its own solver and frees it at its end.
   bool keepLinearSolver = false, useKeptLinearSolver = false;
 };
 
@@ -139,23 +140,13 @@ class EquilibriumSolver {
   // The end-of-step accelerations of implicit dynamics (Newmark) into acceleration_.
   void computeEndOfStepAcceleration(const EquilibriumProblem& problem, double dt);
 
-  // Collective: the problem asks for the kept linear solver and every rank's unknowns and pattern
-  // are those it was built for.
+  // Collective: the problem asks for the kept linear solver and on every rank its nodal masses
+  // and prescribed components are those the unknowns were numbered for. The particles and their
+  // weights are the same by the problem's contract (EquilibriumProblem::useKeptLinearSolver), so
+  // the unknowns, K's pattern and the linear solver all stand.
   bool takesKeptLinearSolver(const EquilibriumProblem& problem) const;
   // A new linearSolver_ for this solve's unknowns (the old one freed first).
   void buildLinearSolver(const EquilibriumProblem& problem);
-
-  // What a linear solver is built for: the unknowns, their global rows, K's pattern, the fixed
-  // components.
-  struct UnknownsPattern {
-    std::vector<std::pair<int, int>> unknown;
-    std::vector<int> globalRow, rowStart, column, fixed;
-    bool operator==(const UnknownsPattern& o) const {
-      return unknown == o.unknown && globalRow == o.globalRow && rowStart == o.rowStart &&
-             column == o.column && fixed == o.fixed;
-    }
-  };
-  UnknownsPattern unknownsPattern() const;
 
   std::vector<std::vector<Vec3>> u_;             // per field, by node
   std::vector<std::vector<Vec3>> acceleration_;  // per field, by node (implicit dynamics)
@@ -192,7 +183,10 @@ class EquilibriumSolver {
     std::vector<Mat3> block;
     std::vector<double> hourglass, hourglassTangent, hourglassLoad;
   } kept_;
-  UnknownsPattern linearSolverPattern_;  // what linearSolver_ was built for
+  // The nodal masses and prescribed components the unknowns of a kept linear solver were
+  // numbered for (empty when it is not kept).
+  std::vector<std::vector<double>> numberedMass_;
+  std::vector<std::vector<Vec3>> numberedPrescribed_;
   TaskTimers* timers_ = nullptr;
   int assemblyTask_ = -1, solveTask_ = -1;
 };
