@@ -198,12 +198,12 @@ double MPM::imbalance(Collective) const {
 
 std::vector<NodeArray> MPM::ghostSumArrays(bool concentrationOnly) {
   std::vector<NodeArray> sums;
-  for (size_t m = 0; m < fields_.size() && !concentrationOnly; ++m) {
-    GridFields& g = fields_[m];
-    sums.push_back({g.mass.data(), 1});
-    sums.push_back({g.momentum.data()->data(), 3});
-    sums.push_back({g.internalForce.data()->data(), 3});
-  }
+  if (!concentrationOnly)  // the rest of P2G's sums stand in a concentration-only P2G
+    for (GridFields& g : fields_) {
+      sums.push_back({g.mass.data(), 1});
+      sums.push_back({g.momentum.data()->data(), 3});
+      sums.push_back({g.internalForce.data()->data(), 3});
+    }
   if (diffusion_) diffusion_->addScatteredArrays(sums);
   return sums;
 }
