@@ -240,12 +240,14 @@ void MPM::diffuseOverStep(double t, double dt, double substepMultiplier) {
     }
     {
       ScopedTimer s(timers_, tasks_.particleUpdate);
-      for (size_t m = 0; m < materials_.size(); ++m)
+      for (size_t m = 0; m < materials_.size(); ++m) {
+        if (!diffusion_->computesConcentration(m)) continue;  // its c stays: nothing to gather
         withGatherKernel(diffusion_.get(), m, materials_[m].particles, [&](const auto& kernel) {
           fillGatherQuads(fields_[m], kernel, active_.rows, nodeQuads_.data());
           updateConcentrationOnly(materials_[m].particles, weights_[m], nodeQuads_.data(), kernel,
                                   h, concentrationChange_[m]);
         });
+      }
     }
     done = h == dt - done ? dt : done + h;
     ++newton_.diffusionSubsteps;
