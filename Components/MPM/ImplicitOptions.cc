@@ -59,6 +59,13 @@ ImplicitOptions ImplicitOptions::fromInput(const PSNode& mpm) {
           "<concentration_coupling>trapezoidal with <dynamic>true (it serves "
           "quasi-static steps)");
   }
+  if (const PSNode integrator = mpm.child("diffusion_integrator")) {
+    const std::string name = integrator.value<std::string>();
+    if (name == "rkl2")
+      o.diffusionIntegrator = DiffusionIntegrator::Rkl2;
+    else if (name != "euler")
+      integrator.fail("<diffusion_integrator> must be euler or rkl2, found \"" + name + "\"");
+  }
   o.subcellConcentrationRelaxation =
       mpm.get<bool>("subcell_concentration_relaxation", o.subcellConcentrationRelaxation);
   if (const PSNode solver = mpm.child("solver")) {

@@ -47,6 +47,14 @@ struct ImplicitOptions {
   // c and solves Newton for it from the prediction (docs/quasi-static.md).
   enum class ConcentrationCoupling { Staggered, Trapezoidal };
   ConcentrationCoupling concentrationCoupling = ConcentrationCoupling::Staggered;
+  // <diffusion_integrator> (ours): how a quasi-static step's diffusion passes over dt. Euler:
+  // forward-Euler sub-steps at <timestep_multiplier> x the explicit limits (Eq. 44 and the flux
+  // limit), each with the gradient of the sub-step before. RKL2: one second-order
+  // Runge-Kutta-Legendre step (Implicit/RungeKuttaLegendre.h) of as many stages as the same
+  // limit needs, each stage's rate with the gradient of its own c and the load curves at the
+  // pass's midpoint (docs/quasi-static.md).
+  enum class DiffusionIntegrator { Euler, Rkl2 };
+  DiffusionIntegrator diffusionIntegrator = DiffusionIntegrator::Euler;
   // <subcell_concentration_relaxation> (ours): each step's diffusion first draws the particles
   // towards the grid's c at their places, so differences the grid does not see fade
   // (ReactiveFlow/SubcellRelaxation.h); off, Eq. 8 carries them unchanged.

@@ -237,6 +237,9 @@ class MPM {
   // Diffusion over the quasi-static step in explicit sub-steps on its start-of-step configuration;
   // concentrationChange_ receives each particle's change.
   void diffuseOverStep(double t, double dt, double substepMultiplier);
+  // <diffusion_integrator>rkl2: diffuseOverStep's pass as one RKL2 step over dt, its stages as
+  // many as the sub-steps' limit at the start needs (Implicit/RungeKuttaLegendre.h).
+  void diffuseInLegendreStages(double t, double dt, double substepMultiplier);
   // <subcell_concentration_relaxation>: the particles drawn towards the grid's c of their P2G over
   // dt (ReactiveFlow/SubcellRelaxation.h), their change added to concentrationChange_.
   void relaxSubcellConcentration(double dt);

@@ -13,6 +13,7 @@
 
 #include "Components/MPM/Implicit/ConcentrationSubstep.h"
 #include "Components/MPM/Implicit/ParticleEquilibrium.h"
+#include "Components/MPM/Implicit/RungeKuttaLegendre.h"
 #include "Components/MPM/MPM.h"
 #include "Components/MPM/Materials/ConstitutiveModels/ConcreteModels.h"
 #include "Components/MPM/ParticleLoops.h"
@@ -79,6 +80,18 @@ void MPM::checkImplicitSetup(const PSNode& root) const {
         .warn(
             "<concentration_coupling>trapezoidal without <do_scalar_diffusion>true: there is "
             "no diffusion to couple, the steps are the staggered ones");
+  if (flags_.implicit->diffusionIntegrator == ImplicitOptions::DiffusionIntegrator::Rkl2) {
+    const PSNode tag = root.requireChild("MPM").requireChild("diffusion_integrator");
+    // A stage needs the particles' rate of c; a Dirichlet node sets c instead, and the
+    // auto-cycle's turn is a decision on the state of a step's end, not of a stage.
+    if (diffusion_ && diffusion_->hasConcentrationBCs())
+      tag.unsupported("<diffusion_integrator>rkl2 with SD-Type concentration boundary conditions");
+    if (flags_.autoCycle) tag.unsupported("<diffusion_integrator>rkl2 with <do_auto_cycle_bc>");
+    if (!diffusion_)
+      tag.warn(
+          "<diffusion_integrator> without <do_scalar_diffusion>true: there is no diffusion to "
+          "integrate");
+  }
   if (!diffusion_ && flags_.implicit->subcellConcentrationRelaxation)
     root.requireChild("MPM")
         .requireChild("subcell_concentration_relaxation")
@@ -215,6 +228,10 @@ void MPM::diffuseOverStep(double t, double dt, double substepMultiplier) {
     relaxSubcellConcentration(dt);
     interpolateAndSumOverRanks(true);  // the sums of the relaxed c
   }
+  if (flags_.implicit->diffusionIntegrator == ImplicitOptions::DiffusionIntegrator::Rkl2) {
+    diffuseInLegendreStages(t, dt, substepMultiplier);
+    return;
+  }
   double done = 0;
   while (done < dt) {
     // Eq. 44 over every rank's particles: each rank's sub-steps are the same.
@@ -254,6 +271,100 @@ void MPM::diffuseOverStep(double t, double dt, double substepMultiplier) {
     ScopedTimer s(timers_, tasks_.diffusionState);
     diffusion_->updateDiffusionState(Collective{}, materials_, t + done);  // range, D, flux rates
   }
+}
+
+void MPM::diffuseInLegendreStages(double t, double dt, double substepMultiplier) {
+  {
+    ScopedTimer s(timers_, tasks_.particlesToGrid);
+    computeNodalVelocityAndConcentration();  // the step's P2G (the nodal velocity)
+  }
+  // c of the particles of the materials whose c changes, one after the other.
+  std::vector<size_t> changing;
+  for (size_t m = 0; m < materials_.size(); ++m)
+    if (diffusion_->computesConcentration(m)) changing.push_back(m);
+  const auto concentrations = [&] {
+    std::vector<double> y;
+    for (size_t m : changing) {
+      const std::vector<double>& c = diffusionParticles(materials_[m].particles).concentration;
+      y.insert(y.end(), c.begin(), c.end());
+    }
+    return y;
+  };
+  const auto setConcentrations = [&](const std::vector<double>& y) {
+    auto at = y.begin();
+    for (size_t m : changing) {
+      std::vector<double>& c = diffusionParticles(materials_[m].particles).concentration;
+      std::copy(at, at + static_cast<long>(c.size()), c.begin());
+      at += static_cast<long>(c.size());
+    }
+  };
+  // The particles' grad c from the nodal c of their c (P2G of m c).
+  const auto gradientOfNodalConcentration = [&] {
+    interpolateAndSumOverRanks(true);
+    {
+      ScopedTimer s(timers_, tasks_.particlesToGrid);
+      computeNodalConcentration();
+    }
+    ScopedTimer s(timers_, tasks_.particleUpdate);
+    for (size_t m : changing)
+      gatherConcentrationGradient(materials_[m].particles, weights_[m],
+                                  diffusion_->gridFields()[m].concentration);
+  };
+  const double middle = t + dt / 2;
+  // dc/dt of every particle at c = y: the diffusion state (D, flux rates) of y with the load
+  // curves at the pass's midpoint, P2G of m c, grad c at the particles from the nodal c, P2G of
+  // m D grad c and the flux sources, and the nodal rates gathered with the sources each particle
+  // receives (ConcentrationGather's update over a unit time).
+  const auto rate = [&](const std::vector<double>& y, std::vector<double>& f) {
+    setConcentrations(y);
+    {
+      ScopedTimer s(timers_, tasks_.diffusionState);
+      diffusion_->updateDiffusionState(Collective{}, materials_, middle);
+    }
+    gradientOfNodalConcentration();
+    interpolateAndSumOverRanks(true);
+    {
+      ScopedTimer s(timers_, tasks_.particlesToGrid);
+      computeNodalConcentration();
+    }
+    {
+      ScopedTimer s(timers_, tasks_.gridIntegration);
+      diffusion_->integrateConcentration(fields_, 1.0, active_.rows);
+    }
+    ScopedTimer s(timers_, tasks_.particleUpdate);
+    size_t first = 0;
+    for (size_t m : changing) {
+      const size_t n = materials_[m].particles.count();
+      std::vector<double> change(n, 0.0);
+      withGatherKernel(diffusion_.get(), m, materials_[m].particles, [&](const auto& kernel) {
+        fillGatherQuads(fields_[m], kernel, active_.rows, nodeQuads_.data());
+        updateConcentrationOnly(materials_[m].particles, weights_[m], nodeQuads_.data(), kernel,
+                                1.0, change);
+      });
+      std::copy(change.begin(), change.end(), f.begin() + static_cast<long>(first));
+      first += n;
+    }
+    setConcentrations(y);
+    ++newton_.diffusionSubsteps;
+  };
+  // As many stages as the sub-steps' limit at the pass's start needs (Eq. 44 and the flux limit).
+  const double limit =
+      substepMultiplier * std::min(collective::minimum(diffusion_->diffusionTimestep(grid_)),
+                                   diffusion_->fluxTimestep(Collective{}, materials_));
+  const std::vector<double> start = concentrations();
+  std::vector<double> y = start;
+  stepRkl2(y, dt, rkl2Stages(dt / limit), rate);
+  setConcentrations(y);
+  size_t first = 0;
+  for (size_t m : changing) {
+    std::vector<double>& change = concentrationChange_[m];
+    for (size_t i = 0; i < change.size(); ++i) change[i] += y[first + i] - start[first + i];
+    first += change.size();
+  }
+  // grad c of the end (as a sub-step leaves it for the next one) and its diffusion state.
+  gradientOfNodalConcentration();
+  ScopedTimer s(timers_, tasks_.diffusionState);
+  diffusion_->updateDiffusionState(Collective{}, materials_, t + dt);
 }
 
 void MPM::relaxSubcellConcentration(double dt) {

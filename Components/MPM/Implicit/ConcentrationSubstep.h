@@ -9,6 +9,7 @@
 #include "Components/MPM/Interpolator.h"
 #include "Components/MPM/NodeQuads.h"
 #include "Components/MPM/ParticleSet.h"
+#include "Components/MPM/ReactiveFlow/DiffusionParticles.h"
 
 namespace anode {
 
@@ -35,6 +36,21 @@ void updateConcentrationOnly(const ParticleSet& p, const InterpolationWeights& W
       kernel.gather(a, k, w);
     }
     dc[i] += kernel.update(i, a, sums, dt);
+  }
+}
+
+// grad c of particles [0, n) from the nodal c: sum c_k grad S_k (the gradient a sub-step's G2P
+// leaves, of the nodal c instead of c*).
+inline void gatherConcentrationGradient(ParticleSet& p, const InterpolationWeights& W,
+                                        const std::vector<double>& nodal) {
+  DiffusionParticles d = diffusionParticles(p);
+  const long n = static_cast<long>(p.count());
+#pragma omp parallel for schedule(static)
+  for (long i = 0; i < n; ++i) {
+    Vec3 gradient = Vec3::Zero();
+    for (size_t e = W.offset[i]; e < W.offset[i] + W.count[i]; ++e)
+      gradient += nodal[W.node[e]] * W.gradient[e];
+    d.concentrationGradient[i] = gradient;
   }
 }
 

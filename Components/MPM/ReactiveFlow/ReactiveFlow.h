@@ -118,6 +118,8 @@ class ReactiveFlow {
   // "Materials that take up no lithium"). Its P2G and G2P run without concentration, its
   // diffusivity stays 0 and it has no nodal concentration fields, unless the output saves them.
   bool computesConcentration(size_t m) const { return changes_[m] || everyMaterial_; }
+  // SD-Type concentration conditions (<BCType ... label="Concentration">) on some grid face.
+  bool hasConcentrationBCs() const { return !concentrationBCs_.empty(); }
   // The materials whose concentration can change, when two or more can (else empty): the ones
   // history.csv gives columns of their own.
   std::vector<size_t> lithiumTakingMaterials() const;
