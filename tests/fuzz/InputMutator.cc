@@ -348,6 +348,7 @@ const std::vector<std::string>& implicitTags() {
                                                 "jacobian_reuse",
                                                 "max_concentration_change",
                                                 "concentration_coupling",
+                                                "diffusion_integrator",
                                                 "subcell_concentration_relaxation"};
   return tags;
 }
