@@ -236,6 +236,9 @@ class MPM {
   void interpolateAndSumOverRanks(bool concentrationOnly = false);
   // Diffusion over the quasi-static step in explicit sub-steps on its start-of-step configuration;
   // concentrationChange_ receives each particle's change.
+  // Collective: a diffusion sub-step's length, substepMultiplier times the smaller of Eq. 44 and
+  // the flux limit over all ranks.
+  double diffusionSubstepLimit(double substepMultiplier) const;
   void diffuseOverStep(double t, double dt, double substepMultiplier);
   // <diffusion_integrator>rkl2: diffuseOverStep's pass as one RKL2 step over dt, its stages as
   // many as the sub-steps' limit at the start needs (Implicit/RungeKuttaLegendre.h).

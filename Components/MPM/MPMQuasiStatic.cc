@@ -220,6 +220,12 @@ void MPM::interpolateAndSumOverRanks(bool concentrationOnly) {
   }
 }
 
+double MPM::diffusionSubstepLimit(double substepMultiplier) const {
+  // Eq. 44 over every rank's particles and the flux limit: each rank's sub-steps are the same.
+  return substepMultiplier * std::min(collective::minimum(diffusion_->diffusionTimestep(grid_)),
+                                      diffusion_->fluxTimestep(Collective{}, materials_));
+}
+
 void MPM::diffuseOverStep(double t, double dt, double substepMultiplier) {
   concentrationChange_.resize(materials_.size());
   for (size_t m = 0; m < materials_.size(); ++m)
@@ -234,10 +240,7 @@ void MPM::diffuseOverStep(double t, double dt, double substepMultiplier) {
   }
   double done = 0;
   while (done < dt) {
-    // Eq. 44 over every rank's particles: each rank's sub-steps are the same.
-    const double limit =
-        substepMultiplier * std::min(collective::minimum(diffusion_->diffusionTimestep(grid_)),
-                                     diffusion_->fluxTimestep(Collective{}, materials_));
+    const double limit = diffusionSubstepLimit(substepMultiplier);
     // The last sub-step ends at t + dt exactly (a remainder below 1e-12 dt joins the one before).
     double h = std::min(limit, dt - done);
     if (dt - done - h < 1e-12 * dt) h = dt - done;
@@ -347,10 +350,8 @@ void MPM::diffuseInLegendreStages(double t, double dt, double substepMultiplier)
     setConcentrations(y);
     ++newton_.diffusionSubsteps;
   };
-  // As many stages as the sub-steps' limit at the pass's start needs (Eq. 44 and the flux limit).
-  const double limit =
-      substepMultiplier * std::min(collective::minimum(diffusion_->diffusionTimestep(grid_)),
-                                   diffusion_->fluxTimestep(Collective{}, materials_));
+  // As many stages as the sub-steps' limit at the pass's start needs.
+  const double limit = diffusionSubstepLimit(substepMultiplier);
   const std::vector<double> start = concentrations();
   std::vector<double> y = start;
   stepRkl2(y, dt, rkl2Stages(dt / limit), rate);
