@@ -183,6 +183,36 @@ TEST(RunReport, ImplicitRunGivesNewtonAndKrylov) {
   fs::remove_all(dir);
 }
 
+// A quasi-static run with <concentration_coupling>trapezoidal: the history's coupling_correction
+// (0 at step 0, above 0 at each step that diffuses) and its plot; the staggered input of the
+// test above has neither.
+TEST(RunReport, TrapezoidalRunPlotsItsCouplingCorrection) {
+  const fs::path dir = scratch("trapezoidal");
+  const auto run =
+      runSus({"-o", dir.string(), "--max-timesteps", "2",
+              std::string(ANODE_SOURCE_DIR) + "/tests/parallel/ImplicitLithiation.ups"});
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  const HistoryDigest d = digestHistory((dir / "history.csv").string(), 100, 1e-2);
+  const int c = d.column("coupling_correction");
+  ASSERT_GE(c, 0);
+  EXPECT_EQ(d.minimum[c], 0.0);  // step 0
+  EXPECT_GT(d.last[c], 0.0);
+  EXPECT_TRUE(parseReport(dir / "report.html").plots.count("coupling"));
+  fs::remove_all(dir);
+
+  const fs::path staggered = scratch("staggered");
+  ASSERT_EQ(
+      runSus({"-o", staggered.string(), "--max-timesteps", "1",
+              std::string(ANODE_SOURCE_DIR) + "/inputs/Stability/Implicit_swelling_eta_0.56.ups"})
+          .exitCode,
+      0);
+  EXPECT_LT(
+      digestHistory((staggered / "history.csv").string(), 100, 1e-2).column("coupling_correction"),
+      0);
+  EXPECT_FALSE(parseReport(staggered / "report.html").plots.count("coupling"));
+  fs::remove_all(staggered);
+}
+
 // A run that fails (a time step beyond the stable one: exit 3) leaves the page of its last good
 // state, saying which step failed.
 TEST(RunReport, WrittenWhenAStepFails) {

@@ -60,6 +60,10 @@ class MPM {
     // The last step's: its equilibrium's Newton iterations (those the dt rule counts), the
     // prediction's (<concentration_coupling>trapezoidal) and the Krylov iterations of both.
     int lastIterations = 0, lastPredictorIterations = 0, lastKrylov = 0;
+    // The last step's coupling correction (<concentration_coupling>trapezoidal; -1 otherwise):
+    // sum m |dc_2 - dc_1| / 2 over every rank's particles, dc_1 and dc_2 the two passes' changes
+    // of c, the lithium by which the step's mean differs from either pass.
+    double lastCouplingCorrection = -1;
     long iterations = 0, krylov = 0, retakes = 0, diffusionSubsteps = 0, preconditionerSetUps = 0,
          newTangents = 0;
     std::vector<std::pair<double, double>> lastRatios;  // NewtonReport::ratios of the last step
@@ -250,12 +254,14 @@ class MPM {
   // diffusion's `atStart`), a Newton solve to kPredictorConvergence predicts the step's end; the
   // sub-steps run again on those particles from the start's c, and the particles are set back to
   // the start with c changed by the mean of the two passes (concentrationChange_ too). Returns the
-  // prediction's Newton (a failed one: the step is retaken) and its increments by field in
-  // `predicted`, the final solve's first iterate.
+  // prediction's Newton (a failed one: the step is retaken), its increments by field in
+  // `predicted`, the final solve's first iterate, and the coupling correction in `correction`
+  // (NewtonCounts::lastCouplingCorrection).
   NewtonReport averageConcentrationChangeOverStep(double t, double dt, double substepMultiplier,
                                                   const std::vector<ParticleSet>& start,
                                                   const ReactiveFlow::StepState& atStart,
-                                                  std::vector<std::vector<Vec3>>& predicted);
+                                                  std::vector<std::vector<Vec3>>& predicted,
+                                                  double& correction);
   // The largest |dc| of a particle over the diffusion of the step.
   double largestConcentrationChange() const;
   // The particles after the converged step (positions, F, stress, the models' state).

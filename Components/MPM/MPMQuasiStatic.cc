@@ -388,7 +388,8 @@ void MPM::relaxSubcellConcentration(double dt) {
 NewtonReport MPM::averageConcentrationChangeOverStep(double t, double dt, double substepMultiplier,
                                                      const std::vector<ParticleSet>& start,
                                                      const ReactiveFlow::StepState& atStart,
-                                                     std::vector<std::vector<Vec3>>& predicted) {
+                                                     std::vector<std::vector<Vec3>>& predicted,
+                                                     double& correction) {
   // Never tighter than the step's own criteria.
   ImplicitOptions loose = *flags_.implicit;
   loose.convergenceDisp = std::max(kPredictorConvergence, loose.convergenceDisp);
@@ -434,19 +435,23 @@ NewtonReport MPM::averageConcentrationChangeOverStep(double t, double dt, double
     weightsOfTheParticles();
     diffuseOverStep(t, dt, substepMultiplier);
     // The start's particles with the means of the two passes (trapezoidal in the geometry, the
-    // stress and J).
+    // stress and J), and the lithium by which the mean differs from either pass.
+    correction = 0;
     for (size_t m = 0; m < materials_.size(); ++m) {
       const std::vector<Vec3> secondPassGradient =
           diffusionParticles(materials_[m].particles).concentrationGradient;
       materials_[m].particles = start[m];
       DiffusionParticles d = diffusionParticles(materials_[m].particles);
+      const std::vector<double>& mass = materials_[m].particles.mass;
       std::vector<double>& change = concentrationChange_[m];
       for (size_t i = 0; i < d.concentration.size(); ++i) {
+        correction += mass[i] * 0.5 * std::abs(change[i] - firstPassChange[m][i]);
         change[i] = 0.5 * (firstPassChange[m][i] + change[i]);
         d.concentration[i] += change[i];
         d.concentrationGradient[i] = 0.5 * (firstPassGradient[m][i] + secondPassGradient[i]);
       }
     }
+    correction = collective::sum(correction);
     maxConcentrationChange_ = collective::maximum(largestConcentrationChange());
     {
       ScopedTimer s(timers_, tasks_.diffusionState);
@@ -501,11 +506,12 @@ double MPM::advanceQuasiStatic(Collective, double t, double dt, double ruleDt, d
     // 2b (<concentration_coupling>trapezoidal): c over dt again on the predicted end
     std::vector<std::vector<Vec3>> predicted;
     NewtonReport prediction;
+    double couplingCorrection = -1;
     if (report.failure.empty() && diffusion_ &&
         flags_.implicit->concentrationCoupling ==
             ImplicitOptions::ConcentrationCoupling::Trapezoidal) {
-      prediction = averageConcentrationChangeOverStep(t, dt, substepMultiplier, start,
-                                                      *diffusionAtStart, predicted);
+      prediction = averageConcentrationChangeOverStep(
+          t, dt, substepMultiplier, start, *diffusionAtStart, predicted, couplingCorrection);
       if (!prediction.converged) {
         report = prediction;
         report.failure = "the prediction of the step's end: " + report.failure;
@@ -525,6 +531,7 @@ double MPM::advanceQuasiStatic(Collective, double t, double dt, double ruleDt, d
         newton_.lastIterations = report.iterations;
         newton_.lastPredictorIterations = prediction.iterations;
         newton_.lastKrylov = report.krylovIterations + prediction.krylovIterations;
+        newton_.lastCouplingCorrection = couplingCorrection;
         newton_.lastRatios = report.ratios;
         newton_.lastLinearTolerances = report.linearTolerances;
         break;

@@ -305,6 +305,7 @@ void DataArchiver::writeHistory() {
     s << "elastic_energy,dt_limit,";
     if (unwritten_.front().record.newtonIterations >= 0)
       s << "newton_iterations,krylov_iterations,";
+    if (unwritten_.front().record.couplingCorrection >= 0) s << "coupling_correction,";
     s << "wall_seconds\n";
   }
   s << std::setprecision(10);
@@ -321,6 +322,7 @@ void DataArchiver::writeHistory() {
     s << record.elasticEnergy << ',' << record.dtRule << ',';
     if (record.newtonIterations >= 0)
       s << record.newtonIterations << ',' << record.krylovIterations << ',';
+    if (record.couplingCorrection >= 0) s << record.couplingCorrection << ',';
     s << r.wallSeconds << '\n';
   }
   const std::string path = (fs::path(dir_) / "history.csv").string();

@@ -32,6 +32,10 @@ struct StepRecord {
   // Of the attempt kept (a retaken step's earlier attempts are in the end summary's totals
   // only); -1: an explicit run (no columns).
   int newtonIterations = -1, krylovIterations = -1;
+  // A trapezoidal quasi-static step's coupling correction over the capacity of the materials
+  // whose c changes (MPM::NewtonCounts::lastCouplingCorrection; 0 before the first step); -1:
+  // no column.
+  double couplingCorrection = -1;
 };
 
 // history.csv's dt_limit: StableTimestep::Limit's codes (0 mechanics, Eq. 43; 1 diffusion, Eq.

@@ -148,6 +148,13 @@ std::vector<PlotSpec> plots(const HistoryDigest& d) {
     addEnvelope(krylov, d, "krylov_iterations", "Krylov", "#ff7f0e");
     out.push_back(std::move(krylov));
   }
+  if (d.column("coupling_correction") >= 0) {
+    PlotSpec coupling = timePlot(
+        "coupling", "Coupling correction per step: the two diffusion passes' difference / 2",
+        "share of the capacity");
+    addEnvelope(coupling, d, "coupling_correction", "coupling correction", "#2ca02c");
+    out.push_back(std::move(coupling));
+  }
   return out;
 }
 

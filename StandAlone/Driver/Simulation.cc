@@ -3,6 +3,7 @@
 #include <omp.h>
 #include <sys/resource.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -337,15 +338,22 @@ size_t Simulation::recordHistoryRow(double stepDt, int dtRule) {
   const double lithiumRate =
       stepDt > 0 ? (s.totalLithium - archiver_.lastHistoryRow().totalLithium) / stepDt : 0.0;
   stateOfCharge_ = s.lithiumCapacity > 0 ? s.chargeableLithium / s.lithiumCapacity : 0.0;
-  archiver_.recordHistory({step_, s.particles, t_, stepDt, s.kineticEnergy, s.minJ, s.maxJ,
-                           earlierWallSeconds_ + wallTime(), s.diffusion, s.totalLithium,
-                           s.minConcentration, s.maxConcentration, lithiumRate, stateOfCharge_},
-                          {s.elasticEnergy, dtRule,
-                           mpm_.flags().implicit ? mpm_.newtonCounts().lastIterations +
-                                                       mpm_.newtonCounts().lastPredictorIterations
-                                                 : -1,
-                           mpm_.flags().implicit ? mpm_.newtonCounts().lastKrylov : -1},
-                          s.perMaterial);
+  const bool trapezoidal = mpm_.flags().implicit && s.diffusion && s.lithiumCapacity > 0 &&
+                           mpm_.flags().implicit->concentrationCoupling ==
+                               ImplicitOptions::ConcentrationCoupling::Trapezoidal;
+  const double couplingCorrection =
+      trapezoidal ? std::max(0.0, mpm_.newtonCounts().lastCouplingCorrection) / s.lithiumCapacity
+                  : -1.0;
+  archiver_.recordHistory(
+      {step_, s.particles, t_, stepDt, s.kineticEnergy, s.minJ, s.maxJ,
+       earlierWallSeconds_ + wallTime(), s.diffusion, s.totalLithium, s.minConcentration,
+       s.maxConcentration, lithiumRate, stateOfCharge_},
+      {s.elasticEnergy, dtRule,
+       mpm_.flags().implicit
+           ? mpm_.newtonCounts().lastIterations + mpm_.newtonCounts().lastPredictorIterations
+           : -1,
+       mpm_.flags().implicit ? mpm_.newtonCounts().lastKrylov : -1, couplingCorrection},
+      s.perMaterial);
   return s.particles;
 }
 
