@@ -14,6 +14,7 @@
 #include <tuple>
 #include <vector>
 
+#include "Components/MPM/Implicit/ImplicitStep.h"
 #include "Components/MPM/ReactiveFlow/DiffusionParticles.h"
 #include "Core/Util/Errors.h"
 #include "StandAlone/Driver/HistoryDigest.h"
@@ -99,7 +100,7 @@ TEST(QuasiStatic, NeoHookeanUniaxialStrainMatchesClosedForm) {
   auto sim = runToEnd(c);
   expectUniaxialStrainClosedForm(c, *sim);
   // Newton with the algorithmic tangent on a 20% compression in one step: a few iterations.
-  const MPM::NewtonCounts& n = sim->mpm().newtonCounts();
+  const ImplicitStep::NewtonCounts& n = sim->implicitStep().newtonCounts();
   EXPECT_LE(n.iterations, 6);
   EXPECT_EQ(n.retakes, 0);
   // Quadratic convergence: each of the last two |du|^2 ratios at most the square of the one
@@ -122,7 +123,7 @@ TEST(QuasiStatic, JacobianReuseKeepsTheLastJacobianNearTheEquilibrium) {
   c.extraMPM = "<jacobian_reuse>true</jacobian_reuse>";
   auto sim = runToEnd(c);
   expectUniaxialStrainClosedForm(c, *sim);
-  const MPM::NewtonCounts& n = sim->mpm().newtonCounts();
+  const ImplicitStep::NewtonCounts& n = sim->implicitStep().newtonCounts();
   std::printf("Jacobians assembled %ld of %ld Newton iterations\n", n.newTangents, n.iterations);
   EXPECT_EQ(n.retakes, 0);
   EXPECT_EQ(n.newTangents, n.iterations - 1);
@@ -158,11 +159,11 @@ TEST(QuasiStatic, JacobianWithoutWeakCouplingsConvergesToTheSameEquilibrium) {
   std::printf(
       "Newton iterations %ld (all couplings) and %ld (share 1e-3); stresses apart by %.2g "
       "of the largest\n",
-      all->mpm().newtonCounts().iterations, strong->mpm().newtonCounts().iterations,
-      largest / scale);
+      all->implicitStep().newtonCounts().iterations,
+      strong->implicitStep().newtonCounts().iterations, largest / scale);
   EXPECT_GT(largest, 0.0);  // another Jacobian, another path
   EXPECT_LT(largest, 1e-6 * scale);
-  EXPECT_EQ(strong->mpm().newtonCounts().retakes, 0);
+  EXPECT_EQ(strong->implicitStep().newtonCounts().retakes, 0);
 }
 
 // Without <dynamic>, ImpMPM's default: Newmark (Implicit/Newmark.h). Pushed from rest, each node
@@ -217,7 +218,7 @@ TEST(QuasiStatic, HypoelasticUniaxialStrainTakesTheMidpointRate) {
     EXPECT_NEAR(p.stress[i](2, 2), zz, 1e-8 * std::abs(zz)) << "particle " << i;
     EXPECT_NEAR(p.stress[i](0, 0), xx, 1e-8 * std::abs(zz)) << "particle " << i;
   }
-  EXPECT_LE(sim->mpm().newtonCounts().iterations, 6);
+  EXPECT_LE(sim->implicitStep().newtonCounts().iterations, 6);
 }
 
 void expectInputError(const CompressionCase& c, const std::string& words) {
@@ -339,7 +340,7 @@ TEST(QuasiStatic, NewtonStartsFromTheLastStepsMotion) {
   std::vector<int> iterations;
   while (sim.step() < 10) {
     sim.advance();
-    const MPM::NewtonCounts& n = sim.mpm().newtonCounts();
+    const ImplicitStep::NewtonCounts& n = sim.implicitStep().newtonCounts();
     iterations.push_back(n.lastIterations);
     ASSERT_FALSE(n.lastRatios.empty());
     const double first = n.lastRatios[0].first;
@@ -365,7 +366,7 @@ TEST(QuasiStatic, ConcentrationChangeBoundsTheStep) {
       "swell.ups", o);
   while (sim.step() < 3) sim.advance();
   EXPECT_NEAR(sim.time(), 0.03, 1e-12);
-  EXPECT_EQ(sim.mpm().newtonCounts().retakes, 1);
+  EXPECT_EQ(sim.implicitStep().newtonCounts().retakes, 1);
   const ParticleSet& p = sim.mpm().materials()[0].particles;
   for (size_t i = 0; i < p.count(); ++i)
     EXPECT_NEAR(p.F[i].determinant(), std::exp(3 * 0.3 * 0.03), 1e-8) << "particle " << i;
@@ -421,14 +422,14 @@ void runRetakenAndDirect(const std::function<std::string(const std::string&)>& i
   o.progress = false;
   runs.retaken = std::make_unique<Simulation>(input(""), file, o);
   runs.retaken->advance();
-  ASSERT_GE(runs.retaken->mpm().newtonCounts().retakes, 1);
+  ASSERT_GE(runs.retaken->implicitStep().newtonCounts().retakes, 1);
   const double dt = runs.retaken->time();
   ASSERT_LT(dt, below);
   char first[64];
   std::snprintf(first, sizeof first, "<delt_init>%.17g</delt_init>", dt);
   runs.direct = std::make_unique<Simulation>(input(first), file, o);
   runs.direct->advance();
-  ASSERT_EQ(runs.direct->mpm().newtonCounts().retakes, 0);
+  ASSERT_EQ(runs.direct->implicitStep().newtonCounts().retakes, 0);
   ASSERT_EQ(runs.direct->time(), dt);
   for (int step = 0; step < more; ++step) {
     runs.retaken->advance();
@@ -499,7 +500,7 @@ std::string lithiatedBar(const std::string& coupling, double dt, const std::stri
 // The bar's lithium (sum of m c) at its maxTime, and its Newton counts.
 struct BarRun {
   double lithium = 0;
-  MPM::NewtonCounts counts;
+  ImplicitStep::NewtonCounts counts;
 };
 BarRun runBar(const std::string& coupling, double dt, const std::string& extra = "") {
   RunOptions o;
@@ -511,7 +512,7 @@ BarRun runBar(const std::string& coupling, double dt, const std::string& extra =
   const std::vector<double>& c = diffusionParticles(p).concentration;
   BarRun run;
   for (size_t i = 0; i < p.count(); ++i) run.lithium += p.mass[i] * c[i];
-  run.counts = sim.mpm().newtonCounts();
+  run.counts = sim.implicitStep().newtonCounts();
   return run;
 }
 
@@ -547,7 +548,7 @@ BarCorrections sumCouplingCorrections(double dt) {
   BarCorrections r;
   while (sim.time() < 1 - 1e-9) {
     sim.advance();
-    const double correction = sim.mpm().newtonCounts().lastCouplingCorrection;
+    const double correction = sim.implicitStep().newtonCounts().lastCouplingCorrection;
     r.sum += correction;
     r.positive += correction > 0;
     ++r.steps;
@@ -712,13 +713,13 @@ TEST(QuasiStatic, NewtonFromASolvedPredictionSolvesItsFirstCorrectionTighter) {
   Simulation staggered(lithiatedBar("staggered", 0.25), "bar.ups", o);
   for (int step = 1; step <= 2; ++step) {  // from rest, then from the first step's motion
     staggered.advance();
-    ASSERT_FALSE(staggered.mpm().newtonCounts().lastLinearTolerances.empty());
-    EXPECT_EQ(staggered.mpm().newtonCounts().lastLinearTolerances.front(), 0.1) << step;
+    ASSERT_FALSE(staggered.implicitStep().newtonCounts().lastLinearTolerances.empty());
+    EXPECT_EQ(staggered.implicitStep().newtonCounts().lastLinearTolerances.front(), 0.1) << step;
   }
   Simulation trapezoidal(lithiatedBar("trapezoidal", 0.25), "bar.ups", o);
   trapezoidal.advance();  // the own solve from the predicted end
-  ASSERT_FALSE(trapezoidal.mpm().newtonCounts().lastLinearTolerances.empty());
-  EXPECT_EQ(trapezoidal.mpm().newtonCounts().lastLinearTolerances.front(), 3e-3);
+  ASSERT_FALSE(trapezoidal.implicitStep().newtonCounts().lastLinearTolerances.empty());
+  EXPECT_EQ(trapezoidal.implicitStep().newtonCounts().lastLinearTolerances.front(), 3e-3);
 }
 
 // The trapezoidal step's own solve starts from the step's start, as its prediction does: the same
@@ -743,9 +744,9 @@ TEST(QuasiStatic, TrapezoidalSolveTakesThePredictionsTangent) {
   text.replace(text.find("<maxTime>1</maxTime>"), 20, "<maxTime>3</maxTime>");
   Simulation sim(text, "bar.ups", o);
   sim.advance();
-  EXPECT_EQ(sim.mpm().newtonCounts().retakes, 0);
+  EXPECT_EQ(sim.implicitStep().newtonCounts().retakes, 0);
   EXPECT_EQ(sim.time(), 1.5);
-  EXPECT_LE(sim.mpm().newtonCounts().lastIterations, 3);
+  EXPECT_LE(sim.implicitStep().newtonCounts().lastIterations, 3);
 }
 
 // A trapezoidal step whose Newton solves may take at most 3 iterations to ratios of 1e-14 and

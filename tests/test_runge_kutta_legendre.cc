@@ -1,11 +1,11 @@
-// RKL2 (Components/MPM/Implicit/RungeKuttaLegendre.h): second order in the step, and stable up to
-// (s^2 + s - 2) / 4 forward-Euler limits with s stages, on y' = -A y for A's eigenvalues.
+// RKL2 (Components/MPM/ReactiveFlow/RungeKuttaLegendre.h): second order in the step, and stable up
+// to (s^2 + s - 2) / 4 forward-Euler limits with s stages, on y' = -A y for A's eigenvalues.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <vector>
 
-#include "Components/MPM/Implicit/RungeKuttaLegendre.h"
+#include "Components/MPM/ReactiveFlow/RungeKuttaLegendre.h"
 
 namespace anode {
 namespace {

@@ -562,7 +562,7 @@ class SplittingStateChecksTest : public StateChecksTest {
     for (int k = 0; k < 40; ++k) {
       if (k == splitAt) {
         particles().F[splitAt] = Vec3(3, 1, 1).asDiagonal();
-        sim.mpm().timeAdvance(Collective{}, 0, sim.dt());
+        sim.integrator().advance(Collective{}, 0, sim.dt(), sim.dt());
         EXPECT_EQ(particles().count(), count + 3);
       }
       for (size_t i = 0; i < particles().count(); ++i)

@@ -50,7 +50,7 @@ struct ImplicitOptions {
   // <diffusion_integrator> (ours): how a quasi-static step's diffusion passes over dt. Euler:
   // forward-Euler sub-steps at <timestep_multiplier> x the explicit limits (Eq. 44 and the flux
   // limit), each with the gradient of the sub-step before. RKL2: one second-order
-  // Runge-Kutta-Legendre step (Implicit/RungeKuttaLegendre.h) of as many stages as the same
+  // Runge-Kutta-Legendre step (ReactiveFlow/RungeKuttaLegendre.h) of as many stages as the same
   // limit needs, each stage's rate with the gradient of its own c and the load curves at the
   // pass's midpoint (docs/quasi-static.md).
   enum class DiffusionIntegrator { Euler, Rkl2 };

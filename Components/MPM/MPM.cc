@@ -14,14 +14,17 @@
 #include "Components/MPM/ParticleSplitting.h"
 #include "Components/MPM/PhysicalBCs.h"
 #include "Components/MPM/ProblemSize.h"
+#include "Components/MPM/ReactiveFlow/ConcentrationSubstep.h"
 #include "Components/MPM/SwellingRoom.h"
 #include "Core/Parallel/StopTogether.h"
 #include "Core/Util/Errors.h"
 
 namespace anode {
 
-void MPM::problemSetup(const PSNode& root, double initTime, double maxTime, bool withParticles) {
+void MPM::problemSetup(const PSNode& root, double initTime, double maxTime, bool withParticles,
+                       const std::function<void()>& problemRead) {
   flags_ = MPMFlags::fromInput(root);
+  distributed_ = Communicator::size() > 1;
   initTime_ = initTime;
   const PSNode gridNode = root.requireChild("Grid");
   grid_ = Grid::fromInput(gridNode);
@@ -67,20 +70,8 @@ void MPM::problemSetup(const PSNode& root, double initTime, double maxTime, bool
     seeds_[m].checkPiecesInsideGrid(grid_, gridBCs_.symmetryPlanes(static_cast<int>(m)));
   swellingNotes_ = swellingRoomNotes(grid_, gridBCs_, materials_, seeds_, diffusion_.get());
   warnOfOverlaps(grid_, materials_, seeds_);
+  if (problemRead) problemRead();
 
-  if (flags_.implicit) {
-    checkImplicitSetup(root);
-    // Materials in single_velocity contact share one field of unknowns; others have their own.
-    fieldOf_.assign(materials_.size(), -1);
-    int fields = 0;
-    if (contact_.type == Contact::Type::SingleVelocity) {
-      for (int m : contact_.materials) fieldOf_[m] = 0;
-      fields = 1;
-    }
-    for (int& f : fieldOf_)
-      if (f < 0) f = fields++;
-    equilibrium_.useTimers(timers_);
-  }
   // This rank's particles: those of its box (the whole grid on one rank) and, while the flux
   // particles are flagged, those setup needs around it.
   whole_ = grid_;
@@ -103,15 +94,9 @@ void MPM::problemSetup(const PSNode& root, double initTime, double maxTime, bool
                    omp_get_max_threads());
   if (diffusion_) diffusion_->initialize(root, grid_, materials_, seeds_, box, region, initTime);
   if (region.lower != box.lower || region.upper != box.upper) keepParticlesOfBox(box);
-  distributed_ = Communicator::size() > 1;
   reordering_.resize(materials_.size());
-  tasks_ = {timers_.task("computeInterpolationWeights"),
-            timers_.task("interpolateParticlesToGrid"),
-            timers_.task("integrateGrid"),
-            timers_.task("interpolateToParticlesAndUpdate"),
-            timers_.task("splitParticles"),
-            timers_.task("updateDiffusionState"),
-            distributed_ ? timers_.task("communication") : -1};
+  particlesToGridTask_ = timers_.task("interpolateParticlesToGrid");
+  communicationTask_ = distributed_ ? timers_.task("communication") : -1;
 }
 
 void MPM::distributeOverRanks(Collective) {
@@ -140,57 +125,6 @@ void MPM::layOutGrid() {
   if (diffusion_) diffusion_->layOutGrid(grid_, ghosts_.empty() ? nullptr : &ghosts_);
   active_ = {};
   previous_ = {};
-}
-
-void MPM::timeAdvance(Collective, double t, double dt) {
-  // The tasks in order (docs/diffusion.md lists the diffusion part of each). DESIGN.md §4 has the
-  // same ones but computes D and the flux rate at the start of a step: here task 10 computes
-  // them for the new state, which its output and its time step (Eq. 44) need as well. In a
-  // distributed run the ranks meet where they agree on the nodes some rank's particles reach (1),
-  // where P2G's sums are completed on the shared nodes (2), where particles move to the rank
-  // owning their cell (11), and where a problem found on one rank stops them all (stopTogether).
-  {
-    ScopedTimer s(timers_, tasks_.interpolationWeights);
-    computeWeightsAndActiveNodes();  // 1: S_ip, grad S_ip (CPDI: F size)
-  }
-  {
-    ScopedTimer s(timers_, tasks_.particlesToGrid);
-    interpolateParticlesToGrid();  // 2: P2G, Eqs. 4-5, 7, 18
-  }
-  if (distributed_) {
-    ScopedTimer s(timers_, tasks_.communication);
-    sumGhostNodes();
-  }
-  {
-    ScopedTimer s(timers_, tasks_.particlesToGrid);
-    computeNodalVelocityAndConcentration();  // 2: nodal velocity and concentration (Eq. 5)
-  }
-  {
-    ScopedTimer s(timers_, tasks_.gridIntegration);
-    exchangeMomentumInterpolated();  // 3: contact on the interpolated velocity
-    integrateGridMomentum(dt);       // 4: a = f/m + g, v* = v + a dt
-    if (diffusion_)                  // 5: c* and the nodal concentration rate (Eq. 18)
-      diffusion_->integrateConcentration(fields_, dt, active_.rows);
-    setGridBoundaryConditions(dt);  // 6: contact, velocity BCs, acceleration
-  }
-  {
-    ScopedTimer s(timers_, tasks_.particleUpdate);
-    // 7-8: G2P (Eq. 8), F, stress
-    collective::stopTogether([&] { interpolateToParticlesAndUpdate(dt); });
-  }
-  if (flags_.refineParticles) {
-    ScopedTimer s(timers_, tasks_.splitting);
-    splitParticles();  // 9: particles stretched beyond the ratio split in four
-  }
-  if (diffusion_) {
-    // 10: the range check of c, then D (Eqs. 23-24) and the flux rates (Eqs. 16-17) at t + dt
-    ScopedTimer s(timers_, tasks_.diffusionState);
-    diffusion_->updateDiffusionState(Collective{}, materials_, t + dt);
-  }
-  if (distributed_) {
-    ScopedTimer s(timers_, tasks_.communication);
-    migrateParticles();  // 11: particles that left the rank's box go to its owner
-  }
 }
 
 template <class Concentration>
@@ -243,6 +177,17 @@ void MPM::scatterMaterial(size_t m, const Concentration& concentration, bool con
 }
 
 void MPM::interpolateParticlesToGrid(bool concentrationOnly) {
+  {
+    ScopedTimer s(timers_, particlesToGridTask_);
+    scatterParticlesToGrid(concentrationOnly);
+  }
+  if (distributed_) {
+    ScopedTimer s(timers_, communicationTask_);
+    sumGhostNodes(concentrationOnly);
+  }
+}
+
+void MPM::scatterParticlesToGrid(bool concentrationOnly) {
   const std::vector<NodeRange> cleared =
       ActiveNodes::of(grid_, hullOf(active_.box, previous_)).rows;
   for (size_t m = 0; m < materials_.size(); ++m) {
@@ -271,6 +216,10 @@ void MPM::computeNodalConcentration() {
   for (size_t m = 0; m < materials_.size(); ++m)
     diffusion_->computeNodalConcentration(m, fields_[m], active_.rows);  // Eq. 5
   diffusion_->applyDiffusionInterface(fields_, active_.rows);
+}
+
+void MPM::integrateConcentration(double dt) {
+  diffusion_->integrateConcentration(fields_, dt, active_.rows);
 }
 
 void MPM::exchangeMomentumInterpolated() {
@@ -333,6 +282,19 @@ void MPM::interpolateToParticlesAndUpdate(double dt) {
   }
 }
 
+void MPM::interpolateConcentrationChange(size_t m, double dt, std::vector<double>& dc) {
+  ParticleSet& p = materials_[m].particles;
+  withGatherKernel(diffusion_.get(), m, p, [&](const auto& kernel) {
+    fillGatherQuads(fields_[m], kernel, active_.rows, nodeQuads_.data());
+    updateConcentrationOnly(p, weights_[m], nodeQuads_.data(), kernel, dt, dc);
+  });
+}
+
+void MPM::interpolateConcentrationGradient(size_t m) {
+  gatherConcentrationGradient(materials_[m].particles, weights_[m],
+                              diffusion_->gridFields()[m].concentration);
+}
+
 void MPM::splitParticles() {
   // The weights of the next step are laid out for the new particle count.
   for (size_t m = 0; m < materials_.size(); ++m) {
@@ -379,15 +341,6 @@ size_t MPM::numParticles() const {
 
 StableTimestep MPM::computeStableTimestep(Collective) const {
   StableTimestep limits;
-  if (flags_.implicit) {  // ImpMPM's rule; the first step takes <delt_max> (or <delt_init>)
-    limits.bound[StableTimestep::Newton] =
-        newtonRuleDt_ > 0 ? flags_.implicit->nextTimestep(newtonRuleDt_, newton_.lastIterations)
-                          : std::numeric_limits<double>::max();
-    if (maxConcentrationChange_ > 0)  // the accuracy bound on c (docs/quasi-static.md)
-      limits.bound[StableTimestep::ConcentrationChange] =
-          lastQuasiStaticDt_ * flags_.implicit->maxConcentrationChange / maxConcentrationChange_;
-    return limits;
-  }
   double& dt = limits.bound[StableTimestep::Mechanics];
   for (const MPMMaterial& mat : materials_) {
     const ParticleSet& p = mat.particles;
@@ -413,7 +366,7 @@ StableTimestep MPM::computeStableTimestep(Collective) const {
 
 void MPM::interpolateToGridForOutput(Collective) {
   computeWeightsAndActiveNodes();
-  interpolateParticlesToGrid();
+  scatterParticlesToGrid();
   if (distributed_) sumGhostNodes();
   computeNodalVelocityAndConcentration();
 }

@@ -1,8 +1,10 @@
-// The MPM component: owns the materials' particles and the grid fields and advances them one
-// explicit step at a time in the paper's order (DESIGN.md §4); its diffusion subcomponent,
+// The MPM component: owns the materials' particles and the grid fields, and the tasks a step is
+// made of (interpolation weights, P2G, the grid's equations, G2P); an integrator (Integrator.h:
+// ExplicitStep.h, Implicit/ImplicitStep.h) takes them in its order. Its diffusion subcomponent,
 // ReactiveFlow, exists only with <do_scalar_diffusion>true.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -11,7 +13,6 @@
 #include "Components/MPM/GhostNodes.h"
 #include "Components/MPM/GridBoundaryConditions.h"
 #include "Components/MPM/GridFields.h"
-#include "Components/MPM/Implicit/EquilibriumSolver.h"
 #include "Components/MPM/Interpolator.h"
 #include "Components/MPM/MPMFlags.h"
 #include "Components/MPM/Materials/MPMMaterial.h"
@@ -35,55 +36,52 @@ class MPM {
   // only the particles of its own box (docs/parallel.md, "Setup per box"). Calls no collective:
   // the ranks agree on its errors after it.
   // Without `withParticles`, the particles are counted, not created (describeDecomposition).
-  void problemSetup(const PSNode& root, double initTime, double maxTime, bool withParticles = true);
+  // `problemRead` is called once the problem is read (flags, grid, materials, contact, diffusion,
+  // boundary conditions), before any particle is created: where the driver chooses the
+  // integrator, which checks what it does not support of the input (IntegratorFactory.h).
+  void problemSetup(const PSNode& root, double initTime, double maxTime, bool withParticles = true,
+                    const std::function<void()>& problemRead = {});
   // After problemSetup: lays out this rank's grid and completes the setup over the ranks (the
   // flux BCs' areas and capacities, their report).
   void distributeOverRanks(Collective);
 
-  // Advances the state from time t by dt (DESIGN.md §4). Throws SimulationError when a particle
-  // leaves the grid, J <= 0, or a concentration leaves [min, max] beyond kConcentrationTolerance
-  // (in a distributed run on every rank together: Core/Parallel/StopTogether.h).
-  void timeAdvance(Collective, double t, double dt);
-  // The quasi-static step of an implicit run (DESIGN.md §4b, MPMQuasiStatic.cc): diffusion over
-  // dt in sub-steps of substepMultiplier times its explicit limits, then Newton on the grid for
-  // the equilibrium at t + dt; a step Newton does not converge in is retaken with dt times
-  // <delT_decrease_factor>, and below dtMin the run stops (SimulationError). Returns the dt taken.
-  // ruleDt: the dt the limits chose, of which dt may be a part (<clamp_time_to_output> shortens
-  // a step to end on an output time); the next step's dt follows Newton's iterations from it.
-  double advanceQuasiStatic(Collective, double t, double dt, double ruleDt, double dtMin,
-                            double substepMultiplier);
-  // The last quasi-static step's ruleDt (its dt where it was retaken).
-  double lastRuleDt() const { return newtonRuleDt_; }
-  // Newton's iterations: of the last step, and the totals of the steps (and retaken attempts)
-  // of this process.
-  struct NewtonCounts {
-    // The last step's: its equilibrium's Newton iterations (those the dt rule counts), the
-    // prediction's (<concentration_coupling>trapezoidal) and the Krylov iterations of both.
-    int lastIterations = 0, lastPredictorIterations = 0, lastKrylov = 0;
-    // The last step's coupling correction (<concentration_coupling>trapezoidal; -1 otherwise):
-    // sum m |dc_2 - dc_1| / 2 over every rank's particles, dc_1 and dc_2 the two passes' changes
-    // of c, the lithium by which the step's mean differs from either pass.
-    double lastCouplingCorrection = -1;
-    long iterations = 0, krylov = 0, retakes = 0, diffusionSubsteps = 0, preconditionerSetUps = 0,
-         newTangents = 0;
-    std::vector<std::pair<double, double>> lastRatios;  // NewtonReport::ratios of the last step
-    std::vector<double> lastLinearTolerances;           // and its linearTolerances
-    // One Newton solve's iterations, new tangents, Krylov iterations and set-ups into the totals.
-    void add(const NewtonReport& r) {
-      iterations += r.iterations;
-      krylov += r.krylovIterations;
-      preconditionerSetUps += r.preconditionerSetUps;
-      newTangents += r.newTangents;
-    }
-    // "Newton 4, Krylov 31" ("Newton 4 + 2 predicting, ..."): the last step, for the progress
-    // line.
-    std::string lastStep() const;
-    // The totals over `steps` steps, for the end summary.
-    std::string summary(long steps) const;
-  };
-  const NewtonCounts& newtonCounts() const { return newton_; }
-  // Largest stable dt of the current state before the multiplier: paper Eq. 45, the smallest of
-  // the mechanical Eq. 43 and the diffusion limits (Eq. 44 and the flux limit).
+  // --- the tasks a step is made of (DESIGN.md §4), in the explicit step's order ---
+
+  // 1: S_ip and grad S_ip of every particle on every rank (a problem on one stops them all),
+  // then the step's active nodes.
+  void computeWeightsAndActiveNodes();
+  // 2: P2G (Eqs. 4-5, 7, 18) and, distributed, its sums completed on the shared nodes (timed);
+  // `concentrationOnly`: the concentration's sums alone, of the materials whose concentration
+  // changes, after a full P2G of the same particles that changed nothing but their
+  // concentration since (the diffusion of an implicit step).
+  void interpolateParticlesToGrid(bool concentrationOnly = false);
+  // 2: the nodal velocity and, with diffusion, computeNodalConcentration.
+  void computeNodalVelocityAndConcentration();
+  // Eq. 5 and the diffusion interface (diffusion on).
+  void computeNodalConcentration();
+  // 3: contact on the interpolated velocity.
+  void exchangeMomentumInterpolated();
+  // 4: a = f/m + g, v* = v + a dt.
+  void integrateGridMomentum(double dt);
+  // 5: c* and the nodal rate of c over dt (Eq. 18; diffusion on).
+  void integrateConcentration(double dt);
+  // 6: contact, velocity BCs, the nodal acceleration.
+  void setGridBoundaryConditions(double dt);
+  // 7-8: G2P (Eq. 8), F, stress. Throws SimulationError (this rank's) when J <= 0.
+  void interpolateToParticlesAndUpdate(double dt);
+  // G2P of c alone over dt (diffusion on, after integrateConcentration): the change of material
+  // m's particles' c added to dc, their position, F and stress as they are.
+  void interpolateConcentrationChange(size_t m, double dt, std::vector<double>& dc);
+  // grad c of material m's particles from the nodal c (diffusion on).
+  void interpolateConcentrationGradient(size_t m);
+  // 9: particles stretched beyond <stretchRatio> split in four (<refineParticles>).
+  void splitParticles();
+  // 11 (distributed): particles that left the rank's box go to its owner.
+  void migrateParticles();
+
+  // The explicit step's largest stable dt of the current state before the multiplier: paper Eq.
+  // 45, the smallest of the mechanical Eq. 43 and the diffusion limits (Eq. 44 and the flux
+  // limit).
   StableTimestep computeStableTimestep(Collective) const;
   // Shares the particles out anew among the ranks from their counts per cell plane (after a
   // restart, or when the particles per rank have drifted apart).
@@ -130,6 +128,9 @@ class MPM {
   // The nodes this rank stores (the whole grid on one rank; its window in a distributed run).
   const Grid& grid() const { return grid_; }
   const Decomposition& decomposition() const { return decomposition_; }
+  // More than one rank; then ghosts() are the nodes this rank shares with others (null otherwise).
+  bool distributed() const { return distributed_; }
+  GhostNodes* ghosts() { return distributed_ ? &ghosts_ : nullptr; }
   int ghostWidth() const { return ghostWidth_; }
   // How the last step changed material m's particles on this rank, for per-particle histories
   // kept elsewhere (StateChecks follows its own with it). First splitting: of the
@@ -152,6 +153,10 @@ class MPM {
   const std::vector<MPMMaterial>& materials() const { return materials_; }
   std::vector<MPMMaterial>& materials() { return materials_; }
   const std::vector<GridFields>& gridFields() const { return fields_; }
+  // The step's interpolation weights (per material) and the nodes its particles touch.
+  const std::vector<InterpolationWeights>& weights() const { return weights_; }
+  const ActiveNodes& activeNodes() const { return active_; }
+  const Contact& contact() const { return contact_; }
   const GridBoundaryConditions& gridBCs() const { return gridBCs_; }
   // Setup's notes on bodies that would swell into a Symmetric face (SwellingRoom.h).
   const std::vector<std::string>& swellingNotes() const { return swellingNotes_; }
@@ -166,9 +171,6 @@ class MPM {
   const TaskTimers& timers() const { return timers_; }
 
  private:
-  // The step's tasks, in order (DESIGN.md §4).
-  // The weights on every rank (a problem on one stops them all), then the step's active nodes.
-  void computeWeightsAndActiveNodes();
   // This rank's weights; returns the box of nodes they touch.
   NodeBox computeInterpolationWeights();
   // Particle i's weights on grid g (the count, or -1 beyond its stored nodes).
@@ -177,26 +179,15 @@ class MPM {
   // Material m's particle i reaches beyond the stored nodes: off the grid, or (distributed)
   // beyond the ghost layer.
   [[noreturn]] void throwOutsideWindow(size_t m, long i) const;
-  // P2G; `concentrationOnly`: the concentration's sums alone, of the materials whose
-  // concentration changes (diffusion on), after a full P2G of the same particles that changed
-  // nothing but their concentration since (the diffusion sub-steps of a quasi-static step).
-  void interpolateParticlesToGrid(bool concentrationOnly = false);
+  // P2G on this rank (`concentrationOnly`: as interpolateParticlesToGrid's).
+  void scatterParticlesToGrid(bool concentrationOnly = false);
   // Material m takes part in that P2G (and its ghost sums).
   bool scatters(size_t m, bool concentrationOnly) const {
     return !concentrationOnly || diffusion_->computesConcentration(m);
   }
-  void exchangeMomentumInterpolated();
-  void integrateGridMomentum(double dt);
-  void setGridBoundaryConditions(double dt);
-  void interpolateToParticlesAndUpdate(double dt);
-  void splitParticles();
-  void migrateParticles();
   // Completes the nodal sums of P2G on the nodes shared with other ranks (`concentrationOnly`:
   // as interpolateParticlesToGrid's).
   void sumGhostNodes(bool concentrationOnly = false);
-  void computeNodalVelocityAndConcentration();
-  // Eq. 5 and the diffusion interface (diffusion on).
-  void computeNodalConcentration();
   // Keeps this rank's particles (all of the problem's are here when `allHere`) under a new
   // decomposition from the particle counts per cell plane, and lays out its window.
   void decompose(bool allHere);
@@ -227,47 +218,6 @@ class MPM {
   std::vector<NodeArray> ghostSumArrays(bool concentrationOnly = false);
   // Rank of the box holding material m's particle i.
   int ownerOf(const ParticleSet& p, size_t i) const;
-  // The equilibrium problem of the step: fields, nodal masses, the displacement increments the
-  // Velocity and Symmetric faces prescribe over dt.
-  EquilibriumProblem equilibriumProblem(double dt);
-  // Implicit dynamics: the problem's nodal velocities and accelerations of the step's start, from
-  // the particles (momentum from the P2G of the step, sum m a S here; Implicit/Newmark.h).
-  void addStartOfStepMotion(EquilibriumProblem& problem, double dt);
-  // A quasi-static step's predicted increments: the start-of-step nodal velocity times dt.
-  void addPredictedIncrement(EquilibriumProblem& problem, double dt);
-  // P2G and, distributed, its sums completed on the shared nodes (`concentrationOnly`: as
-  // interpolateParticlesToGrid's, for a diffusion sub-step after the first of a pass).
-  void interpolateAndSumOverRanks(bool concentrationOnly = false);
-  // Diffusion over the quasi-static step in explicit sub-steps on its start-of-step configuration;
-  // concentrationChange_ receives each particle's change.
-  // Collective: a diffusion sub-step's length, substepMultiplier times the smaller of Eq. 44 and
-  // the flux limit over all ranks.
-  double diffusionSubstepLimit(double substepMultiplier) const;
-  void diffuseOverStep(double t, double dt, double substepMultiplier);
-  // <diffusion_integrator>rkl2: diffuseOverStep's pass as one RKL2 step over dt, its stages as
-  // many as the sub-steps' limit at the start needs (Implicit/RungeKuttaLegendre.h).
-  void diffuseInLegendreStages(double t, double dt, double substepMultiplier);
-  // <subcell_concentration_relaxation>: the particles drawn towards the grid's c of their P2G over
-  // dt (ReactiveFlow/SubcellRelaxation.h), their change added to concentrationChange_.
-  void relaxSubcellConcentration(double dt);
-  // <concentration_coupling>trapezoidal: after diffuseOverStep on the step's start (`start`, the
-  // diffusion's `atStart`), a Newton solve to kPredictorConvergence predicts the step's end; the
-  // sub-steps run again on those particles from the start's c, and the particles are set back to
-  // the start with c changed by the mean of the two passes (concentrationChange_ too). Returns the
-  // prediction's Newton (a failed one: the step is retaken), its increments by field in
-  // `predicted`, the final solve's first iterate, and the coupling correction in `correction`
-  // (NewtonCounts::lastCouplingCorrection).
-  NewtonReport averageConcentrationChangeOverStep(double t, double dt, double substepMultiplier,
-                                                  const std::vector<ParticleSet>& start,
-                                                  const ReactiveFlow::StepState& atStart,
-                                                  std::vector<std::vector<Vec3>>& predicted,
-                                                  double& correction);
-  // The largest |dc| of a particle over the diffusion of the step.
-  double largestConcentrationChange() const;
-  // The particles after the converged step (positions, F, stress, the models' state).
-  void updateParticlesFromEquilibrium(double dt);
-  // The setup checks of an implicit run: what it does not support is an input error.
-  void checkImplicitSetup(const PSNode& root) const;
   template <class Concentration>
   void scatterMaterial(size_t m, const Concentration& concentration, bool concentrationOnly);
 
@@ -301,22 +251,8 @@ class MPM {
   // sums per thread after the first (P2G without locks).
   std::vector<NodeQuad> nodeQuads_;
   std::vector<std::vector<NodeQuad>> threadScatter_;
-  // Implicit runs: the Newton solver, the field of each material (single_velocity members share
-  // one), the last step's dt and counts.
-  EquilibriumSolver equilibrium_;
-  std::vector<int> fieldOf_;
-  std::vector<std::vector<double>> concentrationChange_;  // per material: dc of the step
-  std::vector<double> nodeMassDiffusivity_;               // relaxSubcellConcentration's sum S m D
-  double lastQuasiStaticDt_ = 0;
-  double newtonRuleDt_ = 0;  // what ImpMPM's rule scales: the last step's dt, or its ruleDt
-  // The largest |dc| of a particle in the last quasi-static step (with diffusion).
-  double maxConcentrationChange_ = 0;
-  NewtonCounts newton_;
   TaskTimers timers_;
-  struct StepTasks {  // timer indices of the step's tasks
-    int interpolationWeights, particlesToGrid, gridIntegration, particleUpdate, splitting,
-        diffusionState, communication;
-  } tasks_{};
+  int particlesToGridTask_ = -1, communicationTask_ = -1;
 };
 
 }  // namespace anode

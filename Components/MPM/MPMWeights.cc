@@ -1,4 +1,4 @@
-// MPM::timeAdvance's task 1: each particle's interpolation weights S_ip and gradients grad S_ip
+// The step's task 1: each particle's interpolation weights S_ip and gradients grad S_ip
 // (UINTAH_UPS.md §8.1), computed once per step for every later task, and the nodes the step's
 // grid tasks visit.
 #include <omp.h>

@@ -1,5 +1,5 @@
-// The step's two fused particle loops (MPM::timeAdvance's tasks 2 and 7-8): the P2G scatter and the
-// G2P update with the stress update. Each is compiled per diffusion kernel (ReactiveFlow's
+// The step's two fused particle loops (ExplicitStep::advance's tasks 2 and 7-8): the P2G scatter
+// and the G2P update with the stress update. Each is compiled per diffusion kernel (ReactiveFlow's
 // ConcentrationKernels.h; NoConcentration without diffusion) and the G2P loop per constitutive
 // model type, so a loop carries only the work its material needs and calls nothing virtual.
 #pragma once

@@ -8,7 +8,10 @@
 #include <cstdio>
 #include <filesystem>
 #include <sstream>
+#include <stdexcept>
 
+#include "Components/MPM/Implicit/ImplicitStep.h"
+#include "Components/MPM/IntegratorFactory.h"
 #include "Core/Parallel/Communicator.h"
 #include "Core/Parallel/StopTogether.h"
 #include "Core/Util/AtomicFile.h"
@@ -47,13 +50,20 @@ void Simulation::setup(const std::function<void()>& readSpec) {
   setupPeakBytes_ = usage.ru_maxrss * 1024.0;  // Linux: kilobytes
 }
 
+const ImplicitStep& Simulation::implicitStep() const {
+  const auto* step = dynamic_cast<const ImplicitStep*>(integrator_.get());
+  if (!step) throw std::logic_error("Simulation::implicitStep: the run is explicit");
+  return *step;
+}
+
 void Simulation::readInput() {
   PSNode root = spec_->root();
   time_ = TimeControl::fromInput(root.requireChild("Time"));
-  mpm_.problemSetup(root, time_.initTime, time_.maxTime, !options_.countParticlesOnly);
+  mpm_.problemSetup(root, time_.initTime, time_.maxTime, !options_.countParticlesOnly, [&] {
+    integrator_ = makeIntegrator(root, mpm_, time_.multiplier, time_.deltMin);
+  });
   // An implicit run's dt follows Newton's iterations (ImpMPM): the multiplier applies to its
   // diffusion sub-steps only.
-  substepMultiplier_ = time_.multiplier;
   if (mpm_.flags().implicit) time_.multiplier = 1;
   archiver_ =
       DataArchiver::fromInput(root.requireChild("DataArchiver"), mpm_.flags().doScalarDiffusion,
@@ -79,7 +89,7 @@ void Simulation::readInput() {
 }
 
 void Simulation::takeStableTimestep(double previousDt) {
-  const StableTimestep stable = mpm_.computeStableTimestep(Collective{});
+  const StableTimestep stable = integrator_->stableTimestep(Collective{});
   dt_ = time_.nextTimestep(stable.dt(), previousDt, t_);
   dtLimit_ = stable.binding();
   dtSetByTimeControl_ = dt_ != time_.multiplier * stable.dt();
@@ -95,11 +105,9 @@ void Simulation::takeStableTimestep(double previousDt) {
 }
 
 void Simulation::stepMPM() {
-  if (mpm_.flags().implicit)
-    dt_ =
-        mpm_.advanceQuasiStatic(Collective{}, t_, dt_, ruleDt_, time_.deltMin, substepMultiplier_);
-  else
-    mpm_.timeAdvance(Collective{}, t_, dt_);
+  const StepTaken taken = integrator_->advance(Collective{}, t_, dt_, ruleDt_);
+  dt_ = taken.dt;
+  growsFromDt_ = taken.ruleDt;
 }
 
 void Simulation::advance() {
@@ -121,7 +129,7 @@ void Simulation::advance() {
 void Simulation::finishStep() {
   t_ += dt_;
   ++step_;
-  takeStableTimestep(mpm_.flags().implicit ? mpm_.lastRuleDt() : dt_);
+  takeStableTimestep(growsFromDt_);
 }
 
 void Simulation::run() {
@@ -175,8 +183,7 @@ void Simulation::run() {
     // removes this output, so the continued series is the uninterrupted run's.
     if (stopping && archiver_.lastOutputStep() != step_) writeOutput(true);
     if (progress_) {
-      std::string limit =
-          mpm_.flags().implicit ? mpm_.newtonCounts().lastStep() : StableTimestep::name(stepLimit);
+      std::string limit = integrator_->describeLastStep(stepLimit);
       if (mpm_.diffusion()) {
         char charge[64];
         std::snprintf(charge, sizeof charge, ", SOC %.2f%% = %.0f mAh/g", 100 * stateOfCharge_,
@@ -341,19 +348,15 @@ size_t Simulation::recordHistoryRow(double stepDt, int dtRule) {
   const bool trapezoidal = mpm_.flags().implicit && s.diffusion && s.lithiumCapacity > 0 &&
                            mpm_.flags().implicit->concentrationCoupling ==
                                ImplicitOptions::ConcentrationCoupling::Trapezoidal;
+  const StepCounts counts = integrator_->lastStepCounts();
   const double couplingCorrection =
-      trapezoidal ? std::max(0.0, mpm_.newtonCounts().lastCouplingCorrection) / s.lithiumCapacity
-                  : -1.0;
-  archiver_.recordHistory(
-      {step_, s.particles, t_, stepDt, s.kineticEnergy, s.minJ, s.maxJ,
-       earlierWallSeconds_ + wallTime(), s.diffusion, s.totalLithium, s.minConcentration,
-       s.maxConcentration, lithiumRate, stateOfCharge_},
-      {s.elasticEnergy, dtRule,
-       mpm_.flags().implicit
-           ? mpm_.newtonCounts().lastIterations + mpm_.newtonCounts().lastPredictorIterations
-           : -1,
-       mpm_.flags().implicit ? mpm_.newtonCounts().lastKrylov : -1, couplingCorrection},
-      s.perMaterial);
+      trapezoidal ? std::max(0.0, counts.couplingCorrection) / s.lithiumCapacity : -1.0;
+  archiver_.recordHistory({step_, s.particles, t_, stepDt, s.kineticEnergy, s.minJ, s.maxJ,
+                           earlierWallSeconds_ + wallTime(), s.diffusion, s.totalLithium,
+                           s.minConcentration, s.maxConcentration, lithiumRate, stateOfCharge_},
+                          {s.elasticEnergy, dtRule, counts.newtonIterations,
+                           counts.krylovIterations, couplingCorrection},
+                          s.perMaterial);
   return s.particles;
 }
 
@@ -617,9 +620,8 @@ void Simulation::printTimings() const {
       limits += (limits.empty() ? "" : ", ") + std::string(dtRuleName(rule)) + " " +
                 std::to_string(stepsByRule_[rule]);
   if (!limits.empty()) std::fprintf(stderr, "  steps whose dt the limit set: %s\n", limits.c_str());
-  if (mpm_.flags().implicit)
-    std::fprintf(stderr, "  %s\n",
-                 mpm_.newtonCounts().summary(step_ - firstStepOfThisProcess_).c_str());
+  const std::string solver = integrator_->summary(step_ - firstStepOfThisProcess_);
+  if (!solver.empty()) std::fprintf(stderr, "  %s\n", solver.c_str());
   std::fprintf(stderr, "  instruction set: %s\n", instructionSet().c_str());
   // This process's steps over its wall time; after a restart also the whole run's (the time
   // of each earlier process up to its last checkpoint, as the steps).

@@ -8,6 +8,7 @@
 #include <optional>
 #include <string>
 
+#include "Components/MPM/Integrator.h"
 #include "Components/MPM/MPM.h"
 #include "Components/MPM/StateChecks.h"
 #include "Components/MPM/SymmetryFaceWatch.h"
@@ -18,6 +19,8 @@
 #include "StandAlone/Driver/TimeControl.h"
 
 namespace anode {
+
+class ImplicitStep;
 
 // A distributed run draws its boxes anew (at an output step) when the particles per rank, max
 // over mean, have grown by this factor since the boxes were drawn. An implicit step costs seconds
@@ -54,6 +57,9 @@ class Simulation {
   void advance();
 
   MPM& mpm() { return mpm_; }
+  Integrator& integrator() { return *integrator_; }
+  // The integrator of an implicit run (std::logic_error for an explicit one).
+  const ImplicitStep& implicitStep() const;
   const TimeControl& timeControl() const { return time_; }
   const SceneOutput& scenes() const { return scenes_; }
   double time() const { return t_; }
@@ -139,6 +145,7 @@ class Simulation {
   RunOptions options_;
   std::unique_ptr<ProblemSpec> spec_;
   MPM mpm_;
+  std::unique_ptr<Integrator> integrator_;  // chosen at setup by <time_integrator>
   TimeControl time_;
   DataArchiver archiver_;
   SceneOutput scenes_;
@@ -147,9 +154,9 @@ class Simulation {
   CheckpointSchedule checkpoints_;
   std::string newestCheckpoint_;  // of either kind: where a replay to the last good state starts
   double t_ = 0, dt_ = 0;
-  double ruleDt_ = 0;      // the dt the limits chose; dt_ is less where clamped to an output time
-  double lastStepDt_ = 0;  // the dt the last step took (an implicit one may retake it smaller)
-  double substepMultiplier_ = 1;  // <timestep_multiplier>: an implicit run's diffusion sub-steps
+  double ruleDt_ = 0;       // the dt the limits chose; dt_ is less where clamped to an output time
+  double lastStepDt_ = 0;   // the dt the last step took (an implicit one may retake it smaller)
+  double growsFromDt_ = 0;  // the dt the next step's limits grow from (StepTaken::ruleDt)
   StableTimestep::Limit dtLimit_ = StableTimestep::Mechanics;  // the limit that set dt_
   bool dtSetByTimeControl_ = false;           // <Time>'s clamps changed that limit's dt
   std::array<long, kDtRules> stepsByRule_{};  // steps of this process's run per DtRule

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "Components/MPM/Implicit/ImplicitStep.h"
 #include "StandAlone/Studies/StudyInput.h"
 #include "StandAlone/Studies/StudyTools.h"
 #include "StandAlone/Studies/VerificationRun.h"
@@ -132,8 +133,10 @@ SwellingSphereResult runSwellingSphere(const SwellingSphereCase& c) {
   r.radialStressError = std::sqrt(e[1] / ref[1]);
   r.hoopStressError = std::sqrt(e[2] / ref[2]);
   r.tangentialDisplacement /= maxU;
-  r.newtonIterations = sim.mpm().newtonCounts().iterations;
-  r.krylovIterations = sim.mpm().newtonCounts().krylov;
+  if (sim.mpm().flags().implicit) {
+    r.newtonIterations = sim.implicitStep().newtonCounts().iterations;
+    r.krylovIterations = sim.implicitStep().newtonCounts().krylov;
+  }
   r.steps = sim.step();
   r.finalTime = sim.time();
   r.wallSeconds = run.wallSeconds();

@@ -68,7 +68,7 @@ class ReactiveFlow {
   // (none: a run of one rank).
   void layOutGrid(const Grid& grid, const GhostNodes* ghosts);
 
-  // --- the step's diffusion tasks, in the order MPM::timeAdvance calls them ---
+  // --- the step's diffusion tasks, in the order ExplicitStep::advance calls them ---
 
   // Before P2G of material m: zeroes its fields on the nodes of `cleared` and marks the nodes
   // its flux sources reach; then calls f with the material's P2G kernel.

@@ -1,0 +1,68 @@
+#include "Components/MPM/ExplicitStep.h"
+
+#include "Core/Parallel/StopTogether.h"
+
+namespace anode {
+
+ExplicitStep::ExplicitStep(MPM& mpm) : mpm_(mpm) {
+  TaskTimers& timers = mpm.timers();
+  tasks_ = {timers.task("computeInterpolationWeights"),
+            timers.task("interpolateParticlesToGrid"),
+            timers.task("integrateGrid"),
+            timers.task("interpolateToParticlesAndUpdate"),
+            timers.task("splitParticles"),
+            timers.task("updateDiffusionState"),
+            mpm.distributed() ? timers.task("communication") : -1};
+}
+
+StableTimestep ExplicitStep::stableTimestep(Collective) const {
+  return mpm_.computeStableTimestep(Collective{});
+}
+
+StepTaken ExplicitStep::advance(Collective, double t, double dt, double) {
+  // The tasks in order (docs/diffusion.md lists the diffusion part of each). DESIGN.md §4 has the
+  // same ones but computes D and the flux rate at the start of a step: here task 10 computes
+  // them for the new state, which its output and its time step (Eq. 44) need as well. In a
+  // distributed run the ranks meet where they agree on the nodes some rank's particles reach (1),
+  // where P2G's sums are completed on the shared nodes (2), where particles move to the rank
+  // owning their cell (11), and where a problem found on one rank stops them all (stopTogether).
+  TaskTimers& timers = mpm_.timers();
+  ReactiveFlow* diffusion = mpm_.diffusion();
+  {
+    ScopedTimer s(timers, tasks_.interpolationWeights);
+    mpm_.computeWeightsAndActiveNodes();  // 1: S_ip, grad S_ip (CPDI: F size)
+  }
+  mpm_.interpolateParticlesToGrid();  // 2: P2G, Eqs. 4-5, 7, 18, and its sums over the ranks
+  {
+    ScopedTimer s(timers, tasks_.particlesToGrid);
+    mpm_.computeNodalVelocityAndConcentration();  // 2: nodal velocity and concentration (Eq. 5)
+  }
+  {
+    ScopedTimer s(timers, tasks_.gridIntegration);
+    mpm_.exchangeMomentumInterpolated();             // 3: contact on the interpolated velocity
+    mpm_.integrateGridMomentum(dt);                  // 4: a = f/m + g, v* = v + a dt
+    if (diffusion) mpm_.integrateConcentration(dt);  // 5: c* and the nodal rate (Eq. 18)
+    mpm_.setGridBoundaryConditions(dt);              // 6: contact, velocity BCs, acceleration
+  }
+  {
+    ScopedTimer s(timers, tasks_.particleUpdate);
+    // 7-8: G2P (Eq. 8), F, stress
+    collective::stopTogether([&] { mpm_.interpolateToParticlesAndUpdate(dt); });
+  }
+  if (mpm_.flags().refineParticles) {
+    ScopedTimer s(timers, tasks_.splitting);
+    mpm_.splitParticles();  // 9: particles stretched beyond the ratio split in four
+  }
+  if (diffusion) {
+    // 10: the range check of c, then D (Eqs. 23-24) and the flux rates (Eqs. 16-17) at t + dt
+    ScopedTimer s(timers, tasks_.diffusionState);
+    diffusion->updateDiffusionState(Collective{}, mpm_.materials(), t + dt);
+  }
+  if (mpm_.distributed()) {
+    ScopedTimer s(timers, tasks_.communication);
+    mpm_.migrateParticles();  // 11: particles that left the rank's box go to its owner
+  }
+  return {dt, dt};
+}
+
+}  // namespace anode

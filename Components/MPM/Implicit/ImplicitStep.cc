@@ -1,0 +1,308 @@
+// ImplicitStep's step in order and its dt (ImplicitStep.h); the equilibrium problem it solves
+// is ImplicitEquilibrium.cc's, the trapezoidal coupling TrapezoidalCoupling.cc's.
+#include "Components/MPM/Implicit/ImplicitStep.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <sstream>
+
+#include "Core/Parallel/StopTogether.h"
+#include "Core/Util/Errors.h"
+
+namespace anode {
+
+namespace {
+constexpr int kMaxRetakes = 20;  // of one step
+// A step whose largest change of c exceeds <max_concentration_change> by this factor is retaken,
+// at dt x bound / change, but no less than dt x kSmallestConcentrationRetake.
+constexpr double kConcentrationChangeRetake = 2, kSmallestConcentrationRetake = 0.1;
+}  // namespace
+
+// MPM's tasks as the diffusion asks for them, each timed as the step's task it is part of.
+class ImplicitStep::Transfer : public ConcentrationTransfer {
+ public:
+  explicit Transfer(MPM& mpm)
+      : mpm_(mpm),
+        timers_(mpm.timers()),
+        particlesToGrid_(timers_.task("interpolateParticlesToGrid")),
+        gridIntegration_(timers_.task("integrateGrid")),
+        particleUpdate_(timers_.task("interpolateToParticlesAndUpdate")) {}
+  void scatterConcentration() override { mpm_.interpolateParticlesToGrid(true); }
+  void computeNodalConcentration(bool withVelocity) override {
+    ScopedTimer s(timers_, particlesToGrid_);
+    if (withVelocity)
+      mpm_.computeNodalVelocityAndConcentration();
+    else
+      mpm_.computeNodalConcentration();
+  }
+  void integrateConcentration(double dt) override {
+    ScopedTimer s(timers_, gridIntegration_);
+    mpm_.integrateConcentration(dt);
+  }
+  void gatherConcentrationChange(size_t m, double dt, std::vector<double>& change) override {
+    ScopedTimer s(timers_, particleUpdate_);
+    mpm_.interpolateConcentrationChange(m, dt, change);
+  }
+  void gatherConcentrationGradient(size_t m) override {
+    ScopedTimer s(timers_, particleUpdate_);
+    mpm_.interpolateConcentrationGradient(m);
+  }
+  void sumOverRanks(std::vector<double>& nodal) override {
+    if (GhostNodes* ghosts = mpm_.ghosts()) ghosts->sumOverRanks(Collective{}, {{nodal.data(), 1}});
+  }
+  const InterpolationWeights& weights(size_t m) const override { return mpm_.weights()[m]; }
+  const std::vector<double>& nodalMass(size_t m) const override {
+    return mpm_.gridFields()[m].mass;
+  }
+
+ private:
+  MPM& mpm_;
+  TaskTimers& timers_;
+  int particlesToGrid_, gridIntegration_, particleUpdate_;
+};
+
+std::string ImplicitStep::NewtonCounts::lastStep() const {
+  return "Newton " + std::to_string(lastIterations) +
+         (lastPredictorIterations > 0
+              ? " + " + std::to_string(lastPredictorIterations) + " predicting"
+              : std::string()) +
+         ", Krylov " + std::to_string(lastKrylov);
+}
+
+std::string ImplicitStep::NewtonCounts::summary(long steps) const {
+  char line[360];
+  std::snprintf(line, sizeof line,
+                "Newton iterations %ld (%.2f per step), %ld of them with a new Jacobian, Krylov "
+                "iterations %ld (%.1f per Newton iteration, %ld preconditioner set-ups), steps "
+                "retaken with a smaller dt %ld, diffusion sub-steps %ld",
+                iterations, static_cast<double>(iterations) / std::max(steps, 1L), newTangents,
+                krylov, iterations > 0 ? static_cast<double>(krylov) / iterations : 0.0,
+                preconditionerSetUps, retakes, diffusionSubsteps);
+  return line;
+}
+
+ImplicitStep::ImplicitStep(const PSNode& root, MPM& mpm, double substepMultiplier, double dtMin)
+    : mpm_(mpm),
+      options_(*mpm.flags().implicit),
+      dtMin_(dtMin),
+      transfer_(std::make_unique<Transfer>(mpm)) {
+  checkSetup(root);
+  // Materials in single_velocity contact share one field of unknowns; others have their own.
+  const Contact& contact = mpm.contact();
+  fieldOf_.assign(mpm.materials().size(), -1);
+  if (contact.type == Contact::Type::SingleVelocity) {
+    for (int m : contact.materials) fieldOf_[m] = 0;
+    fields_ = 1;
+  }
+  for (int& f : fieldOf_)
+    if (f < 0) f = fields_++;
+  TaskTimers& timers = mpm.timers();
+  equilibrium_.useTimers(timers);
+  if (mpm.diffusion())
+    diffusion_.emplace(*mpm.diffusion(), mpm.grid(), options_, substepMultiplier, timers);
+  tasks_ = {timers.task("computeInterpolationWeights"),
+            timers.task("interpolateToParticlesAndUpdate"), timers.task("splitParticles"),
+            timers.task("updateDiffusionState"),
+            mpm.distributed() ? timers.task("communication") : -1};
+}
+
+ImplicitStep::~ImplicitStep() = default;
+
+void ImplicitStep::checkSetup(const PSNode& root) const {
+  const ReactiveFlow* diffusion = mpm_.diffusion();
+  if (mpm_.contact().excluded >= 0)
+    root.requireChild("MaterialProperties")
+        .requireChild("MPM")
+        .requireChild("contact")
+        .requireChild("ExcludeMaterial")
+        .fail("<ExcludeMaterial> with <time_integrator>implicit is not supported");
+  if (!diffusion &&
+      options_.concentrationCoupling == ImplicitOptions::ConcentrationCoupling::Trapezoidal)
+    root.requireChild("MPM")
+        .requireChild("concentration_coupling")
+        .warn(
+            "<concentration_coupling>trapezoidal without <do_scalar_diffusion>true: there is "
+            "no diffusion to couple, the steps are the staggered ones");
+  if (options_.diffusionIntegrator == ImplicitOptions::DiffusionIntegrator::Rkl2) {
+    const PSNode tag = root.requireChild("MPM").requireChild("diffusion_integrator");
+    // A stage needs the particles' rate of c; a Dirichlet node sets c instead, and the
+    // auto-cycle's turn is a decision on the state of a step's end, not of a stage.
+    if (diffusion && diffusion->hasConcentrationBCs())
+      tag.unsupported("<diffusion_integrator>rkl2 with SD-Type concentration boundary conditions");
+    if (mpm_.flags().autoCycle)
+      tag.unsupported("<diffusion_integrator>rkl2 with <do_auto_cycle_bc>");
+    if (!diffusion)
+      tag.warn(
+          "<diffusion_integrator> without <do_scalar_diffusion>true: there is no diffusion to "
+          "integrate");
+  }
+  if (!diffusion && options_.subcellConcentrationRelaxation)
+    root.requireChild("MPM")
+        .requireChild("subcell_concentration_relaxation")
+        .warn(
+            "<subcell_concentration_relaxation> without <do_scalar_diffusion>true: there is no "
+            "concentration to relax");
+}
+
+StableTimestep ImplicitStep::stableTimestep(Collective) const {
+  StableTimestep limits;  // the first step takes <delt_max> (or <delt_init>)
+  limits.bound[StableTimestep::Newton] =
+      ruleDt_ > 0 ? options_.nextTimestep(ruleDt_, newton_.lastIterations)
+                  : std::numeric_limits<double>::max();
+  if (maxConcentrationChange_ > 0)  // the accuracy bound on c (docs/quasi-static.md)
+    limits.bound[StableTimestep::ConcentrationChange] =
+        lastDt_ * options_.maxConcentrationChange / maxConcentrationChange_;
+  return limits;
+}
+
+double ImplicitStep::largestConcentrationChange() const {
+  double largest = 0;
+  for (const std::vector<double>& dc : concentrationChange_)
+    for (double d : dc) largest = std::max(largest, std::abs(d));
+  return largest;
+}
+
+void ImplicitStep::computeWeights() {
+  {
+    ScopedTimer s(mpm_.timers(), tasks_.interpolationWeights);
+    mpm_.computeWeightsAndActiveNodes();
+  }
+  mpm_.interpolateParticlesToGrid();
+}
+
+void ImplicitStep::diffuseOverStep(double t, double dt) {
+  newton_.diffusionSubsteps +=
+      diffusion_->diffuse(*transfer_, mpm_.materials(), t, dt, concentrationChange_);
+}
+
+StepTaken ImplicitStep::advance(Collective, double t, double dt, double ruleDt) {
+  std::vector<MPMMaterial>& materials = mpm_.materials();
+  ReactiveFlow* diffusion = mpm_.diffusion();
+  {
+    ScopedTimer s(mpm_.timers(), tasks_.interpolationWeights);
+    mpm_.computeWeightsAndActiveNodes();  // 1: S_ip, grad S_ip at the start of the step
+  }
+  // A step retaken with a smaller dt diffuses again from the particles of the step's start.
+  std::vector<ParticleSet> start;
+  std::optional<ReactiveFlow::StepState> diffusionAtStart;
+  int retakes = 0;
+  if (diffusion) {
+    for (const MPMMaterial& mat : materials) start.push_back(mat.particles);
+    diffusionAtStart = diffusion->stepState();
+  }
+  while (true) {
+    mpm_.interpolateParticlesToGrid();  // the nodal masses (and the concentration's sums)
+    // 2: c over dt; a step in which c changed by more than twice the bound of
+    // <max_concentration_change> somewhere is retaken at the dt that bound allows.
+    NewtonReport report;
+    double smaller = dt * options_.decreaseFactor;
+    if (diffusion) {
+      diffuseOverStep(t, dt);
+      const double bound = options_.maxConcentrationChange;
+      maxConcentrationChange_ = collective::maximum(largestConcentrationChange());
+      if (maxConcentrationChange_ > kConcentrationChangeRetake * bound) {
+        std::ostringstream s;
+        s.precision(3);
+        s << "c changed by " << maxConcentrationChange_ << " in a particle, above twice "
+          << "<max_concentration_change> " << bound;
+        report.failure = s.str();
+        smaller = dt * std::max(bound / maxConcentrationChange_, kSmallestConcentrationRetake);
+      }
+    }
+    // 2b (<concentration_coupling>trapezoidal): c over dt again on the predicted end
+    std::vector<std::vector<Vec3>> predicted;
+    NewtonReport prediction;
+    double couplingCorrection = -1;
+    if (report.failure.empty() && diffusion &&
+        options_.concentrationCoupling == ImplicitOptions::ConcentrationCoupling::Trapezoidal) {
+      prediction = averageConcentrationChangeOverStep(t, dt, start, *diffusionAtStart, predicted,
+                                                      couplingCorrection);
+      if (!prediction.converged) {
+        report = prediction;
+        report.failure = "the prediction of the step's end: " + report.failure;
+      }
+    }
+    if (report.failure.empty()) {
+      // 3: Newton, retaken with a smaller dt until it converges
+      EquilibriumProblem problem = equilibriumProblem(dt);
+      if (!predicted.empty()) {
+        problem.predicted = std::move(predicted);
+        problem.predictedIsSolved = true;
+        problem.useKeptLinearSolver = true;
+      }
+      report = equilibrium_.solve(problem, dt, options_);
+      newton_.add(report);
+      if (report.converged) {
+        newton_.lastIterations = report.iterations;
+        newton_.lastPredictorIterations = prediction.iterations;
+        newton_.lastKrylov = report.krylovIterations + prediction.krylovIterations;
+        newton_.lastCouplingCorrection = couplingCorrection;
+        newton_.lastRatios = report.ratios;
+        newton_.lastLinearTolerances = report.linearTolerances;
+        break;
+      }
+    }
+    // With <delt_min> 0 the retakes end after kMaxRetakes (0.6^20: 4e-5 of the first dt).
+    if (smaller < dtMin_ || ++retakes > kMaxRetakes) stop(t, dt, smaller, report);
+    ++newton_.retakes;
+    reportRetake(t, smaller, report);
+    dt = smaller;
+    ruleDt = smaller;
+    for (size_t m = 0; m < start.size(); ++m) materials[m].particles = start[m];
+    if (diffusion) {
+      diffusion->restoreStepState(*diffusionAtStart);
+      diffusion->updateDiffusionState(Collective{}, materials, t);
+    }
+  }
+  {
+    ScopedTimer s(mpm_.timers(), tasks_.particleUpdate);
+    // 5: x, F, stress and the models' state
+    collective::stopTogether([&] { updateParticlesFromEquilibrium(dt); });
+  }
+  if (mpm_.flags().refineParticles) {
+    ScopedTimer s(mpm_.timers(), tasks_.splitting);
+    mpm_.splitParticles();
+  }
+  if (mpm_.distributed()) {
+    ScopedTimer s(mpm_.timers(), tasks_.communication);
+    mpm_.migrateParticles();  // particles that left the rank's box go to its owner
+  }
+  lastDt_ = dt;
+  ruleDt_ = ruleDt;
+  return {dt, ruleDt};
+}
+
+void ImplicitStep::stop(double t, double dt, double smaller, const NewtonReport& report) const {
+  std::ostringstream s;
+  s.precision(3);
+  s << "the equilibrium step from t = " << t << " over dt = " << dt << " failed: " << report.failure
+    << "; "
+    << (smaller < dtMin_ ? "a retake with dt = " + std::to_string(smaller) +
+                               " would be below <delt_min> " + std::to_string(dtMin_)
+                         : std::to_string(kMaxRetakes) + " retakes with a smaller dt failed")
+    << ". Newton's ratios |du|^2/max, du.r/first by iteration:";
+  for (const auto& [disp, energy] : report.ratios) s << " (" << disp << ", " << energy << ")";
+  s << "; their linear solves' relative tolerances:";
+  for (double tolerance : report.linearTolerances) s << " " << tolerance;
+  // Every rank decides this alike (Newton's tests are sums over all ranks): rank 0 reports.
+  if (!Communicator::isRoot()) throw StoppedOnAnotherRank(0);
+  throw SimulationError(s.str());
+}
+
+void ImplicitStep::reportRetake(double t, double smaller, const NewtonReport& report) {
+  std::ostringstream note;
+  note.precision(2);
+  note << "sus: the step from t = " << t << " retaken with dt = " << smaller << ": "
+       << report.failure;
+  if (report.iterations > 0) {
+    note << "; Newton " << report.iterations << ", last ratios";
+    for (size_t k = report.ratios.size() > 3 ? report.ratios.size() - 3 : 0;
+         k < report.ratios.size(); ++k)
+      note << " (" << report.ratios[k].first << ", " << report.ratios[k].second << ")";
+  }
+  if (Communicator::isRoot()) std::fprintf(stderr, "%s\n", note.str().c_str());
+}
+
+}  // namespace anode

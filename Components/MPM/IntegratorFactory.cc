@@ -1,0 +1,14 @@
+#include "Components/MPM/IntegratorFactory.h"
+
+#include "Components/MPM/ExplicitStep.h"
+#include "Components/MPM/Implicit/ImplicitStep.h"
+
+namespace anode {
+
+std::unique_ptr<Integrator> makeIntegrator(const PSNode& root, MPM& mpm, double multiplier,
+                                           double dtMin) {
+  if (mpm.flags().implicit) return std::make_unique<ImplicitStep>(root, mpm, multiplier, dtMin);
+  return std::make_unique<ExplicitStep>(mpm);
+}
+
+}  // namespace anode

@@ -1,0 +1,163 @@
+#include "Components/MPM/ReactiveFlow/DiffusionPass.h"
+
+#include <algorithm>
+
+#include "Components/MPM/ReactiveFlow/RungeKuttaLegendre.h"
+#include "Components/MPM/ReactiveFlow/SubcellRelaxation.h"
+#include "Core/Parallel/Communicator.h"
+
+namespace anode {
+
+DiffusionPass::DiffusionPass(ReactiveFlow& diffusion, const Grid& grid,
+                             const ImplicitOptions& options, double substepMultiplier,
+                             TaskTimers& timers)
+    : diffusion_(diffusion),
+      grid_(grid),
+      integrator_(options.diffusionIntegrator),
+      relaxation_(options.subcellConcentrationRelaxation),
+      substepMultiplier_(substepMultiplier),
+      timers_(timers),
+      diffusionStateTask_(timers.task("updateDiffusionState")),
+      particleUpdateTask_(timers.task("interpolateToParticlesAndUpdate")) {}
+
+double DiffusionPass::substepLimit(const std::vector<MPMMaterial>& materials) const {
+  // Eq. 44 over every rank's particles and the flux limit: each rank's sub-steps are the same.
+  return substepMultiplier_ * std::min(collective::minimum(diffusion_.diffusionTimestep(grid_)),
+                                       diffusion_.fluxTimestep(Collective{}, materials));
+}
+
+void DiffusionPass::updateDiffusionState(std::vector<MPMMaterial>& materials, double t) {
+  ScopedTimer s(timers_, diffusionStateTask_);
+  diffusion_.updateDiffusionState(Collective{}, materials, t);  // range, D, flux rates
+}
+
+long DiffusionPass::diffuse(ConcentrationTransfer& grid, std::vector<MPMMaterial>& materials,
+                            double t, double dt, std::vector<std::vector<double>>& change) {
+  change.resize(materials.size());
+  for (size_t m = 0; m < materials.size(); ++m)
+    change[m].assign(materials[m].particles.count(), 0.0);
+  if (relaxation_) {
+    relaxSubcellConcentration(grid, materials, dt, change);
+    grid.scatterConcentration();  // the sums of the relaxed c
+  }
+  if (integrator_ == ImplicitOptions::DiffusionIntegrator::Rkl2)
+    return diffuseInLegendreStages(grid, materials, t, dt, change);
+  return diffuseInSubsteps(grid, materials, t, dt, change);
+}
+
+long DiffusionPass::diffuseInSubsteps(ConcentrationTransfer& grid,
+                                      std::vector<MPMMaterial>& materials, double t, double dt,
+                                      std::vector<std::vector<double>>& change) {
+  long substeps = 0;
+  double done = 0;
+  while (done < dt) {
+    const double limit = substepLimit(materials);
+    // The last sub-step ends at t + dt exactly (a remainder below 1e-12 dt joins the one before).
+    double h = std::min(limit, dt - done);
+    if (dt - done - h < 1e-12 * dt) h = dt - done;
+    // The concentration's sums of the start-of-step particles, again, of the materials whose c
+    // changes (the rest of P2G stands: the particles change nothing else).
+    if (done > 0) grid.scatterConcentration();
+    grid.computeNodalConcentration(done == 0);  // Eq. 5 and the diffusion interface
+    grid.integrateConcentration(h);             // c* and the rate (Eq. 18)
+    for (size_t m = 0; m < materials.size(); ++m)
+      if (diffusion_.computesConcentration(m))  // otherwise its c stays: nothing to gather
+        grid.gatherConcentrationChange(m, h, change[m]);
+    done = h == dt - done ? dt : done + h;
+    ++substeps;
+    updateDiffusionState(materials, t + done);
+  }
+  return substeps;
+}
+
+long DiffusionPass::diffuseInLegendreStages(ConcentrationTransfer& grid,
+                                            std::vector<MPMMaterial>& materials, double t,
+                                            double dt, std::vector<std::vector<double>>& change) {
+  grid.computeNodalConcentration(true);  // the step's P2G (the nodal velocity)
+  // c of the particles of the materials whose c changes, one after the other.
+  std::vector<size_t> changing;
+  for (size_t m = 0; m < materials.size(); ++m)
+    if (diffusion_.computesConcentration(m)) changing.push_back(m);
+  const auto concentrations = [&] {
+    std::vector<double> y;
+    for (size_t m : changing) {
+      const std::vector<double>& c = diffusionParticles(materials[m].particles).concentration;
+      y.insert(y.end(), c.begin(), c.end());
+    }
+    return y;
+  };
+  const auto setConcentrations = [&](const std::vector<double>& y) {
+    auto at = y.begin();
+    for (size_t m : changing) {
+      std::vector<double>& c = diffusionParticles(materials[m].particles).concentration;
+      std::copy(at, at + static_cast<long>(c.size()), c.begin());
+      at += static_cast<long>(c.size());
+    }
+  };
+  // The particles' grad c from the nodal c of their c (P2G of m c).
+  const auto gradientOfNodalConcentration = [&] {
+    grid.scatterConcentration();
+    grid.computeNodalConcentration(false);
+    for (size_t m : changing) grid.gatherConcentrationGradient(m);
+  };
+  const double middle = t + dt / 2;
+  long stages = 0;
+  // dc/dt of every particle at c = y: the diffusion state (D, flux rates) of y with the load
+  // curves at the pass's midpoint, P2G of m c, grad c at the particles from the nodal c, P2G of
+  // m D grad c and the flux sources, and the nodal rates gathered with the sources each particle
+  // receives (ConcentrationGather's update over a unit time).
+  const auto rate = [&](const std::vector<double>& y, std::vector<double>& f) {
+    setConcentrations(y);
+    updateDiffusionState(materials, middle);
+    gradientOfNodalConcentration();
+    grid.scatterConcentration();
+    grid.computeNodalConcentration(false);
+    grid.integrateConcentration(1.0);
+    size_t first = 0;
+    for (size_t m : changing) {
+      std::vector<double> dc(materials[m].particles.count(), 0.0);
+      grid.gatherConcentrationChange(m, 1.0, dc);
+      std::copy(dc.begin(), dc.end(), f.begin() + static_cast<long>(first));
+      first += dc.size();
+    }
+    setConcentrations(y);
+    ++stages;
+  };
+  // As many stages as the sub-steps' limit at the pass's start needs.
+  const double limit = substepLimit(materials);
+  const std::vector<double> start = concentrations();
+  std::vector<double> y = start;
+  stepRkl2(y, dt, rkl2Stages(dt / limit), rate);
+  setConcentrations(y);
+  size_t first = 0;
+  for (size_t m : changing) {
+    std::vector<double>& dc = change[m];
+    for (size_t i = 0; i < dc.size(); ++i) dc[i] += y[first + i] - start[first + i];
+    first += dc.size();
+  }
+  // grad c of the end (as a sub-step leaves it for the next one) and its diffusion state.
+  gradientOfNodalConcentration();
+  updateDiffusionState(materials, t + dt);
+  return stages;
+}
+
+void DiffusionPass::relaxSubcellConcentration(ConcentrationTransfer& grid,
+                                              std::vector<MPMMaterial>& materials, double dt,
+                                              std::vector<std::vector<double>>& change) {
+  ScopedTimer s(timers_, particleUpdateTask_);
+  const double perDiffusivity = subcellRelaxationPerDiffusivity(dt, grid_.dx.maxCoeff());
+  for (size_t m = 0; m < materials.size(); ++m) {
+    if (!diffusion_.computesConcentration(m)) continue;
+    ParticleSet& p = materials[m].particles;
+    DiffusionParticles d = diffusionParticles(p);
+    const std::vector<double>& nodeMass = grid.nodalMass(m);
+    scatterMassDiffusivity(p.mass, d.diffusivity, grid.weights(m), nodeMass.size(),
+                           nodeMassDiffusivity_);
+    grid.sumOverRanks(nodeMassDiffusivity_);
+    relaxSubcellDifferences(d.concentration, grid.weights(m),
+                            diffusion_.gridFields()[m].massConcentration, nodeMass,
+                            nodeMassDiffusivity_, perDiffusivity, change[m]);
+  }
+}
+
+}  // namespace anode

@@ -1,0 +1,56 @@
+// The diffusion of a quasi-static step (DESIGN.md §4b, step 2; docs/quasi-static.md): the
+// particles stay where the step began and their c changes over [t, t + dt] in explicit sub-steps
+// of Eqs. 5, 18 and 8 (<diffusion_integrator>euler) or in the stages of one RKL2 step (rkl2,
+// RungeKuttaLegendre.h), after the sub-cell relaxation where the input asks for it
+// (<subcell_concentration_relaxation>, SubcellRelaxation.h). The grid's part is MPM's, asked for
+// through ConcentrationTransfer; the rest is ReactiveFlow's (its diffusion state, Eq. 44 and the
+// flux limit).
+#pragma once
+
+#include <vector>
+
+#include "Components/MPM/ImplicitOptions.h"
+#include "Components/MPM/Materials/MPMMaterial.h"
+#include "Components/MPM/ReactiveFlow/ConcentrationTransfer.h"
+#include "Components/MPM/ReactiveFlow/ReactiveFlow.h"
+#include "Core/Util/Timers.h"
+
+namespace anode {
+
+class DiffusionPass {
+ public:
+  // substepMultiplier: a sub-step's share of the explicit limits (<timestep_multiplier>).
+  // `grid`: MPM's (its cell edges).
+  DiffusionPass(ReactiveFlow& diffusion, const Grid& grid, const ImplicitOptions& options,
+                double substepMultiplier, TaskTimers& timers);
+  // Collective: a sub-step's length, the multiplier times the smaller of Eq. 44 and the flux
+  // limit over all ranks.
+  double substepLimit(const std::vector<MPMMaterial>& materials) const;
+  // c over [t, t + dt] of the particles (after the step's full P2G on `grid`); each particle's
+  // change of c into change[m] (sized here), and the diffusion state of the end. Returns the
+  // evaluations of the rate it took (sub-steps or stages). Collective.
+  long diffuse(ConcentrationTransfer& grid, std::vector<MPMMaterial>& materials, double t,
+               double dt, std::vector<std::vector<double>>& change);
+
+ private:
+  long diffuseInSubsteps(ConcentrationTransfer& grid, std::vector<MPMMaterial>& materials, double t,
+                         double dt, std::vector<std::vector<double>>& change);
+  // One RKL2 step over dt, its stages as many as the sub-steps' limit at the start needs.
+  long diffuseInLegendreStages(ConcentrationTransfer& grid, std::vector<MPMMaterial>& materials,
+                               double t, double dt, std::vector<std::vector<double>>& change);
+  // The particles drawn towards the grid's c of their P2G over dt, their change added.
+  void relaxSubcellConcentration(ConcentrationTransfer& grid, std::vector<MPMMaterial>& materials,
+                                 double dt, std::vector<std::vector<double>>& change);
+  void updateDiffusionState(std::vector<MPMMaterial>& materials, double t);
+
+  ReactiveFlow& diffusion_;
+  const Grid& grid_;
+  ImplicitOptions::DiffusionIntegrator integrator_;
+  bool relaxation_;
+  double substepMultiplier_;
+  TaskTimers& timers_;
+  int diffusionStateTask_, particleUpdateTask_;
+  std::vector<double> nodeMassDiffusivity_;  // the relaxation's sum S m D
+};
+
+}  // namespace anode
