@@ -858,13 +858,5 @@ TEST(QuasiStatic, ClampWithOutputsByStepsClampsNothingAndWarns) {
   }
 }
 
-TEST(QuasiStatic, ImplicitOptionsFollowImpMPMsTimeStepRule) {
-  ImplicitOptions o;
-  EXPECT_DOUBLE_EQ(o.nextTimestep(1.0, 4), 2.0);
-  EXPECT_DOUBLE_EQ(o.nextTimestep(1.0, 5), 1.0);
-  EXPECT_DOUBLE_EQ(o.nextTimestep(1.0, 11), 1.0);
-  EXPECT_DOUBLE_EQ(o.nextTimestep(1.0, 12), 0.6);
-}
-
 }  // namespace
 }  // namespace anode

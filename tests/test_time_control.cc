@@ -1,12 +1,16 @@
-// Pins <Time> (StandAlone/Driver/TimeControl.h): the step's dt from the stable one, clamped in
-// Uintah's order, and the tags it accepts, refuses or leaves to a restart.
+// Pins <Time> (Core/Grid/TimeControl.h) and the time-step controller
+// (Components/MPM/TimestepController.h): the step's dt from the stable one, clamped in Uintah's
+// order, the implicit step's rules and retakes, which limit set each dt, and the tags <Time>
+// accepts, refuses or leaves to a restart.
 #include <gtest/gtest.h>
 
+#include <optional>
 #include <string>
 
+#include "Components/MPM/TimestepController.h"
+#include "Core/Grid/TimeControl.h"
 #include "Core/ProblemSpec/ProblemSpec.h"
 #include "Core/Util/Errors.h"
-#include "StandAlone/Driver/TimeControl.h"
 
 namespace anode {
 namespace {
@@ -21,11 +25,90 @@ TimeControl read(const std::string& extra) {
   return TimeControl::fromInput(spec->root().requireChild("Time"));
 }
 
+// An explicit run's limits with `stable` the smallest, set by `limit`.
+StableTimestep limits(double stable, StableTimestep::Limit limit = StableTimestep::Mechanics) {
+  StableTimestep s;
+  s.bound[limit] = stable;
+  return s;
+}
+
+// The dt an explicit run's controller plans from the stable dt, after a step of previousDt.
+double explicitDt(const TimeControl& tc, double stable, double previousDt, double t) {
+  return TimestepController(tc, nullptr).plan(limits(stable), previousDt, t, std::nullopt).dt;
+}
+
 TEST(TimeControl, TheStableStepTimesTheMultiplierWithinDeltMinAndDeltMax) {
   const TimeControl tc = read("");
-  EXPECT_EQ(tc.nextTimestep(0.02, 0, 0), 0.01);
-  EXPECT_EQ(tc.nextTimestep(1.0, 0, 0), 0.1);    // delt_max
-  EXPECT_EQ(tc.nextTimestep(1e-8, 0, 0), 1e-6);  // delt_min
+  EXPECT_EQ(explicitDt(tc, 0.02, 0, 0), 0.01);
+  EXPECT_EQ(explicitDt(tc, 1.0, 0, 0), 0.1);    // delt_max
+  EXPECT_EQ(explicitDt(tc, 1e-8, 0, 0), 1e-6);  // delt_min
+}
+
+TEST(TimestepController, SaysWhichLimitSetTheDt) {
+  const TimestepController explicitRun(read(""), nullptr);
+  TimestepController::Plan p = explicitRun.plan(limits(0.02, StableTimestep::Diffusion), 0, 0, {});
+  EXPECT_EQ(p.limit, StableTimestep::Diffusion);
+  EXPECT_FALSE(p.setByTimeControl);
+  p = explicitRun.plan(limits(1.0, StableTimestep::Flux), 0, 0, {});
+  EXPECT_EQ(p.limit, StableTimestep::Flux);
+  EXPECT_TRUE(p.setByTimeControl);  // delt_max
+  EXPECT_EQ(p.dt, 0.1);
+}
+
+TEST(TimestepController, AnOutputTimeShortensTheStepButNotTheRuleDt) {
+  const TimestepController clamped(read("<clamp_time_to_output>true</clamp_time_to_output>"),
+                                   nullptr);
+  TimestepController::Plan p = clamped.plan(limits(0.02), 0, 0.3, 0.305);
+  EXPECT_EQ(p.dt, 0.305 - 0.3);  // ends on the output
+  EXPECT_EQ(p.ruleDt, 0.01);
+  EXPECT_TRUE(p.setByTimeControl);
+  p = clamped.plan(limits(0.02), 0, 0.3, 0.5);  // the output lies beyond the step
+  EXPECT_EQ(p.dt, 0.01);
+  EXPECT_FALSE(p.setByTimeControl);
+  const TimestepController unclamped(read(""), nullptr);
+  EXPECT_EQ(unclamped.plan(limits(0.02), 0, 0.3, 0.305).dt, 0.01);
+}
+
+TEST(TimestepController, AnImplicitRunsMultiplierIsItsSubstepsNotItsDt) {
+  const ImplicitOptions options;
+  const TimestepController implicitRun(read(""), &options);
+  // ImpMPM's rule sets the dt: no multiplier (0.5 in <Time>) on it.
+  const TimestepController::Plan p =
+      implicitRun.plan(limits(0.02, StableTimestep::Newton), 0.01, 0.3, std::nullopt);
+  EXPECT_EQ(p.dt, 0.02);
+  EXPECT_EQ(p.limit, StableTimestep::Newton);
+  EXPECT_FALSE(p.setByTimeControl);
+  EXPECT_EQ(implicitRun.substepMultiplier(), 0.5);
+}
+
+TEST(TimestepController, ImpMPMsRuleGrowsAfterFewIterationsAndShrinksAfterMany) {
+  ImplicitOptions options;  // ImpMPM's defaults: x2 at <= 4 iterations, x0.6 at >= 12
+  const TimestepController c(read(""), &options);
+  EXPECT_EQ(c.afterNewton(1.0, 4), 2.0);
+  EXPECT_EQ(c.afterNewton(1.0, 5), 1.0);
+  EXPECT_EQ(c.afterNewton(1.0, 11), 1.0);
+  EXPECT_EQ(c.afterNewton(1.0, 12), 0.6);
+}
+
+TEST(TimestepController, TheConcentrationChangeBoundsTheNextDtAndRetakesPastTwiceIt) {
+  ImplicitOptions options;
+  options.maxConcentrationChange = 0.05;
+  const TimestepController c(read(""), &options);
+  EXPECT_DOUBLE_EQ(c.forConcentrationChange(1.0, 0.1), 0.5);
+  EXPECT_FALSE(c.retakesConcentrationChange(0.1));
+  EXPECT_TRUE(c.retakesConcentrationChange(0.1001));
+  EXPECT_DOUBLE_EQ(c.retakeDt(1.0, 0.2), 0.25);  // the dt the bound allows
+  EXPECT_DOUBLE_EQ(c.retakeDt(1.0, 5.0), 0.1);   // but no less than a tenth
+  EXPECT_DOUBLE_EQ(c.retakeDt(1.0, 0), 0.6);     // Newton failed: <delT_decrease_factor>
+}
+
+TEST(TimestepController, ARetakeStopsBelowDeltMinOrAfterTwentyRetakes) {
+  const ImplicitOptions options;
+  const TimestepController c(read(""), &options);
+  EXPECT_EQ(c.refusesRetake(1e-3, 0), "");
+  EXPECT_NE(c.refusesRetake(1e-7, 0).find("below <delt_min>"), std::string::npos);
+  EXPECT_EQ(c.refusesRetake(1e-3, 19), "");
+  EXPECT_NE(c.refusesRetake(1e-3, 20).find("20 retakes"), std::string::npos);
 }
 
 TEST(TimeControl, ClampsInUintahsOrder) {
@@ -33,23 +116,23 @@ TEST(TimeControl, ClampsInUintahsOrder) {
       "<max_delt_increase>0.5</max_delt_increase><delt_init>0.004</delt_init>"
       "<initial_delt_range>0.2</initial_delt_range>"
       "<end_at_max_time_exactly>true</end_at_max_time_exactly>");
-  EXPECT_DOUBLE_EQ(tc.nextTimestep(0.1, 0.002, 0.5), 0.003);  // at most 1.5 x the previous step
-  EXPECT_EQ(tc.nextTimestep(0.1, 0, 0.1), 0.004);             // delt_init within the initial range
-  EXPECT_EQ(tc.nextTimestep(0.1, 0, 0.99), 1 - 0.99);         // ends at maxTime
+  EXPECT_DOUBLE_EQ(explicitDt(tc, 0.1, 0.002, 0.5), 0.003);  // at most 1.5 x the previous step
+  EXPECT_EQ(explicitDt(tc, 0.1, 0, 0.1), 0.004);             // delt_init within the initial range
+  EXPECT_EQ(explicitDt(tc, 0.1, 0, 0.99), 1 - 0.99);         // ends at maxTime
   // A round-off remainder joins the step before it.
   const double almost = 1 - 0.05 - 1e-15;
-  EXPECT_EQ(tc.nextTimestep(0.1, 0, almost), 1 - almost);
-  EXPECT_EQ(tc.nextTimestep(0.1, 0, 1 - 0.05 - 1e-6), 0.05);
+  EXPECT_EQ(explicitDt(tc, 0.1, 0, almost), 1 - almost);
+  EXPECT_EQ(explicitDt(tc, 0.1, 0, 1 - 0.05 - 1e-6), 0.05);
 }
 
 TEST(TimeControl, InitialRangeEndsAtAnAbsoluteTimeAndZeroDeltInitCapsNothing) {
   TimeControl tc = read("<delt_init>0.004</delt_init><initial_delt_range>0.2</initial_delt_range>");
   tc.initTime = 0.5;  // a run starting after the range: no cap (Uintah: t + dt <= range)
-  EXPECT_EQ(tc.nextTimestep(0.1, 0, 0.6), 0.05);
+  EXPECT_EQ(explicitDt(tc, 0.1, 0, 0.6), 0.05);
   tc.initTime = 0;
-  EXPECT_EQ(tc.nextTimestep(0.1, 0, 0.2), 0.004);
-  EXPECT_EQ(tc.nextTimestep(0.1, 0, 0.21), 0.05);
-  EXPECT_EQ(read("<delt_init>0</delt_init>").nextTimestep(0.02, 0, 0), 0.01);
+  EXPECT_EQ(explicitDt(tc, 0.1, 0, 0.2), 0.004);
+  EXPECT_EQ(explicitDt(tc, 0.1, 0, 0.21), 0.05);
+  EXPECT_EQ(explicitDt(read("<delt_init>0</delt_init>"), 0.02, 0, 0), 0.01);
   EXPECT_THROW(read("<delt_init>-1</delt_init>"), InputError);
 }
 

@@ -91,10 +91,4 @@ ImplicitOptions ImplicitOptions::fromInput(const PSNode& mpm) {
   return o;
 }
 
-double ImplicitOptions::nextTimestep(double dt, int iterations) const {
-  if (iterations >= itersToDecrease) return dt * decreaseFactor;
-  if (iterations <= itersToIncrease) return dt * increaseFactor;
-  return dt;
-}
-
 }  // namespace anode

@@ -16,7 +16,7 @@ struct ImplicitOptions {
   // A step taking more Newton iterations than this is retaken with dt x decreaseFactor.
   int maxIterations = 25;
   // The next dt is dt x decreaseFactor after a step of at least itersToDecrease iterations,
-  // dt x increaseFactor after one of at most itersToIncrease.
+  // dt x increaseFactor after one of at most itersToIncrease (TimestepController::afterNewton).
   int itersToDecrease = 12, itersToIncrease = 4;
   double decreaseFactor = 0.6, increaseFactor = 2;
   // <hourglass_stabilization> (ours, not ImpMPM's): epsilon of Implicit/HourglassStabilization.h,
@@ -62,8 +62,6 @@ struct ImplicitOptions {
 
   // Reads the ImpMPM tags of <MPM> (only with <time_integrator>implicit).
   static ImplicitOptions fromInput(const PSNode& mpm);
-  // dt for the step after one that took `iterations` Newton iterations with `dt`.
-  double nextTimestep(double dt, int iterations) const;
 };
 
 }  // namespace anode

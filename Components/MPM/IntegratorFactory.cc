@@ -5,9 +5,9 @@
 
 namespace anode {
 
-std::unique_ptr<Integrator> makeIntegrator(const PSNode& root, MPM& mpm, double multiplier,
-                                           double dtMin) {
-  if (mpm.flags().implicit) return std::make_unique<ImplicitStep>(root, mpm, multiplier, dtMin);
+std::unique_ptr<Integrator> makeIntegrator(const PSNode& root, MPM& mpm,
+                                           const TimestepController& dt) {
+  if (mpm.flags().implicit) return std::make_unique<ImplicitStep>(root, mpm, dt);
   return std::make_unique<ExplicitStep>(mpm);
 }
 

@@ -6,13 +6,14 @@
 
 #include "Components/MPM/Integrator.h"
 #include "Components/MPM/MPM.h"
+#include "Components/MPM/TimestepController.h"
 
 namespace anode {
 
-// Once mpm.problemSetup has read the problem (its `problemRead`): the integrator of its flags.
-// `multiplier`: <timestep_multiplier> (an implicit step's diffusion sub-steps take it); `dtMin`:
-// <delt_min>. Reads what the integrator checks of `root`; calls no collective.
-std::unique_ptr<Integrator> makeIntegrator(const PSNode& root, MPM& mpm, double multiplier,
-                                           double dtMin);
+// Once mpm.problemSetup has read the problem (its `problemRead`): the integrator of its flags;
+// `dt`, the run's controller, outlives it. Reads what the integrator checks of `root`; calls no
+// collective.
+std::unique_ptr<Integrator> makeIntegrator(const PSNode& root, MPM& mpm,
+                                           const TimestepController& dt);
 
 }  // namespace anode

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "Components/MPM/MPM.h"
-#include "StandAlone/Driver/TimeControl.h"
+#include "Core/Grid/TimeControl.h"
 #include "vis/SceneSpec.h"
 
 namespace anode {

@@ -60,11 +60,10 @@ void Simulation::readInput() {
   PSNode root = spec_->root();
   time_ = TimeControl::fromInput(root.requireChild("Time"));
   mpm_.problemSetup(root, time_.initTime, time_.maxTime, !options_.countParticlesOnly, [&] {
-    integrator_ = makeIntegrator(root, mpm_, time_.multiplier, time_.deltMin);
+    const MPMFlags& flags = mpm_.flags();
+    dtController_.emplace(time_, flags.implicit ? &*flags.implicit : nullptr);
+    integrator_ = makeIntegrator(root, mpm_, *dtController_);
   });
-  // An implicit run's dt follows Newton's iterations (ImpMPM): the multiplier applies to its
-  // diffusion sub-steps only.
-  if (mpm_.flags().implicit) time_.multiplier = 1;
   archiver_ =
       DataArchiver::fromInput(root.requireChild("DataArchiver"), mpm_.flags().doScalarDiffusion,
                               static_cast<int>(mpm_.materials().size()));
@@ -88,20 +87,14 @@ void Simulation::readInput() {
   lastCheckpointTime_ = t_;
 }
 
-void Simulation::takeStableTimestep(double previousDt) {
-  const StableTimestep stable = integrator_->stableTimestep(Collective{});
-  dt_ = time_.nextTimestep(stable.dt(), previousDt, t_);
-  dtLimit_ = stable.binding();
-  dtSetByTimeControl_ = dt_ != time_.multiplier * stable.dt();
-  ruleDt_ = dt_;
-  // <clamp_time_to_output>: a step that would pass an output time ends on it, so the outputs fall
-  // at the times the input asks for (without it, on the first step after each, as Uintah's).
-  if (!time_.clampTimeToOutput) return;
-  if (const std::optional<double> next = archiver_.nextOutputTimeAfter(t_))
-    if (t_ + dt_ > *next * (1 + 1e-12)) {
-      dt_ = *next - t_;
-      dtSetByTimeControl_ = true;
-    }
+void Simulation::takeStableTimestep(double growsFrom) {
+  const TimestepController::Plan plan = dtController_->plan(
+      integrator_->stableTimestep(Collective{}), growsFrom, t_,
+      time_.clampTimeToOutput ? archiver_.nextOutputTimeAfter(t_) : std::nullopt);
+  dt_ = plan.dt;
+  ruleDt_ = plan.ruleDt;
+  dtLimit_ = plan.limit;
+  dtSetByTimeControl_ = plan.setByTimeControl;
 }
 
 void Simulation::stepMPM() {

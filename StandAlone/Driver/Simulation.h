@@ -12,11 +12,12 @@
 #include "Components/MPM/MPM.h"
 #include "Components/MPM/StateChecks.h"
 #include "Components/MPM/SymmetryFaceWatch.h"
+#include "Components/MPM/TimestepController.h"
+#include "Core/Grid/TimeControl.h"
 #include "StandAlone/Driver/Checkpoint.h"
 #include "StandAlone/Driver/DataArchiver.h"
 #include "StandAlone/Driver/Progress.h"
 #include "StandAlone/Driver/SceneOutput.h"
-#include "StandAlone/Driver/TimeControl.h"
 
 namespace anode {
 
@@ -78,8 +79,9 @@ class Simulation {
   void stepMPM();
   // The end of a step: time, step count and the next dt.
   void finishStep();
-  // dt_ for the step from t_: the multiplier times the state's stable dt, then <Time>'s clamps.
-  void takeStableTimestep(double previousDt);
+  // dt_ for the step from t_ (TimestepController's plan), the last step's limits grown from
+  // `growsFrom`.
+  void takeStableTimestep(double growsFrom);
   // The run's start: opens its directory (a new one, or the restart directory at its newest
   // checkpoint), reports the setup and, unless a restart, records and writes the initial state
   // with a checkpoint.
@@ -145,8 +147,9 @@ class Simulation {
   RunOptions options_;
   std::unique_ptr<ProblemSpec> spec_;
   MPM mpm_;
-  std::unique_ptr<Integrator> integrator_;  // chosen at setup by <time_integrator>
   TimeControl time_;
+  std::optional<TimestepController> dtController_;  // after the input is read
+  std::unique_ptr<Integrator> integrator_;          // chosen at setup by <time_integrator>
   DataArchiver archiver_;
   SceneOutput scenes_;
   StateChecks checks_;

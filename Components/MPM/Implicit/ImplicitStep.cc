@@ -13,13 +13,6 @@
 
 namespace anode {
 
-namespace {
-constexpr int kMaxRetakes = 20;  // of one step
-// A step whose largest change of c exceeds <max_concentration_change> by this factor is retaken,
-// at dt x bound / change, but no less than dt x kSmallestConcentrationRetake.
-constexpr double kConcentrationChangeRetake = 2, kSmallestConcentrationRetake = 0.1;
-}  // namespace
-
 // MPM's tasks as the diffusion asks for them, each timed as the step's task it is part of.
 class ImplicitStep::Transfer : public ConcentrationTransfer {
  public:
@@ -83,10 +76,10 @@ std::string ImplicitStep::NewtonCounts::summary(long steps) const {
   return line;
 }
 
-ImplicitStep::ImplicitStep(const PSNode& root, MPM& mpm, double substepMultiplier, double dtMin)
+ImplicitStep::ImplicitStep(const PSNode& root, MPM& mpm, const TimestepController& dt)
     : mpm_(mpm),
       options_(*mpm.flags().implicit),
-      dtMin_(dtMin),
+      dt_(dt),
       transfer_(std::make_unique<Transfer>(mpm)) {
   checkSetup(root);
   // Materials in single_velocity contact share one field of unknowns; others have their own.
@@ -101,7 +94,7 @@ ImplicitStep::ImplicitStep(const PSNode& root, MPM& mpm, double substepMultiplie
   TaskTimers& timers = mpm.timers();
   equilibrium_.useTimers(timers);
   if (mpm.diffusion())
-    diffusion_.emplace(*mpm.diffusion(), mpm.grid(), options_, substepMultiplier, timers);
+    diffusion_.emplace(*mpm.diffusion(), mpm.grid(), options_, dt.substepMultiplier(), timers);
   tasks_ = {timers.task("computeInterpolationWeights"),
             timers.task("interpolateToParticlesAndUpdate"), timers.task("splitParticles"),
             timers.task("updateDiffusionState"),
@@ -148,12 +141,12 @@ void ImplicitStep::checkSetup(const PSNode& root) const {
 
 StableTimestep ImplicitStep::stableTimestep(Collective) const {
   StableTimestep limits;  // the first step takes <delt_max> (or <delt_init>)
-  limits.bound[StableTimestep::Newton] =
-      ruleDt_ > 0 ? options_.nextTimestep(ruleDt_, newton_.lastIterations)
-                  : std::numeric_limits<double>::max();
+  limits.bound[StableTimestep::Newton] = ruleDt_ > 0
+                                             ? dt_.afterNewton(ruleDt_, newton_.lastIterations)
+                                             : std::numeric_limits<double>::max();
   if (maxConcentrationChange_ > 0)  // the accuracy bound on c (docs/quasi-static.md)
     limits.bound[StableTimestep::ConcentrationChange] =
-        lastDt_ * options_.maxConcentrationChange / maxConcentrationChange_;
+        dt_.forConcentrationChange(lastDt_, maxConcentrationChange_);
   return limits;
 }
 
@@ -197,18 +190,17 @@ StepTaken ImplicitStep::advance(Collective, double t, double dt, double ruleDt) 
     // 2: c over dt; a step in which c changed by more than twice the bound of
     // <max_concentration_change> somewhere is retaken at the dt that bound allows.
     NewtonReport report;
-    double smaller = dt * options_.decreaseFactor;
+    double failedChange = 0;  // the change of c that failed the attempt
     if (diffusion) {
       diffuseOverStep(t, dt);
-      const double bound = options_.maxConcentrationChange;
       maxConcentrationChange_ = collective::maximum(largestConcentrationChange());
-      if (maxConcentrationChange_ > kConcentrationChangeRetake * bound) {
+      if (dt_.retakesConcentrationChange(maxConcentrationChange_)) {
         std::ostringstream s;
         s.precision(3);
         s << "c changed by " << maxConcentrationChange_ << " in a particle, above twice "
-          << "<max_concentration_change> " << bound;
+          << "<max_concentration_change> " << options_.maxConcentrationChange;
         report.failure = s.str();
-        smaller = dt * std::max(bound / maxConcentrationChange_, kSmallestConcentrationRetake);
+        failedChange = maxConcentrationChange_;
       }
     }
     // 2b (<concentration_coupling>trapezoidal): c over dt again on the predicted end
@@ -244,8 +236,10 @@ StepTaken ImplicitStep::advance(Collective, double t, double dt, double ruleDt) 
         break;
       }
     }
-    // With <delt_min> 0 the retakes end after kMaxRetakes (0.6^20: 4e-5 of the first dt).
-    if (smaller < dtMin_ || ++retakes > kMaxRetakes) stop(t, dt, smaller, report);
+    const double smaller = dt_.retakeDt(dt, failedChange);
+    const std::string refusal = dt_.refusesRetake(smaller, retakes);
+    if (!refusal.empty()) stop(t, dt, refusal, report);
+    ++retakes;
     ++newton_.retakes;
     reportRetake(t, smaller, report);
     dt = smaller;
@@ -274,15 +268,12 @@ StepTaken ImplicitStep::advance(Collective, double t, double dt, double ruleDt) 
   return {dt, ruleDt};
 }
 
-void ImplicitStep::stop(double t, double dt, double smaller, const NewtonReport& report) const {
+void ImplicitStep::stop(double t, double dt, const std::string& refusal,
+                        const NewtonReport& report) const {
   std::ostringstream s;
   s.precision(3);
   s << "the equilibrium step from t = " << t << " over dt = " << dt << " failed: " << report.failure
-    << "; "
-    << (smaller < dtMin_ ? "a retake with dt = " + std::to_string(smaller) +
-                               " would be below <delt_min> " + std::to_string(dtMin_)
-                         : std::to_string(kMaxRetakes) + " retakes with a smaller dt failed")
-    << ". Newton's ratios |du|^2/max, du.r/first by iteration:";
+    << "; " << refusal << ". Newton's ratios |du|^2/max, du.r/first by iteration:";
   for (const auto& [disp, energy] : report.ratios) s << " (" << disp << ", " << energy << ")";
   s << "; their linear solves' relative tolerances:";
   for (double tolerance : report.linearTolerances) s << " " << tolerance;

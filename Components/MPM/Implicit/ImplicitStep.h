@@ -17,23 +17,24 @@
 #include "Components/MPM/Integrator.h"
 #include "Components/MPM/MPM.h"
 #include "Components/MPM/ReactiveFlow/DiffusionPass.h"
+#include "Components/MPM/TimestepController.h"
 
 namespace anode {
 
 class ImplicitStep : public Integrator {
  public:
-  // Checks the implicit setup of the input (what it does not support is an input error);
-  // substepMultiplier: the diffusion sub-steps' share of the explicit limits
-  // (<timestep_multiplier>); below dtMin (<delt_min>) a retaken step stops the run.
-  ImplicitStep(const PSNode& root, MPM& mpm, double substepMultiplier, double dtMin);
+  // Checks the implicit setup of the input (what it does not support is an input error); `dt`
+  // rules the step's dt, its retakes and the diffusion sub-steps' share of the explicit limits.
+  ImplicitStep(const PSNode& root, MPM& mpm, const TimestepController& dt);
   ~ImplicitStep() override;
 
   // ImpMPM's rule on the last step's Newton iterations (the first step takes <delt_max> or
-  // <delt_init>) and the dt whose largest change of c would be <max_concentration_change>.
+  // <delt_init>) and the dt whose largest change of c would be <max_concentration_change>
+  // (TimestepController's).
   StableTimestep stableTimestep(Collective) const override;
-  // A step Newton does not converge in is retaken with dt times <delT_decrease_factor>, and below
-  // dtMin the run stops (SimulationError). The next step's dt follows Newton's iterations from
-  // ruleDt (or the retake's dt).
+  // A step Newton does not converge in, or whose c changed too much, is retaken with the dt the
+  // controller gives, or the run stops where it refuses one (SimulationError). The next step's
+  // dt follows Newton's iterations from ruleDt (or the retake's dt).
   StepTaken advance(Collective, double t, double dt, double ruleDt) override;
   std::string describeLastStep(StableTimestep::Limit) const override { return newton_.lastStep(); }
   StepCounts lastStepCounts() const override {
@@ -106,13 +107,14 @@ class ImplicitStep : public Integrator {
   void computeWeights();
   // The failure of the step from t over dt that no retake can cure: rank 0 throws
   // SimulationError, the others StoppedOnAnotherRank.
-  [[noreturn]] void stop(double t, double dt, double smaller, const NewtonReport& report) const;
+  [[noreturn]] void stop(double t, double dt, const std::string& refusal,
+                         const NewtonReport& report) const;
   // The user's note on a step retaken with dt = smaller (rank 0 prints it).
   static void reportRetake(double t, double smaller, const NewtonReport& report);
 
   MPM& mpm_;
   const ImplicitOptions& options_;
-  double dtMin_;
+  const TimestepController& dt_;
   EquilibriumSolver equilibrium_;
   std::optional<DiffusionPass> diffusion_;  // with <do_scalar_diffusion>true
   std::unique_ptr<Transfer> transfer_;

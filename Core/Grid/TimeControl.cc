@@ -1,4 +1,4 @@
-#include "StandAlone/Driver/TimeControl.h"
+#include "Core/Grid/TimeControl.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -50,8 +50,7 @@ TimeControl TimeControl::fromInput(const PSNode& time) {
   return tc;
 }
 
-double TimeControl::nextTimestep(double stableDt, double previousDt, double t) const {
-  double dt = multiplier * stableDt;
+double TimeControl::clamp(double dt, double previousDt, double t) const {
   if (maxDeltIncrease > 0 && previousDt > 0) dt = std::min(dt, (1 + maxDeltIncrease) * previousDt);
   dt = std::max(dt, deltMin);
   dt = std::min(dt, deltMax);

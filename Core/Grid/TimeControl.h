@@ -1,4 +1,5 @@
-// <Time> (UINTAH_UPS.md §2.2): when to stop and how the stable dt becomes the step's dt.
+// <Time> (UINTAH_UPS.md §2.2; Uintah reads it in Core/Grid/SimulationTime): when to stop, and
+// the clamps on the step's dt (Components/MPM/TimestepController.h chooses it).
 #pragma once
 
 #include <optional>
@@ -21,9 +22,9 @@ struct TimeControl {
 
   static TimeControl fromInput(const PSNode& timeNode);
 
-  // dt for the step starting at time t: multiplier x stable dt, then the clamps in Uintah's
-  // order (max increase, delt_min, delt_max, initial cap, end time). previousDt <= 0 for the first.
-  double nextTimestep(double stableDt, double previousDt, double t) const;
+  // dt for the step starting at time t: `dt` clamped in Uintah's order (max increase, delt_min,
+  // delt_max, initial cap, end time). previousDt <= 0 for the first.
+  double clamp(double dt, double previousDt, double t) const;
 };
 
 }  // namespace anode

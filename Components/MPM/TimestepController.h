@@ -1,0 +1,60 @@
+// The one place each step's dt is chosen (DESIGN.md §4c): from the limits of the state an
+// integrator reports (StableTimestep: Eqs. 43-45 of the explicit step; ImpMPM's rule on Newton's
+// iterations and the bound on the change of c of the implicit step, both computed here), the
+// multiplier (explicit steps: an implicit run's <timestep_multiplier> is its diffusion
+// sub-steps'), <Time>'s clamps in Uintah's order, the output times (<clamp_time_to_output>), and
+// the dt of an implicit step retaken after a failed attempt. Each plan says which of them set
+// its dt.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "Components/MPM/ImplicitOptions.h"
+#include "Components/MPM/StableTimestep.h"
+#include "Core/Grid/TimeControl.h"
+
+namespace anode {
+
+class TimestepController {
+ public:
+  // `implicit`: an implicit run's options (null for an explicit run).
+  TimestepController(const TimeControl& time, const ImplicitOptions* implicit);
+
+  // The step from t: its dt, the dt the limits and <Time>'s clamps chose (dt is less where it
+  // ends on an output time), the limit that set the stable dt, and whether the clamps or the
+  // output time changed it.
+  struct Plan {
+    double dt = 0, ruleDt = 0;
+    StableTimestep::Limit limit = StableTimestep::Mechanics;
+    bool setByTimeControl = false;
+  };
+  // `growsFrom`: the dt the last step's limits grow from (StepTaken::ruleDt; 0 before the first
+  // step); `nextOutputTime`: the first output time after t, where outputs fall at times.
+  Plan plan(const StableTimestep& limits, double growsFrom, double t,
+            std::optional<double> nextOutputTime) const;
+
+  // Implicit steps. ImpMPM's rule: the dt after a step of `dt` that took `iterations` Newton
+  // iterations (the first step takes <delt_max> or <delt_init>).
+  double afterNewton(double dt, int iterations) const;
+  // With diffusion: the dt whose largest change of a particle's c would be
+  // <max_concentration_change>, after a step of dt whose largest change was `change` (scaled
+  // linearly).
+  double forConcentrationChange(double dt, double change) const;
+  // Whether a step whose largest change of c was `change` is retaken (above twice the bound).
+  bool retakesConcentrationChange(double change) const;
+  // The dt an attempt over dt that failed is retaken with: dt x <delT_decrease_factor>, or, when
+  // its change of c failed it (`change` > 0), the dt the bound allows but no less than a tenth.
+  double retakeDt(double dt, double change) const;
+  // Why a retake of dt `retake` after `retakes` earlier ones of the same step is not taken:
+  // below <delt_min>, or past kMaxRetakes; empty when it is.
+  std::string refusesRetake(double retake, int retakes) const;
+  // The diffusion sub-steps' share of the explicit limits (<timestep_multiplier>).
+  double substepMultiplier() const { return time_.multiplier; }
+
+ private:
+  TimeControl time_;
+  const ImplicitOptions* implicit_;
+};
+
+}  // namespace anode
