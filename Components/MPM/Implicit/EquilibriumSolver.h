@@ -86,6 +86,7 @@ class EquilibriumSolver {
   const std::vector<Vec3>& acceleration(int field) const { return acceleration_[field]; }
 
  private:
+  // EquilibriumNumbering.cc: the unknowns, their layout over the ranks and the linear solver.
   // The unknown nodes (block rows: this rank's own first, then the ones it shares with their
   // owners), their global rows, the pattern of their couplings (couplings_, in a reduced
   // Jacobian) and of the Jacobian (K_), from the weights: a particle couples a pair of nodes in K_
@@ -98,25 +99,20 @@ class EquilibriumSolver {
                          bool fromOwners) const;
   // sum of a_i b_i over the owned rows' components, over all ranks.
   double ownedDot(const std::vector<double>& a, const std::vector<double>& b) const;
+  // Collective: the problem asks for the kept linear solver and on every rank its nodal masses
+  // and prescribed components are those the unknowns were numbered for. The particles and their
+  // weights are the same by the problem's contract (EquilibriumProblem::useKeptLinearSolver), so
+  // the unknowns, K's pattern and the linear solver all stand.
+  bool takesKeptLinearSolver(const EquilibriumProblem& problem) const;
+  // A new linearSolver_ for this solve's unknowns (the old one freed first).
+  void buildLinearSolver(const EquilibriumProblem& problem);
+
+  // EquilibriumAssembly.cc: the residual and Jacobian at the current u.
   // K and the residual r = f_ext - f_int (- m a) at the current u (fixed components of r zeroed).
   // `stabilization`: epsilon of Implicit/HourglassStabilization.h. Without the tangent: the
   // residual only (the line search's trials).
   void assemble(const EquilibriumProblem& problem, double dt, double stabilization,
                 bool withTangent);
-  // A quasi-static body faces hold only in part (or not at all) has rigid modes no equation sets:
-  // of each field, the part of the correction du (by block row) that moves it rigidly in a way
-  // its fixed components allow (translations and rotations vanishing on all of them) is removed,
-  // by mass, so an inexact solve does not move the body. K's regularization alpha m I keeps
-  // those modes solvable, not the residual.
-  void removeRigidMotionOfFreeBodies(const EquilibriumProblem& problem,
-                                     std::vector<double>& du) const;
-  // u += scale du (du by block row).
-  void addToDisplacement(const std::vector<double>& du, double scale);
-  // Newton's update u += step du with the line search's step; `residualNorm` is |r|^2 at u.
-  // Whether residual_ is that of the new u (a trial lowered the norm; otherwise u takes the trial
-  // with the lowest norm, and residual_ is another trial's).
-  bool takeStep(const EquilibriumProblem& problem, double dt, double stabilization,
-                const std::vector<double>& du, double residualNorm);
   // Material m's particles' internal forces (and their stiffness) into the block rows [first,
   // last) of the residual (and K).
   void addInternalForce(const EquilibriumProblem& problem, size_t m, int first, int last,
@@ -129,6 +125,23 @@ class EquilibriumSolver {
   // residual (and hourglass_ I into K).
   void applyHourglassStiffness(int first, int last, bool withTangent);
 
+  // EquilibriumRigidModes.cc: the rigid modes of the free bodies.
+  // A quasi-static body faces hold only in part (or not at all) has rigid modes no equation sets:
+  // of each field, the part of the correction du (by block row) that moves it rigidly in a way
+  // its fixed components allow (translations and rotations vanishing on all of them) is removed,
+  // by mass, so an inexact solve does not move the body. K's regularization alpha m I keeps
+  // those modes solvable, not the residual.
+  void removeRigidMotionOfFreeBodies(const EquilibriumProblem& problem,
+                                     std::vector<double>& du) const;
+
+  // EquilibriumSolver.cc: the Newton loop.
+  // u += scale du (du by block row).
+  void addToDisplacement(const std::vector<double>& du, double scale);
+  // Newton's update u += step du with the line search's step; `residualNorm` is |r|^2 at u.
+  // Whether residual_ is that of the new u (a trial lowered the norm; otherwise u takes the trial
+  // with the lowest norm, and residual_ is another trial's).
+  bool takeStep(const EquilibriumProblem& problem, double dt, double stabilization,
+                const std::vector<double>& du, double residualNorm);
   // After the first assembly (at the start-of-step u): u moves to the predicted increments of
   // the unknowns when their residual is lower (the first solve then uses the tangent of the
   // start, or the one kept from the prediction's solve), and the references of the convergence
@@ -136,17 +149,8 @@ class EquilibriumSolver {
   // |predicted|^2 and predicted.r at the start. Whether it moved.
   bool tryPrediction(const EquilibriumProblem& problem, double dt, double stabilization,
                      double& normReference, double& energyReference);
-
   // The end-of-step accelerations of implicit dynamics (Newmark) into acceleration_.
   void computeEndOfStepAcceleration(const EquilibriumProblem& problem, double dt);
-
-  // Collective: the problem asks for the kept linear solver and on every rank its nodal masses
-  // and prescribed components are those the unknowns were numbered for. The particles and their
-  // weights are the same by the problem's contract (EquilibriumProblem::useKeptLinearSolver), so
-  // the unknowns, K's pattern and the linear solver all stand.
-  bool takesKeptLinearSolver(const EquilibriumProblem& problem) const;
-  // A new linearSolver_ for this solve's unknowns (the old one freed first).
-  void buildLinearSolver(const EquilibriumProblem& problem);
 
   std::vector<std::vector<Vec3>> u_;             // per field, by node
   std::vector<std::vector<Vec3>> acceleration_;  // per field, by node (implicit dynamics)
