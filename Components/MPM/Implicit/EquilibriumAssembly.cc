@@ -5,6 +5,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <stdexcept>
 #include <utility>
 #include <variant>
 
@@ -221,6 +222,41 @@ void EquilibriumSolver::applyHourglassStiffness(int first, int last, bool withTa
       for (int j = K_.rowStart[r]; j < K_.rowStart[r + 1]; ++j)
         K_.block[j].diagonal().array() += tangent[j];
   }
+}
+
+EquilibriumSolver::Linearization EquilibriumSolver::linearizeAt(
+    const EquilibriumProblem& problem, double dt, const ImplicitOptions& options,
+    const std::vector<std::vector<Vec3>>& u, const std::vector<std::vector<Vec3>>& du) {
+  if (problem.ghosts) throw std::invalid_argument("EquilibriumSolver::linearizeAt: one rank only");
+  numberUnknowns(problem, options.jacobianCouplingShare);
+  startFromPrescribed(problem);
+  K_.block.assign(K_.column.size(), Mat3::Zero());
+  hourglass_.clear();
+  hourglassTangent_.clear();
+  // At the start first: the hourglass stiffness fixed where a solve's first assembly fixes it, so
+  // that r is one function of u over calls.
+  assemble(problem, dt, options.hourglassStabilization, true);
+  u_ = u;
+  assemble(problem, dt, options.hourglassStabilization, true);
+  std::vector<double> product(residual_.size(), 0.0);
+  for (int r = 0; r < K_.rows(); ++r)
+    for (int j = K_.rowStart[r]; j < K_.rowStart[r + 1]; ++j) {
+      const auto [f, k] = unknown_[K_.column[j]];
+      const Vec3 y = K_.block[j] * du[f][k];
+      for (int a = 0; a < 3; ++a) product[3 * r + a] += y[a];
+    }
+  for (int i : fixed_) product[i] = 0;
+  const std::vector<Vec3> none(problem.grid.numNodes(), Vec3::Zero());
+  Linearization at{std::vector<std::vector<Vec3>>(row_.size(), none),
+                   std::vector<std::vector<Vec3>>(row_.size(), none)};
+  for (size_t r = 0; r < unknown_.size(); ++r) {
+    const auto [f, k] = unknown_[r];
+    for (int a = 0; a < 3; ++a) {
+      at.residual[f][k][a] = residual_[3 * r + a];
+      at.jacobianTimesDirection[f][k][a] = product[3 * r + a];
+    }
+  }
+  return at;
 }
 
 }  // namespace anode

@@ -63,6 +63,14 @@ void EquilibriumSolver::useTimers(TaskTimers& timers) {
   solveTask_ = timers.task("solveLinearSystem");
 }
 
+void EquilibriumSolver::startFromPrescribed(const EquilibriumProblem& problem) {
+  u_.assign(row_.size(), std::vector<Vec3>(problem.grid.numNodes(), Vec3::Zero()));
+  for (size_t f = 0; f < row_.size(); ++f)
+    for (int k = 0; k < problem.grid.numNodes(); ++k)
+      for (int a = 0; a < 3; ++a)
+        if (!std::isnan(problem.prescribed[f][k][a])) u_[f][k][a] = problem.prescribed[f][k][a];
+}
+
 void EquilibriumSolver::addToDisplacement(const std::vector<double>& du, double scale) {
   for (size_t r = 0; r < unknown_.size(); ++r) {
     const auto [f, k] = unknown_[r];
@@ -131,11 +139,7 @@ NewtonReport EquilibriumSolver::solve(const EquilibriumProblem& problem, double 
   // and the hourglass stiffness of the same start: the first iteration assembles the residual.
   const bool solverKept = takesKeptLinearSolver(problem);
   if (!solverKept) numberUnknowns(problem, options.jacobianCouplingShare);
-  u_.assign(row_.size(), std::vector<Vec3>(problem.grid.numNodes(), Vec3::Zero()));
-  for (size_t f = 0; f < row_.size(); ++f)
-    for (int k = 0; k < problem.grid.numNodes(); ++k)
-      for (int a = 0; a < 3; ++a)
-        if (!std::isnan(problem.prescribed[f][k][a])) u_[f][k][a] = problem.prescribed[f][k][a];
+  startFromPrescribed(problem);
   const bool tangentKept = solverKept && !kept_.block.empty();
   if (tangentKept) {
     K_.block = std::move(kept_.block);

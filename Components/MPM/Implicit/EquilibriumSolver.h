@@ -84,6 +84,17 @@ class EquilibriumSolver {
   // Implicit dynamics: the nodal accelerations at the end of the converged step (Newmark's;
   // zero on the nodes left out of the unknowns).
   const std::vector<Vec3>& acceleration(int field) const { return acceleration_[field]; }
+  // For verification (tests/test_tangent.cc), on one rank: the residual r at the nodal increments
+  // u (per field, by node; the prescribed components as given) and Newton's Jacobian there (the
+  // stiffness K, -dr/du) times du, both per field by node (zero off the unknowns and on the fixed
+  // components), with the hourglass stiffness of the step's start as a solve fixes it. Defined in
+  // EquilibriumAssembly.cc.
+  struct Linearization {
+    std::vector<std::vector<Vec3>> residual, jacobianTimesDirection;
+  };
+  Linearization linearizeAt(const EquilibriumProblem& problem, double dt,
+                            const ImplicitOptions& options, const std::vector<std::vector<Vec3>>& u,
+                            const std::vector<std::vector<Vec3>>& du);
 
  private:
   // EquilibriumNumbering.cc: the unknowns, their layout over the ranks and the linear solver.
@@ -135,6 +146,8 @@ class EquilibriumSolver {
                                      std::vector<double>& du) const;
 
   // EquilibriumSolver.cc: the Newton loop.
+  // u_ at the step's start: the prescribed components, zero elsewhere.
+  void startFromPrescribed(const EquilibriumProblem& problem);
   // u += scale du (du by block row).
   void addToDisplacement(const std::vector<double>& du, double scale);
   // Newton's update u += step du with the line search's step; `residualNorm` is |r|^2 at u.
