@@ -86,17 +86,25 @@ Mat3 randomStart() {
   return rotation.toRotationMatrix() * (kIdentity + symmetricPart(randomMatrix(0.05)));
 }
 
+// A trial from a random start strained by a random h of about `strain` (dc 0.01, plastic strain
+// 0.02 at the start); Rn is the start's rotation.
+Trial strainedTrial(double strain, Mat3& Rn) {
+  Trial t;
+  t.F = randomStart();
+  t.h = randomMatrix(strain);
+  t.dc = 0.01;
+  t.plasticStrain = 0.02;
+  Mat3 Un;
+  polar(t.F, Rn, Un);
+  return t;
+}
+
 // An elastic trial: a start well inside the yield surface (30% of sqrt(2/3) sigma_y plus a
 // pressure), strained by h of about 1e-3: |s*| stays below 45% of the surface.
 Trial elasticTrial(const RadialReturnCase& c) {
-  Trial t;
-  t.F = randomStart();
-  t.h = randomMatrix(1e-3);
-  t.dc = 0.01;
-  t.plasticStrain = 0.02;
+  Mat3 Rn;
+  Trial t = strainedTrial(1e-3, Rn);
   const Mat3 direction = deviator(symmetricPart(randomMatrix(1.0)));
-  Mat3 Rn, Un;
-  polar(t.F, Rn, Un);
   const Mat3 stressBar = 0.3 * std::sqrt(2.0 / 3.0) * c.hardening.flowStress(t.plasticStrain) *
                              direction.normalized() -
                          2e6 * kIdentity;
@@ -109,13 +117,8 @@ Trial elasticTrial(const RadialReturnCase& c) {
 // times what a difference step of 1e-6 moves it (2 G 1e-6 = 62 Pa), so no difference straddles
 // the yield surface.
 Trial plasticTrial(const RadialReturnCase& c) {
-  Trial t;
-  t.F = randomStart();
-  t.h = randomMatrix(5e-3);
-  t.dc = 0.01;
-  t.plasticStrain = 0.02;
-  Mat3 Rn, Un;
-  polar(t.F, Rn, Un);
+  Mat3 Rn;
+  Trial t = strainedTrial(5e-3, Rn);
   const Mat3 along = deviator(strainIncrement(c, t)).normalized();
   const Mat3 stressBar =
       std::sqrt(2.0 / 3.0) * c.hardening.flowStress(t.plasticStrain) * along - 2e6 * kIdentity;
