@@ -136,7 +136,7 @@ TEST(Contact, SingleVelocityBondsTwoMaterials) {
   for (int s = 0; s < 20; ++s) sim.advance();
   EXPECT_LT((totalMomentum(sim) - before).norm(), 1e-10 * before.norm());
   // The bonded interface: shared nodes carry one velocity for both materials.
-  const auto& g = sim.mpm().gridFields();
+  const auto& g = sim.mpm().stepGrid().fields;
   int shared = 0;
   for (size_t n = 0; n < g[0].mass.size(); ++n)
     if (g[0].mass[n] > 0 && g[1].mass[n] > 0) {
@@ -177,7 +177,7 @@ TEST(BoundaryConditions, VelocityDirichletHoldsTheBaseAndSymmetryStopsNormalMoti
   Simulation sim(in.text(), "bcs.ups", quiet());
   for (int s = 0; s < 30; ++s) sim.advance();
   const Grid& grid = sim.mpm().grid();
-  const auto& g = sim.mpm().gridFields()[0];
+  const auto& g = sim.mpm().stepGrid().fields[0];
   for (int j = 0; j <= grid.cells.y(); ++j)
     for (int i = 0; i <= grid.cells.x(); ++i)
       EXPECT_EQ(g.velocityStar[grid.nodeIndex(i, j, 0)].norm(), 0.0);

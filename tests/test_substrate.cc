@@ -99,7 +99,7 @@ TEST(Substrate, BondedSubstrateReceivesNoLithium) {
   EXPECT_GT(pillarLithium, 0.0);
   EXPECT_EQ(substrateMax, 0.0);
   // Swelling pushes the bonded interface: both materials share nodal velocities there.
-  const auto& g = sim.mpm().gridFields();
+  const auto& g = sim.mpm().stepGrid().fields;
   int shared = 0;
   for (size_t n = 0; n < g[0].mass.size(); ++n)
     if (g[0].mass[n] > 0 && g[1].mass[n] > 0) {

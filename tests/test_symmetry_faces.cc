@@ -95,14 +95,15 @@ TEST(SwellingRoom, EachBodyOfAnArrayGrowsFromWhatItRestsOn) {
   RunOptions quiet;
   quiet.progress = false;
   Simulation roomy(text, "array.ups", quiet);
-  EXPECT_TRUE(roomy.mpm().swellingNotes().empty()) << roomy.mpm().swellingNotes()[0];
+  EXPECT_TRUE(roomy.mpm().problem().swellingNotes.empty())
+      << roomy.mpm().problem().swellingNotes[0];
   std::string low = text;
   for (const auto& [from, to] :
        {std::pair<std::string, std::string>{"[0.4, 0.4, 0.45]", "[0.4, 0.4, 0.3]"},
         {"[40, 40, 45]", "[40, 40, 30]"}})
     low.replace(low.find(from), from.size(), to);
   Simulation tight(low, "low.ups", quiet);
-  const std::vector<std::string>& notes = tight.mpm().swellingNotes();
+  const std::vector<std::string>& notes = tight.mpm().problem().swellingNotes;
   ASSERT_EQ(notes.size(), 1u);
   EXPECT_NE(notes[0].find("each of its 4 bodies"), std::string::npos) << notes[0];
   EXPECT_NE(notes[0].find("bodies 1 (centre [0.1, 0.1, 0.14]), 2"), std::string::npos) << notes[0];

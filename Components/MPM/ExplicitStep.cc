@@ -1,5 +1,8 @@
 #include "Components/MPM/ExplicitStep.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include "Core/Parallel/StopTogether.h"
 
 namespace anode {
@@ -12,11 +15,34 @@ ExplicitStep::ExplicitStep(MPM& mpm) : mpm_(mpm) {
             timers.task("interpolateToParticlesAndUpdate"),
             timers.task("splitParticles"),
             timers.task("updateDiffusionState"),
-            mpm.distributed() ? timers.task("communication") : -1};
+            mpm.layout().distributed() ? timers.task("communication") : -1};
 }
 
 StableTimestep ExplicitStep::stableTimestep(Collective) const {
-  return mpm_.computeStableTimestep(Collective{});
+  const Grid& grid = mpm_.grid();
+  const ReactiveFlow* diffusion = mpm_.diffusion();
+  StableTimestep limits;
+  double& dt = limits.bound[StableTimestep::Mechanics];
+  for (const MPMMaterial& mat : mpm_.materials()) {
+    const ParticleSet& p = mat.particles;
+    const double modulus = mat.model->dilatationalModulus();
+    const long n = static_cast<long>(p.count());
+    double wx = 0, wy = 0, wz = 0;
+#pragma omp parallel for schedule(static) reduction(max : wx, wy, wz)
+    for (long i = 0; i < n; ++i) {
+      const double c = std::sqrt(modulus * p.volume[i] / p.mass[i]);  // Eq. 41 with rho = m/V
+      wx = std::max(wx, c + std::abs(p.velocity[i].x()));
+      wy = std::max(wy, c + std::abs(p.velocity[i].y()));
+      wz = std::max(wz, c + std::abs(p.velocity[i].z()));
+    }
+    dt = std::min({dt, grid.dx.x() / wx, grid.dx.y() / wy, grid.dx.z() / wz});  // Eq. 43
+  }
+  if (diffusion) {
+    limits.bound[StableTimestep::Diffusion] = diffusion->diffusionTimestep(grid);
+    limits.bound[StableTimestep::Flux] = diffusion->fluxTimestep(Collective{}, mpm_.materials());
+  }
+  collective::minimum(limits.bound.data(), 2);  // Eqs. 43 and 44 over ranks
+  return limits;
 }
 
 StepTaken ExplicitStep::advance(Collective, double t, double dt, double) {
@@ -49,7 +75,7 @@ StepTaken ExplicitStep::advance(Collective, double t, double dt, double) {
     // 7-8: G2P (Eq. 8), F, stress
     collective::stopTogether([&] { mpm_.interpolateToParticlesAndUpdate(dt); });
   }
-  if (mpm_.flags().refineParticles) {
+  if (mpm_.problem().flags.refineParticles) {
     ScopedTimer s(timers, tasks_.splitting);
     mpm_.splitParticles();  // 9: particles stretched beyond the ratio split in four
   }
@@ -58,7 +84,7 @@ StepTaken ExplicitStep::advance(Collective, double t, double dt, double) {
     ScopedTimer s(timers, tasks_.diffusionState);
     diffusion->updateDiffusionState(Collective{}, mpm_.materials(), t + dt);
   }
-  if (mpm_.distributed()) {
+  if (mpm_.layout().distributed()) {
     ScopedTimer s(timers, tasks_.communication);
     mpm_.migrateParticles();  // 11: particles that left the rank's box go to its owner
   }

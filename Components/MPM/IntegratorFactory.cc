@@ -7,7 +7,7 @@ namespace anode {
 
 std::unique_ptr<Integrator> makeIntegrator(const PSNode& root, MPM& mpm,
                                            const TimestepController& dt) {
-  if (mpm.flags().implicit) return std::make_unique<ImplicitStep>(root, mpm, dt);
+  if (mpm.problem().flags.implicit) return std::make_unique<ImplicitStep>(root, mpm, dt);
   return std::make_unique<ExplicitStep>(mpm);
 }
 

@@ -23,14 +23,13 @@ namespace anode {
 
 void MPM::problemSetup(const PSNode& root, double initTime, double maxTime, bool withParticles,
                        const std::function<void()>& problemRead) {
-  flags_ = MPMFlags::fromInput(root);
-  distributed_ = Communicator::size() > 1;
+  problem_.flags = MPMFlags::fromInput(root);
   initTime_ = initTime;
   const PSNode gridNode = root.requireChild("Grid");
-  grid_ = Grid::fromInput(gridNode);
-  if (flags_.interpolator != InterpolatorKind::Linear && (grid_.extra.array() < 1).any())
+  layout_.setProblemGrid(Grid::fromInput(gridNode), problem_.flags.interpolator);
+  if (problem_.flags.interpolator != InterpolatorKind::Linear && (grid().extra.array() < 1).any())
     gridNode.requireChild("Level").requireChild("Box").fail(
-        "interpolator \"" + interpolatorName(flags_.interpolator) +
+        "interpolator \"" + interpolatorName(problem_.flags.interpolator) +
         "\" reaches beyond the cell: it needs <extraCells>[1,1,1]");
 
   const PSNode matProps = root.requireChild("MaterialProperties");
@@ -42,88 +41,83 @@ void MPM::problemSetup(const PSNode& root, double initTime, double maxTime, bool
   seeds_.assign(materialNodes.size(), {});
   for (size_t m = 0; m < materialNodes.size(); ++m)
     materials_.push_back(
-        MPMMaterial::fromInput(materialNodes[m], grid_, flags_, pieces, seeds_[m]));
+        MPMMaterial::fromInput(materialNodes[m], grid(), problem_.flags, pieces, seeds_[m]));
   // Each geom_object's particles are numbered on from the objects' before it, in input order.
   for (MaterialSeeds& s : seeds_)
     for (MaterialSeeds::Object& object : s.objects) {
       object.firstId = nextParticleId_;
       nextParticleId_ += object.total;
     }
-  if (flags_.refineMaterial >= static_cast<int>(materials_.size()))
+  if (problem_.flags.refineMaterial >= static_cast<int>(materials_.size()))
     root.requireChild("AMR").fail("the stretchRatio names material " +
-                                  std::to_string(flags_.refineMaterial) + ", but there are " +
-                                  std::to_string(materials_.size()));
-  contact_ = Contact::fromInput(mpmMats, static_cast<int>(materials_.size()));
+                                  std::to_string(problem_.flags.refineMaterial) +
+                                  ", but there are " + std::to_string(materials_.size()));
+  problem_.contact = Contact::fromInput(mpmMats, static_cast<int>(materials_.size()));
   const PhysicalBCs physical = readPhysicalBCs(root);
-  if (flags_.doScalarDiffusion)
-    diffusion_ = std::make_unique<ReactiveFlow>(root, flags_, materials_, maxTime, physical);
+  if (problem_.flags.doScalarDiffusion)
+    diffusion_ =
+        std::make_unique<ReactiveFlow>(root, problem_.flags, materials_, maxTime, physical);
   else
-    ReactiveFlow::rejectWithoutDiffusion(root, flags_, physical);
-  gridBCs_ = readGridBoundaryConditions(gridNode, static_cast<int>(materials_.size()),
-                                        [this](const BCType& bc) {
-                                          if (diffusion_)
-                                            diffusion_->readConcentrationBC(bc);
-                                          else
-                                            ReactiveFlow::rejectConcentrationBC(bc);
-                                        });
+    ReactiveFlow::rejectWithoutDiffusion(root, problem_.flags, physical);
+  problem_.gridBCs = readGridBoundaryConditions(gridNode, static_cast<int>(materials_.size()),
+                                                [this](const BCType& bc) {
+                                                  if (diffusion_)
+                                                    diffusion_->readConcentrationBC(bc);
+                                                  else
+                                                    ReactiveFlow::rejectConcentrationBC(bc);
+                                                });
   for (size_t m = 0; m < materials_.size(); ++m)
-    seeds_[m].checkPiecesInsideGrid(grid_, gridBCs_.symmetryPlanes(static_cast<int>(m)));
-  swellingNotes_ = swellingRoomNotes(grid_, gridBCs_, materials_, seeds_, diffusion_.get());
-  warnOfOverlaps(grid_, materials_, seeds_);
+    seeds_[m].checkPiecesInsideGrid(grid(), problem_.gridBCs.symmetryPlanes(static_cast<int>(m)));
+  problem_.swellingNotes =
+      swellingRoomNotes(grid(), problem_.gridBCs, materials_, seeds_, diffusion_.get());
+  warnOfOverlaps(grid(), materials_, seeds_);
   if (problemRead) problemRead();
 
   // This rank's particles: those of its box (the whole grid on one rank) and, while the flux
   // particles are flagged, those setup needs around it.
-  whole_ = grid_;
-  const CellBox box = withParticles ? setupBox() : CellBox{};
+  const CellBox box = withParticles ? layout_.drawSetupBoxes(seedCounts()) : CellBox{};
   const CellBox region = grownBySetupReach(box);
   checkParticlesOfRank(region);
   for (size_t m = 0; m < materials_.size(); ++m) {
-    materials_[m].placeParticles(seeds_[m], grid_, region);
+    materials_[m].placeParticles(seeds_[m], grid(), region);
     // A smooth piece's layout of every particle is no longer needed once they are placed (a
     // count for describeDecomposition keeps it).
     if (withParticles)
       for (MaterialSeeds::Object& object : seeds_[m].objects) object.smoothLayout = {};
-    if (flags_.refineParticles &&
-        (flags_.refineMaterial < 0 || flags_.refineMaterial == static_cast<int>(m)))
+    if (problem_.flags.refineParticles &&
+        (problem_.flags.refineMaterial < 0 || problem_.flags.refineMaterial == static_cast<int>(m)))
       materials_[m].particles.enable(Physics::Splitting);
-    if (flags_.implicit && flags_.implicit->dynamic)
+    if (problem_.flags.implicit && problem_.flags.implicit->dynamic)
       materials_[m].particles.enable(Physics::Inertia);
   }
-  checkProblemSize(gridNode, grid_, flags_, materials_.size(), numParticles(),
+  checkProblemSize(gridNode, grid(), problem_.flags, materials_.size(), countParticles(materials_),
                    omp_get_max_threads());
-  if (diffusion_) diffusion_->initialize(root, grid_, materials_, seeds_, box, region, initTime);
+  if (diffusion_) diffusion_->initialize(root, grid(), materials_, seeds_, box, region, initTime);
   if (region.lower != box.lower || region.upper != box.upper) keepParticlesOfBox(box);
   reordering_.resize(materials_.size());
   particlesToGridTask_ = timers_.task("interpolateParticlesToGrid");
-  communicationTask_ = distributed_ ? timers_.task("communication") : -1;
+  communicationTask_ = layout_.distributed() ? timers_.task("communication") : -1;
 }
 
 void MPM::distributeOverRanks(Collective) {
-  if (Communicator::size() == 1) {
-    decompose(true);
-  } else {
-    // problemSetup drew the boxes and placed each rank's particles in its own.
-    ++layoutGeneration_;
-    ghostWidth_ = computeGhostWidth(false);
-    layOutWindow();
-  }
+  layout_.completeSetup(Collective{});
   if (diffusion_) diffusion_->completeSetup(Collective{}, materials_, initTime_);
   seeds_.clear();
 }
 
 void MPM::layOutGrid() {
-  const int nodes = grid_.numNodes();
-  fields_.assign(materials_.size(), {});
-  for (GridFields& f : fields_) f.resize(nodes);
-  weights_.resize(materials_.size());
+  const int nodes = grid().numNodes();
+  step_.fields.assign(materials_.size(), {});
+  for (GridFields& f : step_.fields) f.resize(nodes);
+  step_.weights.resize(materials_.size());
   capacity_.resize(materials_.size());
   const size_t scatterQuads = static_cast<size_t>(nodes) * scatterQuadsPerNode(diffusion_.get());
   nodeQuads_.resize(std::max(scatterQuads, static_cast<size_t>(nodes) * kGatherQuads));
   threadScatter_.assign(std::max(omp_get_max_threads() - 1, 0),
                         std::vector<NodeQuad>(scatterQuads));
-  if (diffusion_) diffusion_->layOutGrid(grid_, ghosts_.empty() ? nullptr : &ghosts_);
-  active_ = {};
+  GhostNodes* ghosts = layout_.ghosts();
+  if (diffusion_) diffusion_->layOutGrid(grid(), ghosts && !ghosts->empty() ? ghosts : nullptr);
+  step_.active = {};
   previous_ = {};
 }
 
@@ -133,7 +127,7 @@ void MPM::scatterMaterial(size_t m, const Concentration& concentration, bool con
   const int perNode = concentrationOnly ? kConcentrationScatterQuads
                                         : ScatterTerms<Concentration::scatterWeightQuads>::quads;
   const ParticleSet& p = materials_[m].particles;
-  GridFields& g = fields_[m];
+  GridFields& g = step_.fields[m];
   const long n = static_cast<long>(p.count());
   // Each thread scatters a contiguous block of particles: the first into the step's node quads,
   // every other into its own, cleared on the active nodes its particles' range spans only (on a
@@ -146,22 +140,22 @@ void MPM::scatterMaterial(size_t m, const Concentration& concentration, bool con
   {
     const int t = omp_get_thread_num();
     const long first = n * t / threads, last = n * (t + 1) / threads;
-    forEachNodeOfThread(active_.rows, t, threads,
+    forEachNodeOfThread(step_.active.rows, t, threads,
                         [&](long k) { clearQuads(sums + k * perNode, perNode); });
     NodeQuad* quads = sums;
     if (t > 0) {
-      touched[t] = nodesTouched(weights_[m], first, last);
+      touched[t] = nodesTouched(step_.weights[m], first, last);
       quads = threadScatter_[t - 1].data();
-      for (const NodeRange& r : active_.within(touched[t]))
+      for (const NodeRange& r : step_.active.within(touched[t]))
         for (long k = r.begin; k < r.end; ++k) clearQuads(quads + k * perNode, perNode);
     }
 #pragma omp barrier
     if (concentrationOnly)
-      scatterConcentrationToNodes(weights_[m], first, last, quads, concentration);
+      scatterConcentrationToNodes(step_.weights[m], first, last, quads, concentration);
     else
-      scatterToNodes(p, weights_[m], first, last, quads, concentration);
+      scatterToNodes(p, step_.weights[m], first, last, quads, concentration);
 #pragma omp barrier
-    forEachNodeOfThread(active_.rows, t, threads, [&](long k) {
+    forEachNodeOfThread(step_.active.rows, t, threads, [&](long k) {
       NodeQuad* sum = sums + k * perNode;
       for (int u = 1; u < threads; ++u)
         if (touched[u].contains(k))
@@ -181,7 +175,7 @@ void MPM::interpolateParticlesToGrid(bool concentrationOnly) {
     ScopedTimer s(timers_, particlesToGridTask_);
     scatterParticlesToGrid(concentrationOnly);
   }
-  if (distributed_) {
+  if (layout_.distributed()) {
     ScopedTimer s(timers_, communicationTask_);
     sumGhostNodes(concentrationOnly);
   }
@@ -189,66 +183,70 @@ void MPM::interpolateParticlesToGrid(bool concentrationOnly) {
 
 void MPM::scatterParticlesToGrid(bool concentrationOnly) {
   const std::vector<NodeRange> cleared =
-      ActiveNodes::of(grid_, hullOf(active_.box, previous_)).rows;
+      ActiveNodes::of(grid(), hullOf(step_.active.box, previous_)).rows;
   for (size_t m = 0; m < materials_.size(); ++m) {
     if (!scatters(m, concentrationOnly)) continue;
     if (!concentrationOnly)
-      forEachNodeRange(cleared, [&](long begin, long end) { fields_[m].clearAll(begin, end); });
+      forEachNodeRange(cleared,
+                       [&](long begin, long end) { step_.fields[m].clearAll(begin, end); });
     withScatterKernel(
-        diffusion_.get(), m, materials_[m].particles, weights_[m], cleared,
+        diffusion_.get(), m, materials_[m].particles, step_.weights[m], cleared,
         [&](const auto& concentration) { scatterMaterial(m, concentration, concentrationOnly); });
   }
 }
 
 void MPM::computeNodalVelocityAndConcentration() {
   for (size_t m = 0; m < materials_.size(); ++m) {
-    GridFields& g = fields_[m];
-    forEachNode(active_.rows, [&g](long k) {
+    GridFields& g = step_.fields[m];
+    forEachNode(step_.active.rows, [&g](long k) {
       g.velocity[k] = g.mass[k] > 0 ? Vec3(g.momentum[k] / g.mass[k]) : Vec3::Zero();
     });
-    applySymmetry(grid_, gridBCs_.symmetric, static_cast<int>(m), active_.box, g.velocity);
-    applySymmetry(grid_, gridBCs_.symmetric, static_cast<int>(m), active_.box, g.internalForce);
+    applySymmetry(grid(), problem_.gridBCs.symmetric, static_cast<int>(m), step_.active.box,
+                  g.velocity);
+    applySymmetry(grid(), problem_.gridBCs.symmetric, static_cast<int>(m), step_.active.box,
+                  g.internalForce);
   }
   if (diffusion_) computeNodalConcentration();
 }
 
 void MPM::computeNodalConcentration() {
   for (size_t m = 0; m < materials_.size(); ++m)
-    diffusion_->computeNodalConcentration(m, fields_[m], active_.rows);  // Eq. 5
-  diffusion_->applyDiffusionInterface(fields_, active_.rows);
+    diffusion_->computeNodalConcentration(m, step_.fields[m], step_.active.rows);  // Eq. 5
+  diffusion_->applyDiffusionInterface(step_.fields, step_.active.rows);
 }
 
 void MPM::integrateConcentration(double dt) {
-  diffusion_->integrateConcentration(fields_, dt, active_.rows);
+  diffusion_->integrateConcentration(step_.fields, dt, step_.active.rows);
 }
 
 void MPM::exchangeMomentumInterpolated() {
-  if (contact_.exchangeInterpolated)
-    contact_.exchange(fields_, &GridFields::velocity, active_.rows);
+  if (problem_.contact.exchangeInterpolated)
+    problem_.contact.exchange(step_.fields, &GridFields::velocity, step_.active.rows);
 }
 
 void MPM::integrateGridMomentum(double dt) {
-  for (GridFields& g : fields_) {
-    forEachNode(active_.rows, [&](long k) {
+  for (GridFields& g : step_.fields) {
+    forEachNode(step_.active.rows, [&](long k) {
       // Below minimum_mass_for_acc only gravity accelerates a node, as in Uintah.
       Vec3 a = Vec3::Zero();
-      if (g.mass[k] > flags_.minimumMassForAcc && g.mass[k] > 0)
-        a = g.internalForce[k] / g.mass[k] + flags_.gravity -
-            flags_.artificialDampingCoeff * g.velocity[k];
+      if (g.mass[k] > problem_.flags.minimumMassForAcc && g.mass[k] > 0)
+        a = g.internalForce[k] / g.mass[k] + problem_.flags.gravity -
+            problem_.flags.artificialDampingCoeff * g.velocity[k];
       else if (g.mass[k] > 0)
-        a = flags_.gravity;
+        a = problem_.flags.gravity;
       g.velocityStar[k] = g.velocity[k] + a * dt;
     });
   }
 }
 
 void MPM::setGridBoundaryConditions(double dt) {
-  contact_.exchange(fields_, &GridFields::velocityStar, active_.rows);
-  for (size_t m = 0; m < fields_.size(); ++m) {
-    GridFields& g = fields_[m];
-    applyVelocityDirichlet(grid_, gridBCs_.velocity, static_cast<int>(m), g.velocityStar);
-    applySymmetry(grid_, gridBCs_.symmetric, static_cast<int>(m), active_.box, g.velocityStar);
-    forEachNode(active_.rows,
+  problem_.contact.exchange(step_.fields, &GridFields::velocityStar, step_.active.rows);
+  for (size_t m = 0; m < step_.fields.size(); ++m) {
+    GridFields& g = step_.fields[m];
+    applyVelocityDirichlet(grid(), problem_.gridBCs.velocity, static_cast<int>(m), g.velocityStar);
+    applySymmetry(grid(), problem_.gridBCs.symmetric, static_cast<int>(m), step_.active.box,
+                  g.velocityStar);
+    forEachNode(step_.active.rows,
                 [&g, dt](long k) { g.acceleration[k] = (g.velocityStar[k] - g.velocity[k]) / dt; });
   }
 }
@@ -258,16 +256,16 @@ void MPM::interpolateToParticlesAndUpdate(double dt) {
     MPMMaterial& mat = materials_[m];
     const ConstitutiveModel& model = *mat.model;
     const ParticleUpdate update{nodeQuads_.data(),
-                                weights_[m],
+                                step_.weights[m],
                                 mat.density,
-                                flags_.minimumSubcyclesForF,
+                                problem_.flags.minimumSubcyclesForF,
                                 diffusion_ && model.swells(),
                                 dt};
     long firstInverted = 0;
     std::visit(
         [&](const auto* concrete) {
           withGatherKernel(diffusion_.get(), m, mat.particles, [&](const auto& concentration) {
-            fillGatherQuads(fields_[m], concentration, active_.rows, nodeQuads_.data());
+            fillGatherQuads(step_.fields[m], concentration, step_.active.rows, nodeQuads_.data());
             firstInverted = updateParticles(mat.particles, update, *concrete, concentration);
           });
         },
@@ -285,13 +283,13 @@ void MPM::interpolateToParticlesAndUpdate(double dt) {
 void MPM::interpolateConcentrationChange(size_t m, double dt, std::vector<double>& dc) {
   ParticleSet& p = materials_[m].particles;
   withGatherKernel(diffusion_.get(), m, p, [&](const auto& kernel) {
-    fillGatherQuads(fields_[m], kernel, active_.rows, nodeQuads_.data());
-    updateConcentrationOnly(p, weights_[m], nodeQuads_.data(), kernel, dt, dc);
+    fillGatherQuads(step_.fields[m], kernel, step_.active.rows, nodeQuads_.data());
+    updateConcentrationOnly(p, step_.weights[m], nodeQuads_.data(), kernel, dt, dc);
   });
 }
 
 void MPM::interpolateConcentrationGradient(size_t m) {
-  gatherConcentrationGradient(materials_[m].particles, weights_[m],
+  gatherConcentrationGradient(materials_[m].particles, step_.weights[m],
                               diffusion_->gridFields()[m].concentration);
 }
 
@@ -300,10 +298,10 @@ void MPM::splitParticles() {
   for (size_t m = 0; m < materials_.size(); ++m) {
     ParticleSet& p = materials_[m].particles;
     if (!p.has(Physics::Splitting)) continue;
-    Reordering& r = reordering_[m];
+    ParticleReordering& r = reordering_[m];
     r.beforeSplitting = p.count();
-    if (!distributed_) {
-      r.split = splitStretchedParticles(p, grid_, flags_.stretchRatio, nextParticleId_);
+    if (!layout_.distributed()) {
+      r.split = splitStretchedParticles(p, grid(), problem_.flags.stretchRatio, nextParticleId_);
       if (diffusion_) diffusion_->shareFluxFaces(p, r.split);
       continue;
     }
@@ -311,7 +309,7 @@ void MPM::splitParticles() {
     // (its particles stay in ID order), whatever rank holds a parent.
     // The IDs are gathered only in a step that splits some particle (a sum first).
     std::vector<int64_t> parents;
-    const std::vector<int64_t> mine = stretchedParticleIds(p, grid_, flags_.stretchRatio);
+    const std::vector<int64_t> mine = stretchedParticleIds(p, grid(), problem_.flags.stretchRatio);
     if (collective::sum(static_cast<int64_t>(mine.size())) == 0) {
       r.split.clear();
       continue;
@@ -324,7 +322,7 @@ void MPM::splitParticles() {
     }
     std::sort(parents.begin(), parents.end());
     const int64_t first = nextParticleId_;
-    r.split = splitStretchedParticles(p, grid_, flags_.stretchRatio, [&](int64_t parent) {
+    r.split = splitStretchedParticles(p, grid(), problem_.flags.stretchRatio, [&](int64_t parent) {
       const auto at = std::lower_bound(parents.begin(), parents.end(), parent) - parents.begin();
       return first + 3 * static_cast<int64_t>(at);
     });
@@ -333,46 +331,19 @@ void MPM::splitParticles() {
   }
 }
 
-size_t MPM::numParticles() const {
-  size_t n = 0;
-  for (const auto& m : materials_) n += m.particles.count();
-  return n;
-}
-
-StableTimestep MPM::computeStableTimestep(Collective) const {
-  StableTimestep limits;
-  double& dt = limits.bound[StableTimestep::Mechanics];
-  for (const MPMMaterial& mat : materials_) {
-    const ParticleSet& p = mat.particles;
-    const double modulus = mat.model->dilatationalModulus();
-    const long n = static_cast<long>(p.count());
-    double wx = 0, wy = 0, wz = 0;
-#pragma omp parallel for schedule(static) reduction(max : wx, wy, wz)
-    for (long i = 0; i < n; ++i) {
-      const double c = std::sqrt(modulus * p.volume[i] / p.mass[i]);  // Eq. 41 with rho = m/V
-      wx = std::max(wx, c + std::abs(p.velocity[i].x()));
-      wy = std::max(wy, c + std::abs(p.velocity[i].y()));
-      wz = std::max(wz, c + std::abs(p.velocity[i].z()));
-    }
-    dt = std::min({dt, grid_.dx.x() / wx, grid_.dx.y() / wy, grid_.dx.z() / wz});  // Eq. 43
-  }
-  if (diffusion_) {
-    limits.bound[StableTimestep::Diffusion] = diffusion_->diffusionTimestep(grid_);
-    limits.bound[StableTimestep::Flux] = diffusion_->fluxTimestep(Collective{}, materials_);
-  }
-  collective::minimum(limits.bound.data(), 2);  // Eqs. 43 and 44 over ranks
-  return limits;
+void MPM::migrateParticles() {
+  layout_.migrateParticles(reordering_);
 }
 
 void MPM::interpolateToGridForOutput(Collective) {
   computeWeightsAndActiveNodes();
   scatterParticlesToGrid();
-  if (distributed_) sumGhostNodes();
+  if (layout_.distributed()) sumGhostNodes();
   computeNodalVelocityAndConcentration();
 }
 
 void MPM::releaseInterpolationWeights() {
-  for (InterpolationWeights& w : weights_) w = InterpolationWeights();
+  for (InterpolationWeights& w : step_.weights) w = InterpolationWeights();
 }
 
 StepSummary MPM::summarize(Collective) const {
@@ -394,7 +365,7 @@ StepSummary MPM::summarize(Collective) const {
     s.particles += p.count();
   }
   if (diffusion_) diffusion_->summarize(materials_, s);
-  if (distributed_) {
+  if (layout_.distributed()) {
     // One reduction of each kind: the totals, then each material's own.
     std::vector<double> sums = {
         s.kineticEnergy,     s.totalLithium,    static_cast<double>(s.particles),

@@ -17,6 +17,7 @@
 #include "Components/MPM/MPMFlags.h"
 #include "Components/MPM/Materials/MPMMaterial.h"
 #include "Components/MPM/NodeQuads.h"
+#include "Components/MPM/RankLayout.h"
 #include "Components/MPM/ReactiveFlow/ReactiveFlow.h"
 #include "Components/MPM/SplitParticle.h"
 #include "Components/MPM/StableTimestep.h"
@@ -28,8 +29,31 @@
 
 namespace anode {
 
+// The problem as setup read it, fixed for the run.
+struct MPMProblem {
+  MPMFlags flags;
+  GridBoundaryConditions gridBCs;
+  Contact contact;
+  // Setup's notes on bodies that would swell into a Symmetric face (SwellingRoom.h).
+  std::vector<std::string> swellingNotes;
+};
+
+// The grid's part of a step: per material the nodal fields and the particles' interpolation
+// weights, and the nodes the particles touch. Grid loops run over those nodes only; outside,
+// nodal fields are zero (the previous step's box is cleared too) except the values face boundary
+// conditions set.
+struct StepGrid {
+  std::vector<GridFields> fields;
+  std::vector<InterpolationWeights> weights;
+  ActiveNodes active;
+};
+
 class MPM {
  public:
+  MPM() = default;
+  MPM(const MPM&) = delete;  // its RankLayout holds its particles
+  MPM& operator=(const MPM&) = delete;
+
   // Reads <MPM>, <PhysicalConstants>, <Grid>, <MaterialProperties> and <PhysicalBC>; the
   // simulation starts at initTime and ends at maxTime. In a distributed run each rank counts the
   // particles the geom_objects lay out per cell, draws the boxes from the counts and creates
@@ -79,15 +103,6 @@ class MPM {
   // 11 (distributed): particles that left the rank's box go to its owner.
   void migrateParticles();
 
-  // The explicit step's largest stable dt of the current state before the multiplier: paper Eq.
-  // 45, the smallest of the mechanical Eq. 43 and the diffusion limits (Eq. 44 and the flux
-  // limit).
-  StableTimestep computeStableTimestep(Collective) const;
-  // Shares the particles out anew among the ranks from their counts per cell plane (after a
-  // restart, or when the particles per rank have drifted apart).
-  void redistributeParticles(Collective);
-  // Largest over mean particles per rank.
-  double imbalance(Collective) const;
   // Interpolation weights and the grid fields of the current state (for output of g.* labels).
   void interpolateToGridForOutput(Collective);
   // Frees the interpolation weights between steps so output can use the memory; the next step
@@ -98,75 +113,31 @@ class MPM {
 
   // The state a step starts from (every particle array and the scalars carried between steps),
   // for checkpoints (MPMState.cc). loadState expects the materials of the same input and throws
-  // std::runtime_error when the saved state does not fit them.
+  // std::runtime_error when the saved state does not fit them; it puts the particles it reads in
+  // place of this rank's, after them (a distributed checkpoint read part by part), or drops them
+  // (a part read only for the state every part holds).
+  enum class ReadParticles { Replace, Append, Drop };
   void saveState(BinaryWriter& out) const;
-  void loadState(BinaryReader& in);
-  // The same particles appended to this rank's (a distributed checkpoint read part by part).
-  void appendState(BinaryReader& in);
-  // The boxes of a distributed run, for its checkpoint; adoptLayout takes them back after each
-  // rank loaded its own part.
-  struct Layout {
-    Decomposition boxes;
-    int ghostWidth = 0;
-  };
-  void saveLayout(BinaryWriter& out) const;
-  static Layout readLayout(BinaryReader& in);
-  void adoptLayout(Collective, const Layout& layout);
-  // After every rank loaded all particles (a one-rank checkpoint on several ranks): puts them in
-  // ID order and keeps this rank's share under a decomposition drawn anew.
-  void keepOwnShare(Collective);
+  void loadState(BinaryReader& in, ReadParticles particles = ReadParticles::Replace);
   // After problemSetup without particles: the boxes `ranks` ranks would draw for the problem,
   // their particle counts and imbalance, and the ghost nodes and bytes of the ghost sums, beside
   // those of tensor-product cuts (sus --decompose N).
   std::string describeDecomposition(int ranks);
-  // After each rank loaded some parts of a distributed checkpoint of another rank count: shares
-  // the particles out under a decomposition drawn anew, each rank's in ID order.
-  void shareOutAnew(Collective);
-  // Drops this rank's particles (a part read only for the state every part holds).
-  void dropParticles();
 
   // The nodes this rank stores (the whole grid on one rank; its window in a distributed run).
-  const Grid& grid() const { return grid_; }
-  const Decomposition& decomposition() const { return decomposition_; }
-  // More than one rank; then ghosts() are the nodes this rank shares with others (null otherwise).
-  bool distributed() const { return distributed_; }
-  GhostNodes* ghosts() { return distributed_ ? &ghosts_ : nullptr; }
-  int ghostWidth() const { return ghostWidth_; }
-  // How the last step changed material m's particles on this rank, for per-particle histories
-  // kept elsewhere (StateChecks follows its own with it). First splitting: of the
-  // `beforeSplitting` particles, those listed in `split` (in this order) split, and each one's 3
-  // children were appended in that order. Then migration (distributed runs; `migrated` is false
-  // when nothing moved): of the `beforeMigration` particles, those at the indices `kept` stayed,
-  // in that order, and `arrived` others follow them.
-  struct Reordering {
-    size_t beforeSplitting = 0;
-    std::vector<SplitParticle> split;
-    bool migrated = false;
-    size_t beforeMigration = 0, arrived = 0;
-    std::vector<long> kept;
-  };
-  const std::vector<Reordering>& lastReordering() const { return reordering_; }
-  // Counts the times the particles were shared out among the ranks (setup, restart, rebalance):
-  // per-particle histories kept elsewhere start over when it changes.
-  int layoutGeneration() const { return layoutGeneration_; }
-  const MPMFlags& flags() const { return flags_; }
+  const Grid& grid() const { return layout_.window(); }
+  // How the grid and the particles are shared among the ranks.
+  RankLayout& layout() { return layout_; }
+  const RankLayout& layout() const { return layout_; }
+  // How the last step changed each material's particles on this rank (splitting, migration).
+  const std::vector<ParticleReordering>& lastReordering() const { return reordering_; }
+  const MPMProblem& problem() const { return problem_; }
   const std::vector<MPMMaterial>& materials() const { return materials_; }
   std::vector<MPMMaterial>& materials() { return materials_; }
-  const std::vector<GridFields>& gridFields() const { return fields_; }
-  // The step's interpolation weights (per material) and the nodes its particles touch.
-  const std::vector<InterpolationWeights>& weights() const { return weights_; }
-  const ActiveNodes& activeNodes() const { return active_; }
-  const Contact& contact() const { return contact_; }
-  const GridBoundaryConditions& gridBCs() const { return gridBCs_; }
-  // Setup's notes on bodies that would swell into a Symmetric face (SwellingRoom.h).
-  const std::vector<std::string>& swellingNotes() const { return swellingNotes_; }
+  const StepGrid& stepGrid() const { return step_; }
   // The diffusion subcomponent; null without <do_scalar_diffusion>true.
   const ReactiveFlow* diffusion() const { return diffusion_.get(); }
   ReactiveFlow* diffusion() { return diffusion_.get(); }
-  // For an output that saves them: the concentration fields of every material, also of those
-  // whose concentration cannot change (ReactiveFlow::computesConcentration).
-  void computeConcentrationOfEveryMaterial() { diffusion_->computeEveryMaterial(); }
-  size_t numParticles() const;  // on this rank
   TaskTimers& timers() { return timers_; }
   const TaskTimers& timers() const { return timers_; }
 
@@ -188,64 +159,31 @@ class MPM {
   // Completes the nodal sums of P2G on the nodes shared with other ranks (`concentrationOnly`:
   // as interpolateParticlesToGrid's).
   void sumGhostNodes(bool concentrationOnly = false);
-  // Keeps this rank's particles (all of the problem's are here when `allHere`) under a new
-  // decomposition from the particle counts per cell plane, and lays out its window.
-  void decompose(bool allHere);
-  // Lays out this rank's window and its shared nodes under decomposition_.
-  void layOutWindow();
-  // Reads particle arrays and the scalars; appends to this rank's particles when `append`.
-  void readState(BinaryReader& in, bool append);
+  // Sizes the grid fields to this rank's window (RankLayout calls it when it lays one out).
   void layOutGrid();
-  int computeGhostWidth(bool allHere) const;
-  // Setup per box (MPMRanks.cc): this rank's box, drawn from the particle counts of seeds_ (the
-  // whole grid on one rank); the box grown by what flagging the flux particles needs around it;
+  // Setup per box (MPMRanks.cc): the particles per cell seeds_ lay out (RankLayout draws the
+  // setup's boxes from them); the box grown by what flagging the flux particles needs around it;
   // the particle count of a region against the memory budget; dropping the particles beyond the
   // box once flagged.
-  CellBox setupBox();
+  Decomposition::ParticleCounts seedCounts() const;
   CellBox grownBySetupReach(const CellBox& box) const;
   void checkParticlesOfRank(const CellBox& region) const;
   void keepParticlesOfBox(const CellBox& box);
-  // The boxes of this rank count by recursive bisection (`earlier`, when it has as many, where a
-  // box cannot be cut) from the particles per cell: those of the particles (of every rank's
-  // unless `allHere`), or of seeds_ (setup's, before any particle is created).
-  Decomposition drawBoxes(const Decomposition::ParticleCounts& counts,
-                          const Decomposition* earlier) const;
-  Decomposition::ParticleCounts particleCounts(bool allHere) const;
-  Decomposition::ParticleCounts seedCounts() const;
-  // The ghost layers of the interpolator for CPDI domains reaching `reach` cells.
-  int ghostWidthFor(double reach) const;
   // The grid arrays the ghost sums after P2G complete (`concentrationOnly`: the concentration's).
   std::vector<NodeArray> ghostSumArrays(bool concentrationOnly = false);
-  // Rank of the box holding material m's particle i.
-  int ownerOf(const ParticleSet& p, size_t i) const;
   template <class Concentration>
   void scatterMaterial(size_t m, const Concentration& concentration, bool concentrationOnly);
 
-  MPMFlags flags_;
-  Grid whole_;  // the problem's grid
-  Grid grid_;   // the nodes this rank stores
-  Decomposition decomposition_;
-  GhostNodes ghosts_;
-  int ghostWidth_ = 0;
-  bool distributed_ = false;  // more than one rank
-  std::vector<Reordering> reordering_;
-  int layoutGeneration_ = 0;
-  std::vector<std::string> swellingNotes_;
-  GridBoundaryConditions gridBCs_;
-  Contact contact_;
+  MPMProblem problem_;
+  std::vector<ParticleReordering> reordering_;
   std::vector<MPMMaterial> materials_;
+  RankLayout layout_{materials_, [this] { layOutGrid(); }};
   std::unique_ptr<ReactiveFlow> diffusion_;  // only with <do_scalar_diffusion>true
   int64_t nextParticleId_ = 0;
   std::vector<MaterialSeeds> seeds_;  // setup only: what the geom_objects lay out
   double initTime_ = 0;
-  // The nodes the particles touch this step; grid loops run over them only. Outside, nodal
-  // fields are zero (the previous step's box is cleared too) except the values face boundary
-  // conditions set.
-  ActiveNodes active_;
-  NodeBox previous_;
-
-  std::vector<GridFields> fields_;              // per material
-  std::vector<InterpolationWeights> weights_;   // per material, for the current step
+  StepGrid step_;
+  NodeBox previous_;  // the nodes the particles touched in the step before
   std::vector<std::vector<uint8_t>> capacity_;  // per material: weight entries per particle
   // Node quads (NodeQuads.h): what P2G sums per node, then what G2P reads per node; and P2G's
   // sums per thread after the first (P2G without locks).

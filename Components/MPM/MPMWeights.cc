@@ -17,31 +17,31 @@ void MPM::computeWeightsAndActiveNodes() {
   collective::stopTogether([&] { reached = computeInterpolationWeights(); });
   // The ghost nodes get the other ranks' parts: a stored node takes part in the step where any
   // rank's particles reach it (outside the ranks' stopTogether, as it is collective).
-  previous_ = active_.box;
-  NodeBox all = distributed_ ? ghosts_.setReach(Collective{}, reached) : reached;
+  previous_ = step_.active.box;
+  NodeBox all = layout_.distributed() ? layout_.ghosts()->setReach(Collective{}, reached) : reached;
   // An implicit run shares its owned unknowns' corrections (Implicit/EquilibriumSolver.h) on
   // shared nodes its own particles may not reach: its reach is its window within all of theirs.
-  if (distributed_ && flags_.implicit)
-    all = ghosts_.setReach(Collective{},
-                           NodeBox{grid_.firstNode(), grid_.lastNode()}.intersection(all));
-  active_ = ActiveNodes::of(grid_, all);
+  if (layout_.distributed() && problem_.flags.implicit)
+    all = layout_.ghosts()->setReach(
+        Collective{}, NodeBox{grid().firstNode(), grid().lastNode()}.intersection(all));
+  step_.active = ActiveNodes::of(grid(), all);
 }
 
 NodeBox MPM::computeInterpolationWeights() {
   NodeBox reached;
   for (size_t m = 0; m < materials_.size(); ++m) {
     const ParticleSet& p = materials_[m].particles;
-    InterpolationWeights& W = weights_[m];
+    InterpolationWeights& W = step_.weights[m];
     const long n = static_cast<long>(p.count());
     std::vector<uint8_t>& capacity = capacity_[m];
     capacity.resize(n);
-    if (flags_.interpolator == InterpolatorKind::CPDI) {
+    if (problem_.flags.interpolator == InterpolatorKind::CPDI) {
 #pragma omp parallel for schedule(static)
       for (long i = 0; i < n; ++i)
-        capacity[i] = static_cast<uint8_t>(cpdiCapacity(grid_, p.x[i], p.size[i], p.F[i]));
+        capacity[i] = static_cast<uint8_t>(cpdiCapacity(grid(), p.x[i], p.size[i], p.F[i]));
     } else {
       std::fill(capacity.begin(), capacity.end(),
-                static_cast<uint8_t>(maxNodesPerParticle(flags_.interpolator)));
+                static_cast<uint8_t>(maxNodesPerParticle(problem_.flags.interpolator)));
     }
     W.layOut(capacity);
     long firstOutside = n;
@@ -53,7 +53,7 @@ NodeBox MPM::computeInterpolationWeights() {
       W.count[i] = static_cast<uint8_t>(std::max(count, 0));
       if (count > 0) box = hullOf(box, support);
     };
-    if (flags_.interpolator == InterpolatorKind::CPDI) {
+    if (problem_.flags.interpolator == InterpolatorKind::CPDI) {
       // The corners of a pack of particles at once, then each one's weights from its corners.
       constexpr long lanes = static_cast<long>(Pack::size());
 #pragma omp parallel for schedule(static) reduction(min : firstOutside) reduction(hull : reached)
@@ -61,14 +61,14 @@ NodeBox MPM::computeInterpolationWeights() {
         CpdiCorners corners[lanes];
         const long last = std::min(n, first + lanes);
         if (last - first == lanes)
-          cpdiCornersOfPack(grid_, &p.x[first], &p.size[first], &p.F[first], corners);
+          cpdiCornersOfPack(grid(), &p.x[first], &p.size[first], &p.F[first], corners);
         else
           for (long i = first; i < last; ++i)
-            cpdiCorners(grid_, p.x[i], p.size[i], p.F[i], corners[i - first]);
+            cpdiCorners(grid(), p.x[i], p.size[i], p.F[i], corners[i - first]);
         for (long i = first; i < last; ++i) {
           const CpdiCorners& c = corners[i - first];
           const size_t b = W.offset[i];
-          record(i, cpdiWeights(grid_, c, &W.node[b], &W.weight[b], &W.gradient[b]),
+          record(i, cpdiWeights(grid(), c, &W.node[b], &W.weight[b], &W.gradient[b]),
                  NodeBox{Vec3i(c.lowest[0], c.lowest[1], c.lowest[2]),
                          Vec3i(c.highest[0], c.highest[1], c.highest[2])},
                  firstOutside, reached);
@@ -79,9 +79,9 @@ NodeBox MPM::computeInterpolationWeights() {
       for (long i = 0; i < n; ++i) {
         const size_t b = W.offset[i];
         NodeBox support;
-        supportBounds(flags_.interpolator, grid_, p.x[i], p.size[i], p.F[i], support.first,
+        supportBounds(problem_.flags.interpolator, grid(), p.x[i], p.size[i], p.F[i], support.first,
                       support.last);
-        record(i, computeWeights(grid_, p, i, &W.node[b], &W.weight[b], &W.gradient[b]), support,
+        record(i, computeWeights(grid(), p, i, &W.node[b], &W.weight[b], &W.gradient[b]), support,
                firstOutside, reached);
       }
     }
@@ -95,20 +95,21 @@ void MPM::throwOutsideWindow(size_t m, long i) const {
   int32_t node[64];
   double weight[64];
   Vec3 gradient[64];
-  if (computeWeights(whole_, p, i, node, weight, gradient) < 0)
+  if (computeWeights(layout_.problemGrid(), p, i, node, weight, gradient) < 0)
     throw SimulationError(
         describeParticle(materials_[m], m, i) +
         " has left the grid (its interpolation support reaches beyond the last node)");
-  throw SimulationError(
-      describeParticle(materials_[m], m, i) + " on rank " + std::to_string(Communicator::rank()) +
-      ": its CPDI domain reaches beyond the rank's ghost layer (" + std::to_string(ghostWidth_) +
-      " cells): it stretched further than when the ranks' boxes were drawn "
-      "(<refine_particles> splits stretched particles)");
+  throw SimulationError(describeParticle(materials_[m], m, i) + " on rank " +
+                        std::to_string(Communicator::rank()) +
+                        ": its CPDI domain reaches beyond the rank's ghost layer (" +
+                        std::to_string(layout_.ghostWidth()) +
+                        " cells): it stretched further than when the ranks' boxes were drawn "
+                        "(<refine_particles> splits stretched particles)");
 }
 
 int MPM::computeWeights(const Grid& g, const ParticleSet& p, long i, int32_t* node, double* w,
                         Vec3* grad) const {
-  switch (flags_.interpolator) {
+  switch (problem_.flags.interpolator) {
     case InterpolatorKind::Linear:
       return linearWeights(g, p.x[i], node, w, grad);
     case InterpolatorKind::GIMP:

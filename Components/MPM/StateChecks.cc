@@ -74,8 +74,8 @@ bool StateChecks::oscillates(Oscillation& o, double energy, double product, doub
 void StateChecks::afterStep(Collective, const MPM& mpm, double dt) {
   const auto& materials = mpm.materials();
   const size_t count = materials.size();
-  if (velocity_.size() != count || mpm.layoutGeneration() != layoutGeneration_) {
-    layoutGeneration_ = mpm.layoutGeneration();
+  if (velocity_.size() != count || mpm.layout().generation() != layoutGeneration_) {
+    layoutGeneration_ = mpm.layout().generation();
     velocity_.assign(count, {});
     velocityIncrement_.assign(count, {});
     localStreak_.assign(count, {});
@@ -172,7 +172,7 @@ void StateChecks::afterStep(Collective, const MPM& mpm, double dt) {
   checkKineticEnergy(mpm, energy);
 }
 
-void StateChecks::followReordering(const MPM::Reordering& r, size_t m, const ParticleSet& p) {
+void StateChecks::followReordering(const ParticleReordering& r, size_t m, const ParticleSet& p) {
   // A split particle's 3 children continue its history: they have its velocity and
   // concentration, and the 4 share its mass, so the watched sums go on unchanged.
   if (!r.split.empty() && velocity_[m].size() == r.beforeSplitting)

@@ -73,7 +73,7 @@ class StateChecks {
   template <class F>
   void forEachHistory(size_t m, const ParticleSet& p, F&& f);
   // Carries material m's per-particle history along with the last step's splitting and migration.
-  void followReordering(const MPM::Reordering& r, size_t m, const ParticleSet& p);
+  void followReordering(const ParticleReordering& r, size_t m, const ParticleSet& p);
 
   // Per material: last step's velocities and concentrations, and their increments then; per
   // particle, the steps in a row its velocity increment reversed and grew.
@@ -82,7 +82,7 @@ class StateChecks {
   std::vector<std::vector<double>> concentration_, concentrationIncrement_;
   Oscillation velocityOscillation_, concentrationOscillation_;
 
-  int layoutGeneration_ = 0;  // MPM::layoutGeneration of the histories above
+  int layoutGeneration_ = 0;  // RankLayout::generation of the histories above
   double lastKineticEnergy_ = 0, lastMass_ = 0;
   int growingSteps_ = 0;
   double energyBeforeGrowth_ = 0;

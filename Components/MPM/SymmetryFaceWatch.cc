@@ -19,15 +19,15 @@ std::vector<std::string> SymmetryFaceWatch::start(Collective, const MPM& mpm) {
     collective::minimum(lo.data(), 3);
     collective::maximum(hi.data(), 3);
     bool startsOn[3][2] = {};
-    for (const BCFace& bc : mpm.gridBCs().symmetric)
+    for (const BCFace& bc : mpm.problem().gridBCs.symmetric)
       if (bc.appliesTo(static_cast<int>(m)))
         startsOn[bc.axis][bc.side] =
             distanceToFace(g, bc.side == 0 ? lo : hi, bc.axis, bc.side) < g.dx[bc.axis];
-    for (const BCFace& bc : mpm.gridBCs().symmetric)
+    for (const BCFace& bc : mpm.problem().gridBCs.symmetric)
       if (bc.appliesTo(static_cast<int>(m)) && !startsOn[bc.axis][bc.side])
         watched_.push_back({m, bc.axis, bc.side});
   }
-  return mpm.swellingNotes();
+  return mpm.problem().swellingNotes;
 }
 
 std::vector<std::string> SymmetryFaceWatch::afterStep(Collective, const MPM& mpm, long step,

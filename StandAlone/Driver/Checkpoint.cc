@@ -193,7 +193,7 @@ uint64_t writePart(const std::string& checkpoint, const MPM& mpm) {
 
 // Reads the checkpoint on this rank only; `layout` receives a distributed one's boxes.
 CheckpointHeader readCheckpoint(const std::string& path, DataArchiver* outputs, MPM& mpm,
-                                MPM::Layout& layout) {
+                                RankLayout::Saved& layout) {
   CheckpointHeader header;
   BinaryReader in(path);
   const std::string magic = in.string();
@@ -231,7 +231,7 @@ CheckpointHeader readCheckpoint(const std::string& path, DataArchiver* outputs, 
   }
   header.ranks = in.value<int32_t>();
   if (header.ranks < 1) throw std::runtime_error(path + ": a checkpoint of no rank");
-  layout = MPM::readLayout(in);
+  layout = RankLayout::read(in);
   std::vector<uint64_t> hashes(header.ranks);
   for (uint64_t& h : hashes) h = in.value<uint64_t>();
   in.finish();
@@ -260,14 +260,12 @@ CheckpointHeader readCheckpoint(const std::string& path, DataArchiver* outputs, 
     header.bytesRead += static_cast<double>(fs::file_size(partPath));
     if (part.string() != kCheckpointPartMagic)
       throw std::runtime_error(partPath + ": not a part of a checkpoint of this code");
-    if (r == parts.front())
-      mpm.loadState(part);
-    else
-      mpm.appendState(part);
+    mpm.loadState(part, forStateOnly         ? MPM::ReadParticles::Drop
+                        : r == parts.front() ? MPM::ReadParticles::Replace
+                                             : MPM::ReadParticles::Append);
     if (part.finish() != hashes[r])
       throw std::runtime_error(partPath + ": not the part " + path + " names (another hash)");
   }
-  if (forStateOnly) mpm.dropParticles();
   return header;
 }
 
@@ -312,7 +310,7 @@ void writeCheckpoint(Collective, const std::string& path, const CheckpointHeader
         archiver.saveState(out);
         if (distributed) {
           out.value<int32_t>(header.ranks);
-          mpm.saveLayout(out);
+          mpm.layout().save(out);
           for (const std::string& h : partHashes) out.bytes(h.data(), h.size());
         } else {
           mpm.saveState(out);
@@ -326,7 +324,7 @@ CheckpointHeader loadCheckpoint(Collective, const std::string& path, DataArchive
                                 MPM& mpm) {
   // Read on every rank, then agreed on, before any collective step of laying the particles out.
   CheckpointHeader header;
-  MPM::Layout layout;
+  RankLayout::Saved layout;
   std::string error;
   try {
     header = readCheckpoint(path, outputs, mpm, layout);
@@ -339,11 +337,11 @@ CheckpointHeader loadCheckpoint(Collective, const std::string& path, DataArchive
                                  ? error
                                  : path + ": unreadable on rank " + std::to_string(failed));
   if (header.ranks == Communicator::size()) {
-    if (header.ranks > 1) mpm.adoptLayout(Collective{}, layout);
+    if (header.ranks > 1) mpm.layout().adopt(Collective{}, layout);
   } else if (header.ranks > 1) {
-    mpm.shareOutAnew(Collective{});
+    mpm.layout().shareOutAnew(Collective{});
   } else {
-    mpm.keepOwnShare(Collective{});
+    mpm.layout().keepOwnShare(Collective{});
   }
   return header;
 }

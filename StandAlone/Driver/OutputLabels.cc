@@ -217,7 +217,7 @@ bool isNodalConcentrationLabel(const std::string& label) {
 
 ParticleData gatherParticles(const MPM& mpm, const std::vector<std::string>& labels) {
   ParticleData out;
-  const size_t n = mpm.numParticles();
+  const size_t n = countParticles(mpm.materials());
   out.points.reserve(3 * n);
   NamedArray material{"material", 1, {}, {}};
   NamedArray ids{"p.particleID", 1, {}, {}};
@@ -283,10 +283,10 @@ GridData gatherGrid(const MPM& mpm, const std::vector<std::string>& labels) {
     out.first[d] = g.trimLower[d];
   }
   const size_t nodes = g.numNodes();
-  const size_t nm = mpm.gridFields().size();
+  const size_t nm = mpm.stepGrid().fields.size();
   for (const std::string& label : labels)
     for (size_t m = 0; m < nm; ++m) {
-      const GridFields& f = mpm.gridFields()[m];
+      const GridFields& f = mpm.stepGrid().fields[m];
       const std::string name = nm > 1 ? label + "_m" + std::to_string(m) : label;
       if (isNodalConcentrationLabel(label)) {
         const ConcentrationGridFields& c = mpm.diffusion()->gridFields()[m];

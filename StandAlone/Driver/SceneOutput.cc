@@ -24,7 +24,7 @@ SceneOutput SceneOutput::fromInput(const PSNode& root, const TimeControl& time, 
   context.initTime = time.initTime;
   context.maxTime = time.maxTime;
   context.materials = static_cast<int>(mpm.materials().size());
-  const bool diffusion = mpm.flags().doScalarDiffusion;
+  const bool diffusion = mpm.problem().flags.doScalarDiffusion;
   context.lookup = [diffusion](const std::string& label) -> SceneContext::LabelInfo {
     switch (classifyLabel(label, diffusion)) {
       case LabelStatus::Particle:

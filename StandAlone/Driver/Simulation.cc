@@ -42,7 +42,7 @@ void Simulation::setup(const std::function<void()>& readSpec) {
   if (options_.countParticlesOnly) return;
   mpm_.distributeOverRanks(Collective{});
   if (archiver_.savesConcentrationFields() || scenes_.draws("p.concentrationGradient"))
-    mpm_.computeConcentrationOfEveryMaterial();
+    mpm_.diffusion()->computeEveryMaterial();
   takeStableTimestep(0.0);
   setupSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   rusage usage{};
@@ -60,13 +60,13 @@ void Simulation::readInput() {
   PSNode root = spec_->root();
   time_ = TimeControl::fromInput(root.requireChild("Time"));
   mpm_.problemSetup(root, time_.initTime, time_.maxTime, !options_.countParticlesOnly, [&] {
-    const MPMFlags& flags = mpm_.flags();
+    const MPMFlags& flags = mpm_.problem().flags;
     dtController_.emplace(time_, flags.implicit ? &*flags.implicit : nullptr);
     integrator_ = makeIntegrator(root, mpm_, *dtController_);
   });
-  archiver_ =
-      DataArchiver::fromInput(root.requireChild("DataArchiver"), mpm_.flags().doScalarDiffusion,
-                              static_cast<int>(mpm_.materials().size()));
+  archiver_ = DataArchiver::fromInput(root.requireChild("DataArchiver"),
+                                      mpm_.problem().flags.doScalarDiffusion,
+                                      static_cast<int>(mpm_.materials().size()));
   // As in Uintah, outputs by steps leave the clamp nothing to end a step on.
   if (time_.clampTimeToOutput && !archiver_.outputsByTime())
     root.requireChild("Time")
@@ -285,7 +285,7 @@ std::string Simulation::restartFromNewestCheckpoint(Collective) {
 
 void Simulation::reportSetup(Collective) {
   const size_t particles = mpm_.summarize(Collective{}).particles;
-  layoutImbalance_ = mpm_.imbalance(Collective{});
+  layoutImbalance_ = mpm_.layout().imbalance(Collective{});
   // Setup's wall time and the memory it left (the peak so far), of the slowest and the largest
   // rank and of the smallest.
   double setup[4] = {setupSeconds_, setupPeakBytes_, -setupSeconds_, -setupPeakBytes_};
@@ -305,8 +305,8 @@ void Simulation::reportSetup(Collective) {
     if (Communicator::size() > 1)
       std::fprintf(stderr,
                    "sus: %d ranks: %s, ghost layers %d cells; particles per rank max/mean %.3f\n",
-                   Communicator::size(), mpm_.decomposition().describe().c_str(), mpm_.ghostWidth(),
-                   layoutImbalance_);
+                   Communicator::size(), mpm_.layout().boxes().describe().c_str(),
+                   mpm_.layout().ghostWidth(), layoutImbalance_);
     if (mpm_.diffusion())
       for (const std::string& line : mpm_.diffusion()->setupReport())
         std::fprintf(stderr, "sus: %s\n", line.c_str());
@@ -325,7 +325,7 @@ StepForecastInput Simulation::stepForecastInput() const {
   in.dt = dt_;
   in.limit = StableTimestep::name(dtLimit_);
   in.mechanicsLimited = dtLimit_ == StableTimestep::Mechanics;
-  in.implicit = mpm_.flags().implicit.has_value();
+  in.implicit = mpm_.problem().flags.implicit.has_value();
   in.cellSize = mpm_.grid().dx.minCoeff();
   for (size_t m = 0; m < mpm_.materials().size(); ++m)
     in.densities.emplace_back(describeMaterial(mpm_.materials()[m], m),
@@ -338,8 +338,8 @@ size_t Simulation::recordHistoryRow(double stepDt, int dtRule) {
   const double lithiumRate =
       stepDt > 0 ? (s.totalLithium - archiver_.lastHistoryRow().totalLithium) / stepDt : 0.0;
   stateOfCharge_ = s.lithiumCapacity > 0 ? s.chargeableLithium / s.lithiumCapacity : 0.0;
-  const bool trapezoidal = mpm_.flags().implicit && s.diffusion && s.lithiumCapacity > 0 &&
-                           mpm_.flags().implicit->concentrationCoupling ==
+  const bool trapezoidal = mpm_.problem().flags.implicit && s.diffusion && s.lithiumCapacity > 0 &&
+                           mpm_.problem().flags.implicit->concentrationCoupling ==
                                ImplicitOptions::ConcentrationCoupling::Trapezoidal;
   const StepCounts counts = integrator_->lastStepCounts();
   const double couplingCorrection =
@@ -389,18 +389,19 @@ Simulation::Requests Simulation::requestsOfAnyRank(Collective, bool done) const 
 
 bool Simulation::rebalance(Collective) {
   if (Communicator::size() == 1) return false;
-  const double before = mpm_.imbalance(Collective{});
-  const double growth = mpm_.flags().implicit ? kRebalanceImbalanceImplicit : kRebalanceImbalance;
+  const double before = mpm_.layout().imbalance(Collective{});
+  const double growth =
+      mpm_.problem().flags.implicit ? kRebalanceImbalanceImplicit : kRebalanceImbalance;
   if (before <= growth * layoutImbalance_) return false;
   ScopedTimer timer(mpm_.timers(), mpm_.timers().task("rebalance"));
-  mpm_.redistributeParticles(Collective{});
-  const double after = mpm_.imbalance(Collective{});
+  mpm_.layout().redistributeParticles(Collective{});
+  const double after = mpm_.layout().imbalance(Collective{});
   if (Communicator::isRoot())
     std::fprintf(stderr,
                  "sus: step %ld: particles per rank max/mean %.3f, %.2f times the %.3f the boxes "
                  "started with: boxes drawn anew (%s), now %.3f\n",
                  step_, before, before / layoutImbalance_, layoutImbalance_,
-                 mpm_.decomposition().describe().c_str(), after);
+                 mpm_.layout().boxes().describe().c_str(), after);
   layoutImbalance_ = after;
   return true;
 }
@@ -584,8 +585,8 @@ void Simulation::printTimings() const {
   std::vector<double> seconds = timers.seconds();
   collective::maximum(seconds.data(), static_cast<int>(seconds.size()));
   const size_t particles =
-      static_cast<size_t>(collective::sum(static_cast<int64_t>(mpm_.numParticles())));
-  const double imbalance = mpm_.imbalance(Collective{});
+      static_cast<size_t>(collective::sum(static_cast<int64_t>(countParticles(mpm_.materials()))));
+  const double imbalance = mpm_.layout().imbalance(Collective{});
   const long collectiveCalls = Communicator::collectiveCalls();  // before this summary's own
   double communication[2] = {Communicator::bytesSent(), Communicator::communicationSeconds()};
   collective::sum(communication, 1);

@@ -133,7 +133,7 @@ SwellingSphereResult runSwellingSphere(const SwellingSphereCase& c) {
   r.radialStressError = std::sqrt(e[1] / ref[1]);
   r.hoopStressError = std::sqrt(e[2] / ref[2]);
   r.tangentialDisplacement /= maxU;
-  if (sim.mpm().flags().implicit) {
+  if (sim.mpm().problem().flags.implicit) {
     r.newtonIterations = sim.implicitStep().newtonCounts().iterations;
     r.krylovIterations = sim.implicitStep().newtonCounts().krylov;
   }

@@ -16,20 +16,30 @@ namespace anode {
 EquilibriumProblem ImplicitStep::equilibriumProblem(double dt) {
   const Grid& grid = mpm_.grid();
   std::vector<MPMMaterial>& materials = mpm_.materials();
-  const std::vector<GridFields>& nodal = mpm_.gridFields();
-  const ActiveNodes& active = mpm_.activeNodes();
-  const GridBoundaryConditions& bcs = mpm_.gridBCs();
+  const std::vector<GridFields>& nodal = mpm_.stepGrid().fields;
+  const ActiveNodes& active = mpm_.stepGrid().active;
+  const GridBoundaryConditions& bcs = mpm_.problem().gridBCs;
   const int nodes = grid.numNodes();
-  EquilibriumProblem problem{
-      grid, materials, mpm_.weights(), fieldOf_, {}, {}, mpm_.flags().gravity, {}, nullptr, {}, {},
-      {},   {}};
-  if (GhostNodes* ghosts = mpm_.ghosts()) {
+  EquilibriumProblem problem{grid,
+                             materials,
+                             mpm_.stepGrid().weights,
+                             fieldOf_,
+                             {},
+                             {},
+                             mpm_.problem().flags.gravity,
+                             {},
+                             nullptr,
+                             {},
+                             {},
+                             {},
+                             {}};
+  if (GhostNodes* ghosts = mpm_.layout().ghosts()) {
     // A node's unknowns belong to the rank owning the cell of the node's index.
     problem.ghosts = ghosts;
     problem.owned.resize(nodes);
     const int me = Communicator::rank();
     for (int k = 0; k < nodes; ++k)
-      problem.owned[k] = mpm_.decomposition().ownerOfCell(grid.nodeOf(k)) == me;
+      problem.owned[k] = mpm_.layout().boxes().ownerOfCell(grid.nodeOf(k)) == me;
   }
   for (size_t m = 0; m < materials.size(); ++m)
     problem.concentrationChange.push_back(mpm_.diffusion() && materials[m].model->swells()
@@ -59,11 +69,11 @@ EquilibriumProblem ImplicitStep::equilibriumProblem(double dt) {
 
 void ImplicitStep::addPredictedIncrement(EquilibriumProblem& problem, double dt) {
   const int nodes = mpm_.grid().numNodes();
-  const ActiveNodes& active = mpm_.activeNodes();
+  const ActiveNodes& active = mpm_.stepGrid().active;
   problem.predicted.assign(problem.mass.size(), std::vector<Vec3>(nodes, Vec3::Zero()));
   for (size_t m = 0; m < fieldOf_.size(); ++m) {
     std::vector<Vec3>& momentum = problem.predicted[fieldOf_[m]];
-    const GridFields& g = mpm_.gridFields()[m];
+    const GridFields& g = mpm_.stepGrid().fields[m];
     forEachNode(active.rows, [&](long k) { momentum[k] += g.momentum[k]; });
   }
   for (size_t f = 0; f < problem.predicted.size(); ++f)
@@ -73,23 +83,23 @@ void ImplicitStep::addPredictedIncrement(EquilibriumProblem& problem, double dt)
 
 void ImplicitStep::addStartOfStepMotion(EquilibriumProblem& problem, double dt) {
   const int nodes = mpm_.grid().numNodes();
-  const ActiveNodes& active = mpm_.activeNodes();
+  const ActiveNodes& active = mpm_.stepGrid().active;
   const size_t fields = problem.mass.size();
   problem.velocity.assign(fields, std::vector<Vec3>(nodes, Vec3::Zero()));
   problem.acceleration.assign(fields, std::vector<Vec3>(nodes, Vec3::Zero()));
   for (size_t m = 0; m < fieldOf_.size(); ++m) {
     std::vector<Vec3>& momentum = problem.velocity[fieldOf_[m]];
     std::vector<Vec3>& sum = problem.acceleration[fieldOf_[m]];
-    const GridFields& g = mpm_.gridFields()[m];
+    const GridFields& g = mpm_.stepGrid().fields[m];
     forEachNode(active.rows, [&](long k) { momentum[k] += g.momentum[k]; });
     // sum m a S, particle by particle (the accelerations are needed only here)
     const ParticleSet& p = mpm_.materials()[m].particles;
-    const InterpolationWeights& W = mpm_.weights()[m];
+    const InterpolationWeights& W = mpm_.stepGrid().weights[m];
     for (size_t i = 0; i < p.count(); ++i)
       for (size_t e = W.offset[i]; e < W.offset[i] + W.count[i]; ++e)
         sum[W.node[e]] += p.mass[i] * W.weight[e] * p.acceleration[i];
   }
-  if (GhostNodes* ghosts = mpm_.ghosts()) {
+  if (GhostNodes* ghosts = mpm_.layout().ghosts()) {
     std::vector<NodeArray> sums;
     for (std::vector<Vec3>& a : problem.acceleration) sums.push_back({a.data()->data(), 3});
     ScopedTimer s(mpm_.timers(), tasks_.communication);
@@ -119,7 +129,7 @@ void ImplicitStep::updateParticlesFromEquilibrium(double dt) {
     std::visit(
         [&](const auto* model) {
           firstInverted = updateParticlesFromDisplacement(
-              mat.particles, mpm_.weights()[m], *model, mat.density, u,
+              mat.particles, mpm_.stepGrid().weights[m], *model, mat.density, u,
               options_.dynamic ? &equilibrium_.acceleration(fieldOf_[m]) : nullptr,
               mpm_.diffusion() && model->swells() ? concentrationChange_[m].data() : nullptr, dt);
         },

@@ -43,11 +43,14 @@ class ImplicitStep::Transfer : public ConcentrationTransfer {
     mpm_.interpolateConcentrationGradient(m);
   }
   void sumOverRanks(std::vector<double>& nodal) override {
-    if (GhostNodes* ghosts = mpm_.ghosts()) ghosts->sumOverRanks(Collective{}, {{nodal.data(), 1}});
+    if (GhostNodes* ghosts = mpm_.layout().ghosts())
+      ghosts->sumOverRanks(Collective{}, {{nodal.data(), 1}});
   }
-  const InterpolationWeights& weights(size_t m) const override { return mpm_.weights()[m]; }
+  const InterpolationWeights& weights(size_t m) const override {
+    return mpm_.stepGrid().weights[m];
+  }
   const std::vector<double>& nodalMass(size_t m) const override {
-    return mpm_.gridFields()[m].mass;
+    return mpm_.stepGrid().fields[m].mass;
   }
 
  private:
@@ -78,12 +81,12 @@ std::string ImplicitStep::NewtonCounts::summary(long steps) const {
 
 ImplicitStep::ImplicitStep(const PSNode& root, MPM& mpm, const TimestepController& dt)
     : mpm_(mpm),
-      options_(*mpm.flags().implicit),
+      options_(*mpm.problem().flags.implicit),
       dt_(dt),
       transfer_(std::make_unique<Transfer>(mpm)) {
   checkSetup(root);
   // Materials in single_velocity contact share one field of unknowns; others have their own.
-  const Contact& contact = mpm.contact();
+  const Contact& contact = mpm.problem().contact;
   fieldOf_.assign(mpm.materials().size(), -1);
   if (contact.type == Contact::Type::SingleVelocity) {
     for (int m : contact.materials) fieldOf_[m] = 0;
@@ -98,14 +101,14 @@ ImplicitStep::ImplicitStep(const PSNode& root, MPM& mpm, const TimestepControlle
   tasks_ = {timers.task("computeInterpolationWeights"),
             timers.task("interpolateToParticlesAndUpdate"), timers.task("splitParticles"),
             timers.task("updateDiffusionState"),
-            mpm.distributed() ? timers.task("communication") : -1};
+            mpm.layout().distributed() ? timers.task("communication") : -1};
 }
 
 ImplicitStep::~ImplicitStep() = default;
 
 void ImplicitStep::checkSetup(const PSNode& root) const {
   const ReactiveFlow* diffusion = mpm_.diffusion();
-  if (mpm_.contact().excluded >= 0)
+  if (mpm_.problem().contact.excluded >= 0)
     root.requireChild("MaterialProperties")
         .requireChild("MPM")
         .requireChild("contact")
@@ -124,7 +127,7 @@ void ImplicitStep::checkSetup(const PSNode& root) const {
     // auto-cycle's turn is a decision on the state of a step's end, not of a stage.
     if (diffusion && diffusion->hasConcentrationBCs())
       tag.unsupported("<diffusion_integrator>rkl2 with SD-Type concentration boundary conditions");
-    if (mpm_.flags().autoCycle)
+    if (mpm_.problem().flags.autoCycle)
       tag.unsupported("<diffusion_integrator>rkl2 with <do_auto_cycle_bc>");
     if (!diffusion)
       tag.warn(
@@ -255,11 +258,11 @@ StepTaken ImplicitStep::advance(Collective, double t, double dt, double ruleDt) 
     // 5: x, F, stress and the models' state
     collective::stopTogether([&] { updateParticlesFromEquilibrium(dt); });
   }
-  if (mpm_.flags().refineParticles) {
+  if (mpm_.problem().flags.refineParticles) {
     ScopedTimer s(mpm_.timers(), tasks_.splitting);
     mpm_.splitParticles();
   }
-  if (mpm_.distributed()) {
+  if (mpm_.layout().distributed()) {
     ScopedTimer s(mpm_.timers(), tasks_.communication);
     mpm_.migrateParticles();  // particles that left the rank's box go to its owner
   }

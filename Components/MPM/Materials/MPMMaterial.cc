@@ -170,6 +170,12 @@ std::string describeMaterial(const MPMMaterial& mat, size_t matl) {
   return "material " + std::to_string(matl) + (mat.name.empty() ? "" : " (" + mat.name + ")");
 }
 
+size_t countParticles(const std::vector<MPMMaterial>& materials) {
+  size_t n = 0;
+  for (const MPMMaterial& mat : materials) n += mat.particles.count();
+  return n;
+}
+
 std::string describeParticle(const MPMMaterial& mat, size_t matl, size_t i) {
   return "particle " + std::to_string(mat.particles.id[i]) + " of " + describeMaterial(mat, matl) +
          " at " + formatVector(mat.particles.x[i]);

@@ -90,6 +90,8 @@ struct MPMMaterial {
 std::string formatVector(const Vec3& v);
 // "material M (name)", the name only if the input gave one, for diagnostics.
 std::string describeMaterial(const MPMMaterial& mat, size_t matl);
+// The particles of every material on this rank.
+size_t countParticles(const std::vector<MPMMaterial>& materials);
 // "particle ID of material M (name) at [x, y, z]", for diagnostics.
 std::string describeParticle(const MPMMaterial& mat, size_t matl, size_t i);
 
