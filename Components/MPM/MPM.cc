@@ -55,16 +55,13 @@ void MPM::problemSetup(const PSNode& root, double initTime, double maxTime, bool
                                   std::to_string(materials_.size()));
   contact_ = Contact::fromInput(mpmMats, static_cast<int>(materials_.size()));
   const PhysicalBCs physical = readPhysicalBCs(root);
-  if (flags_.doScalarDiffusion)
-    diffusion_ = std::make_unique<ReactiveFlow>(root, flags_, materials_, maxTime, physical);
-  else
-    ReactiveFlow::rejectWithoutDiffusion(root, flags_, physical);
+  diffusion_ = ReactiveFlow::fromInput(root, flags_, materials_, maxTime, physical);
   gridBCs_ = readGridBoundaryConditions(gridNode, static_cast<int>(materials_.size()),
                                         [this](const BCType& bc) {
                                           if (diffusion_)
                                             diffusion_->readConcentrationBC(bc);
                                           else
-                                            ReactiveFlow::rejectConcentrationBC(bc);
+                                            ConcentrationBC::rejectWithoutDiffusion(bc);
                                         });
   for (size_t m = 0; m < materials_.size(); ++m)
     seeds_[m].checkPiecesInsideGrid(grid_, gridBCs_.symmetryPlanes(static_cast<int>(m)));
@@ -213,9 +210,7 @@ void MPM::computeNodalVelocityAndConcentration() {
 }
 
 void MPM::computeNodalConcentration() {
-  for (size_t m = 0; m < materials_.size(); ++m)
-    diffusion_->computeNodalConcentration(m, fields_[m], active_.rows);  // Eq. 5
-  diffusion_->applyDiffusionInterface(fields_, active_.rows);
+  diffusion_->computeNodalConcentration(fields_, active_.rows);  // Eq. 5
 }
 
 void MPM::integrateConcentration(double dt) {
@@ -356,10 +351,7 @@ StableTimestep MPM::computeStableTimestep(Collective) const {
     }
     dt = std::min({dt, grid_.dx.x() / wx, grid_.dx.y() / wy, grid_.dx.z() / wz});  // Eq. 43
   }
-  if (diffusion_) {
-    limits.bound[StableTimestep::Diffusion] = diffusion_->diffusionTimestep(grid_);
-    limits.bound[StableTimestep::Flux] = diffusion_->fluxTimestep(Collective{}, materials_);
-  }
+  if (diffusion_) diffusion_->boundTimestep(Collective{}, grid_, materials_, limits);
   collective::minimum(limits.bound.data(), 2);  // Eqs. 43 and 44 over ranks
   return limits;
 }
