@@ -37,10 +37,7 @@ StableTimestep ExplicitStep::stableTimestep(Collective) const {
     }
     dt = std::min({dt, grid.dx.x() / wx, grid.dx.y() / wy, grid.dx.z() / wz});  // Eq. 43
   }
-  if (diffusion) {
-    limits.bound[StableTimestep::Diffusion] = diffusion->diffusionTimestep(grid);
-    limits.bound[StableTimestep::Flux] = diffusion->fluxTimestep(Collective{}, mpm_.materials());
-  }
+  if (diffusion) diffusion->boundTimestep(Collective{}, grid, mpm_.materials(), limits);
   collective::minimum(limits.bound.data(), 2);  // Eqs. 43 and 44 over ranks
   return limits;
 }

@@ -54,17 +54,13 @@ void MPM::problemSetup(const PSNode& root, double initTime, double maxTime, bool
                                   ", but there are " + std::to_string(materials_.size()));
   problem_.contact = Contact::fromInput(mpmMats, static_cast<int>(materials_.size()));
   const PhysicalBCs physical = readPhysicalBCs(root);
-  if (problem_.flags.doScalarDiffusion)
-    diffusion_ =
-        std::make_unique<ReactiveFlow>(root, problem_.flags, materials_, maxTime, physical);
-  else
-    ReactiveFlow::rejectWithoutDiffusion(root, problem_.flags, physical);
+  diffusion_ = ReactiveFlow::fromInput(root, problem_.flags, materials_, maxTime, physical);
   problem_.gridBCs = readGridBoundaryConditions(gridNode, static_cast<int>(materials_.size()),
                                                 [this](const BCType& bc) {
                                                   if (diffusion_)
                                                     diffusion_->readConcentrationBC(bc);
                                                   else
-                                                    ReactiveFlow::rejectConcentrationBC(bc);
+                                                    ConcentrationBC::rejectWithoutDiffusion(bc);
                                                 });
   for (size_t m = 0; m < materials_.size(); ++m)
     seeds_[m].checkPiecesInsideGrid(grid(), problem_.gridBCs.symmetryPlanes(static_cast<int>(m)));
@@ -210,9 +206,7 @@ void MPM::computeNodalVelocityAndConcentration() {
 }
 
 void MPM::computeNodalConcentration() {
-  for (size_t m = 0; m < materials_.size(); ++m)
-    diffusion_->computeNodalConcentration(m, step_.fields[m], step_.active.rows);  // Eq. 5
-  diffusion_->applyDiffusionInterface(step_.fields, step_.active.rows);
+  diffusion_->computeNodalConcentration(step_.fields, step_.active.rows);  // Eq. 5
 }
 
 void MPM::integrateConcentration(double dt) {

@@ -9,8 +9,10 @@
 #include "Components/MPM/ActiveNodes.h"
 #include "Components/MPM/GridFields.h"
 #include "Components/MPM/Interpolator.h"
+#include "Components/MPM/NodeGather.h"
 #include "Components/MPM/NodeQuads.h"
 #include "Components/MPM/ParticleSet.h"
+#include "Components/MPM/StressLanes.h"
 #include "Core/Math/Simd.h"
 
 namespace anode {
@@ -102,22 +104,16 @@ struct ParticleUpdate {
   double dt;
 };
 
-// The stress update's inputs and outputs for one block of particles, a lane each
-// (Core/Math/Simd.h), with the model's own state (Model::State); lanes without a particle, or
-// with an inverted one, hold an unstrained placeholder and are not written back.
+// The stress update's inputs for one block of particles (StressLanes.h) with the velocity
+// gradient L; a lane's results are written back to its particle only where `update` is set.
 template <class Model>
-struct StressBlock {
-  Mat3Pack stress, F, L;
-  Pack dc;
-  typename Model::template State<Pack> state;
+struct StressBlock : StressLanes<Model> {
+  Mat3Pack L;
   bool update[Pack::size()];
 
   void setPlaceholder(int l) {
-    setLane(stress, l, Mat3::Zero());
-    setLane(F, l, Mat3::Identity());
+    StressLanes<Model>::setPlaceholder(l);
     setLane(L, l, Mat3::Zero());
-    dc[l] = 0;
-    Model::StateArrays::loadUnstrained(state, l);
     update[l] = false;
   }
 };
@@ -146,35 +142,16 @@ long updateParticles(ParticleSet& p, const ParticleUpdate& u, const Model& model
         s.setPlaceholder(l);
         continue;
       }
-      // Per node: the sums of [v*, s] and [a, s-rate] times S and of [v*, s] times grad S
-      // (Eq. 8 and L = sum v* grad S; s the kernel's nodal value, c* with diffusion).
-      Quad velocity(0.0), acceleration(0.0), byX(0.0), byY(0.0), byZ(0.0);
       typename Concentration::Particle c{};
-      const size_t b = W.offset[i];
-      for (int e = 0; e < W.count[i]; ++e) {
-        const int k = W.node[b + e];
-        const double w = W.weight[b + e];
-        const Vec3& grad = W.gradient[b + e];
-        const NodeQuad* node = u.quads + kGatherQuads * static_cast<size_t>(k);
-        const Quad v = load(node[0]);
-        velocity += v * w;
-        acceleration += load(node[1]) * w;
-        byX += v * grad[0];
-        byY += v * grad[1];
-        byZ += v * grad[2];
-        concentration.gather(c, k, w);
-      }
-      const Vec3 vel(velocity[0], velocity[1], velocity[2]);
-      const Vec3 acc(acceleration[0], acceleration[1], acceleration[2]);
+      const GatheredQuads sums = gatherFromNodes(W, i, u.quads, concentration, c);
+      const Vec3 vel(sums.velocity[0], sums.velocity[1], sums.velocity[2]);
+      const Vec3 acc(sums.acceleration[0], sums.acceleration[1], sums.acceleration[2]);
       Mat3 gradV;
       for (int a = 0; a < 3; ++a) {
-        gradV(a, 0) = byX[a];
-        gradV(a, 1) = byY[a];
-        gradV(a, 2) = byZ[a];
+        gradV(a, 0) = sums.byX[a];
+        gradV(a, 1) = sums.byY[a];
+        gradV(a, 2) = sums.byZ[a];
       }
-      const int cl = kKernelLane;
-      const GatheredKernelValue gathered{Vec3(byX[cl], byY[cl], byZ[cl]), acceleration[cl],
-                                         velocity[cl]};
       // F^{n+1} = (I + L dt/N)^N F^n, subcycled when L dt is large (Uintah's rule).
       const int cycles = std::min(
           std::max(u.minimumSubcyclesForF, 2 * static_cast<int>(gradV.norm() * dt)), 10000);
@@ -183,29 +160,22 @@ long updateParticles(ParticleSet& p, const ParticleUpdate& u, const Model& model
       for (int step = 0; step < cycles; ++step) F = increment * F;
       const double J = F.determinant();
       p.velocity[i] += acc * dt;
-      p.x[i] += vel * dt;
-      p.displacement[i] += vel * dt;
-      p.volume[i] = p.mass[i] / u.density * J;
-      const double dc = concentration.update(i, c, gathered, dt);
-      p.F[i] = F;
+      moveParticle(p, i, vel * dt, F, J, u.density);
+      const double dc = concentration.update(i, c, sums.kernelValue(), dt);
       if (!(J > 0)) {  // no stress update for an inverted particle: the caller stops the run
         firstInverted = std::min(firstInverted, i);
         s.setPlaceholder(l);
         continue;
       }
-      setLane(s.stress, l, p.stress[i]);
-      setLane(s.F, l, F);
+      s.setParticle(l, p, i, F, u.swells ? dc : 0.0, state);
       setLane(s.L, l, gradV);
-      s.dc[l] = u.swells ? dc : 0.0;
-      state.load(s.state, l, i);
       s.update[l] = true;
     }
     const Mat3Pack stress = model.updateStress(s.stress, s.F, s.L, s.dc, dt, s.state);
     for (int l = 0; l < lanes; ++l) {
       if (!s.update[l]) continue;
       const long i = block * lanes + l;
-      p.stress[i] = lane(stress, l);
-      state.store(s.state, l, i);
+      storeStress<Model>(p, i, state, stress, s.state, l);
     }
   }
   return firstInverted;

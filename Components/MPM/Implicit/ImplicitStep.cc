@@ -121,19 +121,7 @@ void ImplicitStep::checkSetup(const PSNode& root) const {
         .warn(
             "<concentration_coupling>trapezoidal without <do_scalar_diffusion>true: there is "
             "no diffusion to couple, the steps are the staggered ones");
-  if (options_.diffusionIntegrator == ImplicitOptions::DiffusionIntegrator::Rkl2) {
-    const PSNode tag = root.requireChild("MPM").requireChild("diffusion_integrator");
-    // A stage needs the particles' rate of c; a Dirichlet node sets c instead, and the
-    // auto-cycle's turn is a decision on the state of a step's end, not of a stage.
-    if (diffusion && diffusion->hasConcentrationBCs())
-      tag.unsupported("<diffusion_integrator>rkl2 with SD-Type concentration boundary conditions");
-    if (mpm_.problem().flags.autoCycle)
-      tag.unsupported("<diffusion_integrator>rkl2 with <do_auto_cycle_bc>");
-    if (!diffusion)
-      tag.warn(
-          "<diffusion_integrator> without <do_scalar_diffusion>true: there is no diffusion to "
-          "integrate");
-  }
+  DiffusionPass::checkIntegrator(root, mpm_.problem().flags, options_, diffusion);
   if (!diffusion && options_.subcellConcentrationRelaxation)
     root.requireChild("MPM")
         .requireChild("subcell_concentration_relaxation")
@@ -175,18 +163,17 @@ void ImplicitStep::diffuseOverStep(double t, double dt) {
 
 StepTaken ImplicitStep::advance(Collective, double t, double dt, double ruleDt) {
   std::vector<MPMMaterial>& materials = mpm_.materials();
-  ReactiveFlow* diffusion = mpm_.diffusion();
+  const bool diffusion = mpm_.diffusion();
   {
     ScopedTimer s(mpm_.timers(), tasks_.interpolationWeights);
     mpm_.computeWeightsAndActiveNodes();  // 1: S_ip, grad S_ip at the start of the step
   }
   // A step retaken with a smaller dt diffuses again from the particles of the step's start.
   std::vector<ParticleSet> start;
-  std::optional<ReactiveFlow::StepState> diffusionAtStart;
   int retakes = 0;
   if (diffusion) {
     for (const MPMMaterial& mat : materials) start.push_back(mat.particles);
-    diffusionAtStart = diffusion->stepState();
+    diffusion_->keepStepStart();
   }
   while (true) {
     mpm_.interpolateParticlesToGrid();  // the nodal masses (and the concentration's sums)
@@ -212,8 +199,7 @@ StepTaken ImplicitStep::advance(Collective, double t, double dt, double ruleDt) 
     double couplingCorrection = -1;
     if (report.failure.empty() && diffusion &&
         options_.concentrationCoupling == ImplicitOptions::ConcentrationCoupling::Trapezoidal) {
-      prediction = averageConcentrationChangeOverStep(t, dt, start, *diffusionAtStart, predicted,
-                                                      couplingCorrection);
+      prediction = averageConcentrationChangeOverStep(t, dt, start, predicted, couplingCorrection);
       if (!prediction.converged) {
         report = prediction;
         report.failure = "the prediction of the step's end: " + report.failure;
@@ -248,10 +234,7 @@ StepTaken ImplicitStep::advance(Collective, double t, double dt, double ruleDt) 
     dt = smaller;
     ruleDt = smaller;
     for (size_t m = 0; m < start.size(); ++m) materials[m].particles = start[m];
-    if (diffusion) {
-      diffusion->restoreStepState(*diffusionAtStart);
-      diffusion->updateDiffusionState(Collective{}, materials, t);
-    }
+    if (diffusion) diffusion_->returnToStepStart(materials, t);
   }
   {
     ScopedTimer s(mpm_.timers(), tasks_.particleUpdate);

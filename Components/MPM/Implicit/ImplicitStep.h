@@ -96,7 +96,6 @@ class ImplicitStep : public Integrator {
   // (NewtonCounts::lastCouplingCorrection).
   NewtonReport averageConcentrationChangeOverStep(double t, double dt,
                                                   const std::vector<ParticleSet>& start,
-                                                  const ReactiveFlow::StepState& atStart,
                                                   std::vector<std::vector<Vec3>>& predicted,
                                                   double& correction);
   // The largest |dc| of a particle over the diffusion of the step.

@@ -19,6 +19,7 @@
 
 #include "Components/MPM/Interpolator.h"
 #include "Components/MPM/ParticleSet.h"
+#include "Components/MPM/StressLanes.h"
 #include "Core/Math/Simd.h"
 
 namespace anode {
@@ -49,13 +50,11 @@ inline Mat3 displacementGradient(const InterpolationWeights& W, long i,
   return H;
 }
 
-// One block of Pack::size() particles at its start-of-step state (lanes without a particle hold
-// an unstrained placeholder).
+// One block of Pack::size() particles at its start-of-step state (StressLanes.h) with the
+// displacement gradient H of the trial u.
 template <class Model>
-struct TrialBlock {
-  Mat3Pack stress, F, H;
-  Pack dc;
-  typename Model::template State<Pack> state;
+struct TrialBlock : StressLanes<Model> {
+  Mat3Pack H;
 
   // `concentrationChange`: dc per particle, or null (no swelling in this step).
   TrialBlock(const ParticleSet& p, const typename Model::StateArrays& arrays,
@@ -64,18 +63,13 @@ struct TrialBlock {
     for (int l = 0; l < static_cast<int>(Pack::size()); ++l) {
       const long i = first + l;
       if (i >= static_cast<long>(p.count())) {
-        setLane(stress, l, Mat3::Zero());
-        setLane(F, l, Mat3::Identity());
+        this->setPlaceholder(l);
         setLane(H, l, Mat3::Zero());
-        dc[l] = 0;
-        Model::StateArrays::loadUnstrained(state, l);
         continue;
       }
-      dc[l] = concentrationChange ? concentrationChange[i] : 0.0;
-      setLane(stress, l, p.stress[i]);
-      setLane(F, l, p.F[i]);
+      this->setParticle(l, p, i, p.F[i], concentrationChange ? concentrationChange[i] : 0.0,
+                        arrays);
       setLane(H, l, displacementGradient(W, i, u));
-      arrays.load(state, l, i);
     }
   }
 
@@ -87,8 +81,8 @@ struct TrialBlock {
     const Mat3Pack sum = I + dF;
     const Mat3Pack inverseSum = cofactorOf(sum).transpose() / sum.determinant();
     const Mat3Pack L = Pack(2.0 / dt) * h * inverseSum;
-    after = state;
-    return model.updateStress(stress, Mat3Pack(dF * F), L, dc, dt, after);
+    after = this->state;
+    return model.updateStress(this->stress, Mat3Pack(dF * this->F), L, this->dc, dt, after);
   }
   Mat3Pack piola(const Model& model, const Mat3Pack& h, double dt) const {
     typename Model::template State<Pack> after;
@@ -160,18 +154,14 @@ long updateParticlesFromDisplacement(ParticleSet& p, const InterpolationWeights&
         firstInverted = std::min(firstInverted, i);
         continue;
       }
-      p.x[i] += moved;
-      p.displacement[i] += moved;
+      moveParticle(p, i, moved, F, J, density);
       if (acceleration) {
         p.velocity[i] += dt / 2 * (p.acceleration[i] + accelerated);
         p.acceleration[i] = accelerated;
       } else {
         p.velocity[i] = moved / dt;
       }
-      p.F[i] = F;
-      p.volume[i] = p.mass[i] / density * J;
-      p.stress[i] = lane(sigma, l);
-      arrays.store(after, l, i);
+      storeStress<Model>(p, i, arrays, sigma, after, l);
     }
   }
   return firstInverted;

@@ -22,10 +22,8 @@ constexpr double kPredictorConvergence = 1e-3;
 
 NewtonReport ImplicitStep::averageConcentrationChangeOverStep(
     double t, double dt, const std::vector<ParticleSet>& start,
-    const ReactiveFlow::StepState& atStart, std::vector<std::vector<Vec3>>& predicted,
-    double& correction) {
+    std::vector<std::vector<Vec3>>& predicted, double& correction) {
   std::vector<MPMMaterial>& materials = mpm_.materials();
-  ReactiveFlow& diffusion = *mpm_.diffusion();
   // Never tighter than the step's own criteria.
   ImplicitOptions loose = options_;
   loose.convergenceDisp = std::max(kPredictorConvergence, loose.convergenceDisp);
@@ -55,11 +53,7 @@ NewtonReport ImplicitStep::averageConcentrationChangeOverStep(
       d.concentration = s.concentration;
       d.concentrationGradient = s.concentrationGradient;
     }
-    diffusion.restoreStepState(atStart);
-    {
-      ScopedTimer s(mpm_.timers(), tasks_.diffusionState);
-      diffusion.updateDiffusionState(Collective{}, materials, t);  // D of the predicted stress
-    }
+    diffusion_->returnToStepStart(materials, t);  // D of the predicted stress
     computeWeights();
     diffuseOverStep(t, dt);
     // The start's particles with the means of the two passes (trapezoidal in the geometry, the
@@ -83,7 +77,7 @@ NewtonReport ImplicitStep::averageConcentrationChangeOverStep(
     maxConcentrationChange_ = collective::maximum(largestConcentrationChange());
     {
       ScopedTimer s(mpm_.timers(), tasks_.diffusionState);
-      diffusion.updateDiffusionState(Collective{}, materials, t + dt);
+      mpm_.diffusion()->updateDiffusionState(Collective{}, materials, t + dt);
     }
   } catch (const SimulationError& e) {
     // A prediction solved to kPredictorConvergence may invert a particle, or its second pass

@@ -12,6 +12,10 @@ ConcentrationBC ConcentrationBC::fromInput(const BCType& bc) {
   return c;
 }
 
+void ConcentrationBC::rejectWithoutDiffusion(const BCType& bc) {
+  bc.node.fail("label=\"SD-Type\" (concentration) needs <MPM><do_scalar_diffusion>true");
+}
+
 void applyConcentrationBCs(const Grid& g, const std::vector<ConcentrationBC>& bcs, int matl,
                            std::vector<double>& field) {
   for (const ConcentrationBC& bc : bcs) {

@@ -17,6 +17,8 @@ struct ConcentrationBC {
 
   // An SD-Type <BCType>, which MPM's reader of <Grid><BoundaryConditions> hands over.
   static ConcentrationBC fromInput(const BCType& bc);
+  // The same in a run without diffusion: an error.
+  [[noreturn]] static void rejectWithoutDiffusion(const BCType& bc);
 };
 
 void applyConcentrationBCs(const Grid& g, const std::vector<ConcentrationBC>& bcs, int matl,

@@ -1,12 +1,14 @@
 // G2P of the concentration alone, for the diffusion sub-steps of a quasi-static step
 // (docs/quasi-static.md): the particles stay where the step began, so each sub-step is P2G, the
 // grid's concentration equations and this gather, with the diffusion kernel of an explicit step
-// (ReactiveFlow's ConcentrationGather) and the same node quads (fillGatherQuads, NodeQuads.h).
+// (ReactiveFlow's ConcentrationGather) and the same node quads and per-particle sums as its G2P
+// (NodeGather.h), the kernel lane of which it uses.
 #pragma once
 
 #include <vector>
 
 #include "Components/MPM/Interpolator.h"
+#include "Components/MPM/NodeGather.h"
 #include "Components/MPM/NodeQuads.h"
 #include "Components/MPM/ParticleSet.h"
 #include "Components/MPM/ReactiveFlow/DiffusionParticles.h"
@@ -19,23 +21,11 @@ void updateConcentrationOnly(const ParticleSet& p, const InterpolationWeights& W
                              const NodeQuad* quads, const Kernel& kernel, double dt,
                              std::vector<double>& dc) {
   const long n = static_cast<long>(p.count());
-  const int lane = kKernelLane;
 #pragma omp parallel for schedule(static)
   for (long i = 0; i < n; ++i) {
     typename Kernel::Particle a{};
-    GatheredKernelValue sums{Vec3::Zero(), 0.0, 0.0};
-    const size_t b = W.offset[i];
-    for (int e = 0; e < W.count[i]; ++e) {
-      const int k = W.node[b + e];
-      const double w = W.weight[b + e];
-      const double value = quads[kGatherQuads * static_cast<size_t>(k)].value[lane];
-      const double rate = quads[kGatherQuads * static_cast<size_t>(k) + 1].value[lane];
-      sums.value += w * value;
-      sums.rate += w * rate;
-      sums.gradient += value * W.gradient[b + e];
-      kernel.gather(a, k, w);
-    }
-    dc[i] += kernel.update(i, a, sums, dt);
+    const GatheredQuads sums = gatherFromNodes(W, i, quads, kernel, a);
+    dc[i] += kernel.update(i, a, sums.kernelValue(), dt);
   }
 }
 

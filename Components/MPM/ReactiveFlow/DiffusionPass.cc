@@ -20,6 +20,21 @@ DiffusionPass::DiffusionPass(ReactiveFlow& diffusion, const Grid& grid,
       diffusionStateTask_(timers.task("updateDiffusionState")),
       particleUpdateTask_(timers.task("interpolateToParticlesAndUpdate")) {}
 
+void DiffusionPass::checkIntegrator(const PSNode& root, const MPMFlags& flags,
+                                    const ImplicitOptions& options, const ReactiveFlow* diffusion) {
+  if (options.diffusionIntegrator != ImplicitOptions::DiffusionIntegrator::Rkl2) return;
+  const PSNode tag = root.requireChild("MPM").requireChild("diffusion_integrator");
+  // A stage needs the particles' rate of c; a Dirichlet node sets c instead, and the
+  // auto-cycle's turn is a decision on the state of a step's end, not of a stage.
+  if (diffusion && diffusion->hasConcentrationBCs())
+    tag.unsupported("<diffusion_integrator>rkl2 with SD-Type concentration boundary conditions");
+  if (flags.autoCycle) tag.unsupported("<diffusion_integrator>rkl2 with <do_auto_cycle_bc>");
+  if (!diffusion)
+    tag.warn(
+        "<diffusion_integrator> without <do_scalar_diffusion>true: there is no diffusion to "
+        "integrate");
+}
+
 double DiffusionPass::substepLimit(const std::vector<MPMMaterial>& materials) const {
   // Eq. 44 over every rank's particles and the flux limit: each rank's sub-steps are the same.
   return substepMultiplier_ * std::min(collective::minimum(diffusion_.diffusionTimestep(grid_)),
@@ -29,6 +44,11 @@ double DiffusionPass::substepLimit(const std::vector<MPMMaterial>& materials) co
 void DiffusionPass::updateDiffusionState(std::vector<MPMMaterial>& materials, double t) {
   ScopedTimer s(timers_, diffusionStateTask_);
   diffusion_.updateDiffusionState(Collective{}, materials, t);  // range, D, flux rates
+}
+
+void DiffusionPass::returnToStepStart(std::vector<MPMMaterial>& materials, double t) {
+  diffusion_.restoreStepState(*start_);
+  updateDiffusionState(materials, t);
 }
 
 long DiffusionPass::diffuse(ConcentrationTransfer& grid, std::vector<MPMMaterial>& materials,

@@ -7,6 +7,7 @@
 // flux limit).
 #pragma once
 
+#include <optional>
 #include <vector>
 
 #include "Components/MPM/ImplicitOptions.h"
@@ -19,6 +20,10 @@ namespace anode {
 
 class DiffusionPass {
  public:
+  // <diffusion_integrator>rkl2's conditions on the run (`diffusion` null without diffusion):
+  // errors for what a stage cannot do, a warning where there is nothing to integrate.
+  static void checkIntegrator(const PSNode& root, const MPMFlags& flags,
+                              const ImplicitOptions& options, const ReactiveFlow* diffusion);
   // substepMultiplier: a sub-step's share of the explicit limits (<timestep_multiplier>).
   // `grid`: MPM's (its cell edges).
   DiffusionPass(ReactiveFlow& diffusion, const Grid& grid, const ImplicitOptions& options,
@@ -31,6 +36,11 @@ class DiffusionPass {
   // evaluations of the rate it took (sub-steps or stages). Collective.
   long diffuse(ConcentrationTransfer& grid, std::vector<MPMMaterial>& materials, double t,
                double dt, std::vector<std::vector<double>>& change);
+  // Keeps the diffusion state of the step's start (ReactiveFlow::StepState), which
+  // returnToStepStart takes up again with the diffusion state of the particles at time t (the
+  // step's start, or its predicted end: the start's particles are the caller's).
+  void keepStepStart() { start_ = diffusion_.stepState(); }
+  void returnToStepStart(std::vector<MPMMaterial>& materials, double t);
 
  private:
   long diffuseInSubsteps(ConcentrationTransfer& grid, std::vector<MPMMaterial>& materials, double t,
@@ -50,7 +60,8 @@ class DiffusionPass {
   double substepMultiplier_;
   TaskTimers& timers_;
   int diffusionStateTask_, particleUpdateTask_;
-  std::vector<double> nodeMassDiffusivity_;  // the relaxation's sum S m D
+  std::vector<double> nodeMassDiffusivity_;       // the relaxation's sum S m D
+  std::optional<ReactiveFlow::StepState> start_;  // keepStepStart's
 };
 
 }  // namespace anode

@@ -75,15 +75,12 @@ ReactiveFlow::ReactiveFlow(const PSNode& root, const MPMFlags& flags,
   }
 }
 
-bool ReactiveFlow::sharesSurfacesAtSetup() const {
-  return std::any_of(flux_.bcs().begin(), flux_.bcs().end(), [](const ScalarFluxBC& bc) {
-    return bc.face == ScalarFluxBC::Face::Surface ||
-           (bc.face != ScalarFluxBC::Face::Box && !bc.particleFaceArea);
-  });
-}
-
-void ReactiveFlow::rejectWithoutDiffusion(const PSNode& root, const MPMFlags& flags,
-                                          const PhysicalBCs& physical) {
+std::unique_ptr<ReactiveFlow> ReactiveFlow::fromInput(const PSNode& root, const MPMFlags& flags,
+                                                      const std::vector<MPMMaterial>& materials,
+                                                      double maxTime, const PhysicalBCs& physical) {
+  if (flags.doScalarDiffusion)
+    return std::unique_ptr<ReactiveFlow>(
+        new ReactiveFlow(root, flags, materials, maxTime, physical));
   DiffusionInterface::fromInput(root.requireChild("MaterialProperties").requireChild("MPM"), false,
                                 0);
   readFluxBCs(root, flags, physical);
@@ -93,6 +90,14 @@ void ReactiveFlow::rejectWithoutDiffusion(const PSNode& root, const MPMFlags& fl
     for (const PSNode& object : material.children("geom_object"))
       object.acceptInert("concentration");  // it matters only with diffusion
   }
+  return nullptr;
+}
+
+bool ReactiveFlow::sharesSurfacesAtSetup() const {
+  return std::any_of(flux_.bcs().begin(), flux_.bcs().end(), [](const ScalarFluxBC& bc) {
+    return bc.face == ScalarFluxBC::Face::Surface ||
+           (bc.face != ScalarFluxBC::Face::Box && !bc.particleFaceArea);
+  });
 }
 
 void ReactiveFlow::checkSurfaceBCs(const PSNode& root, const std::vector<MPMMaterial>& materials,
@@ -119,10 +124,6 @@ void ReactiveFlow::checkSurfaceBCs(const PSNode& root, const std::vector<MPMMate
           "<surface> BCs have no normal to share a split particle's faces by: not with "
           "particle splitting (refine_particles)");
   }
-}
-
-void ReactiveFlow::rejectConcentrationBC(const BCType& bc) {
-  bc.node.fail("label=\"SD-Type\" (concentration) needs <MPM><do_scalar_diffusion>true");
 }
 
 void ReactiveFlow::initialize(const PSNode& root, const Grid& grid,
@@ -276,21 +277,19 @@ void ReactiveFlow::addScatteredArrays(std::vector<NodeArray>& arrays) {
       if (!f->empty()) arrays.push_back({f->data(), 1});
 }
 
-void ReactiveFlow::computeNodalConcentration(size_t m, const GridFields& mechanics,
+void ReactiveFlow::computeNodalConcentration(const std::vector<GridFields>& mechanics,
                                              const std::vector<NodeRange>& nodes) {
-  if (!computesConcentration(m)) return;
-  ConcentrationGridFields& g = fields_[m];
-  forEachNode(nodes, [&](long k) {
-    const double c =
-        mechanics.mass[k] > 0 ? g.massConcentration[k] / mechanics.mass[k] : 0.0;  // Eq. 5
-    g.concentrationNoBC[k] = c;
-    g.concentration[k] = c;
-  });
-  applyConcentrationBCs(grid_, concentrationBCs_, static_cast<int>(m), g.concentration);
-}
-
-void ReactiveFlow::applyDiffusionInterface(const std::vector<GridFields>& mechanics,
-                                           const std::vector<NodeRange>& nodes) {
+  for (size_t m = 0; m < mechanics.size(); ++m) {
+    if (!computesConcentration(m)) continue;
+    ConcentrationGridFields& g = fields_[m];
+    const GridFields& f = mechanics[m];
+    forEachNode(nodes, [&](long k) {
+      const double c = f.mass[k] > 0 ? g.massConcentration[k] / f.mass[k] : 0.0;  // Eq. 5
+      g.concentrationNoBC[k] = c;
+      g.concentration[k] = c;
+    });
+    applyConcentrationBCs(grid_, concentrationBCs_, static_cast<int>(m), g.concentration);
+  }
   interface_.apply(mechanics, fields_, nodes);
 }
 

@@ -24,6 +24,7 @@
 #include "Components/MPM/ReactiveFlow/DiffusionGridFields.h"
 #include "Components/MPM/ReactiveFlow/DiffusionInterface.h"
 #include "Components/MPM/ReactiveFlow/ExternalScalarFlux.h"
+#include "Components/MPM/StableTimestep.h"
 #include "Components/MPM/StepSummary.h"
 #include "Core/Util/BinaryStream.h"
 
@@ -31,20 +32,18 @@ namespace anode {
 
 class ReactiveFlow {
  public:
-  // Reads <diffusion_interface>, the <scalar_flux> blocks of `physical` and each material's
-  // <diffusion_model> (`maxTime` bounds its diff_curve).
-  ReactiveFlow(const PSNode& root, const MPMFlags& flags, const std::vector<MPMMaterial>& materials,
-               double maxTime, const PhysicalBCs& physical);
-  // A run without diffusion: the tags that would need it are errors, not silently dropped; the
+  // With <do_scalar_diffusion>true: reads <diffusion_interface>, the <scalar_flux> blocks of
+  // `physical` and each material's <diffusion_model> (`maxTime` bounds its diff_curve). Without
+  // it: null, and the tags that would need diffusion are errors, not silently dropped; the
   // diffusion tags of the materials are read as Uintah reads them then (not at all).
-  static void rejectWithoutDiffusion(const PSNode& root, const MPMFlags& flags,
-                                     const PhysicalBCs& physical);
-  // An SD-Type <BCType>, which MPM's reader of <Grid><BoundaryConditions> hands over; in a run
-  // without diffusion it is an error (rejectConcentrationBC).
+  static std::unique_ptr<ReactiveFlow> fromInput(const PSNode& root, const MPMFlags& flags,
+                                                 const std::vector<MPMMaterial>& materials,
+                                                 double maxTime, const PhysicalBCs& physical);
+  // An SD-Type <BCType>, which MPM's reader of <Grid><BoundaryConditions> hands over (in a run
+  // without diffusion an error: ConcentrationBC::rejectWithoutDiffusion).
   void readConcentrationBC(const BCType& bc) {
     concentrationBCs_.push_back(ConcentrationBC::fromInput(bc));
   }
-  [[noreturn]] static void rejectConcentrationBC(const BCType& bc);
 
   // Whether setup shares a BC's surface out among the particles near it (a curved face of a
   // grid-filled body, or a <surface>; FluxSurfaceArea.h): a rank then holds, while it flags the
@@ -77,12 +76,10 @@ class ReactiveFlow {
                    const std::vector<NodeRange>& cleared, F&& f);
   // Adds the nodal arrays P2G sums (per material) to `arrays`, for the ranks to complete them.
   void addScatteredArrays(std::vector<NodeArray>& arrays);
-  // Eq. 5: c = (mc)/m, then the SD-Type conditions; after all materials, the interface.
-  // All on the nodes of `nodes` (the step's active nodes).
-  void computeNodalConcentration(size_t m, const GridFields& mechanics,
+  // Eq. 5: c = (mc)/m, then the SD-Type conditions, per material; after all materials, the
+  // interface. All on the nodes of `nodes` (the step's active nodes).
+  void computeNodalConcentration(const std::vector<GridFields>& mechanics,
                                  const std::vector<NodeRange>& nodes);
-  void applyDiffusionInterface(const std::vector<GridFields>& mechanics,
-                               const std::vector<NodeRange>& nodes);
   // Eq. 18: c* = c + (R + G)/m dt and the nodal rate that drives Eq. 8.
   void integrateConcentration(const std::vector<GridFields>& mechanics, double dt,
                               const std::vector<NodeRange>& nodes);
@@ -93,6 +90,13 @@ class ReactiveFlow {
   // diffusivity (Eq. 23 or 24) and flux rates (Eqs. 16-17), which output, the next time step
   // and the next step use.
   void updateDiffusionState(Collective, std::vector<MPMMaterial>& materials, double t);
+  // The diffusion's bounds of the stable time step: Eq. 44 over this rank's particles, and the
+  // flux limit over all ranks (diffusionTimestep, fluxTimestep).
+  void boundTimestep(Collective, const Grid& grid, const std::vector<MPMMaterial>& materials,
+                     StableTimestep& limits) const {
+    limits.bound[StableTimestep::Diffusion] = diffusionTimestep(grid);
+    limits.bound[StableTimestep::Flux] = fluxTimestep(Collective{}, materials);
+  }
   // Eq. 44 over this rank's particles: dx^2 / (2 D_max), infinity without diffusivity.
   double diffusionTimestep(const Grid& grid) const;
   // The flux limit over all ranks (docs/diffusion.md, "Time step").
@@ -118,7 +122,8 @@ class ReactiveFlow {
   // "Materials that take up no lithium"). Its P2G and G2P run without concentration, its
   // diffusivity stays 0 and it has no nodal concentration fields, unless the output saves them.
   bool computesConcentration(size_t m) const { return changes_[m] || everyMaterial_; }
-  // SD-Type concentration conditions (<BCType ... label="Concentration">) on some grid face.
+  // SD-Type concentration conditions (<BCType ... label="Concentration">) on some grid face
+  // (DiffusionPass::checkIntegrator).
   bool hasConcentrationBCs() const { return !concentrationBCs_.empty(); }
   // The materials whose concentration can change, when two or more can (else empty): the ones
   // history.csv gives columns of their own.
@@ -135,9 +140,9 @@ class ReactiveFlow {
   // What happened in the steps since the last call that the user should know (a galvanostatic
   // BC's current ending); the same on every rank.
   std::vector<std::string> takeRunNotes() { return flux_.takeNotes(); }
-  // The state a quasi-static step retaken with a smaller dt starts again from: the flux BCs'
-  // (the auto-cycle sign, the galvanostatic currents ended, their notes) and the diffusivity
-  // models' (the interval a <diff_curve> is in).
+  // The state a quasi-static step retaken with a smaller dt starts again from (DiffusionPass):
+  // the flux BCs' (the auto-cycle sign, the galvanostatic currents ended, their notes) and the
+  // diffusivity models' (the interval a <diff_curve> is in).
   struct StepState {
     ExternalScalarFlux flux;
     std::vector<std::vector<uint64_t>> models;
@@ -150,6 +155,8 @@ class ReactiveFlow {
   }
 
  private:
+  ReactiveFlow(const PSNode& root, const MPMFlags& flags, const std::vector<MPMMaterial>& materials,
+               double maxTime, const PhysicalBCs& physical);
   void computeDiffusivity(std::vector<MPMMaterial>& materials, double t);
   void checkConcentrationRange(const std::vector<MPMMaterial>& materials, double t) const;
   bool concentrationCanChange(size_t m, const ScalarDiffusionModel& model) const;
