@@ -93,7 +93,7 @@ int run(anode::RunOptions& options, long decomposeRanks) {
       std::fprintf(stderr, "sus: simulation stopped: %s\n", e.what());
       return 3;
     }
-    sim.printTimings();
+    sim.printTimings(anode::Collective{});
     if (sim.stoppedOnRequest()) return 4;
   } catch (const anode::SetupFailedOnAnotherRank& e) {
     // An input error of other ranks only: rank 0 prints it, naming them (rank 0 reports its

@@ -1,12 +1,10 @@
 #include "StandAlone/Driver/Simulation.h"
 
-#include <omp.h>
 #include <sys/resource.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <filesystem>
 #include <sstream>
 #include <stdexcept>
 
@@ -14,9 +12,8 @@
 #include "Components/MPM/IntegratorFactory.h"
 #include "Core/Parallel/Communicator.h"
 #include "Core/Parallel/StopTogether.h"
-#include "Core/Util/AtomicFile.h"
-#include "Core/Util/InstructionSet.h"
 #include "StandAlone/Driver/RunReport.h"
+#include "StandAlone/Driver/RunTimings.h"
 #include "StandAlone/Driver/StepForecast.h"
 #include "StandAlone/Driver/StopRequest.h"
 
@@ -76,7 +73,8 @@ void Simulation::readInput() {
             "<outputTimestepInterval> steps, not at times (<outputInterval>)");
   if (mpm_.diffusion())
     archiver_.setMaterialColumns(mpm_.materials(), mpm_.diffusion()->lithiumTakingMaterials());
-  checkpoints_ = CheckpointSchedule::fromInput(root.requireChild("DataArchiver"));
+  checkpoints_ = RunCheckpoints(CheckpointSchedule::fromInput(root.requireChild("DataArchiver")),
+                                time_.initTime);
   scenes_ = SceneOutput::fromInput(root, time_, mpm_);
   spec_->checkAllUsed();
   inputMaxTimesteps_ = time_.maxTimesteps;
@@ -84,7 +82,6 @@ void Simulation::readInput() {
       (time_.maxTimesteps == 0 || options_.maxTimesteps < time_.maxTimesteps))
     time_.maxTimesteps = options_.maxTimesteps;
   t_ = time_.initTime;
-  lastCheckpointTime_ = t_;
 }
 
 void Simulation::takeStableTimestep(double growsFrom) {
@@ -127,7 +124,6 @@ void Simulation::finishStep() {
 
 void Simulation::run() {
   runStart_ = std::chrono::steady_clock::now();
-  inputHash_ = fileHash(options_.input);
   const bool restart = !options_.restartDir.empty();
   start(Collective{}, restart);
   if (options_.progress && Communicator::isRoot())
@@ -137,22 +133,7 @@ void Simulation::run() {
   if (nothingLeft && archiver_.lastOutputStep() != step_) writeOutput(false);
   while (!nothingLeft) {
     const StableTimestep::Limit stepLimit = dtLimit_;
-    const double plannedDt = dt_;
-    const int plannedRule = dtSetByTimeControl_ ? int{kDtSetByTimeControl} : int{stepLimit};
-    try {
-      advance();
-    } catch (const SimulationError&) {
-      writeStateOnStop();
-      throw;
-    }
-    const double stepDt = lastStepDt_;
-    const int rule = stepDt < plannedDt ? int{kDtRetaken} : plannedRule;
-    ++stepsByRule_[rule];
-    const double particles = static_cast<double>(recordHistoryRow(stepDt, rule));
-    particleSteps_ += particles;
-    particleStepsOfThisProcess_ += particles;
-    reportSymmetryFaces();
-    reportDiffusionNotes();
+    const double stepDt = advanceAndRecord(Collective{});
     const bool done = finished(Collective{});
     const bool atInputEnd = done && reachedInputEnd();
     // A rebalance is followed by a checkpoint, so a replay to the last good state never
@@ -160,7 +141,7 @@ void Simulation::run() {
     bool rebalanced = false;
     if (atInputEnd || archiver_.isOutputStep(step_, t_)) {
       writeOutput(true);
-      rebalanced = !done && rebalance(Collective{});
+      rebalanced = !done && balance_.rebalance(Collective{}, mpm_, step_);
     }
     scenes_.renderDue(t_, mpm_, archiver_.directory());
     const Requests anyRank = requestsOfAnyRank(Collective{}, done);
@@ -168,43 +149,57 @@ void Simulation::run() {
     // A stop before the input's end (a signal, --max-timesteps, <max_wall_time>) leaves a
     // checkpoint at its step, so a restart takes no step twice.
     const bool stopping = anyRank.stop || (done && !atInputEnd);
-    if (checkpoints_.isDue(step_, t_, lastCheckpointTime_))
+    if (checkpoints_.isDue(step_, t_))
       writeCheckpoint(Collective{}, CheckpointKind::Scheduled);
     else if (rebalanced || stopping || anyRank.replayCheckpoint)
       writeCheckpoint(Collective{}, CheckpointKind::Automatic);
     // The stopped state as the series' last entry, after the checkpoint: a restart from it
     // removes this output, so the continued series is the uninterrupted run's.
     if (stopping && archiver_.lastOutputStep() != step_) writeOutput(true);
-    if (progress_) {
-      std::string limit = integrator_->describeLastStep(stepLimit);
-      if (mpm_.diffusion()) {
-        char charge[64];
-        std::snprintf(charge, sizeof charge, ", SOC %.2f%% = %.0f mAh/g", 100 * stateOfCharge_,
-                      stateOfCharge_ * kSiliconCapacityAtFull);
-        limit += charge;
-      }
-      progress_->update(step_, t_, stepDt, limit.c_str(), particleStepsOfThisProcess_, done);
-    }
+    if (progress_) updateProgress(stepLimit, stepDt, done);
     if (done || stoppedOnRequest_) break;
   }
-  if (progress_) progress_->finish();
-  if (Communicator::isRoot()) {
-    if (stoppedOnRequest_)
-      std::fprintf(stderr,
-                   "sus: stopped on request (SIGTERM, SIGINT or SIGUSR1) after step %ld, t = "
-                   "%.6e: checkpoint %s; continue with sus -restart %s\n",
-                   step_, t_, newestCheckpoint_.c_str(), archiver_.directory().c_str());
-    else if (!reachedInputEnd())
-      std::fprintf(stderr,
-                   "sus: stopped after step %ld, t = %.6e, before the input's end (%s): "
-                   "checkpoint %s; continue with sus -restart %s\n",
-                   step_, t_,
-                   time_.maxTimesteps > 0 && step_ >= time_.maxTimesteps ? "--max-timesteps"
-                                                                         : "<max_wall_time>",
-                   newestCheckpoint_.c_str(), archiver_.directory().c_str());
-    else
-      removeAutomaticCheckpoints(archiver_.directory());
+  finishRun();
+}
+
+double Simulation::advanceAndRecord(Collective) {
+  const double plannedDt = dt_;
+  const int plannedRule = dtSetByTimeControl_ ? int{kDtSetByTimeControl} : int{dtLimit_};
+  try {
+    advance();
+  } catch (const SimulationError&) {
+    writeStateOnStop();
+    throw;
   }
+  const double stepDt = lastStepDt_;
+  const int rule = stepDt < plannedDt ? int{kDtRetaken} : plannedRule;
+  ++stepsByRule_[rule];
+  const double particles = static_cast<double>(recordHistoryRow(stepDt, rule));
+  particleSteps_ += particles;
+  particleStepsOfThisProcess_ += particles;
+  reportSymmetryFaces();
+  reportDiffusionNotes();
+  return stepDt;
+}
+
+void Simulation::updateProgress(StableTimestep::Limit stepLimit, double stepDt, bool done) {
+  std::string limit = integrator_->describeLastStep(stepLimit);
+  if (mpm_.diffusion()) {
+    char charge[64];
+    std::snprintf(charge, sizeof charge, ", SOC %.2f%% = %.0f mAh/g", 100 * stateOfCharge_,
+                  stateOfCharge_ * kSiliconCapacityAtFull);
+    limit += charge;
+  }
+  progress_->update(step_, t_, stepDt, limit.c_str(), particleStepsOfThisProcess_, done);
+}
+
+void Simulation::finishRun() {
+  if (progress_) progress_->finish();
+  if (Communicator::isRoot())
+    checkpoints_.atEnd(archiver_.directory(), stoppedOnRequest_, reachedInputEnd(),
+                       time_.maxTimesteps > 0 && step_ >= time_.maxTimesteps ? "--max-timesteps"
+                                                                             : "<max_wall_time>",
+                       step_, t_);
   writeReport(reachedInputEnd()
                   ? "Written at the end of the run (step " + std::to_string(step_) + ")."
                   : "Written when the run stopped before its end, after step " +
@@ -213,16 +208,19 @@ void Simulation::run() {
 }
 
 void Simulation::start(Collective, bool restart) {
-  std::string restartedFrom;
+  checkpoints_.hashInput(options_.input);
   if (restart) {
-    restartedFrom = restartFromNewestCheckpoint(Collective{});
+    archiver_.reopen(options_.restartDir);
+    resumeFrom(checkpoints_.restartFromNewest(Collective{}, options_.restartDir, archiver_, mpm_));
+    firstStepOfThisProcess_ = step_;
+    scenes_.skipTimesUpTo(t_);
   } else {
     // Rank 0 picks the directory (the next free version) for all.
     const std::string dir = collective::broadcast(
         Communicator::isRoot() ? chooseOutputDirectory(options_.outputDir, archiver_.filebase())
                                : "",
         0);
-    removeEarlierRunsCheckpoints(Collective{}, dir);
+    checkpoints_.removeEarlierRuns(Collective{}, dir);
     archiver_.open(dir, options_.input);
   }
   outputTask_ = mpm_.timers().task("output");
@@ -230,8 +228,8 @@ void Simulation::start(Collective, bool restart) {
   reportSetup(Collective{});
   if (restart) {
     if (Communicator::isRoot())
-      std::fprintf(stderr, "sus: restarting from %s (step %ld, t = %.6e)\n", restartedFrom.c_str(),
-                   step_, t_);
+      std::fprintf(stderr, "sus: restarting from %s (step %ld, t = %.6e)\n",
+                   checkpoints_.newest().c_str(), step_, t_);
   } else {
     recordHistoryRow(0.0, -1);
     writeOutput(false);
@@ -253,39 +251,9 @@ bool Simulation::finished(Collective) const {
          (time_.maxWallTime > 0 && collective::any(wallTime() >= time_.maxWallTime));
 }
 
-void Simulation::removeEarlierRunsCheckpoints(Collective, const std::string& dir) {
-  collective::onRootTogether(
-      [&] {
-        const size_t earlier = listCheckpoints(dir).size();
-        removeOldCheckpoints(dir, CheckpointKind::Scheduled, 0);
-        removeOldCheckpoints(dir, CheckpointKind::Automatic, 0);
-        removeUnfinishedCheckpointParts(dir);
-        if (earlier > 0)
-          std::fprintf(stderr,
-                       "sus: removed %zu checkpoint(s) of an earlier run from %s/checkpoints: "
-                       "this run's history and outputs replace that run's\n",
-                       earlier, dir.c_str());
-        return std::string();
-      },
-      "rank 0 could not remove an earlier run's checkpoints");
-}
-
-std::string Simulation::restartFromNewestCheckpoint(Collective) {
-  archiver_.reopen(options_.restartDir);
-  if (Communicator::isRoot()) {
-    removeTemporaryFiles(options_.restartDir);
-    removeUnfinishedCheckpointParts(options_.restartDir);
-  }
-  collective::barrier();
-  newestCheckpoint_ = loadNewestCheckpoint();
-  firstStepOfThisProcess_ = step_;
-  scenes_.skipTimesUpTo(t_);
-  return newestCheckpoint_;
-}
-
 void Simulation::reportSetup(Collective) {
   const size_t particles = mpm_.summarize(Collective{}).particles;
-  layoutImbalance_ = mpm_.layout().imbalance(Collective{});
+  const double imbalance = balance_.start(Collective{}, mpm_);
   // Setup's wall time and the memory it left (the peak so far), of the slowest and the largest
   // rank and of the smallest.
   double setup[4] = {setupSeconds_, setupPeakBytes_, -setupSeconds_, -setupPeakBytes_};
@@ -306,7 +274,7 @@ void Simulation::reportSetup(Collective) {
       std::fprintf(stderr,
                    "sus: %d ranks: %s, ghost layers %d cells; particles per rank max/mean %.3f\n",
                    Communicator::size(), mpm_.layout().boxes().describe().c_str(),
-                   mpm_.layout().ghostWidth(), layoutImbalance_);
+                   mpm_.layout().ghostWidth(), imbalance);
     if (mpm_.diffusion())
       for (const std::string& line : mpm_.diffusion()->setupReport())
         std::fprintf(stderr, "sus: %s\n", line.c_str());
@@ -387,25 +355,6 @@ Simulation::Requests Simulation::requestsOfAnyRank(Collective, bool done) const 
   return {!done && anyRank[0] > 0, !done && anyRank[1] > 0};
 }
 
-bool Simulation::rebalance(Collective) {
-  if (Communicator::size() == 1) return false;
-  const double before = mpm_.layout().imbalance(Collective{});
-  const double growth =
-      mpm_.problem().flags.implicit ? kRebalanceImbalanceImplicit : kRebalanceImbalance;
-  if (before <= growth * layoutImbalance_) return false;
-  ScopedTimer timer(mpm_.timers(), mpm_.timers().task("rebalance"));
-  mpm_.layout().redistributeParticles(Collective{});
-  const double after = mpm_.layout().imbalance(Collective{});
-  if (Communicator::isRoot())
-    std::fprintf(stderr,
-                 "sus: step %ld: particles per rank max/mean %.3f, %.2f times the %.3f the boxes "
-                 "started with: boxes drawn anew (%s), now %.3f\n",
-                 step_, before, before / layoutImbalance_, layoutImbalance_,
-                 mpm_.layout().boxes().describe().c_str(), after);
-  layoutImbalance_ = after;
-  return true;
-}
-
 void Simulation::writeStateOnStop() {
   archiver_.writeHistory();
   if (progress_) progress_->finish();
@@ -431,51 +380,17 @@ void Simulation::writeStateOnStop() {
 
 void Simulation::replayToLastGoodState() {
   const long lastGood = step_;
-  loadCheckpoint(Collective{}, newestCheckpoint_, false);
-  if (step_ < lastGood && Communicator::isRoot())
-    std::fprintf(stderr, "sus: replaying steps %ld to %ld from %s for the last good state\n",
-                 step_ + 1, lastGood, newestCheckpoint_.c_str());
+  resumeFrom(checkpoints_.loadForReplay(Collective{}, lastGood, mpm_));
   while (step_ < lastGood) {
     stepMPM();
     finishStep();
   }
-  // The replayed state must be the one the run had: its history row says what it was.
-  const StepSummary s = mpm_.summarize(Collective{});
-  const HistoryRow& row = archiver_.lastHistoryRow();
-  if ((row.step != step_ || row.kineticEnergy != s.kineticEnergy ||
-       row.totalLithium != s.totalLithium) &&
-      Communicator::isRoot())
-    std::fprintf(
-        stderr,
-        "warning: the replayed step %ld differs from the run's (kinetic energy %.17g, not %.17g)\n",
-        step_, s.kineticEnergy, row.kineticEnergy);
+  RunCheckpoints::checkReplayed(Collective{}, step_, archiver_.lastHistoryRow(), mpm_);
 }
 
 void Simulation::writeCheckpoint(Collective, CheckpointKind kind) {
   ScopedTimer timer(mpm_.timers(), checkpointTask_);
-  const double wallSeconds = earlierWallSeconds_ + wallTime();
-  archiver_.writeHistory();  // history.csv holds every row up to the checkpoint's step
-  const std::string dir = archiver_.directory();
-  // On the disk before the checkpoint, as the checkpoint before any older one is removed
-  // (parts, then manifest, each synced with its directory): a crashed node leaves a whole one.
-  const std::filesystem::path history = std::filesystem::path(dir) / "history.csv";
-  if (Communicator::isRoot() && std::filesystem::exists(history)) syncToDisk(history.string());
-  if (kind == CheckpointKind::Scheduled) lastCheckpointTime_ = t_;
-  newestCheckpoint_ = checkpointPath(dir, step_, kind);
-  anode::writeCheckpoint(
-      Collective{}, newestCheckpoint_,
-      {omp_get_max_threads(), Communicator::size(), inputHash_, t_, dt_, ruleDt_, dtLimit_,
-       dtSetByTimeControl_, step_, particleSteps_, wallSeconds, lastCheckpointTime_},
-      archiver_, mpm_);
-  if (Communicator::isRoot()) {
-    if (kind == CheckpointKind::Scheduled) {
-      removeOldCheckpoints(dir, kind, checkpoints_.cycle);
-      removeOldCheckpoints(dir, CheckpointKind::Automatic, 0);  // the scheduled one is newer
-    } else {
-      removeOldCheckpoints(dir, kind, 1);
-    }
-  }
-  collective::barrier();
+  checkpoints_.write(Collective{}, kind, checkpointState(), archiver_, mpm_);
   newestCheckpointWallTime_ = wallTime();
   // At the input's checkpoints and the start, not at the automatic ones every 10 minutes: the
   // report reads the whole history.csv (a gigabyte after millions of steps).
@@ -495,9 +410,20 @@ void Simulation::writeReport(const std::string& status) {
   }
 }
 
-void Simulation::loadCheckpoint(Collective, const std::string& path, bool outputs) {
-  const CheckpointHeader read =
-      anode::loadCheckpoint(Collective{}, path, outputs ? &archiver_ : nullptr, mpm_);
+CheckpointHeader Simulation::checkpointState() const {
+  CheckpointHeader state;
+  state.t = t_;
+  state.dt = dt_;
+  state.ruleDt = ruleDt_;
+  state.dtLimit = dtLimit_;
+  state.dtSetByTimeControl = dtSetByTimeControl_;
+  state.step = step_;
+  state.particleSteps = particleSteps_;
+  state.wallSeconds = earlierWallSeconds_ + wallTime();
+  return state;
+}
+
+void Simulation::resumeFrom(const CheckpointHeader& read) {
   t_ = read.t;
   dt_ = read.dt;
   ruleDt_ = read.ruleDt;
@@ -506,147 +432,14 @@ void Simulation::loadCheckpoint(Collective, const std::string& path, bool output
   step_ = read.step;
   particleSteps_ = read.particleSteps;
   earlierWallSeconds_ = read.wallSeconds;
-  lastCheckpointTime_ = read.lastScheduledTime;
-  const double mostRead = collective::maximum(read.bytesRead);
-  if (!Communicator::isRoot()) return;
-  if (Communicator::size() > 1 && outputs)
-    std::fprintf(stderr, "sus: the rank that read most of %s read %.4g of its %.4g bytes (%.2f)\n",
-                 path.c_str(), mostRead, read.bytesInAll, mostRead / read.bytesInAll);
-  if (read.inputHash != inputHash_)
-    std::fprintf(
-        stderr,
-        "warning: %s changed since %s was written; the run continues with the changed input\n",
-        options_.input.c_str(), path.c_str());
-  if (read.threads != omp_get_max_threads())
-    std::fprintf(stderr,
-                 "warning: %s was written with %d thread(s), this run has %d: the continued run "
-                 "matches an uninterrupted one to round-off, not bit for bit\n",
-                 path.c_str(), read.threads, omp_get_max_threads());
-  if (read.ranks != Communicator::size())
-    std::fprintf(stderr,
-                 "sus: %s was written by %d rank(s), this run has %d: its particles are shared out "
-                 "anew; the continued run matches an uninterrupted one to round-off\n",
-                 path.c_str(), read.ranks, Communicator::size());
 }
 
-std::string Simulation::loadNewestCheckpoint() {
-  // Rank 0 lists the checkpoints, newest first, and checks their hashes; every rank then tries
-  // the same ones (a rank whose view of the directory lags, or whose read fails, must not resume
-  // from another step). One line each: "I path" intact, "D path" damaged (skipped), or "E error"
-  // (an I/O error: the restart stops, nothing removed).
-  std::string listed;
-  if (Communicator::isRoot()) try {
-      const std::vector<std::string> found = listCheckpoints(options_.restartDir);
-      if (found.empty())
-        listed = "E no checkpoint in " + options_.restartDir +
-                 "/checkpoints (the input needs <checkpoint cycle=\"N\" interval=\"T\"/> in "
-                 "<DataArchiver>)\n";
-      for (const std::string& path : found) {
-        std::string error;
-        const HashCheck check = checkHash(path, &error);
-        if (check == HashCheck::Unreadable) {
-          listed += "E " + error + " (nothing was removed)\n";
-          break;
-        }
-        listed += (check == HashCheck::Intact ? "I " : "D ") + path + "\n";
-      }
-    } catch (const std::exception& e) {  // the directory unreadable: every rank stops
-      listed = std::string("E ") + e.what() + " (nothing was removed)\n";
-    }
-  std::istringstream lines(collective::broadcast(listed, 0));
-  for (std::string line; std::getline(lines, line);) {
-    const std::string path = line.substr(2);
-    if (line[0] == 'E') throw std::runtime_error(path);
-    if (line[0] == 'D') {
-      if (Communicator::isRoot())
-        std::fprintf(stderr,
-                     "warning: skipping %s: incomplete or damaged (its hash does not match)\n",
-                     path.c_str());
-      continue;
-    }
-    try {
-      loadCheckpoint(Collective{}, path, true);  // fails on every rank together
-    } catch (const std::runtime_error& e) {
-      if (Communicator::isRoot())
-        std::fprintf(stderr, "warning: skipping %s: %s\n", path.c_str(), e.what());
-      continue;
-    }
-    // The outputs after it go only once it is loaded; an error here (a file that cannot be
-    // written) stops the restart, and is no reason to go back to an older checkpoint.
-    archiver_.restoreOutputsTo(step_);
-    return path;
-  }
-  throw std::runtime_error("no complete checkpoint in " + options_.restartDir + "/checkpoints");
-}
-
-void Simulation::printTimings() const {
-  // Per task the slowest rank's time (the others wait for it at the next exchange).
-  const TaskTimers& timers = mpm_.timers();
-  std::vector<double> seconds = timers.seconds();
-  collective::maximum(seconds.data(), static_cast<int>(seconds.size()));
-  const size_t particles =
-      static_cast<size_t>(collective::sum(static_cast<int64_t>(countParticles(mpm_.materials()))));
-  const double imbalance = mpm_.layout().imbalance(Collective{});
-  const long collectiveCalls = Communicator::collectiveCalls();  // before this summary's own
-  double communication[2] = {Communicator::bytesSent(), Communicator::communicationSeconds()};
-  collective::sum(communication, 1);
-  collective::maximum(communication + 1, 1);
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  const double ownPeak = usage.ru_maxrss * 1024.0;  // Linux: kilobytes
-  const double peakBytes = collective::maximum(ownPeak), allPeaks = collective::sum(ownPeak);
-  if (!Communicator::isRoot()) return;
-  double total = 0;
-  for (double v : seconds) total += v;
-  std::fprintf(stderr, "sus: %ld steps, t = %.6e, %zu particles, wall %.3f s", step_, t_, particles,
-               wallSeconds_);
-  if (!options_.restartDir.empty())
-    std::fprintf(stderr, " (after the restart: %ld steps, from step %ld)",
-                 step_ - firstStepOfThisProcess_, firstStepOfThisProcess_);
-  std::fprintf(stderr, "\n");
-  std::fprintf(stderr, "  %-34s %10s %7s\n", "task", "seconds", "share");
-  for (size_t i = 0; i < timers.names().size(); ++i)
-    std::fprintf(stderr, "  %-34s %10.3f %6.1f%%\n", timers.names()[i].c_str(), seconds[i],
-                 total > 0 ? 100 * seconds[i] / total : 0.0);
-  std::string limits;
-  for (int rule = 0; rule < kDtRules; ++rule)
-    if (stepsByRule_[rule] > 0)
-      limits += (limits.empty() ? "" : ", ") + std::string(dtRuleName(rule)) + " " +
-                std::to_string(stepsByRule_[rule]);
-  if (!limits.empty()) std::fprintf(stderr, "  steps whose dt the limit set: %s\n", limits.c_str());
-  const std::string solver = integrator_->summary(step_ - firstStepOfThisProcess_);
-  if (!solver.empty()) std::fprintf(stderr, "  %s\n", solver.c_str());
-  std::fprintf(stderr, "  instruction set: %s\n", instructionSet().c_str());
-  // This process's steps over its wall time; after a restart also the whole run's (the time
-  // of each earlier process up to its last checkpoint, as the steps).
-  std::fprintf(stderr, "  particle-steps per second: %.4e\n",
-               wallSeconds_ > 0 ? particleStepsOfThisProcess_ / wallSeconds_ : 0.0);
-  if (!options_.restartDir.empty()) {
-    const double wholeWall = earlierWallSeconds_ + wallSeconds_;
-    std::fprintf(stderr,
-                 "  since step 0, with the runs before the restart: %.4e particle-steps in "
-                 "%.3f s, %.4e per second\n",
-                 particleSteps_, wholeWall, wholeWall > 0 ? particleSteps_ / wholeWall : 0.0);
-  }
-  if (Communicator::size() > 1)
-    std::fprintf(stderr,
-                 "  %d ranks: particles per rank max/mean %.3f; sent %.4g bytes in all, %.4g per "
-                 "step; communication at most %.3f s on a rank; %ld collective calls, %.1f per "
-                 "step\n",
-                 Communicator::size(), imbalance, communication[0],
-                 step_ > firstStepOfThisProcess_
-                     ? communication[0] / (step_ - firstStepOfThisProcess_)
-                     : 0.0,
-                 communication[1], collectiveCalls,
-                 step_ > firstStepOfThisProcess_
-                     ? static_cast<double>(collectiveCalls) / (step_ - firstStepOfThisProcess_)
-                     : 0.0);
-  std::fprintf(
-      stderr, "  peak memory: %.1f MB, %.0f bytes per particle%s\n", peakBytes / 1e6,
-      allPeaks / std::max<size_t>(particles, 1),
-      Communicator::size() > 1
-          ? " (the largest rank's peak; per particle: every rank's peak over all particles)"
-          : "");
+void Simulation::printTimings(Collective) const {
+  anode::printTimings(
+      Collective{},
+      {step_, t_, !options_.restartDir.empty(), firstStepOfThisProcess_, stepsByRule_,
+       particleSteps_, particleStepsOfThisProcess_, wallSeconds_, earlierWallSeconds_},
+      mpm_, *integrator_);
 }
 
 }  // namespace anode

@@ -14,21 +14,15 @@
 #include "Components/MPM/SymmetryFaceWatch.h"
 #include "Components/MPM/TimestepController.h"
 #include "Core/Grid/TimeControl.h"
-#include "StandAlone/Driver/Checkpoint.h"
 #include "StandAlone/Driver/DataArchiver.h"
+#include "StandAlone/Driver/LoadBalance.h"
 #include "StandAlone/Driver/Progress.h"
+#include "StandAlone/Driver/RunCheckpoints.h"
 #include "StandAlone/Driver/SceneOutput.h"
 
 namespace anode {
 
 class ImplicitStep;
-
-// A distributed run draws its boxes anew (at an output step) when the particles per rank, max
-// over mean, have grown by this factor since the boxes were drawn. An implicit step costs seconds
-// of Newton and linear solves and a redraw milliseconds, so implicit runs redraw sooner (Figure
-// 4's swelling pillar on 2 ranks: its particles crossed a cut across the axis until one rank
-// held 1.5 times the other's, and the solves ran at half speed).
-constexpr double kRebalanceImbalance = 1.2, kRebalanceImbalanceImplicit = 1.05;
 
 struct RunOptions {
   std::string input;
@@ -67,7 +61,8 @@ class Simulation {
   long step() const { return step_; }
   double dt() const { return dt_; }
   const std::vector<std::string>& warnings() const { return spec_->warnings(); }
-  void printTimings() const;
+  // The timings at the run's end (RunTimings.h).
+  void printTimings(Collective) const;
 
  private:
   // Reads the input (readSpec sets spec_) on every rank, agreeing on its errors, then lays the
@@ -86,6 +81,14 @@ class Simulation {
   // checkpoint), reports the setup and, unless a restart, records and writes the initial state
   // with a checkpoint.
   void start(Collective, bool restart);
+  // One step of the time loop: advance() (a failed step: writeStateOnStop, and the error
+  // rethrown), the step's history row and counts, and its notes; returns the dt it took.
+  double advanceAndRecord(Collective);
+  // The progress line after a step of `stepDt`, whose dt `stepLimit` set.
+  void updateProgress(StableTimestep::Limit stepLimit, double stepDt, bool done);
+  // The run's end: a stopped run's way to continue (RunCheckpoints::atEnd), report.html and the
+  // wall time of the time loop.
+  void finishRun();
   // Seconds since run() began.
   double wallTime() const;
   // Whether the run has reached the end <Time> sets (time, steps or wall time). Collective
@@ -94,15 +97,6 @@ class Simulation {
   // Whether the run reached the end the input sets (maxTime or <max_Timesteps>), not a limit of
   // this process (--max-timesteps, <max_wall_time>) after which a restart continues.
   bool reachedInputEnd() const;
-  // A fresh run's directory may hold an earlier run's checkpoints (an -o used before): rank 0
-  // removes them before this run writes anything (its history and outputs replace that run's, so
-  // those checkpoints would restart into a history that is no longer theirs, and their step
-  // numbers would count before this run's own where only the newest are kept). An error there
-  // stops every rank.
-  void removeEarlierRunsCheckpoints(Collective, const std::string& dir);
-  // Continues the run of the restart directory from its newest complete checkpoint; returns its
-  // path.
-  std::string restartFromNewestCheckpoint(Collective);
   // The lines on the run's setup: particles, grid, ranks, diffusion, the steps forecast,
   // symmetry faces.
   void reportSetup(Collective);
@@ -117,10 +111,6 @@ class Simulation {
   void reportSymmetryFaces();
   // Prints the diffusion's notes of the step just taken (a galvanostatic current ending).
   void reportDiffusionNotes();
-  // At an output step of a distributed run: draws the boxes anew from the particle counts when
-  // the particles per rank (max/mean) grew by kRebalanceImbalance (implicit runs:
-  // kRebalanceImbalanceImplicit) since they were drawn; true if it did.
-  bool rebalance(Collective);
   // What any rank asks for at the end of a step (none after the last): to stop, and its own
   // checkpoint (kReplayInterval of wall time since the last one). One exchange.
   struct Requests {
@@ -132,17 +122,16 @@ class Simulation {
   // Brings the state back to the end of step_ (the last good one) by loading the newest
   // checkpoint and taking the same steps again (they are deterministic).
   void replayToLastGoodState();
-  // Writes the state after step_ to a checkpoint (Checkpoint.h), drops the oldest of its kind
-  // and, at a scheduled one or the start, writes report.html.
+  // Writes the state after step_ to a checkpoint (RunCheckpoints::write) and, at a scheduled one
+  // or the start, writes report.html.
   void writeCheckpoint(Collective, CheckpointKind kind);
   // Rank 0: report.html of the output directory (RunReport.h) with `status`; a failure to write
   // it is a warning on stderr, not a stop (history.csv and the outputs it reads are intact).
   void writeReport(const std::string& status);
-  // Loads the newest complete checkpoint of the restart directory; returns its path.
-  std::string loadNewestCheckpoint();
-  // Loads one checkpoint (Checkpoint.h; the output series and history only if `outputs`) and
-  // warns of what differs from this run; throws std::runtime_error, on every rank together.
-  void loadCheckpoint(Collective, const std::string& path, bool outputs);
+  // The clock and counters of the state after step_, as a checkpoint holds them.
+  CheckpointHeader checkpointState() const;
+  // Continues from a checkpoint's clock and counters.
+  void resumeFrom(const CheckpointHeader& read);
 
   RunOptions options_;
   std::unique_ptr<ProblemSpec> spec_;
@@ -154,8 +143,8 @@ class Simulation {
   SceneOutput scenes_;
   StateChecks checks_;
   SymmetryFaceWatch symmetryFaces_;
-  CheckpointSchedule checkpoints_;
-  std::string newestCheckpoint_;  // of either kind: where a replay to the last good state starts
+  RunCheckpoints checkpoints_;
+  LoadBalance balance_;
   double t_ = 0, dt_ = 0;
   double ruleDt_ = 0;       // the dt the limits chose; dt_ is less where clamped to an output time
   double lastStepDt_ = 0;   // the dt the last step took (an implicit one may retake it smaller)
@@ -172,10 +161,7 @@ class Simulation {
   long firstStepOfThisProcess_ = 0;  // the step it started from (a restart's)
   double wallSeconds_ = 0;           // of this process's time loop
   bool stoppedOnRequest_ = false;
-  double lastCheckpointTime_ = 0;
   double earlierWallSeconds_ = 0;  // of the runs before a restart, for history.csv
-  uint64_t inputHash_ = 0;         // of the input file, stored in checkpoints
-  double layoutImbalance_ = 1;     // particles per rank, max/mean, when the boxes were drawn
   double setupSeconds_ = 0,
          setupPeakBytes_ = 0;  // this rank's setup: wall time, peak memory after it
   std::chrono::steady_clock::time_point runStart_;
