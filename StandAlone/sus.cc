@@ -67,8 +67,8 @@ int run(anode::RunOptions& options, long decomposeRanks) {
     // A launcher that binds each rank to fewer cores than it has threads (Open MPI binds to one
     // core for 2 ranks or fewer) makes the threads take turns: said once, not changed.
     const int cores = coresOfThisRank();
-    const int crowded =
-        anode::collective::firstRankWith(cores > 0 && omp_get_max_threads() > cores);
+    const int crowded = anode::collective::firstRankWith(
+        anode::Communicator::everyRank(), cores > 0 && omp_get_max_threads() > cores);
     if (root) {
       if (anode::Communicator::size() > 1)
         std::fprintf(stderr, "sus: %d ranks x %d thread(s), instruction set %s\n",
@@ -93,7 +93,7 @@ int run(anode::RunOptions& options, long decomposeRanks) {
       std::fprintf(stderr, "sus: simulation stopped: %s\n", e.what());
       return 3;
     }
-    sim.printTimings(anode::Collective{});
+    sim.printTimings(anode::Communicator::everyRank());
     if (sim.stoppedOnRequest()) return 4;
   } catch (const anode::SetupFailedOnAnotherRank& e) {
     // An input error of other ranks only: rank 0 prints it, naming them (rank 0 reports its

@@ -109,7 +109,8 @@ TEST(FluxSurfaceArea, SphereTakesUpItsAreaAndTheFrontIsRound) {
   EXPECT_NEAR(area / octant, 1.0, 0.02);
   // The first step takes up rho J A dt (R(0) = 1).
   sim.advance();
-  EXPECT_NEAR(sim.mpm().summarize(Collective{}).totalLithium / (sim.dt() * octant), 1.0, 0.02);
+  EXPECT_NEAR(sim.mpm().summarize(Communicator::everyRank()).totalLithium / (sim.dt() * octant),
+              1.0, 0.02);
   while (sim.time() < 0.04 - 1e-9) sim.advance();
   // The front (c = 0.1, about half the surface value) 4.4 cells deep: as deep along the diagonal
   // as along each axis, within a quarter of the particle spacing (it is within 0.02 of it; with
@@ -147,7 +148,7 @@ TEST(FluxSurfaceArea, UintahsFluxSourceRulesChangeOnlyWhatTheyName) {
   ours.advance();
   const std::vector<double> first = concentrations(ours);
   for (int k = 1; k < 10; ++k) ours.advance();
-  const double lithium = ours.mpm().summarize(Collective{}).totalLithium;
+  const double lithium = ours.mpm().summarize(Communicator::everyRank()).totalLithium;
   for (const std::string flags : {"<flux_source_receivers>weights</flux_source_receivers>",
                                   "<flux_source_in_cstar>false</flux_source_in_cstar>"}) {
     Simulation uintah(withFlags(flags), "uintah.ups", quiet);
@@ -158,7 +159,8 @@ TEST(FluxSurfaceArea, UintahsFluxSourceRulesChangeOnlyWhatTheyName) {
     const std::vector<double> a = concentrations(ours), b = concentrations(uintah);
     for (size_t i = 0; i < a.size(); ++i) largest = std::max(largest, std::abs(a[i] - b[i]));
     EXPECT_GT(largest, 1e-6) << flags;
-    EXPECT_NEAR(uintah.mpm().summarize(Collective{}).totalLithium / lithium, 1.0, 0.05) << flags;
+    EXPECT_NEAR(uintah.mpm().summarize(Communicator::everyRank()).totalLithium / lithium, 1.0, 0.05)
+        << flags;
   }
 }
 

@@ -39,7 +39,7 @@ std::string galvanostatic(std::string text, const std::string& rate,
 }
 
 double totalLithium(Simulation& sim) {
-  return sim.mpm().summarize(Collective{}).totalLithium;
+  return sim.mpm().summarize(Communicator::everyRank()).totalLithium;
 }
 
 bool anyFluxRate(Simulation& sim) {
@@ -76,7 +76,7 @@ TEST(Galvanostatic, SphereTakesUpRateTimesTimeThenStopsAtTheCutoff) {
   ASSERT_FALSE(anyFluxRate(sim)) << "the current did not end by step " << sim.step();
   // The cutoff: the flagged particles' mean restriction reached 0.25, so the surface is nearly
   // full (R = 0.25 at c = 0.950) while the inside is not.
-  const StepSummary atEnd = sim.mpm().summarize(Collective{});
+  const StepSummary atEnd = sim.mpm().summarize(Communicator::everyRank());
   EXPECT_GT(atEnd.maxConcentration, 0.95);
   const double charge = atEnd.chargeableLithium / atEnd.lithiumCapacity;
   EXPECT_GT(charge, 0.05);
@@ -115,13 +115,13 @@ TEST(Potentiostatic, SphereSurfaceApproachesTheHeldConcentration) {
   double lithium = totalLithium(sim);
   while (sim.time() < sim.timeControl().maxTime) {
     sim.advance();
-    const StepSummary s = sim.mpm().summarize(Collective{});
+    const StepSummary s = sim.mpm().summarize(Communicator::everyRank());
     ASSERT_GT(s.totalLithium, lithium) << "step " << sim.step();
     ASSERT_LE(s.maxConcentration, 0.8) << "step " << sim.step();
     ASSERT_GE(s.minConcentration, -1e-15) << "step " << sim.step();  // round-off: -6e-19
     lithium = s.totalLithium;
   }
-  EXPECT_GT(sim.mpm().summarize(Collective{}).maxConcentration, 0.75);
+  EXPECT_GT(sim.mpm().summarize(Communicator::everyRank()).maxConcentration, 0.75);
 }
 
 // The CPDI pillar, side and top each under its own galvanostatic BC (corner particles take

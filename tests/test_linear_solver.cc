@@ -98,10 +98,10 @@ TEST(LinearSolver, SolvesTheLatticeAndReusesItsPreconditioner) {
   std::vector<int> fixed;
   std::vector<char> isFixed;
   const std::vector<double> b = loadWithBaseHeld(coordinates, fixed, isFixed);
-  LinearSolver solver(K, oneRankOwnsEveryRow(K), fixed, coordinates);
+  LinearSolver solver(Communicator::everyRank(), K, oneRankOwnsEveryRow(K), fixed, coordinates);
   const double tolerance = 1e-8;
   std::vector<double> x;
-  const LinearSolve first = solver.solve(K, b, tolerance, x);
+  const LinearSolve first = solver.solve(Communicator::everyRank(), K, b, tolerance, x);
   ASSERT_TRUE(first.converged) << first.reason;
   EXPECT_TRUE(first.newPreconditioner);
   EXPECT_GT(first.iterations, 0);
@@ -112,7 +112,7 @@ TEST(LinearSolver, SolvesTheLatticeAndReusesItsPreconditioner) {
 
   // The same pattern with the lowest layers 3 times stiffer: the first preconditioner serves.
   const BlockMatrix stiffened = latticeStiffness(3.0, 2, coordinates);
-  const LinearSolve second = solver.solve(stiffened, b, tolerance, x);
+  const LinearSolve second = solver.solve(Communicator::everyRank(), stiffened, b, tolerance, x);
   ASSERT_TRUE(second.converged) << second.reason;
   EXPECT_FALSE(second.newPreconditioner);
   EXPECT_LT(relativeResidual(stiffened, x, b, isFixed), 12 * tolerance);
@@ -137,15 +137,17 @@ TEST(LinearSolver, APreconditionerBuiltAnewFitsItsOwnMatrix) {
   const std::vector<double> b = loadWithBaseHeld(coordinates, fixed, isFixed);
   const double tolerance = 1e-8;
   std::vector<double> x;
-  LinearSolver alone(free, oneRankOwnsEveryRow(free), fixed, coordinates);
-  const LinearSolve fresh = alone.solve(free, b, tolerance, x);
+  LinearSolver alone(Communicator::everyRank(), free, oneRankOwnsEveryRow(free), fixed,
+                     coordinates);
+  const LinearSolve fresh = alone.solve(Communicator::everyRank(), free, b, tolerance, x);
   ASSERT_TRUE(fresh.converged) << fresh.reason;
 
-  LinearSolver solver(held, oneRankOwnsEveryRow(held), fixed, coordinates);
-  ASSERT_TRUE(solver.solve(held, b, tolerance, x).converged);
-  const LinearSolve second = solver.solve(free, b, tolerance, x);
+  LinearSolver solver(Communicator::everyRank(), held, oneRankOwnsEveryRow(held), fixed,
+                      coordinates);
+  ASSERT_TRUE(solver.solve(Communicator::everyRank(), held, b, tolerance, x).converged);
+  const LinearSolve second = solver.solve(Communicator::everyRank(), free, b, tolerance, x);
   ASSERT_TRUE(second.converged) << second.reason;
-  const LinearSolve third = solver.solve(free, b, tolerance, x);
+  const LinearSolve third = solver.solve(Communicator::everyRank(), free, b, tolerance, x);
   ASSERT_TRUE(third.converged) << third.reason;
   EXPECT_LT(relativeResidual(free, x, b, isFixed), 4 * tolerance);
   std::printf(

@@ -130,7 +130,7 @@ TEST(AlgorithmicTangent, ResidualTaylorRemainderIsSecondOrder) {
   options.dynamic = false;
   EquilibriumSolver solver;
   const EquilibriumSolver::Linearization at =
-      solver.linearizeAt(problem, kDt, options, {b.u}, {b.du});
+      solver.linearizeAt(Communicator::everyRank(), problem, kDt, options, {b.u}, {b.du});
   // No particle crosses the yield surface along the path (eps at most 0.1): a plastic one's trial
   // deviator moves by less than half its distance beyond the surface (2 G |dev e|), an elastic
   // one's stays below half the surface (the strain increment is about H to 1e-3 of itself).
@@ -153,8 +153,8 @@ TEST(AlgorithmicTangent, ResidualTaylorRemainderIsSecondOrder) {
   double last = 0;
   for (int halvings = 0; halvings < 10; ++halvings) {
     const double eps = 0.1 * std::ldexp(1.0, -halvings);
-    const EquilibriumSolver::Linearization moved =
-        solver.linearizeAt(problem, kDt, options, along(b.u, eps, b.du), {b.du});
+    const EquilibriumSolver::Linearization moved = solver.linearizeAt(
+        Communicator::everyRank(), problem, kDt, options, along(b.u, eps, b.du), {b.du});
     std::vector<Vec3> remainder(moved.residual[0].size());
     for (size_t k = 0; k < remainder.size(); ++k)
       remainder[k] =

@@ -411,7 +411,7 @@ class StateChecksTest : public ::testing::Test {
   ParticleSet& particles() { return sim.mpm().materials()[0].particles; }
   std::string failure() {
     try {
-      checks.afterStep(Collective{}, sim.mpm(), sim.dt());
+      checks.afterStep(Communicator::everyRank(), sim.mpm(), sim.dt());
     } catch (const SimulationError& e) {
       return e.what();
     }
@@ -562,7 +562,7 @@ class SplittingStateChecksTest : public StateChecksTest {
     for (int k = 0; k < 40; ++k) {
       if (k == splitAt) {
         particles().F[splitAt] = Vec3(3, 1, 1).asDiagonal();
-        sim.integrator().advance(Collective{}, 0, sim.dt(), sim.dt());
+        sim.integrator().advance(Communicator::everyRank(), 0, sim.dt(), sim.dt());
         EXPECT_EQ(particles().count(), count + 3);
       }
       for (size_t i = 0; i < particles().count(); ++i)

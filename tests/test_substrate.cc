@@ -149,7 +149,7 @@ TEST(Substrate, ConcentrationRangeIsOfTheMaterialsThatTakeUpLithium) {
   for (int s = 0; s < 5; ++s) sim.advance();
   const std::vector<double>& c =
       diffusionParticles(sim.mpm().materials()[0].particles).concentration;
-  const StepSummary summary = sim.mpm().summarize(Collective{});
+  const StepSummary summary = sim.mpm().summarize(Communicator::everyRank());
   EXPECT_EQ(summary.minConcentration, *std::min_element(c.begin(), c.end()));
   EXPECT_EQ(summary.maxConcentration, *std::max_element(c.begin(), c.end()));
   EXPECT_GE(summary.minConcentration, 0.2 - 1e-9);

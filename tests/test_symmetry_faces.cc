@@ -54,10 +54,11 @@ Watched runWatched(double upper, double until) {
   quiet.progress = false;
   Simulation sim(swellingBlock(upper), "block.ups", quiet);
   SymmetryFaceWatch watch;
-  Watched w{watch.start(Collective{}, sim.mpm()), {}};
+  Watched w{watch.start(Communicator::everyRank(), sim.mpm()), {}};
   while (sim.time() < until) {
     sim.advance();
-    for (const std::string& s : watch.afterStep(Collective{}, sim.mpm(), sim.step(), sim.time()))
+    for (const std::string& s :
+         watch.afterStep(Communicator::everyRank(), sim.mpm(), sim.step(), sim.time()))
       w.warnings.push_back(s);
   }
   return w;

@@ -18,7 +18,7 @@ ExplicitStep::ExplicitStep(MPM& mpm) : mpm_(mpm) {
             mpm.layout().distributed() ? timers.task("communication") : -1};
 }
 
-StableTimestep ExplicitStep::stableTimestep(Collective) const {
+StableTimestep ExplicitStep::stableTimestep(Collective every) const {
   const Grid& grid = mpm_.grid();
   const ReactiveFlow* diffusion = mpm_.diffusion();
   StableTimestep limits;
@@ -37,12 +37,12 @@ StableTimestep ExplicitStep::stableTimestep(Collective) const {
     }
     dt = std::min({dt, grid.dx.x() / wx, grid.dx.y() / wy, grid.dx.z() / wz});  // Eq. 43
   }
-  if (diffusion) diffusion->boundTimestep(Collective{}, grid, mpm_.materials(), limits);
-  collective::minimum(limits.bound.data(), 2);  // Eqs. 43 and 44 over ranks
+  if (diffusion) diffusion->boundTimestep(every, grid, mpm_.materials(), limits);
+  collective::minimum(every, limits.bound.data(), 2);  // Eqs. 43 and 44 over ranks
   return limits;
 }
 
-StepTaken ExplicitStep::advance(Collective, double t, double dt, double) {
+StepTaken ExplicitStep::advance(Collective every, double t, double dt, double) {
   // The tasks in order (docs/diffusion.md lists the diffusion part of each). DESIGN.md §4 has the
   // same ones but computes D and the flux rate at the start of a step: here task 10 computes
   // them for the new state, which its output and its time step (Eq. 44) need as well. In a
@@ -53,9 +53,9 @@ StepTaken ExplicitStep::advance(Collective, double t, double dt, double) {
   ReactiveFlow* diffusion = mpm_.diffusion();
   {
     ScopedTimer s(timers, tasks_.interpolationWeights);
-    mpm_.computeWeightsAndActiveNodes();  // 1: S_ip, grad S_ip (CPDI: F size)
+    mpm_.computeWeightsAndActiveNodes(every);  // 1: S_ip, grad S_ip (CPDI: F size)
   }
-  mpm_.interpolateParticlesToGrid();  // 2: P2G, Eqs. 4-5, 7, 18, and its sums over the ranks
+  mpm_.interpolateParticlesToGrid(every);  // 2: P2G, Eqs. 4-5, 7, 18, and its sums over the ranks
   {
     ScopedTimer s(timers, tasks_.particlesToGrid);
     mpm_.computeNodalVelocityAndConcentration();  // 2: nodal velocity and concentration (Eq. 5)
@@ -70,20 +70,20 @@ StepTaken ExplicitStep::advance(Collective, double t, double dt, double) {
   {
     ScopedTimer s(timers, tasks_.particleUpdate);
     // 7-8: G2P (Eq. 8), F, stress
-    collective::stopTogether([&] { mpm_.interpolateToParticlesAndUpdate(dt); });
+    collective::stopTogether(every, [&] { mpm_.interpolateToParticlesAndUpdate(dt); });
   }
   if (mpm_.problem().flags.refineParticles) {
     ScopedTimer s(timers, tasks_.splitting);
-    mpm_.splitParticles();  // 9: particles stretched beyond the ratio split in four
+    mpm_.splitParticles(every);  // 9: particles stretched beyond the ratio split in four
   }
   if (diffusion) {
     // 10: the range check of c, then D (Eqs. 23-24) and the flux rates (Eqs. 16-17) at t + dt
     ScopedTimer s(timers, tasks_.diffusionState);
-    diffusion->updateDiffusionState(Collective{}, mpm_.materials(), t + dt);
+    diffusion->updateDiffusionState(every, mpm_.materials(), t + dt);
   }
   if (mpm_.layout().distributed()) {
     ScopedTimer s(timers, tasks_.communication);
-    mpm_.migrateParticles();  // 11: particles that left the rank's box go to its owner
+    mpm_.migrateParticles(every);  // 11: particles that left the rank's box go to its owner
   }
   return {dt, dt};
 }

@@ -18,9 +18,9 @@ void forNodes(const Grid& local, const NodeBox& b, F&& f) {
 
 }  // namespace
 
-GhostNodes::GhostNodes(Collective, const Decomposition& d, const Grid& whole, const Grid& local,
-                       int rank, int ghost)
-    : neighbours_(Collective{}, d.neighbours(whole, rank, ghost)), rank_(rank), local_(local) {
+GhostNodes::GhostNodes(Collective every, const Decomposition& d, const Grid& whole,
+                       const Grid& local, int rank, int ghost)
+    : neighbours_(every, d.neighbours(whole, rank, ghost)), rank_(rank), local_(local) {
   slotOfNode_.assign(local.numNodes(), -1);
   for (int r : neighbours_.ranks()) {
     const Grid other = d.window(whole, r, ghost);
@@ -35,7 +35,7 @@ GhostNodes::GhostNodes(Collective, const Decomposition& d, const Grid& whole, co
     }
 }
 
-NodeBox GhostNodes::setReach(Collective, const NodeBox& mine) {
+NodeBox GhostNodes::setReach(Collective every, const NodeBox& mine) {
   // One all-reduce of the lowest corners and the negated highest; a rank reaching no node adds
   // nothing.
   constexpr double none = 1e9;
@@ -44,7 +44,7 @@ NodeBox GhostNodes::setReach(Collective, const NodeBox& mine) {
     corners[d] = mine.empty() ? none : mine.first[d];
     corners[3 + d] = mine.empty() ? none : -mine.last[d];
   }
-  collective::minimum(corners, 6);
+  collective::minimum(every, corners, 6);
   reach_ = mine;
   for (int d = 0; d < 3; ++d) {
     reachOfAll_.first[d] = static_cast<int>(corners[d]);
@@ -53,7 +53,7 @@ NodeBox GhostNodes::setReach(Collective, const NodeBox& mine) {
   return reachOfAll_;
 }
 
-void GhostNodes::sumOverRanks(Collective, const std::vector<NodeArray>& arrays) {
+void GhostNodes::sumOverRanks(Collective every, const std::vector<NodeArray>& arrays) {
   const std::vector<int>& ranks = neighbours_.ranks();
   if (ranks.empty()) return;
   int width = 0;
@@ -73,7 +73,7 @@ void GhostNodes::sumOverRanks(Collective, const std::vector<NodeArray>& arrays) 
     send[q].assign(reinterpret_cast<const char*>(box), sizeof box);
     send[q].append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(double));
   }
-  collective::exchangeWithNeighbours(neighbours_, send, receive);
+  collective::exchangeWithNeighbours(every, neighbours_, send, receive);
   // Every rank storing a shared node adds the parts in the same order (rank order, 0 + ...), so
   // they all hold the same value. Only the shared nodes some rank reaches take part: every part
   // of the others is zero, and so is their sum.
@@ -121,7 +121,7 @@ void GhostNodes::sumOverRanks(Collective, const std::vector<NodeArray>& arrays) 
   }
 }
 
-void GhostNodes::unionOverRanks(Collective, std::vector<unsigned char>& marks) const {
+void GhostNodes::unionOverRanks(Collective every, std::vector<unsigned char>& marks) const {
   const std::vector<int>& ranks = neighbours_.ranks();
   if (ranks.empty()) return;
   std::vector<std::string> send(ranks.size()), receive;
@@ -129,7 +129,7 @@ void GhostNodes::unionOverRanks(Collective, std::vector<unsigned char>& marks) c
   for (size_t q = 0; q < ranks.size(); ++q)
     forNodes(local_, overlap_[q].intersection(reachOfAll_),
              [&](int n) { send[q] += static_cast<char>(marks[n]); });
-  collective::exchangeWithNeighbours(neighbours_, send, receive);
+  collective::exchangeWithNeighbours(every, neighbours_, send, receive);
   for (size_t q = 0; q < ranks.size(); ++q) {
     size_t e = 0;
     forNodes(local_, overlap_[q].intersection(reachOfAll_),

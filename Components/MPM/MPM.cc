@@ -95,9 +95,9 @@ void MPM::problemSetup(const PSNode& root, double initTime, double maxTime, bool
   communicationTask_ = layout_.distributed() ? timers_.task("communication") : -1;
 }
 
-void MPM::distributeOverRanks(Collective) {
-  layout_.completeSetup(Collective{});
-  if (diffusion_) diffusion_->completeSetup(Collective{}, materials_, initTime_);
+void MPM::distributeOverRanks(Collective every) {
+  layout_.completeSetup(every);
+  if (diffusion_) diffusion_->completeSetup(every, materials_, initTime_);
   seeds_.clear();
 }
 
@@ -166,18 +166,18 @@ void MPM::scatterMaterial(size_t m, const Concentration& concentration, bool con
   }
 }
 
-void MPM::interpolateParticlesToGrid(bool concentrationOnly) {
+void MPM::interpolateParticlesToGrid(Collective every, bool concentrationOnly) {
   {
     ScopedTimer s(timers_, particlesToGridTask_);
-    scatterParticlesToGrid(concentrationOnly);
+    scatterParticlesToGrid(every, concentrationOnly);
   }
   if (layout_.distributed()) {
     ScopedTimer s(timers_, communicationTask_);
-    sumGhostNodes(concentrationOnly);
+    sumGhostNodes(every, concentrationOnly);
   }
 }
 
-void MPM::scatterParticlesToGrid(bool concentrationOnly) {
+void MPM::scatterParticlesToGrid(Collective every, bool concentrationOnly) {
   const std::vector<NodeRange> cleared =
       ActiveNodes::of(grid(), hullOf(step_.active.box, previous_)).rows;
   for (size_t m = 0; m < materials_.size(); ++m) {
@@ -186,7 +186,7 @@ void MPM::scatterParticlesToGrid(bool concentrationOnly) {
       forEachNodeRange(cleared,
                        [&](long begin, long end) { step_.fields[m].clearAll(begin, end); });
     withScatterKernel(
-        diffusion_.get(), m, materials_[m].particles, step_.weights[m], cleared,
+        every, diffusion_.get(), m, materials_[m].particles, step_.weights[m], cleared,
         [&](const auto& concentration) { scatterMaterial(m, concentration, concentrationOnly); });
   }
 }
@@ -287,7 +287,7 @@ void MPM::interpolateConcentrationGradient(size_t m) {
                               diffusion_->gridFields()[m].concentration);
 }
 
-void MPM::splitParticles() {
+void MPM::splitParticles(Collective every) {
   // The weights of the next step are laid out for the new particle count.
   for (size_t m = 0; m < materials_.size(); ++m) {
     ParticleSet& p = materials_[m].particles;
@@ -304,12 +304,13 @@ void MPM::splitParticles() {
     // The IDs are gathered only in a step that splits some particle (a sum first).
     std::vector<int64_t> parents;
     const std::vector<int64_t> mine = stretchedParticleIds(p, grid(), problem_.flags.stretchRatio);
-    if (collective::sum(static_cast<int64_t>(mine.size())) == 0) {
+    if (collective::sum(every, static_cast<int64_t>(mine.size())) == 0) {
       r.split.clear();
       continue;
     }
-    for (const std::string& ids : collective::allGather(std::string(
-             reinterpret_cast<const char*>(mine.data()), mine.size() * sizeof(int64_t)))) {
+    for (const std::string& ids :
+         collective::allGather(every, std::string(reinterpret_cast<const char*>(mine.data()),
+                                                  mine.size() * sizeof(int64_t)))) {
       const size_t at = parents.size();
       parents.resize(at + ids.size() / sizeof(int64_t));
       if (!ids.empty()) std::memcpy(parents.data() + at, ids.data(), ids.size());
@@ -325,14 +326,14 @@ void MPM::splitParticles() {
   }
 }
 
-void MPM::migrateParticles() {
-  layout_.migrateParticles(reordering_);
+void MPM::migrateParticles(Collective every) {
+  layout_.migrateParticles(every, reordering_);
 }
 
-void MPM::interpolateToGridForOutput(Collective) {
-  computeWeightsAndActiveNodes();
-  scatterParticlesToGrid();
-  if (layout_.distributed()) sumGhostNodes();
+void MPM::interpolateToGridForOutput(Collective every) {
+  computeWeightsAndActiveNodes(every);
+  scatterParticlesToGrid(every);
+  if (layout_.distributed()) sumGhostNodes(every);
   computeNodalVelocityAndConcentration();
 }
 
@@ -340,7 +341,7 @@ void MPM::releaseInterpolationWeights() {
   for (InterpolationWeights& w : step_.weights) w = InterpolationWeights();
 }
 
-StepSummary MPM::summarize(Collective) const {
+StepSummary MPM::summarize(Collective every) const {
   StepSummary s;
   s.minJ = std::numeric_limits<double>::infinity();
   s.maxJ = -std::numeric_limits<double>::infinity();
@@ -370,9 +371,9 @@ StepSummary MPM::summarize(Collective) const {
       lows.push_back(m.minConcentration);
       highs.push_back(m.maxConcentration);
     }
-    collective::sum(sums.data(), static_cast<int>(sums.size()));
-    collective::minimum(lows.data(), static_cast<int>(lows.size()));
-    collective::maximum(highs.data(), static_cast<int>(highs.size()));
+    collective::sum(every, sums.data(), static_cast<int>(sums.size()));
+    collective::minimum(every, lows.data(), static_cast<int>(lows.size()));
+    collective::maximum(every, highs.data(), static_cast<int>(highs.size()));
     s.kineticEnergy = sums[0], s.totalLithium = sums[1], s.particles = static_cast<size_t>(sums[2]);
     s.chargeableLithium = sums[3], s.lithiumCapacity = sums[4], s.elasticEnergy = sums[5];
     s.minJ = lows[0], s.minConcentration = lows[1], s.maxJ = highs[0],

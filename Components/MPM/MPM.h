@@ -73,12 +73,12 @@ class MPM {
 
   // 1: S_ip and grad S_ip of every particle on every rank (a problem on one stops them all),
   // then the step's active nodes.
-  void computeWeightsAndActiveNodes();
+  void computeWeightsAndActiveNodes(Collective);
   // 2: P2G (Eqs. 4-5, 7, 18) and, distributed, its sums completed on the shared nodes (timed);
   // `concentrationOnly`: the concentration's sums alone, of the materials whose concentration
   // changes, after a full P2G of the same particles that changed nothing but their
   // concentration since (the diffusion of an implicit step).
-  void interpolateParticlesToGrid(bool concentrationOnly = false);
+  void interpolateParticlesToGrid(Collective, bool concentrationOnly = false);
   // 2: the nodal velocity and, with diffusion, computeNodalConcentration.
   void computeNodalVelocityAndConcentration();
   // Eq. 5 and the diffusion interface (diffusion on).
@@ -99,9 +99,9 @@ class MPM {
   // grad c of material m's particles from the nodal c (diffusion on).
   void interpolateConcentrationGradient(size_t m);
   // 9: particles stretched beyond <stretchRatio> split in four (<refineParticles>).
-  void splitParticles();
+  void splitParticles(Collective);
   // 11 (distributed): particles that left the rank's box go to its owner.
-  void migrateParticles();
+  void migrateParticles(Collective);
 
   // Interpolation weights and the grid fields of the current state (for output of g.* labels).
   void interpolateToGridForOutput(Collective);
@@ -151,14 +151,14 @@ class MPM {
   // beyond the ghost layer.
   [[noreturn]] void throwOutsideWindow(size_t m, long i) const;
   // P2G on this rank (`concentrationOnly`: as interpolateParticlesToGrid's).
-  void scatterParticlesToGrid(bool concentrationOnly = false);
+  void scatterParticlesToGrid(Collective, bool concentrationOnly = false);
   // Material m takes part in that P2G (and its ghost sums).
   bool scatters(size_t m, bool concentrationOnly) const {
     return !concentrationOnly || diffusion_->computesConcentration(m);
   }
   // Completes the nodal sums of P2G on the nodes shared with other ranks (`concentrationOnly`:
   // as interpolateParticlesToGrid's).
-  void sumGhostNodes(bool concentrationOnly = false);
+  void sumGhostNodes(Collective, bool concentrationOnly = false);
   // Sizes the grid fields to this rank's window (RankLayout calls it when it lays one out).
   void layOutGrid();
   // Setup per box (MPMRanks.cc): the particles per cell seeds_ lay out (RankLayout draws the

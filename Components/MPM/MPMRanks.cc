@@ -84,8 +84,8 @@ std::vector<NodeArray> MPM::ghostSumArrays(bool concentrationOnly) {
   return sums;
 }
 
-void MPM::sumGhostNodes(bool concentrationOnly) {
-  layout_.ghosts()->sumOverRanks(Collective{}, ghostSumArrays(concentrationOnly));
+void MPM::sumGhostNodes(Collective every, bool concentrationOnly) {
+  layout_.ghosts()->sumOverRanks(every, ghostSumArrays(concentrationOnly));
 }
 
 std::string MPM::describeDecomposition(int ranks) {

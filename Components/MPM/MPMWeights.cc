@@ -12,18 +12,18 @@
 
 namespace anode {
 
-void MPM::computeWeightsAndActiveNodes() {
+void MPM::computeWeightsAndActiveNodes(Collective every) {
   NodeBox reached;
-  collective::stopTogether([&] { reached = computeInterpolationWeights(); });
+  collective::stopTogether(every, [&] { reached = computeInterpolationWeights(); });
   // The ghost nodes get the other ranks' parts: a stored node takes part in the step where any
   // rank's particles reach it (outside the ranks' stopTogether, as it is collective).
   previous_ = step_.active.box;
-  NodeBox all = layout_.distributed() ? layout_.ghosts()->setReach(Collective{}, reached) : reached;
+  NodeBox all = layout_.distributed() ? layout_.ghosts()->setReach(every, reached) : reached;
   // An implicit run shares its owned unknowns' corrections (Implicit/EquilibriumSolver.h) on
   // shared nodes its own particles may not reach: its reach is its window within all of theirs.
   if (layout_.distributed() && problem_.flags.implicit)
     all = layout_.ghosts()->setReach(
-        Collective{}, NodeBox{grid().firstNode(), grid().lastNode()}.intersection(all));
+        every, NodeBox{grid().firstNode(), grid().lastNode()}.intersection(all));
   step_.active = ActiveNodes::of(grid(), all);
 }
 

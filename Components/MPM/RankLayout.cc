@@ -49,18 +49,18 @@ CellBox RankLayout::drawSetupBoxes(const Decomposition::ParticleCounts& seeds) {
   return decomposition_.box(Communicator::rank());
 }
 
-void RankLayout::completeSetup(Collective) {
+void RankLayout::completeSetup(Collective every) {
   if (Communicator::size() == 1) {
-    decompose(true);
+    decompose(every, true);
     return;
   }
   // Setup drew the boxes and placed each rank's particles in its own.
   ++generation_;
-  ghostWidth_ = computeGhostWidth(false);
-  layOutWindow();
+  ghostWidth_ = computeGhostWidth(every, false);
+  layOutWindow(every);
 }
 
-Decomposition::ParticleCounts RankLayout::particleCounts(bool allHere) const {
+Decomposition::ParticleCounts RankLayout::particleCounts(Collective every, bool allHere) const {
   Decomposition::ParticleCounts counts;
   counts.forEach = [this](const std::function<void(const Vec3i&, double)>& add) {
     for (const MPMMaterial& mat : materials_)
@@ -68,8 +68,8 @@ Decomposition::ParticleCounts RankLayout::particleCounts(bool allHere) const {
   };
   // The counts of every rank's particles: one sum over the ranks.
   if (!allHere)
-    counts.sumOverRanks = [](std::vector<double>& v) {
-      collective::sum(v.data(), static_cast<int>(v.size()));
+    counts.sumOverRanks = [every](std::vector<double>& v) {
+      collective::sum(every, v.data(), static_cast<int>(v.size()));
     };
   return counts;
 }
@@ -94,7 +94,7 @@ int RankLayout::ghostWidthFor(double reach) const {
   return std::max(2, static_cast<int>(std::ceil(reach)) + 1);
 }
 
-int RankLayout::computeGhostWidth(bool allHere) const {
+int RankLayout::computeGhostWidth(Collective every, bool allHere) const {
   double reach = 0;
   for (const MPMMaterial& mat : materials_) {
     const ParticleSet& p = mat.particles;
@@ -102,11 +102,11 @@ int RankLayout::computeGhostWidth(bool allHere) const {
 #pragma omp parallel for schedule(static) reduction(max : reach)
     for (long i = 0; i < n; ++i) reach = std::max(reach, domainReach(p.F[i] * p.size[i]));
   }
-  if (!allHere) reach = collective::maximum(reach);
+  if (!allHere) reach = collective::maximum(every, reach);
   return ghostWidthFor(reach);
 }
 
-void RankLayout::decompose(bool allHere) {
+void RankLayout::decompose(Collective every, bool allHere) {
   ++generation_;
   const int ranks = Communicator::size(), me = Communicator::rank();
   if (ranks == 1) {
@@ -116,8 +116,8 @@ void RankLayout::decompose(bool allHere) {
   }
   const Decomposition earlier = decomposition_;
   // The boxes drawn before (for this rank count once set up) are the fallback.
-  decomposition_ = drawBoxes(particleCounts(allHere), &earlier);
-  ghostWidth_ = computeGhostWidth(allHere);
+  decomposition_ = drawBoxes(particleCounts(every, allHere), &earlier);
+  ghostWidth_ = computeGhostWidth(every, allHere);
   std::vector<std::string> send(ranks);
   for (MPMMaterial& mat : materials_) {
     ParticleSet& p = mat.particles;
@@ -129,20 +129,20 @@ void RankLayout::decompose(bool allHere) {
     keepParticles(p, to[me]);
   }
   if (!allHere) {
-    const std::vector<std::string> received = collective::exchangeWithAll(send);
+    const std::vector<std::string> received = collective::exchangeWithAll(every, send);
     for (int r = 0; r < ranks; ++r) {
       if (r == me) continue;
       const char* in = received[r].data();
       for (MPMMaterial& mat : materials_) unpackParticles(in, mat.particles);
     }
   }
-  layOutWindow();
+  layOutWindow(every);
 }
 
-void RankLayout::layOutWindow() {
+void RankLayout::layOutWindow(Collective every) {
   const int me = Communicator::rank();
   window_ = decomposition_.window(whole_, me, ghostWidth_);
-  ghosts_ = GhostNodes(Collective{}, decomposition_, whole_, window_, me, ghostWidth_);
+  ghosts_ = GhostNodes(every, decomposition_, whole_, window_, me, ghostWidth_);
   windowChanged_();
 }
 
@@ -151,17 +151,17 @@ void RankLayout::useWindow(const Grid& window) {
   windowChanged_();
 }
 
-void RankLayout::redistributeParticles(Collective) {
-  decompose(false);
+void RankLayout::redistributeParticles(Collective every) {
+  decompose(every, false);
 }
 
-double RankLayout::imbalance(Collective) const {
+double RankLayout::imbalance(Collective every) const {
   const double mine = static_cast<double>(countParticles(materials_));
-  const double most = collective::maximum(mine), total = collective::sum(mine);
+  const double most = collective::maximum(every, mine), total = collective::sum(every, mine);
   return total > 0 ? most / (total / Communicator::size()) : 1.0;
 }
 
-void RankLayout::migrateParticles(std::vector<ParticleReordering>& reordering) {
+void RankLayout::migrateParticles(Collective every, std::vector<ParticleReordering>& reordering) {
   const int me = Communicator::rank();
   const std::vector<int>& neighbours = ghosts_.neighbours();
   std::vector<std::string> send(neighbours.size());
@@ -190,7 +190,7 @@ void RankLayout::migrateParticles(std::vector<ParticleReordering>& reordering) {
     }
     for (size_t q = 0; q < neighbours.size(); ++q) packParticles(p, leaving[q], send[q]);
   }
-  collective::stopTogether([&] {
+  collective::stopTogether(every, [&] {
     if (stray >= 0)
       throw SimulationError(describeParticle(materials_[strayMaterial], strayMaterial, stray) +
                             " moved in one step from rank " + std::to_string(me) +
@@ -198,7 +198,7 @@ void RankLayout::migrateParticles(std::vector<ParticleReordering>& reordering) {
                             "'s, beyond the boxes next to it");
   });
   std::vector<std::string> received;
-  collective::exchangeWithNeighbours(ghosts_.neighbourhood(), send, received);
+  collective::exchangeWithNeighbours(every, ghosts_.neighbourhood(), send, received);
   for (size_t m = 0; m < materials_.size(); ++m) {
     ParticleSet& p = materials_[m].particles;
     ParticleReordering& r = reordering[m];
@@ -230,21 +230,21 @@ RankLayout::Saved RankLayout::read(BinaryReader& in) {
   return saved;
 }
 
-void RankLayout::adopt(Collective, const Saved& saved) {
+void RankLayout::adopt(Collective every, const Saved& saved) {
   ghostWidth_ = saved.ghostWidth;
   if (saved.boxes.cells() != whole_.cells || saved.boxes.ranks() != Communicator::size())
     throw std::runtime_error("the checkpoint's boxes are for another grid or rank count");
   decomposition_ = saved.boxes;
-  layOutWindow();
+  layOutWindow(every);
 }
 
-void RankLayout::keepOwnShare(Collective) {
+void RankLayout::keepOwnShare(Collective every) {
   putInIdOrder(materials_);
-  decompose(true);
+  decompose(every, true);
 }
 
-void RankLayout::shareOutAnew(Collective) {
-  decompose(false);
+void RankLayout::shareOutAnew(Collective every) {
+  decompose(every, false);
   putInIdOrder(materials_);
 }
 

@@ -62,7 +62,7 @@ class RankLayout {
   // Particles that left this rank's box go to its owner; `reordering` (per material) records
   // who stayed and how many arrived. A particle that moved beyond the boxes next to its rank's
   // stops the run (SimulationError on every rank).
-  void migrateParticles(std::vector<ParticleReordering>& reordering);
+  void migrateParticles(Collective, std::vector<ParticleReordering>& reordering);
 
   // Checkpoints: save writes the boxes, read reads them back, adopt takes them after each rank
   // loaded its own part.
@@ -97,16 +97,16 @@ class RankLayout {
  private:
   // Keeps this rank's particles (all of the problem's are here when `allHere`) under boxes drawn
   // anew from the particle counts per cell plane, and lays out its window.
-  void decompose(bool allHere);
+  void decompose(Collective, bool allHere);
   // Lays out this rank's window and its shared nodes under decomposition_.
-  void layOutWindow();
-  int computeGhostWidth(bool allHere) const;
+  void layOutWindow(Collective);
+  int computeGhostWidth(Collective, bool allHere) const;
   // The boxes of this rank count by recursive bisection (`earlier`, when it has as many, where a
   // box cannot be cut) from the particles per cell.
   Decomposition drawBoxes(const Decomposition::ParticleCounts& counts,
                           const Decomposition* earlier) const;
   // The particles per cell of this rank's particles (summed over the ranks unless `allHere`).
-  Decomposition::ParticleCounts particleCounts(bool allHere) const;
+  Decomposition::ParticleCounts particleCounts(Collective, bool allHere) const;
   // Rank of the box holding material m's particle i.
   int ownerOf(const ParticleSet& p, size_t i) const;
 

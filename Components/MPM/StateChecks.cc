@@ -71,7 +71,7 @@ bool StateChecks::oscillates(Oscillation& o, double energy, double product, doub
          (o.steps >= kSustainedSteps && *growth >= kSustainedGrowth);
 }
 
-void StateChecks::afterStep(Collective, const MPM& mpm, double dt) {
+void StateChecks::afterStep(Collective every, const MPM& mpm, double dt) {
   const auto& materials = mpm.materials();
   const size_t count = materials.size();
   if (velocity_.size() != count || mpm.layout().generation() != layoutGeneration_) {
@@ -153,23 +153,23 @@ void StateChecks::afterStep(Collective, const MPM& mpm, double dt) {
     velocityEnergy += ve, velocityProduct += vp, concentrationEnergy += ce,
         concentrationProduct += cp;
   }
-  collective::stopTogether([&] {
+  collective::stopTogether(every, [&] {
     if (!problem.empty()) throw SimulationError(problem);
   });
   double sums[6] = {energy,          totalMass,           velocityEnergy,
                     velocityProduct, concentrationEnergy, concentrationProduct};
-  collective::sum(sums, 6);
+  collective::sum(every, sums, 6);
   energy = sums[0], totalMass = sums[1], velocityEnergy = sums[2], velocityProduct = sums[3],
   concentrationEnergy = sums[4], concentrationProduct = sums[5];
-  restart = collective::any(restart);
+  restart = collective::any(every, restart);
   if (restart) {
     velocityOscillation_ = concentrationOscillation_ = Oscillation();
   } else {
-    checkOscillation(mpm, velocityEnergy, velocityProduct, concentrationEnergy,
+    checkOscillation(every, mpm, velocityEnergy, velocityProduct, concentrationEnergy,
                      concentrationProduct);
   }
   lastMass_ = totalMass;
-  checkKineticEnergy(mpm, energy);
+  checkKineticEnergy(every, mpm, energy);
 }
 
 void StateChecks::followReordering(const ParticleReordering& r, size_t m, const ParticleSet& p) {
@@ -203,8 +203,9 @@ std::string StateChecks::describeLocalOscillation(const MPMMaterial& mat, size_t
   return s.str();
 }
 
-void StateChecks::checkOscillation(const MPM& mpm, double velocityEnergy, double velocityProduct,
-                                   double concentrationEnergy, double concentrationProduct) {
+void StateChecks::checkOscillation(Collective every, const MPM& mpm, double velocityEnergy,
+                                   double velocityProduct, double concentrationEnergy,
+                                   double concentrationProduct) {
   double growth = 0, correlation = 0;
   const bool velocity =
       oscillates(velocityOscillation_, velocityEnergy, velocityProduct, &growth, &correlation);
@@ -224,8 +225,8 @@ void StateChecks::checkOscillation(const MPM& mpm, double velocityEnergy, double
       if (size > worst) worst = size, worstM = m, worstI = i;
     }
   }
-  const bool holdsWorst = worst == collective::maximum(worst);
-  collective::stopTogether([&] {
+  const bool holdsWorst = worst == collective::maximum(every, worst);
+  collective::stopTogether(every, [&] {
     if (!holdsWorst) return;
     const ParticleSet& p = materials[worstM].particles;
     const Oscillation& o = velocity ? velocityOscillation_ : concentrationOscillation_;
@@ -248,7 +249,7 @@ void StateChecks::checkOscillation(const MPM& mpm, double velocityEnergy, double
   });
 }
 
-void StateChecks::checkKineticEnergy(const MPM& mpm, double energy) {
+void StateChecks::checkKineticEnergy(Collective every, const MPM& mpm, double energy) {
   if (lastKineticEnergy_ > 0 && energy >= kGrowthPerStep * lastKineticEnergy_) {
     if (growingSteps_ == 0) energyBeforeGrowth_ = lastKineticEnergy_;
     ++growingSteps_;
@@ -269,8 +270,8 @@ void StateChecks::checkKineticEnergy(const MPM& mpm, double energy) {
         fastM = m;
         fastI = i;
       }
-  const bool holdsFastest = fastest == collective::maximum(fastest);
-  collective::stopTogether([&] {
+  const bool holdsFastest = fastest == collective::maximum(every, fastest);
+  collective::stopTogether(every, [&] {
     if (!holdsFastest) return;
     std::ostringstream s;
     if (!std::isfinite(energy)) {

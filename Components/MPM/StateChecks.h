@@ -64,9 +64,9 @@ class StateChecks {
   // Updates `o` with this step's increment energy and correlation; true when it trips.
   static bool oscillates(Oscillation& o, double energy, double product, double* growth,
                          double* correlation);
-  void checkOscillation(const MPM& mpm, double velocityEnergy, double velocityProduct,
+  void checkOscillation(Collective, const MPM& mpm, double velocityEnergy, double velocityProduct,
                         double concentrationEnergy, double concentrationProduct);
-  void checkKineticEnergy(const MPM& mpm, double energy);
+  void checkKineticEnergy(Collective, const MPM& mpm, double energy);
   std::string describeLocalOscillation(const MPMMaterial& mat, size_t m, size_t i) const;
   // Calls f(history, start) on each per-particle history of material m (those of the
   // concentration only with diffusion), where start(j) is the value particle j's begins with.

@@ -8,7 +8,7 @@
 
 namespace anode {
 
-std::vector<std::string> SymmetryFaceWatch::start(Collective, const MPM& mpm) {
+std::vector<std::string> SymmetryFaceWatch::start(Collective every, const MPM& mpm) {
   const Grid& g = mpm.grid();
   watched_.clear();
   for (size_t m = 0; m < mpm.materials().size(); ++m) {
@@ -16,8 +16,8 @@ std::vector<std::string> SymmetryFaceWatch::start(Collective, const MPM& mpm) {
     const ParticleSet& p = mat.particles;
     Vec3 lo = Vec3::Constant(INFINITY), hi = -lo;
     for (const Vec3& x : p.x) lo = lo.cwiseMin(x), hi = hi.cwiseMax(x);
-    collective::minimum(lo.data(), 3);
-    collective::maximum(hi.data(), 3);
+    collective::minimum(every, lo.data(), 3);
+    collective::maximum(every, hi.data(), 3);
     bool startsOn[3][2] = {};
     for (const BCFace& bc : mpm.problem().gridBCs.symmetric)
       if (bc.appliesTo(static_cast<int>(m)))
@@ -30,7 +30,7 @@ std::vector<std::string> SymmetryFaceWatch::start(Collective, const MPM& mpm) {
   return mpm.problem().swellingNotes;
 }
 
-std::vector<std::string> SymmetryFaceWatch::afterStep(Collective, const MPM& mpm, long step,
+std::vector<std::string> SymmetryFaceWatch::afterStep(Collective every, const MPM& mpm, long step,
                                                       double t) {
   std::vector<std::string> warnings;
   if (watched_.empty()) return warnings;
@@ -53,8 +53,8 @@ std::vector<std::string> SymmetryFaceWatch::afterStep(Collective, const MPM& mpm
     }
     lo[f.material] = Vec3(x0, y0, z0);
     hi[f.material] = Vec3(x1, y1, z1);
-    collective::minimum(lo[f.material].data(), 3);
-    collective::maximum(hi[f.material].data(), 3);
+    collective::minimum(every, lo[f.material].data(), 3);
+    collective::maximum(every, hi[f.material].data(), 3);
   }
   for (size_t w = 0; w < watched_.size();) {
     const Face f = watched_[w];
@@ -70,7 +70,7 @@ std::vector<std::string> SymmetryFaceWatch::afterStep(Collective, const MPM& mpm
       ++reached;
     watched_.erase(watched_.begin() + static_cast<long>(w));  // once per face and material
     // The lowest rank holding such a particle reports it.
-    if (collective::firstRankWith(reached < p.count()) != Communicator::rank()) continue;
+    if (collective::firstRankWith(every, reached < p.count()) != Communicator::rank()) continue;
     std::ostringstream s;
     s << "warning: step " << step << ", t = " << t << ": "
       << describeParticle(mat, f.material, reached)

@@ -176,10 +176,10 @@ long Communicator::collectiveCalls() {
 
 namespace collective {
 
-void sum(double* values, int n) {
+void sum(Collective, double* values, int n) {
   reduce(values, n, MPI_SUM);
 }
-void minimumOnRoot(uint64_t* values, size_t n) {
+void minimumOnRoot(Collective, uint64_t* values, size_t n) {
   if (!started || n == 0) return;
   CommunicationTimer t;
   bytes += 8.0 * static_cast<double>(n);
@@ -191,27 +191,27 @@ void minimumOnRoot(uint64_t* values, size_t n) {
           "MPI_Reduce");
   }
 }
-void minimum(double* values, int n) {
+void minimum(Collective, double* values, int n) {
   reduce(values, n, MPI_MIN);
 }
-void maximum(double* values, int n) {
+void maximum(Collective, double* values, int n) {
   reduce(values, n, MPI_MAX);
 }
 
-double sum(double v) {
-  sum(&v, 1);
+double sum(Collective every, double v) {
+  sum(every, &v, 1);
   return v;
 }
-double minimum(double v) {
-  minimum(&v, 1);
+double minimum(Collective every, double v) {
+  minimum(every, &v, 1);
   return v;
 }
-double maximum(double v) {
-  maximum(&v, 1);
+double maximum(Collective every, double v) {
+  maximum(every, &v, 1);
   return v;
 }
 
-int64_t sum(int64_t v) {
+int64_t sum(Collective, int64_t v) {
   if (!started) return v;
   CommunicationTimer t;
   bytes += 8;
@@ -219,7 +219,7 @@ int64_t sum(int64_t v) {
   return v;
 }
 
-int64_t exclusiveSum(int64_t v) {
+int64_t exclusiveSum(Collective, int64_t v) {
   if (!started) return 0;
   CommunicationTimer t;
   bytes += 8;
@@ -228,11 +228,11 @@ int64_t exclusiveSum(int64_t v) {
   return worldRank == 0 ? 0 : before;  // MPI leaves rank 0's undefined
 }
 
-bool any(bool v) {
-  return firstRankWith(v) >= 0;
+bool any(Collective every, bool v) {
+  return firstRankWith(every, v) >= 0;
 }
 
-int firstRankWith(bool flag) {
+int firstRankWith(Collective, bool flag) {
   int first = flag ? worldRank : worldSize;
   if (started) {
     CommunicationTimer t;
@@ -243,13 +243,13 @@ int firstRankWith(bool flag) {
   return first < worldSize ? first : -1;
 }
 
-void barrier() {
+void barrier(Collective) {
   if (!started) return;
   CommunicationTimer t;
   check(MPI_Barrier(MPI_COMM_WORLD), "MPI_Barrier");
 }
 
-std::string broadcast(const std::string& data, int root) {
+std::string broadcast(Collective, const std::string& data, int root) {
   if (!started) return data;
   CommunicationTimer t;
   long long n = static_cast<long long>(data.size());
@@ -263,7 +263,7 @@ std::string broadcast(const std::string& data, int root) {
   return out;
 }
 
-std::vector<std::string> allGather(const std::string& data) {
+std::vector<std::string> allGather(Collective, const std::string& data) {
   if (!started) return {data};
   CommunicationTimer t;
   int64_t size = static_cast<int64_t>(data.size());
@@ -292,7 +292,7 @@ std::vector<std::string> allGather(const std::string& data) {
   return gathered;
 }
 
-std::vector<std::string> exchangeWithAll(const std::vector<std::string>& send) {
+std::vector<std::string> exchangeWithAll(Collective, const std::vector<std::string>& send) {
   if (!started) return send;
   CommunicationTimer t;
   std::vector<int64_t> sendSizes(worldSize), receiveSizes(worldSize);
@@ -354,7 +354,7 @@ Neighbourhood& Neighbourhood::operator=(Neighbourhood&& other) noexcept {
   return *this;
 }
 
-void collective::exchangeWithNeighbours(const Neighbourhood& neighbours,
+void collective::exchangeWithNeighbours(Collective, const Neighbourhood& neighbours,
                                         const std::vector<std::string>& send,
                                         std::vector<std::string>& receive) {
   const size_t n = neighbours.ranks_.size();

@@ -12,10 +12,17 @@
 
 namespace anode {
 
-// Marks a function or constructor outside namespace collective that every rank must call together
-// (it calls collectives): the first parameter of its declaration, `Collective{}` at each call
-// (docs/parallel.md).
-struct Collective {};
+// The tag of a call every rank makes together, in the same order (docs/parallel.md): the first
+// parameter of every collective and of every function or constructor that calls one; a function
+// passes on the tag it was given. Only Communicator::everyRank makes one, called where a run's
+// ranks are known to take the same path: sus's main, the driver's run, setup and step, a test's
+// body (tests/check_collective_tags.sh holds that list). A function without the tag cannot reach
+// a collective.
+class Collective {
+ private:
+  Collective() {}
+  friend class Communicator;
+};
 
 class Communicator {
  public:
@@ -38,6 +45,9 @@ class Communicator {
   static double bytesSent();
   // The collective calls of this process so far (each reduction or exchange once).
   static long collectiveCalls();
+
+  // The tag of the run's top level (see Collective).
+  static Collective everyRank() { return Collective(); }
 };
 
 class Neighbourhood;
@@ -46,31 +56,32 @@ class Neighbourhood;
 namespace collective {
 
 // Reductions over all ranks, in place on `n` values; every rank gets the result.
-void sum(double* values, int n);
-void minimum(double* values, int n);
-void maximum(double* values, int n);
-double sum(double v);
-double minimum(double v);
-double maximum(double v);
-int64_t sum(int64_t v);
+void sum(Collective, double* values, int n);
+void minimum(Collective, double* values, int n);
+void maximum(Collective, double* values, int n);
+double sum(Collective, double v);
+double minimum(Collective, double v);
+double maximum(Collective, double v);
+int64_t sum(Collective, int64_t v);
 // The smallest of each of `n` values over the ranks, on rank 0 only (the others' values are left
 // as they were); in pieces of at most 2^30 bytes.
-void minimumOnRoot(uint64_t* values, size_t n);
+void minimumOnRoot(Collective, uint64_t* values, size_t n);
 // The sum of v over the ranks before this one (0 on rank 0).
-int64_t exclusiveSum(int64_t v);
-bool any(bool v);
+int64_t exclusiveSum(Collective, int64_t v);
+bool any(Collective, bool v);
 // The lowest rank on which `flag` holds, or -1 if it holds on none.
-int firstRankWith(bool flag);
-void barrier();
+int firstRankWith(Collective, bool flag);
+void barrier(Collective);
 
 // Rank `root`'s bytes on every rank.
-std::string broadcast(const std::string& bytes, int root);
+std::string broadcast(Collective, const std::string& bytes, int root);
 // Every rank's bytes on every rank, in rank order.
-std::vector<std::string> allGather(const std::string& bytes);
+std::vector<std::string> allGather(Collective, const std::string& bytes);
 // send[r] goes to rank r; returns what each rank sent here, in rank order (MPI_Alltoallv).
-std::vector<std::string> exchangeWithAll(const std::vector<std::string>& send);
+std::vector<std::string> exchangeWithAll(Collective, const std::vector<std::string>& send);
 // Sends send[i] to n.ranks()[i]; receive[i] gets what n.ranks()[i] sent (MPI_Neighbor_alltoallv).
-void exchangeWithNeighbours(const Neighbourhood& n, const std::vector<std::string>& send,
+void exchangeWithNeighbours(Collective, const Neighbourhood& n,
+                            const std::vector<std::string>& send,
                             std::vector<std::string>& receive);
 
 }  // namespace collective
@@ -88,7 +99,7 @@ class Neighbourhood {
   const std::vector<int>& ranks() const { return ranks_; }
 
  private:
-  friend void collective::exchangeWithNeighbours(const Neighbourhood&,
+  friend void collective::exchangeWithNeighbours(Collective, const Neighbourhood&,
                                                  const std::vector<std::string>&,
                                                  std::vector<std::string>&);
   struct Handle;

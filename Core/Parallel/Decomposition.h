@@ -31,7 +31,8 @@ class Decomposition {
 
   // The particles per cell the boxes are drawn from: `forEach(add)` calls add(cell, particles)
   // for the cells this rank counts; `sumOverRanks` sums a vector over the ranks in place, the
-  // same on every rank (null when every rank counts every particle).
+  // same on every rank (null when every rank counts every particle): a collective its maker
+  // binds to its own Collective tag, so that bisected is collective only with it.
   struct ParticleCounts {
     std::function<void(const std::function<void(const Vec3i&, double)>&)> forEach;
     std::function<void(std::vector<double>&)> sumOverRanks;

@@ -40,7 +40,7 @@ namespace collective {
 // error, the others SetupFailedOnAnotherRank with its message. One reduction and, on an error,
 // a broadcast (nothing on a run of one rank).
 template <class Phase>
-void readTogether(Phase&& phase) {
+void readTogether(Collective every, Phase&& phase) {
   std::exception_ptr error;
   std::string message;
   bool input = false;
@@ -54,10 +54,10 @@ void readTogether(Phase&& phase) {
     error = std::current_exception();
     message = e.what();
   }
-  const int first = firstRankWith(error != nullptr);
+  const int first = firstRankWith(every, error != nullptr);
   if (first < 0) return;
-  const int failing = static_cast<int>(sum(static_cast<int64_t>(error != nullptr)));
-  const std::string shared = broadcast((input ? "2" : "1") + message, first);
+  const int failing = static_cast<int>(sum(every, static_cast<int64_t>(error != nullptr)));
+  const std::string shared = broadcast(every, (input ? "2" : "1") + message, first);
   // The first rank's own input error as it is; its other errors, on several ranks, agreed like
   // the others' (no rank is then left to abort the others).
   if (first == Communicator::rank() && (input || Communicator::size() == 1))
@@ -69,7 +69,7 @@ void readTogether(Phase&& phase) {
 // (empty: none) or throws. On an error every rank throws std::runtime_error after it: rank 0
 // with the error, the others with `elsewhere`. One reduction of a bool.
 template <class Task>
-void onRootTogether(Task&& task, const std::string& elsewhere) {
+void onRootTogether(Collective every, Task&& task, const std::string& elsewhere) {
   std::string error;
   if (Communicator::isRoot()) {
     try {
@@ -78,21 +78,22 @@ void onRootTogether(Task&& task, const std::string& elsewhere) {
       error = e.what();
     }
   }
-  if (any(!error.empty())) throw std::runtime_error(Communicator::isRoot() ? error : elsewhere);
+  if (any(every, !error.empty()))
+    throw std::runtime_error(Communicator::isRoot() ? error : elsewhere);
 }
 
 // Runs `phase`; when it throws a SimulationError on any rank, every rank throws after it: the
 // lowest such rank its own error, the others StoppedOnAnotherRank. One reduction of an int
 // (nothing on a run of one rank).
 template <class Phase>
-void stopTogether(Phase&& phase) {
+void stopTogether(Collective every, Phase&& phase) {
   std::exception_ptr error;
   try {
     phase();
   } catch (const SimulationError&) {
     error = std::current_exception();
   }
-  const int first = firstRankWith(error != nullptr);
+  const int first = firstRankWith(every, error != nullptr);
   if (first < 0) return;
   if (first == Communicator::rank()) std::rethrow_exception(error);
   throw StoppedOnAnotherRank(first);

@@ -279,13 +279,13 @@ uint64_t fileHash(const std::string& path) {
   return h.value();
 }
 
-void writeCheckpoint(Collective, const std::string& path, const CheckpointHeader& header,
+void writeCheckpoint(Collective every, const std::string& path, const CheckpointHeader& header,
                      const DataArchiver& archiver, const MPM& mpm) {
   const bool distributed = header.ranks > 1;
   std::vector<std::string> partHashes;
   if (distributed) {
     const uint64_t hash = writePart(path, mpm);
-    partHashes = collective::allGather(std::string(reinterpret_cast<const char*>(&hash), 8));
+    partHashes = collective::allGather(every, std::string(reinterpret_cast<const char*>(&hash), 8));
   } else {
     fs::create_directories(fs::path(path).parent_path());
   }
@@ -320,7 +320,7 @@ void writeCheckpoint(Collective, const std::string& path, const CheckpointHeader
       Durability::Synced);
 }
 
-CheckpointHeader loadCheckpoint(Collective, const std::string& path, DataArchiver* outputs,
+CheckpointHeader loadCheckpoint(Collective every, const std::string& path, DataArchiver* outputs,
                                 MPM& mpm) {
   // Read on every rank, then agreed on, before any collective step of laying the particles out.
   CheckpointHeader header;
@@ -331,17 +331,17 @@ CheckpointHeader loadCheckpoint(Collective, const std::string& path, DataArchive
   } catch (const std::runtime_error& e) {
     error = e.what();
   }
-  const int failed = collective::firstRankWith(!error.empty());
+  const int failed = collective::firstRankWith(every, !error.empty());
   if (failed >= 0)
     throw std::runtime_error(failed == Communicator::rank()
                                  ? error
                                  : path + ": unreadable on rank " + std::to_string(failed));
   if (header.ranks == Communicator::size()) {
-    if (header.ranks > 1) mpm.layout().adopt(Collective{}, layout);
+    if (header.ranks > 1) mpm.layout().adopt(every, layout);
   } else if (header.ranks > 1) {
-    mpm.layout().shareOutAnew(Collective{});
+    mpm.layout().shareOutAnew(every);
   } else {
-    mpm.layout().keepOwnShare(Collective{});
+    mpm.layout().keepOwnShare(every);
   }
   return header;
 }

@@ -144,7 +144,7 @@ std::string chooseOutputDirectory(const std::string& requested, const std::strin
   throw std::runtime_error("no free output directory name for " + filebase);
 }
 
-void DataArchiver::open(const std::string& dir, const std::string& inputFile) {
+void DataArchiver::open(Collective every, const std::string& dir, const std::string& inputFile) {
   dir_ = dir;
   if (Communicator::isRoot()) {
     fs::create_directories(fs::path(dir_) / "particles");
@@ -153,7 +153,7 @@ void DataArchiver::open(const std::string& dir, const std::string& inputFile) {
       fs::copy_file(inputFile, tmp, fs::copy_options::overwrite_existing);
     });
   }
-  collective::barrier();
+  collective::barrier(every);
 }
 
 namespace {
@@ -179,20 +179,21 @@ std::string arrayTypes(const std::vector<NamedArray>& arrays) {
 
 }  // namespace
 
-std::string DataArchiver::writeParticles(const std::string& base, const ParticleData& data) const {
+std::string DataArchiver::writeParticles(Collective every, const std::string& base,
+                                         const ParticleData& data) const {
   if (Communicator::size() == 1) {
     writeParticlesVTU((fs::path(dir_) / (base + ".vtu")).string(), data);
     return base + ".vtu";
   }
   // The pieces of the ranks holding particles (rank 0's when none does), then the .pvtu: every
   // piece is in place when the gather returns.
-  const bool anyHeld = collective::any(data.count() > 0);
+  const bool anyHeld = collective::any(every, data.count() > 0);
   const bool writes = data.count() > 0 || (!anyHeld && Communicator::isRoot());
   if (writes)
     writeParticlesVTU((fs::path(dir_) / pieceName(base, Communicator::rank(), ".vtu")).string(),
                       data);
   const std::vector<std::string> types =
-      collective::allGather(writes ? "+" + arrayTypes(data.arrays) : "");
+      collective::allGather(every, writes ? "+" + arrayTypes(data.arrays) : "");
   if (Communicator::isRoot()) {
     std::vector<std::string> pieces;
     ParticleData sample;
@@ -212,7 +213,8 @@ std::string DataArchiver::writeParticles(const std::string& base, const Particle
   return base + ".pvtu";
 }
 
-std::string DataArchiver::writeGrid(const std::string& base, const GridData& data) const {
+std::string DataArchiver::writeGrid(Collective every, const std::string& base,
+                                    const GridData& data) const {
   if (Communicator::size() == 1) {
     writeGridVTI((fs::path(dir_) / (base + ".vti")).string(), data);
     return base + ".vti";
@@ -221,7 +223,7 @@ std::string DataArchiver::writeGrid(const std::string& base, const GridData& dat
   std::ostringstream extent;
   for (int d = 0; d < 3; ++d)
     extent << data.first[d] << " " << data.first[d] + data.dims[d] - 1 << " ";
-  const std::vector<std::string> extents = collective::allGather(extent.str());
+  const std::vector<std::string> extents = collective::allGather(every, extent.str());
   if (Communicator::isRoot()) {
     std::vector<std::string> pieces;
     std::vector<std::array<int, 6>> pieceExtents;
@@ -250,14 +252,14 @@ std::optional<double> DataArchiver::nextOutputTimeAfter(double time) const {
   return (std::floor(time / *interval_ + 1e-9) + 1) * *interval_;
 }
 
-void DataArchiver::writeOutput(Collective, long step, double time, const MPM& mpm) {
+void DataArchiver::writeOutput(Collective every, long step, double time, const MPM& mpm) {
   const std::string name = stepName("step_", step);
   const std::string particleFile =
-      writeParticles("particles/" + name, gatherParticles(mpm, particleLabels_));
+      writeParticles(every, "particles/" + name, gatherParticles(mpm, particleLabels_));
   particleSeries_.add(time, particleFile);
   if (Communicator::isRoot()) particleSeries_.write((fs::path(dir_) / "particles.pvd").string());
   if (wantsGrid()) {
-    const std::string gridFile = writeGrid("grid/" + name, gatherGrid(mpm, gridLabels_));
+    const std::string gridFile = writeGrid(every, "grid/" + name, gatherGrid(mpm, gridLabels_));
     gridSeries_.add(time, gridFile);
     if (Communicator::isRoot()) gridSeries_.write((fs::path(dir_) / "grid.pvd").string());
   }
@@ -266,8 +268,8 @@ void DataArchiver::writeOutput(Collective, long step, double time, const MPM& mp
   writeHistory();
 }
 
-std::string DataArchiver::writeFailedState(Collective, long step, const MPM& mpm) const {
-  const std::string file = writeParticles("particles/" + stepName("failed_step_", step),
+std::string DataArchiver::writeFailedState(Collective every, long step, const MPM& mpm) const {
+  const std::string file = writeParticles(every, "particles/" + stepName("failed_step_", step),
                                           gatherParticles(mpm, particleLabels_));
   return (fs::path(dir_) / file).string();
 }
@@ -400,12 +402,13 @@ std::string truncateHistory(const std::string& path, long step) {
 
 }  // namespace
 
-void DataArchiver::restoreOutputsTo(long step) {
+void DataArchiver::restoreOutputsTo(Collective every, long step) {
   unwritten_.clear();
   historyStarted_ = true;
   // On rank 0, history.csv first: when it cannot be restored the restart stops with every output
   // kept. Its errors reach every rank.
   collective::onRootTogether(
+      every,
       [&] {
         const std::string error = truncateHistory((fs::path(dir_) / "history.csv").string(), step);
         if (error.empty()) {

@@ -68,7 +68,7 @@ class DataArchiver {
   bool savesConcentrationFields() const;
 
   // Creates the output directory and copies the input into it.
-  void open(const std::string& dir, const std::string& inputFile);
+  void open(Collective, const std::string& dir, const std::string& inputFile);
   // Continues in the directory of an earlier run (restart): loadState then sets the series.
   void reopen(const std::string& dir) { dir_ = dir; }
   const std::string& directory() const { return dir_; }
@@ -117,7 +117,7 @@ class DataArchiver {
   // steps and those of `step` itself that the checkpoint's series lacks (a stop's output, written
   // after its checkpoint); then writes the .pvd files as the state has them. An error stops the
   // restart on every rank, before any output is removed when it is history.csv's.
-  void restoreOutputsTo(long step);
+  void restoreOutputsTo(Collective, long step);
 
  private:
   // The particle and grid files restoreOutputsTo removes.
@@ -129,8 +129,8 @@ class DataArchiver {
   void writeIndexFiles();
   // This rank's particles (grid nodes) under `base` (relative to the directory): base.vtu on one
   // rank, else its piece base.rNNNN.vtu and, from rank 0, base.pvtu; returns the file to list.
-  std::string writeParticles(const std::string& base, const ParticleData& data) const;
-  std::string writeGrid(const std::string& base, const GridData& data) const;
+  std::string writeParticles(Collective, const std::string& base, const ParticleData& data) const;
+  std::string writeGrid(Collective, const std::string& base, const GridData& data) const;
 
   std::string filebase_;
   std::optional<double> interval_;

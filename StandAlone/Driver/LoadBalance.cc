@@ -6,20 +6,20 @@
 
 namespace anode {
 
-double LoadBalance::start(Collective, const MPM& mpm) {
-  layoutImbalance_ = mpm.layout().imbalance(Collective{});
+double LoadBalance::start(Collective every, const MPM& mpm) {
+  layoutImbalance_ = mpm.layout().imbalance(every);
   return layoutImbalance_;
 }
 
-bool LoadBalance::rebalance(Collective, MPM& mpm, long step) {
+bool LoadBalance::rebalance(Collective every, MPM& mpm, long step) {
   if (Communicator::size() == 1) return false;
-  const double before = mpm.layout().imbalance(Collective{});
+  const double before = mpm.layout().imbalance(every);
   const double growth =
       mpm.problem().flags.implicit ? kRebalanceImbalanceImplicit : kRebalanceImbalance;
   if (before <= growth * layoutImbalance_) return false;
   ScopedTimer timer(mpm.timers(), mpm.timers().task("rebalance"));
-  mpm.layout().redistributeParticles(Collective{});
-  const double after = mpm.layout().imbalance(Collective{});
+  mpm.layout().redistributeParticles(every);
+  const double after = mpm.layout().imbalance(every);
   if (Communicator::isRoot())
     std::fprintf(stderr,
                  "sus: step %ld: particles per rank max/mean %.3f, %.2f times the %.3f the boxes "

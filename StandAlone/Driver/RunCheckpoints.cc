@@ -28,8 +28,9 @@ bool RunCheckpoints::isDue(long step, double time) const {
   return schedule_.isDue(step, time, lastScheduledTime_);
 }
 
-void RunCheckpoints::removeEarlierRuns(Collective, const std::string& dir) const {
+void RunCheckpoints::removeEarlierRuns(Collective every, const std::string& dir) const {
   collective::onRootTogether(
+      every,
       [&] {
         const size_t earlier = listCheckpoints(dir).size();
         removeOldCheckpoints(dir, CheckpointKind::Scheduled, 0);
@@ -45,7 +46,7 @@ void RunCheckpoints::removeEarlierRuns(Collective, const std::string& dir) const
       "rank 0 could not remove an earlier run's checkpoints");
 }
 
-void RunCheckpoints::write(Collective, CheckpointKind kind, CheckpointHeader state,
+void RunCheckpoints::write(Collective every, CheckpointKind kind, CheckpointHeader state,
                            DataArchiver& archiver, const MPM& mpm) {
   archiver.writeHistory();  // history.csv holds every row up to the checkpoint's step
   const std::string dir = archiver.directory();
@@ -59,7 +60,7 @@ void RunCheckpoints::write(Collective, CheckpointKind kind, CheckpointHeader sta
   state.ranks = Communicator::size();
   state.inputHash = inputHash_;
   state.lastScheduledTime = lastScheduledTime_;
-  writeCheckpoint(Collective{}, newest_, state, archiver, mpm);
+  writeCheckpoint(every, newest_, state, archiver, mpm);
   if (Communicator::isRoot()) {
     if (kind == CheckpointKind::Scheduled) {
       removeOldCheckpoints(dir, kind, schedule_.cycle);
@@ -68,30 +69,31 @@ void RunCheckpoints::write(Collective, CheckpointKind kind, CheckpointHeader sta
       removeOldCheckpoints(dir, kind, 1);
     }
   }
-  collective::barrier();
+  collective::barrier(every);
 }
 
-CheckpointHeader RunCheckpoints::restartFromNewest(Collective, const std::string& dir,
+CheckpointHeader RunCheckpoints::restartFromNewest(Collective every, const std::string& dir,
                                                    DataArchiver& archiver, MPM& mpm) {
   if (Communicator::isRoot()) {
     removeTemporaryFiles(dir);
     removeUnfinishedCheckpointParts(dir);
   }
-  collective::barrier();
-  return loadNewest(Collective{}, dir, archiver, mpm);
+  collective::barrier(every);
+  return loadNewest(every, dir, archiver, mpm);
 }
 
-CheckpointHeader RunCheckpoints::loadForReplay(Collective, long lastGood, MPM& mpm) {
-  const CheckpointHeader read = load(Collective{}, newest_, nullptr, mpm);
+CheckpointHeader RunCheckpoints::loadForReplay(Collective every, long lastGood, MPM& mpm) {
+  const CheckpointHeader read = load(every, newest_, nullptr, mpm);
   if (read.step < lastGood && Communicator::isRoot())
     std::fprintf(stderr, "sus: replaying steps %ld to %ld from %s for the last good state\n",
                  read.step + 1, lastGood, newest_.c_str());
   return read;
 }
 
-void RunCheckpoints::checkReplayed(Collective, long step, const HistoryRow& row, const MPM& mpm) {
+void RunCheckpoints::checkReplayed(Collective every, long step, const HistoryRow& row,
+                                   const MPM& mpm) {
   // The replayed state must be the one the run had: its history row says what it was.
-  const StepSummary s = mpm.summarize(Collective{});
+  const StepSummary s = mpm.summarize(every);
   if ((row.step != step || row.kineticEnergy != s.kineticEnergy ||
        row.totalLithium != s.totalLithium) &&
       Communicator::isRoot())
@@ -117,7 +119,7 @@ void RunCheckpoints::atEnd(const std::string& dir, bool onRequest, bool reachedI
     removeAutomaticCheckpoints(dir);
 }
 
-CheckpointHeader RunCheckpoints::loadNewest(Collective, const std::string& dir,
+CheckpointHeader RunCheckpoints::loadNewest(Collective every, const std::string& dir,
                                             DataArchiver& archiver, MPM& mpm) {
   // Rank 0 lists the checkpoints, newest first, and checks their hashes; every rank then tries
   // the same ones (a rank whose view of the directory lags, or whose read fails, must not resume
@@ -142,7 +144,7 @@ CheckpointHeader RunCheckpoints::loadNewest(Collective, const std::string& dir,
     } catch (const std::exception& e) {  // the directory unreadable: every rank stops
       listed = std::string("E ") + e.what() + " (nothing was removed)\n";
     }
-  std::istringstream lines(collective::broadcast(listed, 0));
+  std::istringstream lines(collective::broadcast(every, listed, 0));
   for (std::string line; std::getline(lines, line);) {
     const std::string path = line.substr(2);
     if (line[0] == 'E') throw std::runtime_error(path);
@@ -155,7 +157,7 @@ CheckpointHeader RunCheckpoints::loadNewest(Collective, const std::string& dir,
     }
     CheckpointHeader read;
     try {
-      read = load(Collective{}, path, &archiver, mpm);  // fails on every rank together
+      read = load(every, path, &archiver, mpm);  // fails on every rank together
     } catch (const std::runtime_error& e) {
       if (Communicator::isRoot())
         std::fprintf(stderr, "warning: skipping %s: %s\n", path.c_str(), e.what());
@@ -163,18 +165,18 @@ CheckpointHeader RunCheckpoints::loadNewest(Collective, const std::string& dir,
     }
     // The outputs after it go only once it is loaded; an error here (a file that cannot be
     // written) stops the restart, and is no reason to go back to an older checkpoint.
-    archiver.restoreOutputsTo(read.step);
+    archiver.restoreOutputsTo(every, read.step);
     newest_ = path;
     return read;
   }
   throw std::runtime_error("no complete checkpoint in " + dir + "/checkpoints");
 }
 
-CheckpointHeader RunCheckpoints::load(Collective, const std::string& path, DataArchiver* outputs,
-                                      MPM& mpm) {
-  const CheckpointHeader read = loadCheckpoint(Collective{}, path, outputs, mpm);
+CheckpointHeader RunCheckpoints::load(Collective every, const std::string& path,
+                                      DataArchiver* outputs, MPM& mpm) {
+  const CheckpointHeader read = loadCheckpoint(every, path, outputs, mpm);
   lastScheduledTime_ = read.lastScheduledTime;
-  const double mostRead = collective::maximum(read.bytesRead);
+  const double mostRead = collective::maximum(every, read.bytesRead);
   if (!Communicator::isRoot()) return read;
   if (Communicator::size() > 1 && outputs)
     std::fprintf(stderr, "sus: the rank that read most of %s read %.4g of its %.4g bytes (%.2f)\n",

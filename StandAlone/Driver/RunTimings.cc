@@ -13,22 +13,24 @@
 
 namespace anode {
 
-void printTimings(Collective, const RunCounts& run, const MPM& mpm, const Integrator& integrator) {
+void printTimings(Collective every, const RunCounts& run, const MPM& mpm,
+                  const Integrator& integrator) {
   // Per task the slowest rank's time (the others wait for it at the next exchange).
   const TaskTimers& timers = mpm.timers();
   std::vector<double> seconds = timers.seconds();
-  collective::maximum(seconds.data(), static_cast<int>(seconds.size()));
-  const size_t particles =
-      static_cast<size_t>(collective::sum(static_cast<int64_t>(countParticles(mpm.materials()))));
-  const double imbalance = mpm.layout().imbalance(Collective{});
+  collective::maximum(every, seconds.data(), static_cast<int>(seconds.size()));
+  const size_t particles = static_cast<size_t>(
+      collective::sum(every, static_cast<int64_t>(countParticles(mpm.materials()))));
+  const double imbalance = mpm.layout().imbalance(every);
   const long collectiveCalls = Communicator::collectiveCalls();  // before this summary's own
   double communication[2] = {Communicator::bytesSent(), Communicator::communicationSeconds()};
-  collective::sum(communication, 1);
-  collective::maximum(communication + 1, 1);
+  collective::sum(every, communication, 1);
+  collective::maximum(every, communication + 1, 1);
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
   const double ownPeak = usage.ru_maxrss * 1024.0;  // Linux: kilobytes
-  const double peakBytes = collective::maximum(ownPeak), allPeaks = collective::sum(ownPeak);
+  const double peakBytes = collective::maximum(every, ownPeak),
+               allPeaks = collective::sum(every, ownPeak);
   if (!Communicator::isRoot()) return;
   double total = 0;
   for (double v : seconds) total += v;

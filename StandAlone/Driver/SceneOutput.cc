@@ -54,19 +54,19 @@ namespace {
 // into a layer with the camera and colours of all of them (one reduction of their extent), and
 // the layers' pixel-wise minimum, the nearest sphere at each pixel, reaches rank 0, which adds
 // the title and colour bar. One rank draws its sprites as they are.
-std::optional<RenderedScene> drawTogether(SceneRenderer& renderer, const Scene& scene,
-                                          const SpriteSet& sprites, double t) {
+std::optional<RenderedScene> drawTogether(Collective every, SceneRenderer& renderer,
+                                          const Scene& scene, const SpriteSet& sprites, double t) {
   if (Communicator::size() == 1) return renderer.render(scene, sprites, t);
   SpriteExtent extent = SpriteExtent::of(sprites);
   double lows[8] = {extent.lo.x(),  extent.lo.y(),  extent.lo.z(),  extent.valueLo,
                     -extent.hi.x(), -extent.hi.y(), -extent.hi.z(), -extent.valueHi};
-  collective::minimum(lows, 8);
+  collective::minimum(every, lows, 8);
   extent.lo = Vec3(lows[0], lows[1], lows[2]);
   extent.hi = -Vec3(lows[4], lows[5], lows[6]);
   extent.valueLo = lows[3];
   extent.valueHi = -lows[7];
   PixelLayer layer = renderer.drawLayer(scene, sprites, extent);
-  collective::minimumOnRoot(layer.data(), layer.size());
+  collective::minimumOnRoot(every, layer.data(), layer.size());
   if (!Communicator::isRoot()) return std::nullopt;
   return SceneRenderer::finish(scene, layer, extent, t);
 }
@@ -83,7 +83,7 @@ void SceneOutput::skipTimesUpTo(double t) {
     while (next_[k] < times_[k].size() && crossed(times_[k][next_[k]], t)) ++next_[k];
 }
 
-void SceneOutput::renderDue(double t, MPM& mpm, const std::string& outputDir) {
+void SceneOutput::renderDue(Collective every, double t, MPM& mpm, const std::string& outputDir) {
   for (size_t k = 0; k < scenes_.size(); ++k) {
     const Scene& scene = scenes_[k];
     const std::vector<double>& times = times_[k];
@@ -96,7 +96,7 @@ void SceneOutput::renderDue(double t, MPM& mpm, const std::string& outputDir) {
     });
     if (!renderer_) renderer_ = std::make_unique<SceneRenderer>();
     const std::optional<RenderedScene> picture =
-        drawTogether(*renderer_, scene, makeSprites(scene, data), t);
+        drawTogether(every, *renderer_, scene, makeSprites(scene, data), t);
     if (!picture) {
       while (next_[k] < times.size() && crossed(times[next_[k]], t)) ++next_[k];
       continue;

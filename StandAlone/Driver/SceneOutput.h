@@ -26,7 +26,7 @@ class SceneOutput {
   static SceneOutput fromInput(const PSNode& root, const TimeControl& time, const MPM& mpm);
 
   // Renders every scene time in (last call's time, t]; at the first call, every time <= t.
-  void renderDue(double t, MPM& mpm, const std::string& outputDir);
+  void renderDue(Collective, double t, MPM& mpm, const std::string& outputDir);
   // Marks every scene time <= t as rendered (a restarted run rendered them before).
   void skipTimesUpTo(double t);
   int imagesWritten() const { return imagesWritten_; }

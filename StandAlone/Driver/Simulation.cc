@@ -29,18 +29,19 @@ Simulation::Simulation(const std::string& text, const std::string& name, const R
 }
 
 void Simulation::setup(const std::function<void()>& readSpec) {
+  const Collective every = Communicator::everyRank();
   const auto start = std::chrono::steady_clock::now();
   // Everything that reads and checks the input calls no collective: a rank that cannot read it
   // (a path not shared between nodes) ends every rank here, not in the first collective.
-  collective::readTogether([&] {
+  collective::readTogether(every, [&] {
     readSpec();
     readInput();
   });
   if (options_.countParticlesOnly) return;
-  mpm_.distributeOverRanks(Collective{});
+  mpm_.distributeOverRanks(every);
   if (archiver_.savesConcentrationFields() || scenes_.draws("p.concentrationGradient"))
     mpm_.diffusion()->computeEveryMaterial();
-  takeStableTimestep(0.0);
+  takeStableTimestep(every, 0.0);
   setupSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
@@ -84,9 +85,9 @@ void Simulation::readInput() {
   t_ = time_.initTime;
 }
 
-void Simulation::takeStableTimestep(double growsFrom) {
+void Simulation::takeStableTimestep(Collective every, double growsFrom) {
   const TimestepController::Plan plan = dtController_->plan(
-      integrator_->stableTimestep(Collective{}), growsFrom, t_,
+      integrator_->stableTimestep(every), growsFrom, t_,
       time_.clampTimeToOutput ? archiver_.nextOutputTimeAfter(t_) : std::nullopt);
   dt_ = plan.dt;
   ruleDt_ = plan.ruleDt;
@@ -94,17 +95,17 @@ void Simulation::takeStableTimestep(double growsFrom) {
   dtSetByTimeControl_ = plan.setByTimeControl;
 }
 
-void Simulation::stepMPM() {
-  const StepTaken taken = integrator_->advance(Collective{}, t_, dt_, ruleDt_);
+void Simulation::stepMPM(Collective every) {
+  const StepTaken taken = integrator_->advance(every, t_, dt_, ruleDt_);
   dt_ = taken.dt;
   growsFromDt_ = taken.ruleDt;
 }
 
-void Simulation::advance() {
+void Simulation::advance(Collective every) {
   try {
-    stepMPM();
+    stepMPM(every);
     ScopedTimer timer(mpm_.timers(), mpm_.timers().task("stateChecks"));
-    checks_.afterStep(Collective{}, mpm_, dt_);
+    checks_.afterStep(every, mpm_, dt_);
   } catch (const StoppedOnAnotherRank&) {
     throw;
   } catch (const SimulationError& e) {
@@ -113,71 +114,72 @@ void Simulation::advance() {
     throw SimulationError(s.str());
   }
   lastStepDt_ = dt_;
-  finishStep();
+  finishStep(every);
 }
 
-void Simulation::finishStep() {
+void Simulation::finishStep(Collective every) {
   t_ += dt_;
   ++step_;
-  takeStableTimestep(growsFromDt_);
+  takeStableTimestep(every, growsFromDt_);
 }
 
 void Simulation::run() {
+  const Collective every = Communicator::everyRank();
   runStart_ = std::chrono::steady_clock::now();
   const bool restart = !options_.restartDir.empty();
-  start(Collective{}, restart);
+  start(every, restart);
   if (options_.progress && Communicator::isRoot())
     progress_.emplace(t_, time_.maxTime, step_, time_.maxTimesteps);
   // A checkpoint at the end of the run (killed before it wrote its last output) has no step left.
-  const bool nothingLeft = restart && finished(Collective{});
-  if (nothingLeft && archiver_.lastOutputStep() != step_) writeOutput(false);
+  const bool nothingLeft = restart && finished(every);
+  if (nothingLeft && archiver_.lastOutputStep() != step_) writeOutput(every, false);
   while (!nothingLeft) {
     const StableTimestep::Limit stepLimit = dtLimit_;
-    const double stepDt = advanceAndRecord(Collective{});
-    const bool done = finished(Collective{});
+    const double stepDt = advanceAndRecord(every);
+    const bool done = finished(every);
     const bool atInputEnd = done && reachedInputEnd();
     // A rebalance is followed by a checkpoint, so a replay to the last good state never
     // crosses one (it takes the same steps with the same boxes).
     bool rebalanced = false;
     if (atInputEnd || archiver_.isOutputStep(step_, t_)) {
-      writeOutput(true);
-      rebalanced = !done && balance_.rebalance(Collective{}, mpm_, step_);
+      writeOutput(every, true);
+      rebalanced = !done && balance_.rebalance(every, mpm_, step_);
     }
-    scenes_.renderDue(t_, mpm_, archiver_.directory());
-    const Requests anyRank = requestsOfAnyRank(Collective{}, done);
+    scenes_.renderDue(every, t_, mpm_, archiver_.directory());
+    const Requests anyRank = requestsOfAnyRank(every, done);
     stoppedOnRequest_ = anyRank.stop;
     // A stop before the input's end (a signal, --max-timesteps, <max_wall_time>) leaves a
     // checkpoint at its step, so a restart takes no step twice.
     const bool stopping = anyRank.stop || (done && !atInputEnd);
     if (checkpoints_.isDue(step_, t_))
-      writeCheckpoint(Collective{}, CheckpointKind::Scheduled);
+      writeCheckpoint(every, CheckpointKind::Scheduled);
     else if (rebalanced || stopping || anyRank.replayCheckpoint)
-      writeCheckpoint(Collective{}, CheckpointKind::Automatic);
+      writeCheckpoint(every, CheckpointKind::Automatic);
     // The stopped state as the series' last entry, after the checkpoint: a restart from it
     // removes this output, so the continued series is the uninterrupted run's.
-    if (stopping && archiver_.lastOutputStep() != step_) writeOutput(true);
+    if (stopping && archiver_.lastOutputStep() != step_) writeOutput(every, true);
     if (progress_) updateProgress(stepLimit, stepDt, done);
     if (done || stoppedOnRequest_) break;
   }
   finishRun();
 }
 
-double Simulation::advanceAndRecord(Collective) {
+double Simulation::advanceAndRecord(Collective every) {
   const double plannedDt = dt_;
   const int plannedRule = dtSetByTimeControl_ ? int{kDtSetByTimeControl} : int{dtLimit_};
   try {
-    advance();
+    advance(every);
   } catch (const SimulationError&) {
-    writeStateOnStop();
+    writeStateOnStop(every);
     throw;
   }
   const double stepDt = lastStepDt_;
   const int rule = stepDt < plannedDt ? int{kDtRetaken} : plannedRule;
   ++stepsByRule_[rule];
-  const double particles = static_cast<double>(recordHistoryRow(stepDt, rule));
+  const double particles = static_cast<double>(recordHistoryRow(every, stepDt, rule));
   particleSteps_ += particles;
   particleStepsOfThisProcess_ += particles;
-  reportSymmetryFaces();
+  reportSymmetryFaces(every);
   reportDiffusionNotes();
   return stepDt;
 }
@@ -207,34 +209,35 @@ void Simulation::finishRun() {
   wallSeconds_ = wallTime();
 }
 
-void Simulation::start(Collective, bool restart) {
+void Simulation::start(Collective every, bool restart) {
   checkpoints_.hashInput(options_.input);
   if (restart) {
     archiver_.reopen(options_.restartDir);
-    resumeFrom(checkpoints_.restartFromNewest(Collective{}, options_.restartDir, archiver_, mpm_));
+    resumeFrom(checkpoints_.restartFromNewest(every, options_.restartDir, archiver_, mpm_));
     firstStepOfThisProcess_ = step_;
     scenes_.skipTimesUpTo(t_);
   } else {
     // Rank 0 picks the directory (the next free version) for all.
     const std::string dir = collective::broadcast(
+        every,
         Communicator::isRoot() ? chooseOutputDirectory(options_.outputDir, archiver_.filebase())
                                : "",
         0);
-    checkpoints_.removeEarlierRuns(Collective{}, dir);
-    archiver_.open(dir, options_.input);
+    checkpoints_.removeEarlierRuns(every, dir);
+    archiver_.open(every, dir, options_.input);
   }
   outputTask_ = mpm_.timers().task("output");
   checkpointTask_ = mpm_.timers().task("checkpoint");
-  reportSetup(Collective{});
+  reportSetup(every);
   if (restart) {
     if (Communicator::isRoot())
       std::fprintf(stderr, "sus: restarting from %s (step %ld, t = %.6e)\n",
                    checkpoints_.newest().c_str(), step_, t_);
   } else {
-    recordHistoryRow(0.0, -1);
-    writeOutput(false);
-    scenes_.renderDue(t_, mpm_, archiver_.directory());
-    writeCheckpoint(Collective{}, CheckpointKind::Automatic);
+    recordHistoryRow(every, 0.0, -1);
+    writeOutput(every, false);
+    scenes_.renderDue(every, t_, mpm_, archiver_.directory());
+    writeCheckpoint(every, CheckpointKind::Automatic);
   }
 }
 
@@ -246,18 +249,18 @@ bool Simulation::reachedInputEnd() const {
   return t_ >= time_.maxTime || (inputMaxTimesteps_ > 0 && step_ >= inputMaxTimesteps_);
 }
 
-bool Simulation::finished(Collective) const {
+bool Simulation::finished(Collective every) const {
   return t_ >= time_.maxTime || (time_.maxTimesteps > 0 && step_ >= time_.maxTimesteps) ||
-         (time_.maxWallTime > 0 && collective::any(wallTime() >= time_.maxWallTime));
+         (time_.maxWallTime > 0 && collective::any(every, wallTime() >= time_.maxWallTime));
 }
 
-void Simulation::reportSetup(Collective) {
-  const size_t particles = mpm_.summarize(Collective{}).particles;
-  const double imbalance = balance_.start(Collective{}, mpm_);
+void Simulation::reportSetup(Collective every) {
+  const size_t particles = mpm_.summarize(every).particles;
+  const double imbalance = balance_.start(every, mpm_);
   // Setup's wall time and the memory it left (the peak so far), of the slowest and the largest
   // rank and of the smallest.
   double setup[4] = {setupSeconds_, setupPeakBytes_, -setupSeconds_, -setupPeakBytes_};
-  if (Communicator::size() > 1) collective::maximum(setup, 4);
+  if (Communicator::size() > 1) collective::maximum(every, setup, 4);
   if (Communicator::isRoot()) {
     if (Communicator::size() > 1)
       std::fprintf(stderr,
@@ -281,7 +284,7 @@ void Simulation::reportSetup(Collective) {
     for (const std::string& line : forecastSteps(stepForecastInput()))
       std::fprintf(stderr, "%s%s\n", line.rfind("note:", 0) == 0 ? "" : "sus: ", line.c_str());
   }
-  for (const std::string& note : symmetryFaces_.start(Collective{}, mpm_))
+  for (const std::string& note : symmetryFaces_.start(every, mpm_))
     if (Communicator::isRoot()) std::fprintf(stderr, "%s\n", note.c_str());
 }
 
@@ -301,8 +304,8 @@ StepForecastInput Simulation::stepForecastInput() const {
   return in;
 }
 
-size_t Simulation::recordHistoryRow(double stepDt, int dtRule) {
-  const StepSummary s = mpm_.summarize(Collective{});
+size_t Simulation::recordHistoryRow(Collective every, double stepDt, int dtRule) {
+  const StepSummary s = mpm_.summarize(every);
   const double lithiumRate =
       stepDt > 0 ? (s.totalLithium - archiver_.lastHistoryRow().totalLithium) / stepDt : 0.0;
   stateOfCharge_ = s.lithiumCapacity > 0 ? s.chargeableLithium / s.lithiumCapacity : 0.0;
@@ -321,19 +324,19 @@ size_t Simulation::recordHistoryRow(double stepDt, int dtRule) {
   return s.particles;
 }
 
-void Simulation::writeOutput(bool afterStep) {
+void Simulation::writeOutput(Collective every, bool afterStep) {
   ScopedTimer timer(mpm_.timers(), outputTask_);
   // Before any step of this process (the start, or a restart with no step left) the grid labels
   // are interpolated from the particles.
-  if (archiver_.wantsGrid() && !afterStep) mpm_.interpolateToGridForOutput(Collective{});
+  if (archiver_.wantsGrid() && !afterStep) mpm_.interpolateToGridForOutput(every);
   // Between steps the weights are not needed: the output's copy of the particles takes their
   // memory instead of adding to the peak.
   mpm_.releaseInterpolationWeights();
-  archiver_.writeOutput(Collective{}, step_, t_, mpm_);
+  archiver_.writeOutput(every, step_, t_, mpm_);
 }
 
-void Simulation::reportSymmetryFaces() {
-  for (const std::string& warning : symmetryFaces_.afterStep(Collective{}, mpm_, step_, t_)) {
+void Simulation::reportSymmetryFaces(Collective every) {
+  for (const std::string& warning : symmetryFaces_.afterStep(every, mpm_, step_, t_)) {
     if (progress_) progress_->finish();
     std::fprintf(stderr, "%s\n", warning.c_str());
   }
@@ -348,24 +351,24 @@ void Simulation::reportDiffusionNotes() {
   }
 }
 
-Simulation::Requests Simulation::requestsOfAnyRank(Collective, bool done) const {
+Simulation::Requests Simulation::requestsOfAnyRank(Collective every, bool done) const {
   double anyRank[2] = {stopRequested() ? 1.0 : 0.0,
                        wallTime() - newestCheckpointWallTime_ >= kReplayInterval ? 1.0 : 0.0};
-  if (!done) collective::maximum(anyRank, 2);
+  if (!done) collective::maximum(every, anyRank, 2);
   return {!done && anyRank[0] > 0, !done && anyRank[1] > 0};
 }
 
-void Simulation::writeStateOnStop() {
+void Simulation::writeStateOnStop(Collective every) {
   archiver_.writeHistory();
   if (progress_) progress_->finish();
   // The failing step's particles outside the .pvd series, then the last good state (the end of
   // step_) as the series' last entry.
-  const std::string failed = archiver_.writeFailedState(Collective{}, step_ + 1, mpm_);
-  replayToLastGoodState();
+  const std::string failed = archiver_.writeFailedState(every, step_ + 1, mpm_);
+  replayToLastGoodState(every);
   if (Communicator::isRoot()) removeAutomaticCheckpoints(archiver_.directory());
   if (archiver_.lastOutputStep() != step_) {
-    if (archiver_.wantsGrid()) mpm_.interpolateToGridForOutput(Collective{});
-    archiver_.writeOutput(Collective{}, step_, t_, mpm_);
+    if (archiver_.wantsGrid()) mpm_.interpolateToGridForOutput(every);
+    archiver_.writeOutput(every, step_, t_, mpm_);
   }
   if (Communicator::isRoot())
     std::fprintf(
@@ -378,19 +381,19 @@ void Simulation::writeStateOnStop() {
               std::to_string(step_) + ".");
 }
 
-void Simulation::replayToLastGoodState() {
+void Simulation::replayToLastGoodState(Collective every) {
   const long lastGood = step_;
-  resumeFrom(checkpoints_.loadForReplay(Collective{}, lastGood, mpm_));
+  resumeFrom(checkpoints_.loadForReplay(every, lastGood, mpm_));
   while (step_ < lastGood) {
-    stepMPM();
-    finishStep();
+    stepMPM(every);
+    finishStep(every);
   }
-  RunCheckpoints::checkReplayed(Collective{}, step_, archiver_.lastHistoryRow(), mpm_);
+  RunCheckpoints::checkReplayed(every, step_, archiver_.lastHistoryRow(), mpm_);
 }
 
-void Simulation::writeCheckpoint(Collective, CheckpointKind kind) {
+void Simulation::writeCheckpoint(Collective every, CheckpointKind kind) {
   ScopedTimer timer(mpm_.timers(), checkpointTask_);
-  checkpoints_.write(Collective{}, kind, checkpointState(), archiver_, mpm_);
+  checkpoints_.write(every, kind, checkpointState(), archiver_, mpm_);
   newestCheckpointWallTime_ = wallTime();
   // At the input's checkpoints and the start, not at the automatic ones every 10 minutes: the
   // report reads the whole history.csv (a gigabyte after millions of steps).
@@ -434,9 +437,9 @@ void Simulation::resumeFrom(const CheckpointHeader& read) {
   earlierWallSeconds_ = read.wallSeconds;
 }
 
-void Simulation::printTimings(Collective) const {
+void Simulation::printTimings(Collective every) const {
   anode::printTimings(
-      Collective{},
+      every,
       {step_, t_, !options_.restartDir.empty(), firstStepOfThisProcess_, stepsByRule_,
        particleSteps_, particleStepsOfThisProcess_, wallSeconds_, earlierWallSeconds_},
       mpm_, *integrator_);

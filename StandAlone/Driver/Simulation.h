@@ -49,7 +49,7 @@ class Simulation {
   void run();
   bool stoppedOnRequest() const { return stoppedOnRequest_; }
   // One step without output (tests and studies).
-  void advance();
+  void advance() { advance(Communicator::everyRank()); }
 
   MPM& mpm() { return mpm_; }
   Integrator& integrator() { return *integrator_; }
@@ -71,12 +71,14 @@ class Simulation {
   void readInput();
   // The MPM's step from t_ over dt_: explicit, or quasi-static (which may retake it with a
   // smaller dt_).
-  void stepMPM();
+  void stepMPM(Collective);
+  // advance() on the run's tag: the step, its state checks and finishStep.
+  void advance(Collective);
   // The end of a step: time, step count and the next dt.
-  void finishStep();
+  void finishStep(Collective);
   // dt_ for the step from t_ (TimestepController's plan), the last step's limits grown from
   // `growsFrom`.
-  void takeStableTimestep(double growsFrom);
+  void takeStableTimestep(Collective, double growsFrom);
   // The run's start: opens its directory (a new one, or the restart directory at its newest
   // checkpoint), reports the setup and, unless a restart, records and writes the initial state
   // with a checkpoint.
@@ -104,11 +106,11 @@ class Simulation {
   struct StepForecastInput stepForecastInput() const;
   // Appends the state's row (after a step of `stepDt`, whose dt `dtRule` set: a DtRule, -1 for
   // the start) to the history; returns the particle count.
-  size_t recordHistoryRow(double stepDt, int dtRule);
+  size_t recordHistoryRow(Collective, double stepDt, int dtRule);
   // Writes the output of step_; `afterStep`: the grid labels hold the last step's nodal values.
-  void writeOutput(bool afterStep);
+  void writeOutput(Collective, bool afterStep);
   // Prints the symmetry-face warnings of the step just taken.
-  void reportSymmetryFaces();
+  void reportSymmetryFaces(Collective);
   // Prints the diffusion's notes of the step just taken (a galvanostatic current ending).
   void reportDiffusionNotes();
   // What any rank asks for at the end of a step (none after the last): to stop, and its own
@@ -118,10 +120,10 @@ class Simulation {
   };
   Requests requestsOfAnyRank(Collective, bool done) const;
   // After a failed step: writes its particles and the last good state (DESIGN.md §8).
-  void writeStateOnStop();
+  void writeStateOnStop(Collective);
   // Brings the state back to the end of step_ (the last good one) by loading the newest
   // checkpoint and taking the same steps again (they are deterministic).
-  void replayToLastGoodState();
+  void replayToLastGoodState(Collective);
   // Writes the state after step_ to a checkpoint (RunCheckpoints::write) and, at a scheduled one
   // or the start, writes report.html.
   void writeCheckpoint(Collective, CheckpointKind kind);

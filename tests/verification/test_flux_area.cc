@@ -56,7 +56,7 @@ double largestDeviation(const std::string& rule, double k, double* finalMean) {
   while (sim.time() < 0.15) {
     sim.advance();
     if (sim.step() % 500 != 0 && sim.time() < 0.15) continue;
-    mean = sim.mpm().summarize(Collective{}).totalLithium / mass;
+    mean = sim.mpm().summarize(Communicator::everyRank()).totalLithium / mass;
     worst = std::max(worst, std::abs(mean / meanConcentration(sim.time(), k) - 1));
   }
   *finalMean = mean;

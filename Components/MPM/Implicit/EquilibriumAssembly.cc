@@ -26,8 +26,8 @@ constexpr double kRigidModeRegularization = 1e-10;
 
 }  // namespace
 
-void EquilibriumSolver::assemble(const EquilibriumProblem& problem, double dt, double stabilization,
-                                 bool withTangent) {
+void EquilibriumSolver::assemble(Collective every, const EquilibriumProblem& problem, double dt,
+                                 double stabilization, bool withTangent) {
   if (withTangent) K_.clearValues();
   const size_t materials = problem.materials.size();
   P_.resize(materials);
@@ -61,7 +61,7 @@ void EquilibriumSolver::assemble(const EquilibriumProblem& problem, double dt, d
     }
     if (stabilization > 0) applyHourglassStiffness(first, last, withTangent);
   }
-  completeOverRanks(problem, residual_, 3, false);
+  completeOverRanks(every, problem, residual_, 3, false);
   // Gravity and, in implicit dynamics, the inertia (the nodal masses, velocities and
   // accelerations are complete on every rank), the fixed components' rows.
   const bool dynamic = !problem.velocity.empty();
@@ -87,7 +87,7 @@ void EquilibriumSolver::assemble(const EquilibriumProblem& problem, double dt, d
     if (K_.rowStart[r + 1] > K_.rowStart[r]) sums[0] += K_.at(r, r).trace();
     if (r < rows_.owned) sums[1] += 3 * problem.mass[f][k];
   }
-  collective::sum(sums, 2);
+  collective::sum(every, sums, 2);
   const double alpha = sums[1] > 0 ? kRigidModeRegularization * sums[0] / sums[1] : 0;
   for (int r = 0; r < rows_.owned; ++r) {
     const auto [f, k] = unknown_[r];
@@ -225,19 +225,19 @@ void EquilibriumSolver::applyHourglassStiffness(int first, int last, bool withTa
 }
 
 EquilibriumSolver::Linearization EquilibriumSolver::linearizeAt(
-    const EquilibriumProblem& problem, double dt, const ImplicitOptions& options,
+    Collective every, const EquilibriumProblem& problem, double dt, const ImplicitOptions& options,
     const std::vector<std::vector<Vec3>>& u, const std::vector<std::vector<Vec3>>& du) {
   if (problem.ghosts) throw std::invalid_argument("EquilibriumSolver::linearizeAt: one rank only");
-  numberUnknowns(problem, options.jacobianCouplingShare);
+  numberUnknowns(every, problem, options.jacobianCouplingShare);
   startFromPrescribed(problem);
   K_.block.assign(K_.column.size(), Mat3::Zero());
   hourglass_.clear();
   hourglassTangent_.clear();
   // At the start first: the hourglass stiffness fixed where a solve's first assembly fixes it, so
   // that r is one function of u over calls.
-  assemble(problem, dt, options.hourglassStabilization, true);
+  assemble(every, problem, dt, options.hourglassStabilization, true);
   u_ = u;
-  assemble(problem, dt, options.hourglassStabilization, true);
+  assemble(every, problem, dt, options.hourglassStabilization, true);
   std::vector<double> product(residual_.size(), 0.0);
   for (int r = 0; r < K_.rows(); ++r)
     for (int j = K_.rowStart[r]; j < K_.rowStart[r + 1]; ++j) {

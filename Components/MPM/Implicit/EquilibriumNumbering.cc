@@ -35,7 +35,7 @@ bool sameBits(const std::vector<std::vector<T>>& a, const std::vector<std::vecto
 
 }  // namespace
 
-void EquilibriumSolver::numberUnknowns(const EquilibriumProblem& problem,
+void EquilibriumSolver::numberUnknowns(Collective every, const EquilibriumProblem& problem,
                                        double jacobianCouplingShare) {
   const int fields = 1 + *std::max_element(problem.fieldOf.begin(), problem.fieldOf.end());
   const int nodes = problem.grid.numNodes();
@@ -45,7 +45,7 @@ void EquilibriumSolver::numberUnknowns(const EquilibriumProblem& problem,
     const std::vector<double>& mass = problem.mass[f];
     least[f] = *std::max_element(mass.begin(), mass.end());
   }
-  collective::maximum(least.data(), fields);
+  collective::maximum(every, least.data(), fields);
   row_.assign(fields, std::vector<int>(nodes, -1));
   unknown_.clear();
   // Block rows in (field, node) order, this rank's own nodes first.
@@ -59,10 +59,10 @@ void EquilibriumSolver::numberUnknowns(const EquilibriumProblem& problem,
     if (own) rows_.owned = static_cast<int>(unknown_.size());
   }
   // Global rows: the ranks' own rows in rank order; a shared node's from its owner.
-  const int first = static_cast<int>(collective::exclusiveSum(rows_.owned));
+  const int first = static_cast<int>(collective::exclusiveSum(every, rows_.owned));
   std::vector<double> global(unknown_.size(), -1.0);
   for (int r = 0; r < rows_.owned; ++r) global[r] = first + r;
-  completeOverRanks(problem, global, 1, true);
+  completeOverRanks(every, problem, global, 1, true);
   rows_.globalRow.resize(unknown_.size());
   for (size_t r = 0; r < unknown_.size(); ++r) {
     if (global[r] < 0)
@@ -175,7 +175,7 @@ void EquilibriumSolver::numberUnknowns(const EquilibriumProblem& problem,
   }
 }
 
-void EquilibriumSolver::completeOverRanks(const EquilibriumProblem& problem,
+void EquilibriumSolver::completeOverRanks(Collective every, const EquilibriumProblem& problem,
                                           std::vector<double>& values, int width,
                                           bool fromOwners) const {
   if (!problem.ghosts) return;
@@ -188,30 +188,31 @@ void EquilibriumSolver::completeOverRanks(const EquilibriumProblem& problem,
   }
   std::vector<NodeArray> arrays;
   for (std::vector<double>& a : byNode) arrays.push_back({a.data(), width});
-  problem.ghosts->sumOverRanks(Collective{}, arrays);
+  problem.ghosts->sumOverRanks(every, arrays);
   for (int r = fromOwners ? rows_.owned : 0; r < rows; ++r) {
     const auto [f, k] = unknown_[r];
     for (int a = 0; a < width; ++a) values[width * r + a] = byNode[f][width * k + a];
   }
 }
 
-double EquilibriumSolver::ownedDot(const std::vector<double>& a,
+double EquilibriumSolver::ownedDot(Collective every, const std::vector<double>& a,
                                    const std::vector<double>& b) const {
   double d = 0;
   for (size_t i = 0; i < 3 * static_cast<size_t>(rows_.owned); ++i) d += a[i] * b[i];
-  return collective::sum(d);
+  return collective::sum(every, d);
 }
 
-bool EquilibriumSolver::takesKeptLinearSolver(const EquilibriumProblem& problem) const {
+bool EquilibriumSolver::takesKeptLinearSolver(Collective every,
+                                              const EquilibriumProblem& problem) const {
   if (!problem.useKeptLinearSolver) return false;
   const bool same = linearSolver_ && sameBits(problem.mass, numberedMass_) &&
                     sameBits(problem.prescribed, numberedPrescribed_);
-  return collective::minimum(same ? 1.0 : 0.0) > 0;
+  return collective::minimum(every, same ? 1.0 : 0.0) > 0;
 }
 
-void EquilibriumSolver::buildLinearSolver(const EquilibriumProblem& problem) {
+void EquilibriumSolver::buildLinearSolver(Collective every, const EquilibriumProblem& problem) {
   linearSolver_.reset();  // its PETSc objects freed before the new ones are made
-  linearSolver_ = std::make_unique<LinearSolver>(K_, rows_, fixed_, coordinates_);
+  linearSolver_ = std::make_unique<LinearSolver>(every, K_, rows_, fixed_, coordinates_);
   numberedMass_.clear();
   numberedPrescribed_.clear();
   if (!problem.keepLinearSolver) return;

@@ -8,7 +8,8 @@
 
 namespace anode {
 
-void EquilibriumSolver::removeRigidMotionOfFreeBodies(const EquilibriumProblem& problem,
+void EquilibriumSolver::removeRigidMotionOfFreeBodies(Collective every,
+                                                      const EquilibriumProblem& problem,
                                                       std::vector<double>& du) const {
   if (!problem.velocity.empty()) return;  // implicit dynamics: the inertia sets them
   // The six rigid modes at a node: translations, then rotations about the grid's centre (in
@@ -48,7 +49,7 @@ void EquilibriumSolver::removeRigidMotionOfFreeBodies(const EquilibriumProblem& 
       for (int a = 0; a < 3; ++a)
         if (isFixed[3 * r + a]) sums.fixed += phi.row(a).transpose() * phi.row(a);
     }
-    collective::sum(values, 78);
+    collective::sum(every, values, 78);
     if (!(sums.mass.trace() > 0)) continue;
     // The rigid modes the fixed components do not hold (those vanishing on every one of them).
     Eigen::SelfAdjointEigenSolver<Mat6> held(sums.fixed);

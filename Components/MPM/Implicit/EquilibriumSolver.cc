@@ -78,16 +78,17 @@ void EquilibriumSolver::addToDisplacement(const std::vector<double>& du, double 
   }
 }
 
-bool EquilibriumSolver::takeStep(const EquilibriumProblem& problem, double dt, double stabilization,
-                                 const std::vector<double>& du, double residualNorm) {
+bool EquilibriumSolver::takeStep(Collective every, const EquilibriumProblem& problem, double dt,
+                                 double stabilization, const std::vector<double>& du,
+                                 double residualNorm) {
   std::optional<ScopedTimer> s;
   if (timers_) s.emplace(*timers_, assemblyTask_);
   double lowest = std::numeric_limits<double>::infinity(), best = 1.0;
   for (int halvings = 0; halvings < kLineSearchTrials; ++halvings) {
     const double step = std::ldexp(1.0, -halvings);
     addToDisplacement(du, step);
-    assemble(problem, dt, stabilization, false);
-    const double norm = ownedDot(residual_, residual_);
+    assemble(every, problem, dt, stabilization, false);
+    const double norm = ownedDot(every, residual_, residual_);
     if (norm < residualNorm) return true;  // false for NaN
     if (norm < lowest) lowest = norm, best = step;
     addToDisplacement(du, -step);
@@ -96,8 +97,8 @@ bool EquilibriumSolver::takeStep(const EquilibriumProblem& problem, double dt, d
   return false;
 }
 
-bool EquilibriumSolver::tryPrediction(const EquilibriumProblem& problem, double dt,
-                                      double stabilization, double& normReference,
+bool EquilibriumSolver::tryPrediction(Collective every, const EquilibriumProblem& problem,
+                                      double dt, double stabilization, double& normReference,
                                       double& energyReference) {
   if (problem.predicted.empty()) return false;
   std::optional<ScopedTimer> s;
@@ -108,13 +109,14 @@ bool EquilibriumSolver::tryPrediction(const EquilibriumProblem& problem, double 
     for (int a = 0; a < 3; ++a)
       if (std::isnan(problem.prescribed[f][k][a])) step[3 * r + a] = problem.predicted[f][k][a];
   }
-  const double startNorm = ownedDot(residual_, residual_);
-  const double size = ownedDot(step, step), work = std::abs(ownedDot(step, residual_));
+  const double startNorm = ownedDot(every, residual_, residual_);
+  const double size = ownedDot(every, step, step),
+               work = std::abs(ownedDot(every, step, residual_));
   if (!(size > 0)) return false;
   std::vector<double> startResidual = residual_;
   addToDisplacement(step, 1.0);
-  assemble(problem, dt, stabilization, false);
-  if (ownedDot(residual_, residual_) < startNorm) {  // false for NaN
+  assemble(every, problem, dt, stabilization, false);
+  if (ownedDot(every, residual_, residual_) < startNorm) {  // false for NaN
     normReference = size;
     energyReference = work;
     return true;
@@ -131,14 +133,14 @@ void EquilibriumSolver::computeEndOfStepAcceleration(const EquilibriumProblem& p
         newmarkAcceleration(u_[f][k], problem.velocity[f][k], problem.acceleration[f][k], dt);
 }
 
-NewtonReport EquilibriumSolver::solve(const EquilibriumProblem& problem, double dt,
-                                      const ImplicitOptions& options) {
+NewtonReport EquilibriumSolver::solve(Collective every, const EquilibriumProblem& problem,
+                                      double dt, const ImplicitOptions& options) {
   std::optional<ScopedTimer> setUp;
   if (timers_) setUp.emplace(*timers_, assemblyTask_);
   // A kept solver's unknowns and pattern are this solve's, and so are its solve's last tangent
   // and the hourglass stiffness of the same start: the first iteration assembles the residual.
-  const bool solverKept = takesKeptLinearSolver(problem);
-  if (!solverKept) numberUnknowns(problem, options.jacobianCouplingShare);
+  const bool solverKept = takesKeptLinearSolver(every, problem);
+  if (!solverKept) numberUnknowns(every, problem, options.jacobianCouplingShare);
   startFromPrescribed(problem);
   const bool tangentKept = solverKept && !kept_.block.empty();
   if (tangentKept) {
@@ -153,7 +155,7 @@ NewtonReport EquilibriumSolver::solve(const EquilibriumProblem& problem, double 
     hourglass_.clear();
     hourglassTangent_.clear();
   }
-  if (!solverKept) buildLinearSolver(problem);
+  if (!solverKept) buildLinearSolver(every, problem);
   setUp.reset();
   // Every return frees the linear solver unless the next solve is to take it.
   struct Release {
@@ -181,15 +183,15 @@ NewtonReport EquilibriumSolver::solve(const EquilibriumProblem& problem, double 
     if (!(keepTangent && residualCurrent)) {
       std::optional<ScopedTimer> s;
       if (timers_) s.emplace(*timers_, assemblyTask_);
-      assemble(problem, dt, options.hourglassStabilization, !keepTangent);
+      assemble(every, problem, dt, options.hourglassStabilization, !keepTangent);
     }
     if (!keepTangent) ++report.newTangents;
     bool fromSolvedPrediction = false;
     if (report.iterations == 1)
       fromSolvedPrediction =
-          tryPrediction(problem, dt, options.hourglassStabilization, normMax, qNorm0) &&
+          tryPrediction(every, problem, dt, options.hourglassStabilization, normMax, qNorm0) &&
           problem.predictedIsSolved;
-    const double residualNorm = ownedDot(residual_, residual_);
+    const double residualNorm = ownedDot(every, residual_, residual_);
     const double tolerance =
         report.iterations == 1
             ? (fromSolvedPrediction ? kLinearToleranceFromSolvedPrediction : kLinearToleranceMost)
@@ -201,9 +203,9 @@ NewtonReport EquilibriumSolver::solve(const EquilibriumProblem& problem, double 
     {
       std::optional<ScopedTimer> s;
       if (timers_) s.emplace(*timers_, solveTask_);
-      linear = linearSolver_->solve(K_, residual_, tolerance, du, !keepTangent);
+      linear = linearSolver_->solve(every, K_, residual_, tolerance, du, !keepTangent);
       du.resize(residual_.size());
-      completeOverRanks(problem, du, 3, true);
+      completeOverRanks(every, problem, du, 3, true);
     }
     report.krylovIterations += linear.iterations;
     if (linear.newPreconditioner) ++report.preconditionerSetUps;
@@ -212,8 +214,8 @@ NewtonReport EquilibriumSolver::solve(const EquilibriumProblem& problem, double 
                        std::to_string(linear.iterations) + " iterations)";
       return report;
     }
-    removeRigidMotionOfFreeBodies(problem, du);
-    const double norm = ownedDot(du, du), qNorm = ownedDot(du, residual_);
+    removeRigidMotionOfFreeBodies(every, problem, du);
+    const double norm = ownedDot(every, du, du), qNorm = ownedDot(every, du, residual_);
     normMax = std::max(normMax, norm);
     if (report.iterations == 1) qNorm0 = std::max(qNorm0, std::abs(qNorm));
     // The ratios measure the whole correction, the distance Newton still sees to the
@@ -245,7 +247,8 @@ NewtonReport EquilibriumSolver::solve(const EquilibriumProblem& problem, double 
       if (!problem.velocity.empty()) computeEndOfStepAcceleration(problem, dt);
       return report;
     }
-    residualCurrent = takeStep(problem, dt, options.hourglassStabilization, du, residualNorm);
+    residualCurrent =
+        takeStep(every, problem, dt, options.hourglassStabilization, du, residualNorm);
   }
 }
 

@@ -79,7 +79,8 @@ class EquilibriumSolver {
   void useTimers(TaskTimers& timers);
   // Newton for the step of length dt; on success displacement(f) holds the converged nodal
   // increments of field f (by node).
-  NewtonReport solve(const EquilibriumProblem& problem, double dt, const ImplicitOptions& options);
+  NewtonReport solve(Collective, const EquilibriumProblem& problem, double dt,
+                     const ImplicitOptions& options);
   const std::vector<Vec3>& displacement(int field) const { return u_[field]; }
   // Implicit dynamics: the nodal accelerations at the end of the converged step (Newmark's;
   // zero on the nodes left out of the unknowns).
@@ -92,7 +93,7 @@ class EquilibriumSolver {
   struct Linearization {
     std::vector<std::vector<Vec3>> residual, jacobianTimesDirection;
   };
-  Linearization linearizeAt(const EquilibriumProblem& problem, double dt,
+  Linearization linearizeAt(Collective, const EquilibriumProblem& problem, double dt,
                             const ImplicitOptions& options, const std::vector<std::vector<Vec3>>& u,
                             const std::vector<std::vector<Vec3>>& du);
 
@@ -102,27 +103,27 @@ class EquilibriumSolver {
   // owners), their global rows, the pattern of their couplings (couplings_, in a reduced
   // Jacobian) and of the Jacobian (K_), from the weights: a particle couples a pair of nodes in K_
   // only where it holds at least `jacobianCouplingShare` of both nodes' mass (ImplicitOptions).
-  void numberUnknowns(const EquilibriumProblem& problem, double jacobianCouplingShare);
+  void numberUnknowns(Collective, const EquilibriumProblem& problem, double jacobianCouplingShare);
   // values (`width` per block row): on a distributed run, every rank's parts summed on the shared
   // rows; with `fromOwners`, the owned rows' values copied to the other ranks' rows of the same
   // nodes (the others' parts set to zero first).
-  void completeOverRanks(const EquilibriumProblem& problem, std::vector<double>& values, int width,
-                         bool fromOwners) const;
+  void completeOverRanks(Collective, const EquilibriumProblem& problem, std::vector<double>& values,
+                         int width, bool fromOwners) const;
   // sum of a_i b_i over the owned rows' components, over all ranks.
-  double ownedDot(const std::vector<double>& a, const std::vector<double>& b) const;
-  // Collective: the problem asks for the kept linear solver and on every rank its nodal masses
+  double ownedDot(Collective, const std::vector<double>& a, const std::vector<double>& b) const;
+  // The problem asks for the kept linear solver and on every rank its nodal masses
   // and prescribed components are those the unknowns were numbered for. The particles and their
   // weights are the same by the problem's contract (EquilibriumProblem::useKeptLinearSolver), so
   // the unknowns, K's pattern and the linear solver all stand.
-  bool takesKeptLinearSolver(const EquilibriumProblem& problem) const;
+  bool takesKeptLinearSolver(Collective, const EquilibriumProblem& problem) const;
   // A new linearSolver_ for this solve's unknowns (the old one freed first).
-  void buildLinearSolver(const EquilibriumProblem& problem);
+  void buildLinearSolver(Collective, const EquilibriumProblem& problem);
 
   // EquilibriumAssembly.cc: the residual and Jacobian at the current u.
   // K and the residual r = f_ext - f_int (- m a) at the current u (fixed components of r zeroed).
   // `stabilization`: epsilon of Implicit/HourglassStabilization.h. Without the tangent: the
   // residual only (the line search's trials).
-  void assemble(const EquilibriumProblem& problem, double dt, double stabilization,
+  void assemble(Collective, const EquilibriumProblem& problem, double dt, double stabilization,
                 bool withTangent);
   // Material m's particles' internal forces (and their stiffness) into the block rows [first,
   // last) of the residual (and K).
@@ -142,7 +143,7 @@ class EquilibriumSolver {
   // its fixed components allow (translations and rotations vanishing on all of them) is removed,
   // by mass, so an inexact solve does not move the body. K's regularization alpha m I keeps
   // those modes solvable, not the residual.
-  void removeRigidMotionOfFreeBodies(const EquilibriumProblem& problem,
+  void removeRigidMotionOfFreeBodies(Collective, const EquilibriumProblem& problem,
                                      std::vector<double>& du) const;
 
   // EquilibriumSolver.cc: the Newton loop.
@@ -153,14 +154,14 @@ class EquilibriumSolver {
   // Newton's update u += step du with the line search's step; `residualNorm` is |r|^2 at u.
   // Whether residual_ is that of the new u (a trial lowered the norm; otherwise u takes the trial
   // with the lowest norm, and residual_ is another trial's).
-  bool takeStep(const EquilibriumProblem& problem, double dt, double stabilization,
+  bool takeStep(Collective, const EquilibriumProblem& problem, double dt, double stabilization,
                 const std::vector<double>& du, double residualNorm);
   // After the first assembly (at the start-of-step u): u moves to the predicted increments of
   // the unknowns when their residual is lower (the first solve then uses the tangent of the
   // start, or the one kept from the prediction's solve), and the references of the convergence
   // ratios become those of the step's size, as a Newton from the start would have them:
   // |predicted|^2 and predicted.r at the start. Whether it moved.
-  bool tryPrediction(const EquilibriumProblem& problem, double dt, double stabilization,
+  bool tryPrediction(Collective, const EquilibriumProblem& problem, double dt, double stabilization,
                      double& normReference, double& energyReference);
   // The end-of-step accelerations of implicit dynamics (Newmark) into acceleration_.
   void computeEndOfStepAcceleration(const EquilibriumProblem& problem, double dt);

@@ -13,7 +13,7 @@
 
 namespace anode {
 
-EquilibriumProblem ImplicitStep::equilibriumProblem(double dt) {
+EquilibriumProblem ImplicitStep::equilibriumProblem(Collective every, double dt) {
   const Grid& grid = mpm_.grid();
   std::vector<MPMMaterial>& materials = mpm_.materials();
   const std::vector<GridFields>& nodal = mpm_.stepGrid().fields;
@@ -61,7 +61,7 @@ EquilibriumProblem ImplicitStep::equilibriumProblem(double dt) {
         if (!std::isnan(set[k][a])) problem.prescribed[f][k][a] = set[k][a] * dt;
   }
   if (options_.dynamic)
-    addStartOfStepMotion(problem, dt);
+    addStartOfStepMotion(every, problem, dt);
   else
     addPredictedIncrement(problem, dt);
   return problem;
@@ -81,7 +81,7 @@ void ImplicitStep::addPredictedIncrement(EquilibriumProblem& problem, double dt)
       if (problem.mass[f][k] > 0) problem.predicted[f][k] *= dt / problem.mass[f][k];
 }
 
-void ImplicitStep::addStartOfStepMotion(EquilibriumProblem& problem, double dt) {
+void ImplicitStep::addStartOfStepMotion(Collective every, EquilibriumProblem& problem, double dt) {
   const int nodes = mpm_.grid().numNodes();
   const ActiveNodes& active = mpm_.stepGrid().active;
   const size_t fields = problem.mass.size();
@@ -103,7 +103,7 @@ void ImplicitStep::addStartOfStepMotion(EquilibriumProblem& problem, double dt) 
     std::vector<NodeArray> sums;
     for (std::vector<Vec3>& a : problem.acceleration) sums.push_back({a.data()->data(), 3});
     ScopedTimer s(mpm_.timers(), tasks_.communication);
-    ghosts->sumOverRanks(Collective{}, sums);
+    ghosts->sumOverRanks(every, sums);
   }
   // Mass-weighted means; the faces' prescribed components move at the faces' velocity.
   for (size_t f = 0; f < fields; ++f)

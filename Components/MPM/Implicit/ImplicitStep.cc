@@ -22,7 +22,9 @@ class ImplicitStep::Transfer : public ConcentrationTransfer {
         particlesToGrid_(timers_.task("interpolateParticlesToGrid")),
         gridIntegration_(timers_.task("integrateGrid")),
         particleUpdate_(timers_.task("interpolateToParticlesAndUpdate")) {}
-  void scatterConcentration() override { mpm_.interpolateParticlesToGrid(true); }
+  void scatterConcentration(Collective every) override {
+    mpm_.interpolateParticlesToGrid(every, true);
+  }
   void computeNodalConcentration(bool withVelocity) override {
     ScopedTimer s(timers_, particlesToGrid_);
     if (withVelocity)
@@ -42,9 +44,9 @@ class ImplicitStep::Transfer : public ConcentrationTransfer {
     ScopedTimer s(timers_, particleUpdate_);
     mpm_.interpolateConcentrationGradient(m);
   }
-  void sumOverRanks(std::vector<double>& nodal) override {
+  void sumOverRanks(Collective every, std::vector<double>& nodal) override {
     if (GhostNodes* ghosts = mpm_.layout().ghosts())
-      ghosts->sumOverRanks(Collective{}, {{nodal.data(), 1}});
+      ghosts->sumOverRanks(every, {{nodal.data(), 1}});
   }
   const InterpolationWeights& weights(size_t m) const override {
     return mpm_.stepGrid().weights[m];
@@ -148,25 +150,25 @@ double ImplicitStep::largestConcentrationChange() const {
   return largest;
 }
 
-void ImplicitStep::computeWeights() {
+void ImplicitStep::computeWeights(Collective every) {
   {
     ScopedTimer s(mpm_.timers(), tasks_.interpolationWeights);
-    mpm_.computeWeightsAndActiveNodes();
+    mpm_.computeWeightsAndActiveNodes(every);
   }
-  mpm_.interpolateParticlesToGrid();
+  mpm_.interpolateParticlesToGrid(every);
 }
 
-void ImplicitStep::diffuseOverStep(double t, double dt) {
+void ImplicitStep::diffuseOverStep(Collective every, double t, double dt) {
   newton_.diffusionSubsteps +=
-      diffusion_->diffuse(*transfer_, mpm_.materials(), t, dt, concentrationChange_);
+      diffusion_->diffuse(every, *transfer_, mpm_.materials(), t, dt, concentrationChange_);
 }
 
-StepTaken ImplicitStep::advance(Collective, double t, double dt, double ruleDt) {
+StepTaken ImplicitStep::advance(Collective every, double t, double dt, double ruleDt) {
   std::vector<MPMMaterial>& materials = mpm_.materials();
   const bool diffusion = mpm_.diffusion();
   {
     ScopedTimer s(mpm_.timers(), tasks_.interpolationWeights);
-    mpm_.computeWeightsAndActiveNodes();  // 1: S_ip, grad S_ip at the start of the step
+    mpm_.computeWeightsAndActiveNodes(every);  // 1: S_ip, grad S_ip at the start of the step
   }
   // A step retaken with a smaller dt diffuses again from the particles of the step's start.
   std::vector<ParticleSet> start;
@@ -176,14 +178,14 @@ StepTaken ImplicitStep::advance(Collective, double t, double dt, double ruleDt) 
     diffusion_->keepStepStart();
   }
   while (true) {
-    mpm_.interpolateParticlesToGrid();  // the nodal masses (and the concentration's sums)
+    mpm_.interpolateParticlesToGrid(every);  // the nodal masses (and the concentration's sums)
     // 2: c over dt; a step in which c changed by more than twice the bound of
     // <max_concentration_change> somewhere is retaken at the dt that bound allows.
     NewtonReport report;
     double failedChange = 0;  // the change of c that failed the attempt
     if (diffusion) {
-      diffuseOverStep(t, dt);
-      maxConcentrationChange_ = collective::maximum(largestConcentrationChange());
+      diffuseOverStep(every, t, dt);
+      maxConcentrationChange_ = collective::maximum(every, largestConcentrationChange());
       if (dt_.retakesConcentrationChange(maxConcentrationChange_)) {
         std::ostringstream s;
         s.precision(3);
@@ -199,7 +201,8 @@ StepTaken ImplicitStep::advance(Collective, double t, double dt, double ruleDt) 
     double couplingCorrection = -1;
     if (report.failure.empty() && diffusion &&
         options_.concentrationCoupling == ImplicitOptions::ConcentrationCoupling::Trapezoidal) {
-      prediction = averageConcentrationChangeOverStep(t, dt, start, predicted, couplingCorrection);
+      prediction =
+          averageConcentrationChangeOverStep(every, t, dt, start, predicted, couplingCorrection);
       if (!prediction.converged) {
         report = prediction;
         report.failure = "the prediction of the step's end: " + report.failure;
@@ -207,13 +210,13 @@ StepTaken ImplicitStep::advance(Collective, double t, double dt, double ruleDt) 
     }
     if (report.failure.empty()) {
       // 3: Newton, retaken with a smaller dt until it converges
-      EquilibriumProblem problem = equilibriumProblem(dt);
+      EquilibriumProblem problem = equilibriumProblem(every, dt);
       if (!predicted.empty()) {
         problem.predicted = std::move(predicted);
         problem.predictedIsSolved = true;
         problem.useKeptLinearSolver = true;
       }
-      report = equilibrium_.solve(problem, dt, options_);
+      report = equilibrium_.solve(every, problem, dt, options_);
       newton_.add(report);
       if (report.converged) {
         newton_.lastIterations = report.iterations;
@@ -234,20 +237,20 @@ StepTaken ImplicitStep::advance(Collective, double t, double dt, double ruleDt) 
     dt = smaller;
     ruleDt = smaller;
     for (size_t m = 0; m < start.size(); ++m) materials[m].particles = start[m];
-    if (diffusion) diffusion_->returnToStepStart(materials, t);
+    if (diffusion) diffusion_->returnToStepStart(every, materials, t);
   }
   {
     ScopedTimer s(mpm_.timers(), tasks_.particleUpdate);
     // 5: x, F, stress and the models' state
-    collective::stopTogether([&] { updateParticlesFromEquilibrium(dt); });
+    collective::stopTogether(every, [&] { updateParticlesFromEquilibrium(dt); });
   }
   if (mpm_.problem().flags.refineParticles) {
     ScopedTimer s(mpm_.timers(), tasks_.splitting);
-    mpm_.splitParticles();
+    mpm_.splitParticles(every);
   }
   if (mpm_.layout().distributed()) {
     ScopedTimer s(mpm_.timers(), tasks_.communication);
-    mpm_.migrateParticles();  // particles that left the rank's box go to its owner
+    mpm_.migrateParticles(every);  // particles that left the rank's box go to its owner
   }
   lastDt_ = dt;
   ruleDt_ = ruleDt;

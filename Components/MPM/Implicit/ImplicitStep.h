@@ -78,15 +78,15 @@ class ImplicitStep : public Integrator {
   void checkSetup(const PSNode& root) const;
   // The equilibrium problem of the step: fields, nodal masses, the displacement increments the
   // Velocity and Symmetric faces prescribe over dt.
-  EquilibriumProblem equilibriumProblem(double dt);
+  EquilibriumProblem equilibriumProblem(Collective, double dt);
   // Implicit dynamics: the problem's nodal velocities and accelerations of the step's start, from
   // the particles (momentum from the P2G of the step, sum m a S here; Newmark.h).
-  void addStartOfStepMotion(EquilibriumProblem& problem, double dt);
+  void addStartOfStepMotion(Collective, EquilibriumProblem& problem, double dt);
   // A quasi-static step's predicted increments: the start-of-step nodal velocity times dt.
   void addPredictedIncrement(EquilibriumProblem& problem, double dt);
   // The diffusion over the step on its start-of-step configuration (after the step's full P2G);
   // concentrationChange_ receives each particle's change.
-  void diffuseOverStep(double t, double dt);
+  void diffuseOverStep(Collective, double t, double dt);
   // <concentration_coupling>trapezoidal: after diffuseOverStep on the step's start (`start`, the
   // diffusion's `atStart`), a Newton solve to kPredictorConvergence predicts the step's end; the
   // diffusion runs again on those particles from the start's c, and the particles are set back to
@@ -94,7 +94,7 @@ class ImplicitStep : public Integrator {
   // prediction's Newton (a failed one: the step is retaken), its increments by field in
   // `predicted`, and the coupling correction in `correction`
   // (NewtonCounts::lastCouplingCorrection).
-  NewtonReport averageConcentrationChangeOverStep(double t, double dt,
+  NewtonReport averageConcentrationChangeOverStep(Collective, double t, double dt,
                                                   const std::vector<ParticleSet>& start,
                                                   std::vector<std::vector<Vec3>>& predicted,
                                                   double& correction);
@@ -103,7 +103,7 @@ class ImplicitStep : public Integrator {
   // The particles after the converged step (positions, F, stress, the models' state).
   void updateParticlesFromEquilibrium(double dt);
   // The weights and P2G of the particles as they are now (timed).
-  void computeWeights();
+  void computeWeights(Collective);
   // The failure of the step from t over dt that no retake can cure: rank 0 throws
   // SimulationError, the others StoppedOnAnotherRank.
   [[noreturn]] void stop(double t, double dt, const std::string& refusal,

@@ -36,7 +36,7 @@ void endPetsc() {
 }
 
 // PETSc starts with the first solve and ends before MPI does.
-void startPetsc() {
+void startPetsc(Collective) {
   PetscBool started = PETSC_FALSE;
   check(PetscInitialized(&started), "PetscInitialized");
   if (started) return;
@@ -63,14 +63,14 @@ struct LinearSolver::Objects {
   }
 };
 
-LinearSolver::LinearSolver(const BlockMatrix& pattern, RowLayout rows,
+LinearSolver::LinearSolver(Collective every, const BlockMatrix& pattern, RowLayout rows,
                            const std::vector<int>& fixed, std::vector<double> coordinates)
     : o_(std::make_unique<Objects>()),
       rows_(std::move(rows)),
       coordinates_(std::move(coordinates)) {
   static_assert(sizeof(PetscInt) == sizeof(int), "PETSc with 32-bit indices");
   static_assert(sizeof(PetscScalar) == sizeof(PetscValue), "PETSc with real double scalars");
-  startPetsc();
+  startPetsc(every);
   const PetscInt n = 3 * rows_.owned;
   isFixed_.assign(3 * static_cast<size_t>(pattern.rows()), 0);
   for (int i : fixed) {
@@ -98,7 +98,7 @@ LinearSolver::LinearSolver(const BlockMatrix& pattern, RowLayout rows,
   check(MatSetOption(o_->A, MAT_SUBSET_OFF_PROC_ENTRIES, PETSC_TRUE), "MatSetOption");
   // An entry outside the pattern would move the places entryAt_ holds: an error instead.
   check(MatSetOption(o_->A, MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE), "MatSetOption");
-  locateOwnedEntries(pattern);
+  locateOwnedEntries(every, pattern);
   check(MatCreateVecs(o_->A, &o_->x, &o_->b), "MatCreateVecs");
   check(VecDuplicate(o_->b, &o_->scale), "VecDuplicate");
   check(VecDuplicate(o_->b, &o_->residual), "VecDuplicate");
@@ -149,7 +149,7 @@ void LinearSolver::addRow(Mat target, const BlockMatrix& K, int r) {
         "MatSetValuesBlocked");
 }
 
-void LinearSolver::locateOwnedEntries(const BlockMatrix& pattern) {
+void LinearSolver::locateOwnedEntries(Collective, const BlockMatrix& pattern) {
   // This rank's rows of A: one sequential matrix, or (several ranks) the columns of its own rows
   // (part 0, local columns) and the others (part 1, columns by the sorted `global` list).
   const PetscInt* global = nullptr;
@@ -206,7 +206,7 @@ void LinearSolver::locateOwnedEntries(const BlockMatrix& pattern) {
   rowsOfParts(false);
 }
 
-void LinearSolver::setMatrix(const BlockMatrix& K) {
+void LinearSolver::setMatrix(Collective, const BlockMatrix& K) {
   // The owned rows' entries written where they lie in PETSc's arrays, the other rows added
   // through PETSc (to the ranks that own them) when the matrix is assembled.
   check(MatZeroEntries(o_->A), "MatZeroEntries");
@@ -243,13 +243,13 @@ void LinearSolver::setMatrix(const BlockMatrix& K) {
   check(MatDiagonalScale(o_->A, o_->scale, o_->scale), "MatDiagonalScale");
 }
 
-void LinearSolver::setNearNullSpace() {
+void LinearSolver::setNearNullSpace(Collective every) {
   const size_t n = scale_.size(), blocks = n / 3;
   // The centre of every rank's nodes.
   double sums[4] = {0, 0, 0, static_cast<double>(blocks)};
   for (size_t r = 0; r < blocks; ++r)
     for (int a = 0; a < 3; ++a) sums[a] += coordinates_[3 * r + a];
-  collective::sum(sums, 4);
+  collective::sum(every, sums, 4);
   Vec3 centre(sums[0], sums[1], sums[2]);
   if (sums[3] > 0) centre /= sums[3];
   // Rigid modes m of K are modes D^-1 m of D K D; fixed components are decoupled rows.
@@ -267,10 +267,10 @@ void LinearSolver::setNearNullSpace() {
       for (int a = 0; a < 3; ++a) m[3 * r + a] = v[a] / scale_[3 * r + a];
     }
     for (int i : fixedOwned_) m[i] = 0;
-    const auto dot = [n](const std::vector<double>& a, const std::vector<double>& b) {
+    const auto dot = [n, every](const std::vector<double>& a, const std::vector<double>& b) {
       double d = 0;
       for (size_t i = 0; i < n; ++i) d += a[i] * b[i];
-      return collective::sum(d);
+      return collective::sum(every, d);
     };
     const double before = dot(m, m);
     // Modified Gram-Schmidt; a mode the fixed components remove is dropped.
@@ -300,9 +300,10 @@ void LinearSolver::setNearNullSpace() {
   for (Vec& v : vectors) VecDestroy(&v);
 }
 
-LinearSolve LinearSolver::run(const std::vector<double>& b, double relativeTolerance,
-                              bool newPreconditioner, std::vector<double>& x) {
-  if (newPreconditioner) setNearNullSpace();
+LinearSolve LinearSolver::run(Collective every, const std::vector<double>& b,
+                              double relativeTolerance, bool newPreconditioner,
+                              std::vector<double>& x) {
+  if (newPreconditioner) setNearNullSpace(every);
   check(KSPSetReusePreconditioner(o_->ksp, newPreconditioner ? PETSC_FALSE : PETSC_TRUE),
         "KSPSetReusePreconditioner");
   check(KSPSetOperators(o_->ksp, o_->A, o_->A), "KSPSetOperators");
@@ -352,13 +353,14 @@ double decadesOf(double relativeTolerance) {
 
 }  // namespace
 
-LinearSolve LinearSolver::solve(const BlockMatrix& K, const std::vector<double>& b,
-                                double relativeTolerance, std::vector<double>& x, bool newValues) {
-  if (newValues) setMatrix(K);
-  LinearSolve s = run(b, relativeTolerance, freshIterations_ < 0, x);
+LinearSolve LinearSolver::solve(Collective every, const BlockMatrix& K,
+                                const std::vector<double>& b, double relativeTolerance,
+                                std::vector<double>& x, bool newValues) {
+  if (newValues) setMatrix(every, K);
+  LinearSolve s = run(every, b, relativeTolerance, freshIterations_ < 0, x);
   if (!s.newPreconditioner && !s.converged) {  // solved again with a new one
     const int spent = s.iterations;
-    s = run(b, relativeTolerance, true, x);
+    s = run(every, b, relativeTolerance, true, x);
     s.iterations += spent;
     freshIterations_ = s.iterations - spent;
     freshDecades_ = decadesOf(relativeTolerance);

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "Components/MPM/Implicit/BlockMatrix.h"
+#include "Core/Parallel/Communicator.h"
 
 struct _p_Mat;  // PETSc's Mat is a _p_Mat*
 
@@ -39,40 +40,42 @@ struct RowLayout {
 
 class LinearSolver {
  public:
-  // Collective (every rank of the run). For systems with the pattern of `pattern` (local rows and
+  // For systems with the pattern of `pattern` (local rows and
   // columns); x_i = 0 and the row and column of i removed for each i of `fixed` (a component
   // 3 r + a of local block row r, owned or not); `coordinates` (3 per owned block row) give the
   // rigid-body modes.
-  LinearSolver(const BlockMatrix& pattern, RowLayout rows, const std::vector<int>& fixed,
-               std::vector<double> coordinates);
+  LinearSolver(Collective, const BlockMatrix& pattern, RowLayout rows,
+               const std::vector<int>& fixed, std::vector<double> coordinates);
+  // Frees its PETSc objects, collective on PETSc's side: every rank's owner ends it in the same
+  // place.
   ~LinearSolver();
   LinearSolver(const LinearSolver&) = delete;
   LinearSolver& operator=(const LinearSolver&) = delete;
 
-  // Collective. Solves K x = b, K (this rank's parts, local rows) with the constructor's pattern,
+  // Solves K x = b, K (this rank's parts, local rows) with the constructor's pattern,
   // b and x on the owned rows (b may hold more); `relativeTolerance` bounds the scaled residual
   // relative to the scaled b's norm. The fixed components of x are exactly zero. Without
   // `newValues` K is the one of the last solve, whose matrix (and preconditioner) it keeps.
-  LinearSolve solve(const BlockMatrix& K, const std::vector<double>& b, double relativeTolerance,
-                    std::vector<double>& x, bool newValues = true);
+  LinearSolve solve(Collective, const BlockMatrix& K, const std::vector<double>& b,
+                    double relativeTolerance, std::vector<double>& x, bool newValues = true);
 
  private:
   struct Objects;
   // The PETSc matrix (every rank's parts of K added; fixed rows and columns: identity) scaled
   // symmetrically by its diagonal; sets scale_.
-  void setMatrix(const BlockMatrix& K);
+  void setMatrix(Collective, const BlockMatrix& K);
   // Block row r of K added to `target` (the preallocator, or the matrix for rows of other ranks).
   void addRow(_p_Mat* target, const BlockMatrix& K, int r);
   // Entry (a, g) of block e = (r, c) of K as the PETSc matrix holds it (fixed components: 0, and 1
   // on the owner's diagonal).
   double entryOf(const BlockMatrix& K, int r, int c, int e, int a, int g) const;
   // Sets entryAt_ from the pattern after PETSc laid it out.
-  void locateOwnedEntries(const BlockMatrix& pattern);
+  void locateOwnedEntries(Collective, const BlockMatrix& pattern);
   // GAMG's near-null space: the rigid modes of the scaled system, orthonormal.
-  void setNearNullSpace();
+  void setNearNullSpace(Collective);
   // One KSPSolve with the preconditioner built anew or reused.
-  LinearSolve run(const std::vector<double>& b, double relativeTolerance, bool newPreconditioner,
-                  std::vector<double>& x);
+  LinearSolve run(Collective, const std::vector<double>& b, double relativeTolerance,
+                  bool newPreconditioner, std::vector<double>& x);
 
   std::unique_ptr<Objects> o_;
   RowLayout rows_;

@@ -21,16 +21,16 @@ constexpr double kPredictorConvergence = 1e-3;
 }  // namespace
 
 NewtonReport ImplicitStep::averageConcentrationChangeOverStep(
-    double t, double dt, const std::vector<ParticleSet>& start,
+    Collective every, double t, double dt, const std::vector<ParticleSet>& start,
     std::vector<std::vector<Vec3>>& predicted, double& correction) {
   std::vector<MPMMaterial>& materials = mpm_.materials();
   // Never tighter than the step's own criteria.
   ImplicitOptions loose = options_;
   loose.convergenceDisp = std::max(kPredictorConvergence, loose.convergenceDisp);
   loose.convergenceEnergy = std::max(4 * kPredictorConvergence, loose.convergenceEnergy);
-  EquilibriumProblem problem = equilibriumProblem(dt);
+  EquilibriumProblem problem = equilibriumProblem(every, dt);
   problem.keepLinearSolver = true;  // for the step's own solve from the same start
-  NewtonReport report = equilibrium_.solve(problem, dt, loose);
+  NewtonReport report = equilibrium_.solve(every, problem, dt, loose);
   newton_.add(report);
   if (!report.converged) return report;
   predicted.clear();
@@ -44,7 +44,7 @@ NewtonReport ImplicitStep::averageConcentrationChangeOverStep(
   try {
     {
       ScopedTimer s(mpm_.timers(), tasks_.particleUpdate);
-      collective::stopTogether([&] { updateParticlesFromEquilibrium(dt); });
+      collective::stopTogether(every, [&] { updateParticlesFromEquilibrium(dt); });
     }
     // The predicted end with the diffusion arrays and state of the step's start.
     for (size_t m = 0; m < materials.size(); ++m) {
@@ -53,9 +53,9 @@ NewtonReport ImplicitStep::averageConcentrationChangeOverStep(
       d.concentration = s.concentration;
       d.concentrationGradient = s.concentrationGradient;
     }
-    diffusion_->returnToStepStart(materials, t);  // D of the predicted stress
-    computeWeights();
-    diffuseOverStep(t, dt);
+    diffusion_->returnToStepStart(every, materials, t);  // D of the predicted stress
+    computeWeights(every);
+    diffuseOverStep(every, t, dt);
     // The start's particles with the means of the two passes (trapezoidal in the geometry, the
     // stress and J), and the lithium by which the mean differs from either pass.
     correction = 0;
@@ -73,22 +73,22 @@ NewtonReport ImplicitStep::averageConcentrationChangeOverStep(
         d.concentrationGradient[i] = 0.5 * (firstPassGradient[m][i] + secondPassGradient[i]);
       }
     }
-    correction = collective::sum(correction);
-    maxConcentrationChange_ = collective::maximum(largestConcentrationChange());
+    correction = collective::sum(every, correction);
+    maxConcentrationChange_ = collective::maximum(every, largestConcentrationChange());
     {
       ScopedTimer s(mpm_.timers(), tasks_.diffusionState);
-      mpm_.diffusion()->updateDiffusionState(Collective{}, materials, t + dt);
+      mpm_.diffusion()->updateDiffusionState(every, materials, t + dt);
     }
   } catch (const SimulationError& e) {
     // A prediction solved to kPredictorConvergence may invert a particle, or its second pass
     // leave c's range: on every rank together (stopTogether), the step is retaken at a smaller dt.
     for (size_t m = 0; m < materials.size(); ++m) materials[m].particles = start[m];
-    computeWeights();
+    computeWeights(every);
     report.converged = false;
     report.failure = e.what();
     return report;
   }
-  computeWeights();
+  computeWeights(every);
   return report;
 }
 

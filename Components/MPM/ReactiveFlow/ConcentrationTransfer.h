@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "Components/MPM/Interpolator.h"
+#include "Core/Parallel/Communicator.h"
 
 namespace anode {
 
@@ -15,7 +16,7 @@ class ConcentrationTransfer {
   virtual ~ConcentrationTransfer() = default;
   // P2G of the concentration's sums alone over the particles' c (the step's other sums stand),
   // completed on the nodes shared with other ranks.
-  virtual void scatterConcentration() = 0;
+  virtual void scatterConcentration(Collective) = 0;
   // Eq. 5 and the diffusion interface; `withVelocity`: the nodal velocity as well (after the
   // step's full P2G).
   virtual void computeNodalConcentration(bool withVelocity) = 0;
@@ -26,7 +27,7 @@ class ConcentrationTransfer {
   // grad c of material m's particles from the nodal c.
   virtual void gatherConcentrationGradient(size_t m) = 0;
   // A nodal sum over this rank's particles completed on the nodes shared with other ranks.
-  virtual void sumOverRanks(std::vector<double>& nodal) = 0;
+  virtual void sumOverRanks(Collective, std::vector<double>& nodal) = 0;
   // Material m's weights and nodal masses of the step.
   virtual const InterpolationWeights& weights(size_t m) const = 0;
   virtual const std::vector<double>& nodalMass(size_t m) const = 0;

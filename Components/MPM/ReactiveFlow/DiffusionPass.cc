@@ -35,49 +35,54 @@ void DiffusionPass::checkIntegrator(const PSNode& root, const MPMFlags& flags,
         "integrate");
 }
 
-double DiffusionPass::substepLimit(const std::vector<MPMMaterial>& materials) const {
+double DiffusionPass::substepLimit(Collective every,
+                                   const std::vector<MPMMaterial>& materials) const {
   // Eq. 44 over every rank's particles and the flux limit: each rank's sub-steps are the same.
-  return substepMultiplier_ * std::min(collective::minimum(diffusion_.diffusionTimestep(grid_)),
-                                       diffusion_.fluxTimestep(Collective{}, materials));
+  return substepMultiplier_ *
+         std::min(collective::minimum(every, diffusion_.diffusionTimestep(grid_)),
+                  diffusion_.fluxTimestep(every, materials));
 }
 
-void DiffusionPass::updateDiffusionState(std::vector<MPMMaterial>& materials, double t) {
+void DiffusionPass::updateDiffusionState(Collective every, std::vector<MPMMaterial>& materials,
+                                         double t) {
   ScopedTimer s(timers_, diffusionStateTask_);
-  diffusion_.updateDiffusionState(Collective{}, materials, t);  // range, D, flux rates
+  diffusion_.updateDiffusionState(every, materials, t);  // range, D, flux rates
 }
 
-void DiffusionPass::returnToStepStart(std::vector<MPMMaterial>& materials, double t) {
+void DiffusionPass::returnToStepStart(Collective every, std::vector<MPMMaterial>& materials,
+                                      double t) {
   diffusion_.restoreStepState(*start_);
-  updateDiffusionState(materials, t);
+  updateDiffusionState(every, materials, t);
 }
 
-long DiffusionPass::diffuse(ConcentrationTransfer& grid, std::vector<MPMMaterial>& materials,
-                            double t, double dt, std::vector<std::vector<double>>& change) {
+long DiffusionPass::diffuse(Collective every, ConcentrationTransfer& grid,
+                            std::vector<MPMMaterial>& materials, double t, double dt,
+                            std::vector<std::vector<double>>& change) {
   change.resize(materials.size());
   for (size_t m = 0; m < materials.size(); ++m)
     change[m].assign(materials[m].particles.count(), 0.0);
   if (relaxation_) {
-    relaxSubcellConcentration(grid, materials, dt, change);
-    grid.scatterConcentration();  // the sums of the relaxed c
+    relaxSubcellConcentration(every, grid, materials, dt, change);
+    grid.scatterConcentration(every);  // the sums of the relaxed c
   }
   if (integrator_ == ImplicitOptions::DiffusionIntegrator::Rkl2)
-    return diffuseInLegendreStages(grid, materials, t, dt, change);
-  return diffuseInSubsteps(grid, materials, t, dt, change);
+    return diffuseInLegendreStages(every, grid, materials, t, dt, change);
+  return diffuseInSubsteps(every, grid, materials, t, dt, change);
 }
 
-long DiffusionPass::diffuseInSubsteps(ConcentrationTransfer& grid,
+long DiffusionPass::diffuseInSubsteps(Collective every, ConcentrationTransfer& grid,
                                       std::vector<MPMMaterial>& materials, double t, double dt,
                                       std::vector<std::vector<double>>& change) {
   long substeps = 0;
   double done = 0;
   while (done < dt) {
-    const double limit = substepLimit(materials);
+    const double limit = substepLimit(every, materials);
     // The last sub-step ends at t + dt exactly (a remainder below 1e-12 dt joins the one before).
     double h = std::min(limit, dt - done);
     if (dt - done - h < 1e-12 * dt) h = dt - done;
     // The concentration's sums of the start-of-step particles, again, of the materials whose c
     // changes (the rest of P2G stands: the particles change nothing else).
-    if (done > 0) grid.scatterConcentration();
+    if (done > 0) grid.scatterConcentration(every);
     grid.computeNodalConcentration(done == 0);  // Eq. 5 and the diffusion interface
     grid.integrateConcentration(h);             // c* and the rate (Eq. 18)
     for (size_t m = 0; m < materials.size(); ++m)
@@ -85,12 +90,12 @@ long DiffusionPass::diffuseInSubsteps(ConcentrationTransfer& grid,
         grid.gatherConcentrationChange(m, h, change[m]);
     done = h == dt - done ? dt : done + h;
     ++substeps;
-    updateDiffusionState(materials, t + done);
+    updateDiffusionState(every, materials, t + done);
   }
   return substeps;
 }
 
-long DiffusionPass::diffuseInLegendreStages(ConcentrationTransfer& grid,
+long DiffusionPass::diffuseInLegendreStages(Collective every, ConcentrationTransfer& grid,
                                             std::vector<MPMMaterial>& materials, double t,
                                             double dt, std::vector<std::vector<double>>& change) {
   grid.computeNodalConcentration(true);  // the step's P2G (the nodal velocity)
@@ -116,7 +121,7 @@ long DiffusionPass::diffuseInLegendreStages(ConcentrationTransfer& grid,
   };
   // The particles' grad c from the nodal c of their c (P2G of m c).
   const auto gradientOfNodalConcentration = [&] {
-    grid.scatterConcentration();
+    grid.scatterConcentration(every);
     grid.computeNodalConcentration(false);
     for (size_t m : changing) grid.gatherConcentrationGradient(m);
   };
@@ -128,9 +133,9 @@ long DiffusionPass::diffuseInLegendreStages(ConcentrationTransfer& grid,
   // receives (ConcentrationGather's update over a unit time).
   const auto rate = [&](const std::vector<double>& y, std::vector<double>& f) {
     setConcentrations(y);
-    updateDiffusionState(materials, middle);
+    updateDiffusionState(every, materials, middle);
     gradientOfNodalConcentration();
-    grid.scatterConcentration();
+    grid.scatterConcentration(every);
     grid.computeNodalConcentration(false);
     grid.integrateConcentration(1.0);
     size_t first = 0;
@@ -144,7 +149,7 @@ long DiffusionPass::diffuseInLegendreStages(ConcentrationTransfer& grid,
     ++stages;
   };
   // As many stages as the sub-steps' limit at the pass's start needs.
-  const double limit = substepLimit(materials);
+  const double limit = substepLimit(every, materials);
   const std::vector<double> start = concentrations();
   std::vector<double> y = start;
   stepRkl2(y, dt, rkl2Stages(dt / limit), rate);
@@ -157,11 +162,11 @@ long DiffusionPass::diffuseInLegendreStages(ConcentrationTransfer& grid,
   }
   // grad c of the end (as a sub-step leaves it for the next one) and its diffusion state.
   gradientOfNodalConcentration();
-  updateDiffusionState(materials, t + dt);
+  updateDiffusionState(every, materials, t + dt);
   return stages;
 }
 
-void DiffusionPass::relaxSubcellConcentration(ConcentrationTransfer& grid,
+void DiffusionPass::relaxSubcellConcentration(Collective every, ConcentrationTransfer& grid,
                                               std::vector<MPMMaterial>& materials, double dt,
                                               std::vector<std::vector<double>>& change) {
   ScopedTimer s(timers_, particleUpdateTask_);
@@ -173,7 +178,7 @@ void DiffusionPass::relaxSubcellConcentration(ConcentrationTransfer& grid,
     const std::vector<double>& nodeMass = grid.nodalMass(m);
     scatterMassDiffusivity(p.mass, d.diffusivity, grid.weights(m), nodeMass.size(),
                            nodeMassDiffusivity_);
-    grid.sumOverRanks(nodeMassDiffusivity_);
+    grid.sumOverRanks(every, nodeMassDiffusivity_);
     relaxSubcellDifferences(d.concentration, grid.weights(m),
                             diffusion_.gridFields()[m].massConcentration, nodeMass,
                             nodeMassDiffusivity_, perDiffusivity, change[m]);

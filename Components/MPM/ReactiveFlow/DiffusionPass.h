@@ -28,30 +28,33 @@ class DiffusionPass {
   // `grid`: MPM's (its cell edges).
   DiffusionPass(ReactiveFlow& diffusion, const Grid& grid, const ImplicitOptions& options,
                 double substepMultiplier, TaskTimers& timers);
-  // Collective: a sub-step's length, the multiplier times the smaller of Eq. 44 and the flux
+  // A sub-step's length, the multiplier times the smaller of Eq. 44 and the flux
   // limit over all ranks.
-  double substepLimit(const std::vector<MPMMaterial>& materials) const;
+  double substepLimit(Collective, const std::vector<MPMMaterial>& materials) const;
   // c over [t, t + dt] of the particles (after the step's full P2G on `grid`); each particle's
   // change of c into change[m] (sized here), and the diffusion state of the end. Returns the
-  // evaluations of the rate it took (sub-steps or stages). Collective.
-  long diffuse(ConcentrationTransfer& grid, std::vector<MPMMaterial>& materials, double t,
-               double dt, std::vector<std::vector<double>>& change);
+  // evaluations of the rate it took (sub-steps or stages).
+  long diffuse(Collective, ConcentrationTransfer& grid, std::vector<MPMMaterial>& materials,
+               double t, double dt, std::vector<std::vector<double>>& change);
   // Keeps the diffusion state of the step's start (ReactiveFlow::StepState), which
   // returnToStepStart takes up again with the diffusion state of the particles at time t (the
   // step's start, or its predicted end: the start's particles are the caller's).
   void keepStepStart() { start_ = diffusion_.stepState(); }
-  void returnToStepStart(std::vector<MPMMaterial>& materials, double t);
+  void returnToStepStart(Collective, std::vector<MPMMaterial>& materials, double t);
 
  private:
-  long diffuseInSubsteps(ConcentrationTransfer& grid, std::vector<MPMMaterial>& materials, double t,
-                         double dt, std::vector<std::vector<double>>& change);
+  long diffuseInSubsteps(Collective, ConcentrationTransfer& grid,
+                         std::vector<MPMMaterial>& materials, double t, double dt,
+                         std::vector<std::vector<double>>& change);
   // One RKL2 step over dt, its stages as many as the sub-steps' limit at the start needs.
-  long diffuseInLegendreStages(ConcentrationTransfer& grid, std::vector<MPMMaterial>& materials,
-                               double t, double dt, std::vector<std::vector<double>>& change);
+  long diffuseInLegendreStages(Collective, ConcentrationTransfer& grid,
+                               std::vector<MPMMaterial>& materials, double t, double dt,
+                               std::vector<std::vector<double>>& change);
   // The particles drawn towards the grid's c of their P2G over dt, their change added.
-  void relaxSubcellConcentration(ConcentrationTransfer& grid, std::vector<MPMMaterial>& materials,
-                                 double dt, std::vector<std::vector<double>>& change);
-  void updateDiffusionState(std::vector<MPMMaterial>& materials, double t);
+  void relaxSubcellConcentration(Collective, ConcentrationTransfer& grid,
+                                 std::vector<MPMMaterial>& materials, double dt,
+                                 std::vector<std::vector<double>>& change);
+  void updateDiffusionState(Collective, std::vector<MPMMaterial>& materials, double t);
 
   ReactiveFlow& diffusion_;
   const Grid& grid_;

@@ -138,7 +138,8 @@ std::vector<ExternalScalarFlux::Flagged> ExternalScalarFlux::assignToParticles(
   return report;
 }
 
-std::vector<double> ExternalScalarFlux::fluxes(const std::vector<MPMMaterial>& materials,
+std::vector<double> ExternalScalarFlux::fluxes(Collective every,
+                                               const std::vector<MPMMaterial>& materials,
                                                const std::vector<DiffusionMaterial>& diffusion,
                                                double t, bool overRanks) {
   const size_t n = bcs_.size();
@@ -168,7 +169,7 @@ std::vector<double> ExternalScalarFlux::fluxes(const std::vector<MPMMaterial>& m
         sums[n + b] += unrestricted;
       }
   }
-  if (overRanks) collective::sum(sums.data(), static_cast<int>(sums.size()));
+  if (overRanks) collective::sum(every, sums.data(), static_cast<int>(sums.size()));
   for (size_t b = 0; b < n; ++b) {
     const ScalarFluxBC& bc = bcs_[b];
     if (bc.mode != ScalarFluxBC::Mode::Galvanostatic) continue;
@@ -233,12 +234,12 @@ void ExternalScalarFlux::flagFreeSurface(size_t b, size_t m, std::vector<MPMMate
   }
 }
 
-void ExternalScalarFlux::computeFluxRates(std::vector<MPMMaterial>& materials,
+void ExternalScalarFlux::computeFluxRates(Collective every, std::vector<MPMMaterial>& materials,
                                           const std::vector<DiffusionMaterial>& diffusion, double t,
                                           bool overRanks) {
   maxInflowRate_ = maxOutflowRate_ = 0;
   if (bcs_.empty()) return;
-  const std::vector<double> J = fluxes(materials, diffusion, t, overRanks);
+  const std::vector<double> J = fluxes(every, materials, diffusion, t, overRanks);
   for (size_t m = 0; m < materials.size(); ++m) {
     ParticleSet& p = materials[m].particles;
     const DiffusionParticles d(p);
@@ -274,7 +275,8 @@ void ExternalScalarFlux::computeFluxRates(std::vector<MPMMaterial>& materials,
   }
 }
 
-double ExternalScalarFlux::stableTimestep(Collective, const std::vector<MPMMaterial>& materials,
+double ExternalScalarFlux::stableTimestep(Collective every,
+                                          const std::vector<MPMMaterial>& materials,
                                           const std::vector<DiffusionMaterial>& diffusion) const {
   // A particle's source s_p = R(c_p) sum_i S_ip G_i / W_i (docs/diffusion.md step 5), and each
   // G_i / W_i is a weighted mean of unrestricted rates, at most the largest of its sign. The
@@ -311,7 +313,7 @@ double ExternalScalarFlux::stableTimestep(Collective, const std::vector<MPMMater
     }
   }
   double lows[5] = {-maxInflowRate_, -maxOutflowRate_, -fullest, emptiest, -relaxation};
-  collective::minimum(lows, 5);
+  collective::minimum(every, lows, 5);
   double dt = std::numeric_limits<double>::infinity();
   if (lows[0] < 0) dt = std::min(dt, fluxStepToRoot(-lows[2]) / -lows[0]);
   if (lows[1] < 0) dt = std::min(dt, fluxStepToRoot(1 - lows[3]) / -lows[1]);
@@ -319,7 +321,8 @@ double ExternalScalarFlux::stableTimestep(Collective, const std::vector<MPMMater
   return dt;
 }
 
-void ExternalScalarFlux::updateAutoCycle(Collective, const std::vector<MPMMaterial>& materials,
+void ExternalScalarFlux::updateAutoCycle(Collective every,
+                                         const std::vector<MPMMaterial>& materials,
                                          const std::vector<DiffusionMaterial>& diffusion,
                                          const MPMFlags& flags) {
   // Mean (or min and max) normalised concentration of the materials with <do_conc_reduction>.
@@ -336,11 +339,11 @@ void ExternalScalarFlux::updateAutoCycle(Collective, const std::vector<MPMMateri
     n += materials[m].particles.count();
   }
   // Over every rank's particles (the identity on one rank).
-  const double count = collective::sum(static_cast<double>(n));
+  const double count = collective::sum(every, static_cast<double>(n));
   if (count == 0) return;
-  const double mean = collective::sum(sum) / count;
-  lo = collective::minimum(lo);
-  hi = collective::maximum(hi);
+  const double mean = collective::sum(every, sum) / count;
+  lo = collective::minimum(every, lo);
+  hi = collective::maximum(every, hi);
   if (sign_ > 0 && (flags.autoCycleUseMinMax ? lo : mean) > flags.autoCycleMax) sign_ = -1;
   if (sign_ < 0 && (flags.autoCycleUseMinMax ? hi : mean) < flags.autoCycleMin) sign_ = 1;
 }

@@ -49,7 +49,7 @@ class ExternalScalarFlux {
   // sum_p m_p R(c_p) A_pk / V_p (its flagged particles, over every rank when `overRanks`; at
   // setup each rank holds them all): its particles take up Q_k in all, shared as a uniform flux
   // would share it.
-  void computeFluxRates(std::vector<MPMMaterial>& materials,
+  void computeFluxRates(Collective, std::vector<MPMMaterial>& materials,
                         const std::vector<DiffusionMaterial>& diffusion, double t, bool overRanks);
   // Per BC, the lithium its materials hold at max_concentration (sum m c_max over every particle
   // of each material it flags), to which a C-rate load refers. At setup, before the first rates.
@@ -85,7 +85,7 @@ class ExternalScalarFlux {
   // The flux J_k of each BC at time t: its load (times the auto-cycle sign), or for a
   // galvanostatic BC the J that delivers its lithium rate (its load, or for a C-rate the load
   // times its capacity per hour; 0 once its current ended).
-  std::vector<double> fluxes(const std::vector<MPMMaterial>& materials,
+  std::vector<double> fluxes(Collective, const std::vector<MPMMaterial>& materials,
                              const std::vector<DiffusionMaterial>& diffusion, double t,
                              bool overRanks);
 

@@ -156,7 +156,8 @@ void ReactiveFlow::initialize(const PSNode& root, const Grid& grid,
   computeDiffusivity(materials, initTime);
 }
 
-void ReactiveFlow::completeSetup(Collective, std::vector<MPMMaterial>& materials, double initTime) {
+void ReactiveFlow::completeSetup(Collective every, std::vector<MPMMaterial>& materials,
+                                 double initTime) {
   // What the BCs flagged, the areas of their shared surfaces (each rank's part) and each
   // material's mass, over every rank.
   const bool overRanks = Communicator::size() > 1;
@@ -168,7 +169,7 @@ void ReactiveFlow::completeSetup(Collective, std::vector<MPMMaterial>& materials
     for (double mp : mat.particles.mass) mass += mp;
     sums.push_back(mass);
   }
-  if (overRanks) collective::sum(sums.data(), static_cast<int>(sums.size()));
+  if (overRanks) collective::sum(every, sums.data(), static_cast<int>(sums.size()));
   std::vector<ExternalScalarFlux::Flagged> flagged;
   for (size_t k = 0; k < flagged_.size(); ++k) {
     ExternalScalarFlux::Flagged f = flagged_[k];
@@ -182,7 +183,7 @@ void ReactiveFlow::completeSetup(Collective, std::vector<MPMMaterial>& materials
   const double* materialMass = sums.data() + sums.size() - materials.size();
   std::vector<double> capacities(flux_.bcs().size(), 0.0);
   // The same on every rank: errors without a collective, agreed for one message.
-  collective::readTogether([&] {
+  collective::readTogether(every, [&] {
     for (size_t b = 0; b < flux_.bcs().size(); ++b)
       if (std::none_of(flagged.begin(), flagged.end(), [b](const auto& f) { return f.bc == b; }))
         throw InputError(
@@ -232,7 +233,7 @@ void ReactiveFlow::completeSetup(Collective, std::vector<MPMMaterial>& materials
     setupReport_.push_back(s.str());
   }
   flux_.setCapacities(std::move(capacities));
-  flux_.computeFluxRates(materials, materials_, initTime, overRanks);
+  flux_.computeFluxRates(every, materials, materials_, initTime, overRanks);
 }
 
 void ReactiveFlow::layOutGrid(const Grid& grid, const GhostNodes* ghosts) {
@@ -330,11 +331,12 @@ void ReactiveFlow::integrateConcentration(const std::vector<GridFields>& mechani
   }
 }
 
-void ReactiveFlow::updateDiffusionState(Collective, std::vector<MPMMaterial>& materials, double t) {
-  collective::stopTogether([&] { checkConcentrationRange(materials, t); });
-  if (flags_.autoCycle) flux_.updateAutoCycle(Collective{}, materials, materials_, flags_);
+void ReactiveFlow::updateDiffusionState(Collective every, std::vector<MPMMaterial>& materials,
+                                        double t) {
+  collective::stopTogether(every, [&] { checkConcentrationRange(materials, t); });
+  if (flags_.autoCycle) flux_.updateAutoCycle(every, materials, materials_, flags_);
   computeDiffusivity(materials, t);
-  flux_.computeFluxRates(materials, materials_, t, true);
+  flux_.computeFluxRates(every, materials, materials_, t, true);
 }
 
 void ReactiveFlow::computeDiffusivity(std::vector<MPMMaterial>& materials, double t) {

@@ -72,7 +72,7 @@ class ReactiveFlow {
   // Before P2G of material m: zeroes its fields on the nodes of `cleared` and marks the nodes
   // its flux sources reach; then calls f with the material's P2G kernel.
   template <class F>
-  void withScatter(size_t m, const ParticleSet& p, const InterpolationWeights& W,
+  void withScatter(Collective, size_t m, const ParticleSet& p, const InterpolationWeights& W,
                    const std::vector<NodeRange>& cleared, F&& f);
   // Adds the nodal arrays P2G sums (per material) to `arrays`, for the ranks to complete them.
   void addScatteredArrays(std::vector<NodeArray>& arrays);
@@ -92,16 +92,16 @@ class ReactiveFlow {
   void updateDiffusionState(Collective, std::vector<MPMMaterial>& materials, double t);
   // The diffusion's bounds of the stable time step: Eq. 44 over this rank's particles, and the
   // flux limit over all ranks (diffusionTimestep, fluxTimestep).
-  void boundTimestep(Collective, const Grid& grid, const std::vector<MPMMaterial>& materials,
+  void boundTimestep(Collective every, const Grid& grid, const std::vector<MPMMaterial>& materials,
                      StableTimestep& limits) const {
     limits.bound[StableTimestep::Diffusion] = diffusionTimestep(grid);
-    limits.bound[StableTimestep::Flux] = fluxTimestep(Collective{}, materials);
+    limits.bound[StableTimestep::Flux] = fluxTimestep(every, materials);
   }
   // Eq. 44 over this rank's particles: dx^2 / (2 D_max), infinity without diffusivity.
   double diffusionTimestep(const Grid& grid) const;
   // The flux limit over all ranks (docs/diffusion.md, "Time step").
-  double fluxTimestep(Collective, const std::vector<MPMMaterial>& materials) const {
-    return flux_.stableTimestep(Collective{}, materials, materials_);
+  double fluxTimestep(Collective every, const std::vector<MPMMaterial>& materials) const {
+    return flux_.stableTimestep(every, materials, materials_);
   }
   // Material m's diffusivity model.
   const ScalarDiffusionModel& model(size_t m) const { return *materials_[m].model; }
@@ -189,11 +189,11 @@ class ReactiveFlow {
 // P2G or G2P kernel, ReactiveFlow's or NoConcentration in a run without diffusion (`diffusion`
 // null), handed to f, so that the caller's loop is compiled per kernel type.
 template <class F>
-void withScatterKernel(ReactiveFlow* diffusion, size_t m, const ParticleSet& p,
+void withScatterKernel(Collective every, ReactiveFlow* diffusion, size_t m, const ParticleSet& p,
                        const InterpolationWeights& W, const std::vector<NodeRange>& cleared,
                        F&& f) {
   if (diffusion)
-    diffusion->withScatter(m, p, W, cleared, f);
+    diffusion->withScatter(every, m, p, W, cleared, f);
   else
     f(NoConcentration{});
 }
@@ -211,14 +211,15 @@ inline int scatterQuadsPerNode(const ReactiveFlow* diffusion) {
 }
 
 template <class F>
-void ReactiveFlow::withScatter(size_t m, const ParticleSet& p, const InterpolationWeights& W,
-                               const std::vector<NodeRange>& cleared, F&& f) {
+void ReactiveFlow::withScatter(Collective every, size_t m, const ParticleSet& p,
+                               const InterpolationWeights& W, const std::vector<NodeRange>& cleared,
+                               F&& f) {
   if (!computesConcentration(m)) return f(NoConcentration{});
   ConcentrationGridFields& g = fields_[m];
   forEachNodeRange(cleared, [&g](long begin, long end) { g.clearAll(begin, end); });
   if (receivesFlux_[m]) {
     markSourceNodes(p, W, g.sourceReached, cleared);
-    if (ghosts_) ghosts_->unionOverRanks(Collective{}, g.sourceReached);
+    if (ghosts_) ghosts_->unionOverRanks(every, g.sourceReached);
     f(ConcentrationScatter<true>(p, W, g.sourceReached.data(), cmax_[m], g,
                                  flags_.restrictedFluxReceivers));
   } else {
