@@ -23,10 +23,13 @@ struct GatheredQuads {
 };
 
 // Particle i's sums over quads (kGatherQuads per node), and the kernel's gather() per node into
-// `particle`.
+// `particle`. Always inlined: it is the inner loop of G2P (GCC keeps it a call otherwise, about
+// 1.4% more instructions on an explicit run).
 template <class Kernel>
-GatheredQuads gatherFromNodes(const InterpolationWeights& W, long i, const NodeQuad* quads,
-                              const Kernel& kernel, typename Kernel::Particle& particle) {
+[[gnu::always_inline]] inline GatheredQuads gatherFromNodes(const InterpolationWeights& W, long i,
+                                                            const NodeQuad* quads,
+                                                            const Kernel& kernel,
+                                                            typename Kernel::Particle& particle) {
   GatheredQuads s;
   const size_t b = W.offset[i];
   for (int e = 0; e < W.count[i]; ++e) {

@@ -36,16 +36,19 @@ struct StressLanes {
 
 // Particle i's stress and model state from lane l of the update.
 template <class Model>
-void storeStress(ParticleSet& p, long i, const typename Model::StateArrays& arrays,
-                 const Mat3Pack& stress, const typename Model::template State<Pack>& state, int l) {
+[[gnu::always_inline]] inline void storeStress(ParticleSet& p, long i,
+                                               const typename Model::StateArrays& arrays,
+                                               const Mat3Pack& stress,
+                                               const typename Model::template State<Pack>& state,
+                                               int l) {
   p.stress[i] = lane(stress, l);
   arrays.store(state, l, i);
 }
 
 // Particle i moved by `moved` to the deformation gradient F of determinant J: its position,
 // displacement, F and volume V = m / rho0 J.
-inline void moveParticle(ParticleSet& p, long i, const Vec3& moved, const Mat3& F, double J,
-                         double density) {
+[[gnu::always_inline]] inline void moveParticle(ParticleSet& p, long i, const Vec3& moved,
+                                                const Mat3& F, double J, double density) {
   p.x[i] += moved;
   p.displacement[i] += moved;
   p.F[i] = F;
