@@ -239,6 +239,7 @@ StepTaken ImplicitStep::advance(Collective every, double t, double dt, double ru
     for (size_t m = 0; m < start.size(); ++m) materials[m].particles = start[m];
     if (diffusion) diffusion_->returnToStepStart(every, materials, t);
   }
+  if (diffusion) diffusion_->releaseStepStart();
   {
     ScopedTimer s(mpm_.timers(), tasks_.particleUpdate);
     // 5: x, F, stress and the models' state

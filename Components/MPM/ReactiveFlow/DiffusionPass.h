@@ -41,6 +41,8 @@ class DiffusionPass {
   // step's start, or its predicted end: the start's particles are the caller's).
   void keepStepStart() { start_ = diffusion_.stepState(); }
   void returnToStepStart(Collective, std::vector<MPMMaterial>& materials, double t);
+  // Frees that state once the step is taken (it holds the flux BCs' state).
+  void releaseStepStart() { start_.reset(); }
 
  private:
   long diffuseInSubsteps(Collective, ConcentrationTransfer& grid,
