@@ -85,6 +85,8 @@ void MPM::problemSetup(const PSNode& root, double initTime, double maxTime, bool
       materials_[m].particles.enable(Physics::Splitting);
     if (problem_.flags.implicit && problem_.flags.implicit->dynamic)
       materials_[m].particles.enable(Physics::Inertia);
+    if (problem_.flags.implicit && problem_.flags.implicit->hourglassStabilization > 0)
+      materials_[m].particles.enable(Physics::Hourglass);
   }
   checkProblemSize(gridNode, grid(), problem_.flags, materials_.size(), countParticles(materials_),
                    omp_get_max_threads());

@@ -14,6 +14,7 @@ enum class Physics : uint8_t {
   FluxBC,      // a material that diffuses, with <scalar_flux> blocks
   Splitting,   // <refine_particles>true for this material
   Inertia,     // implicit dynamics (<dynamic>true): the particles' acceleration
+  Hourglass,   // implicit steps with <hourglass_stabilization> above 0: its memory
 };
 
 // What splitting a particle in four (ParticleSplitting.cc) does to an array: the children copy

@@ -20,6 +20,14 @@
 
 namespace anode {
 
+// The displacement that is not linear over a particle's support, as the particle's hourglass
+// stabilization has accumulated it over the steps (Implicit/HourglassStabilization.h), on the
+// nodes of the 4 x 4 x 4 box whose lowest node is `origin`.
+struct HourglassMemory {
+  int32_t origin[3];
+  double displacement[64][3];
+};
+
 struct ParticleSet {
   std::vector<int64_t> id;            // p.particleID, stable for the run
   std::vector<Vec3> x;                // p.x
@@ -36,6 +44,8 @@ struct ParticleSet {
   std::vector<uint8_t> refined;
   // Implicit dynamics only (Implicit/Newmark.h): the acceleration of the last step's end.
   std::vector<Vec3> acceleration;
+  // Implicit steps with hourglass stabilization only.
+  std::vector<HourglassMemory> hourglassMemory;
 
   size_t count() const { return x.size(); }
 
@@ -157,6 +167,7 @@ struct ParticleSet {
     DeclaredArrays::eachArray(s.subcomponentArrays, f);
     f(s.refined, ParticleField<uint8_t>{"p.refinedMPM", P::Splitting, 0, S::Own});
     f(s.acceleration, ParticleField<Vec3>{"p.acceleration", P::Inertia, Vec3::Zero(), S::Copy});
+    f(s.hourglassMemory, ParticleField<HourglassMemory>{nullptr, P::Hourglass, {}, S::Copy});
   }
 
   uint8_t physics_ = bit(Physics::Mechanics);

@@ -38,11 +38,13 @@ void put(const Mat3& m, double* out) {
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 3; ++c) out[3 * r + c] = m(r, c);
 }
+// 0 for an array no label can save (its field's label is null).
 template <class T>
 constexpr int componentsOf() {
   if constexpr (std::is_same_v<T, Mat3>) return 9;
   if constexpr (std::is_same_v<T, Vec3> || std::is_same_v<T, Vec3i>) return 3;
-  return 1;
+  if constexpr (std::is_arithmetic_v<T>) return 1;
+  return 0;
 }
 
 // Calls f(field) for every particle array any material may have: ParticleSet's one list, every
@@ -75,7 +77,8 @@ void copyField(const ParticleSet& p, const std::string& label, const std::vector
   p.forEachField([&](const auto& v, const auto& field) {
     if (!field.label || label != field.label || v.empty()) return;
     constexpr int n = componentsOf<typename std::decay_t<decltype(v)>::value_type>();
-    for (size_t k = 0; k < indices.size(); ++k) put(v[indices[k]], out + n * k);
+    if constexpr (n > 0)
+      for (size_t k = 0; k < indices.size(); ++k) put(v[indices[k]], out + n * k);
   });
 }
 

@@ -165,6 +165,11 @@ void EquilibriumSolver::addHourglassStiffness(const EquilibriumProblem& problem,
     // quadratic in u, and Newton's Jacobian exact.
     const double stiffness = stabilization * p.volume[i] * A_[m][i].trace() / 9 / h2;
     const Eigen::MatrixXd M = hourglassMatrix(problem.grid, W, static_cast<long>(i), p.x[i]);
+    // The memory's force kappa V A^T diag(S) m, by support entry (columns).
+    Eigen::Matrix3Xd remembered = weightedMemory(p, i, problem.grid, W);
+    if (!remembered.isZero(0))
+      remembered =
+          stiffness * remembered * nonAffineOperator(problem.grid, W, static_cast<long>(i), p.x[i]);
     // (column, k) of the particle's unknown nodes and, in a reduced Jacobian, of those it couples
     // in K_, sorted: one pass along a row finds their entries.
     all.clear();
@@ -199,11 +204,11 @@ void EquilibriumSolver::addHourglassStiffness(const EquilibriumProblem& problem,
           hourglassTangent_[diagonal_[r]] += stiffness * M(j, j);
         }
       }
+      Vec3 force = remembered.col(j);
       for (int k = 0; k < n; ++k)
-        if (row[W.node[b + k]] < 0) {  // a node left out: its u stays as set at the start
-          const Vec3 force = stiffness * M(j, k) * u_[f][W.node[b + k]];
-          for (int a = 0; a < 3; ++a) hourglassLoad_[3 * r + a] += force[a];
-        }
+        if (row[W.node[b + k]] < 0)  // a node left out: its u stays as set at the start
+          force += stiffness * M(j, k) * u_[f][W.node[b + k]];
+      for (int a = 0; a < 3; ++a) hourglassLoad_[3 * r + a] += force[a];
     }
   }
 }

@@ -6,6 +6,7 @@
 #include <sstream>
 #include <variant>
 
+#include "Components/MPM/Implicit/HourglassStabilization.h"
 #include "Components/MPM/Implicit/ImplicitStep.h"
 #include "Components/MPM/Implicit/ParticleEquilibrium.h"
 #include "Components/MPM/Materials/ConstitutiveModels/ConcreteModels.h"
@@ -125,6 +126,8 @@ void ImplicitStep::updateParticlesFromEquilibrium(double dt) {
   for (size_t m = 0; m < materials.size(); ++m) {
     MPMMaterial& mat = materials[m];
     const std::vector<Vec3>& u = equilibrium_.displacement(fieldOf_[m]);
+    if (mat.particles.has(Physics::Hourglass))
+      rememberNonAffineDisplacement(mpm_.grid(), mpm_.stepGrid().weights[m], u, mat.particles);
     long firstInverted = 0;
     std::visit(
         [&](const auto* model) {
