@@ -671,6 +671,49 @@ std::string steppedBar(bool relax) {
   return s.str();
 }
 
+// DiffusionPass's cap: the stepped bar with <timestep_multiplier> 1e-6 (sub-steps of 2.5e-7:
+// 1e-6 x 0.1^2 / (2 x 0.02)) and <delt_max> 0.25, a million sub-steps a step without it. Each
+// of three steps takes dt = 200 sub-steps (euler) or the reach of 200 stages (rkl2,
+// (200^2 + 200 - 2)/4 sub-steps), the cap's limit sets it in history.csv, and no step is retaken.
+void expectPassCapSetsTheSteps(const std::string& integrator, double substepsPerStep) {
+  const fs::path dir = fs::temp_directory_path() / ("anode_pass_cap_" + integrator);
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::string text = steppedBar(false);
+  const auto replace = [&](const std::string& from, const std::string& to) {
+    ASSERT_NE(text.find(from), std::string::npos) << from;
+    text.replace(text.find(from), from.size(), to);
+  };
+  replace("<timestep_multiplier>0.4</timestep_multiplier>",
+          "<timestep_multiplier>1e-6</timestep_multiplier><max_Timesteps>3</max_Timesteps>");
+  replace("<dynamic>false</dynamic>", "<dynamic>false</dynamic><diffusion_integrator>" +
+                                          integrator + "</diffusion_integrator>");
+  std::ofstream(dir / "bar.ups") << text;
+  RunOptions o;
+  o.progress = false;
+  o.input = (dir / "bar.ups").string();
+  o.outputDir = (dir / "out").string();
+  Simulation sim(o);
+  sim.run();
+  const ImplicitStep::NewtonCounts& counts = sim.implicitStep().newtonCounts();
+  EXPECT_EQ(counts.retakes, 0);
+  EXPECT_EQ(counts.diffusionSubsteps, 3 * DiffusionPass::kMaxRateEvaluations);
+  EXPECT_NEAR(sim.time(), 3 * substepsPerStep * 2.5e-7, 1e-9 * sim.time());
+  const HistoryDigest d = digestHistory((dir / "out" / "history.csv").string(), 100, 1e-2);
+  EXPECT_EQ(d.steps, 3);
+  EXPECT_EQ(d.stepsByRule[kDtDiffusionPassCap], 3);
+  EXPECT_STREQ(dtRuleName(kDtDiffusionPassCap), "sub-steps per diffusion pass");
+  fs::remove_all(dir);
+}
+
+TEST(QuasiStatic, PassCapBoundsTheSubstepsOfAStep) {
+  expectPassCapSetsTheSteps("euler", 200);
+}
+
+TEST(QuasiStatic, PassCapBoundsTheStagesOfAStep) {
+  expectPassCapSetsTheSteps("rkl2", (200.0 * 200 + 200 - 2) / 4);
+}
+
 TEST(QuasiStatic, SubcellRelaxationConservesLithiumAndNarrowsTheSpreadWithinCells) {
   double lithium[2], spread[2];
   for (int relax = 0; relax < 2; ++relax) {

@@ -31,6 +31,16 @@ TEST(RungeKuttaLegendre, StagesCoverTheRatioOfForwardEulerLimits) {
   EXPECT_EQ(rkl2Stages(0.0), 2);
 }
 
+TEST(RungeKuttaLegendre, AStepAtACountsReachTakesThatCount) {
+  // dt = limit x (s^2 + s - 2)/4 as DiffusionPass bounds it, dt / limit rounded either way.
+  for (double limit : {0.2, 1.0 / 3, 7.3e-5, 1234.567, 0.1 * 0.7})
+    for (int s : {2, 3, 19, 200, 201}) {
+      const double dt = limit * (s * s + s - 2.0) / 4;
+      EXPECT_EQ(rkl2Stages(dt / limit), s) << limit << " " << s;
+      EXPECT_EQ(rkl2Stages(std::nextafter(dt / limit, 1e300)), s) << limit << " " << s;
+    }
+}
+
 TEST(RungeKuttaLegendre, SecondOrderInTheStep) {
   // y' = -y to t = 1 in 4, 8 and 16 steps of 5 stages: the error falls about 4 times when the
   // steps halve (measured 4.28 and 4.14).

@@ -2,7 +2,8 @@
 // of the mechanical limit (Eq. 43), the diffusion limit (Eq. 44) and the flux limit
 // (docs/diffusion.md, "Time step"), each over all ranks, and which of them sets it. An implicit
 // run has two: the last dt grown or shrunk by its Newton iterations (ImpMPM's rule), and with
-// diffusion the dt whose largest change of c would be <max_concentration_change>.
+// diffusion the dt whose largest change of c would be <max_concentration_change> and the dt its
+// diffusion pass covers in DiffusionPass::kMaxRateEvaluations sub-steps or stages.
 #pragma once
 
 #include <algorithm>
@@ -12,21 +13,24 @@
 namespace anode {
 
 struct StableTimestep {
-  enum Limit { Mechanics, Diffusion, Flux, Newton, ConcentrationChange, kLimits };
+  enum Limit { Mechanics, Diffusion, Flux, Newton, ConcentrationChange, DiffusionPassCap, kLimits };
   // Each limit's dt; infinity where it does not apply.
   std::array<double, kLimits> bound{
       std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
       std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
-      std::numeric_limits<double>::infinity()};
+      std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
 
   double dt() const { return *std::min_element(bound.begin(), bound.end()); }
   Limit binding() const {
     return static_cast<Limit>(std::min_element(bound.begin(), bound.end()) - bound.begin());
   }
   static const char* name(Limit limit) {
-    constexpr const char* names[kLimits] = {"mechanics (Eq. 43)", "diffusion (Eq. 44)",
-                                            "flux restriction", "Newton iterations",
-                                            "concentration change per step"};
+    constexpr const char* names[kLimits] = {"mechanics (Eq. 43)",
+                                            "diffusion (Eq. 44)",
+                                            "flux restriction",
+                                            "Newton iterations",
+                                            "concentration change per step",
+                                            "sub-steps per diffusion pass"};
     return names[limit];
   }
 };

@@ -123,13 +123,16 @@ bool DataArchiver::savesConcentrationFields() const {
 }
 
 const char* dtRuleName(int rule) {
-  if (rule >= 0 && rule < StableTimestep::kLimits)
+  if (rule >= 0 && rule < kDtSetByTimeControl)
     return StableTimestep::name(static_cast<StableTimestep::Limit>(rule));
+  if (rule == kDtDiffusionPassCap) return StableTimestep::name(StableTimestep::DiffusionPassCap);
   if (rule == kDtSetByTimeControl)
     return "time control (<delt_max>, <delt_init>, <delt_min>, <max_delt_increase>, <maxTime>, "
            "<clamp_time_to_output>)";
   if (rule == kDtRetaken)
-    return "retaken with a smaller dt (Newton did not converge, or c changed too much)";
+    return "retaken with a smaller dt (Newton did not converge, c changed too much, or the "
+           "diffusion "
+           "pass needed more sub-steps than its cap)";
   return "unknown";
 }
 

@@ -39,15 +39,22 @@ struct StepRecord {
 };
 
 // history.csv's dt_limit: StableTimestep::Limit's codes (0 mechanics, Eq. 43; 1 diffusion, Eq.
-// 44; 2 flux restriction; 3 Newton iterations; 4 change of c per step), then these two.
+// 44; 2 flux restriction; 3 Newton iterations; 4 change of c per step), then these three (the
+// cap of a diffusion pass after the two older codes, which keep their numbers).
 enum DtRule {
-  kDtSetByTimeControl = StableTimestep::kLimits,  // <delt_max>, <delt_init>, <delt_min>,
-                                                  // <max_delt_increase>, the end at <maxTime>,
-                                                  // or <clamp_time_to_output>
-  kDtRetaken,  // an implicit step retaken with a smaller dt (Newton did not converge, or c
-               // changed by more than twice <max_concentration_change>)
+  kDtSetByTimeControl = StableTimestep::DiffusionPassCap,  // <delt_max>, <delt_init>, <delt_min>,
+                                                           // <max_delt_increase>, the end at
+                                                           // <maxTime>, or <clamp_time_to_output>
+  kDtRetaken,           // an implicit step retaken with a smaller dt (Newton did not converge, or c
+                        // changed by more than twice <max_concentration_change>, or its diffusion
+                        // pass needed more than its cap of sub-steps)
+  kDtDiffusionPassCap,  // StableTimestep::DiffusionPassCap
   kDtRules
 };
+// The code of a limit.
+inline int dtRule(StableTimestep::Limit limit) {
+  return limit == StableTimestep::DiffusionPassCap ? int{kDtDiffusionPassCap} : int{limit};
+}
 // The rule's name, as the end summary and report.html write it.
 const char* dtRuleName(int rule);
 

@@ -166,7 +166,7 @@ void Simulation::run() {
 
 double Simulation::advanceAndRecord(Collective every) {
   const double plannedDt = dt_;
-  const int plannedRule = dtSetByTimeControl_ ? int{kDtSetByTimeControl} : int{dtLimit_};
+  const int plannedRule = dtSetByTimeControl_ ? int{kDtSetByTimeControl} : dtRule(dtLimit_);
   try {
     advance(every);
   } catch (const SimulationError&) {

@@ -132,7 +132,7 @@ void ImplicitStep::checkSetup(const PSNode& root) const {
             "concentration to relax");
 }
 
-StableTimestep ImplicitStep::stableTimestep(Collective) const {
+StableTimestep ImplicitStep::stableTimestep(Collective every) const {
   StableTimestep limits;  // the first step takes <delt_max> (or <delt_init>)
   limits.bound[StableTimestep::Newton] = ruleDt_ > 0
                                              ? dt_.afterNewton(ruleDt_, newton_.lastIterations)
@@ -140,6 +140,10 @@ StableTimestep ImplicitStep::stableTimestep(Collective) const {
   if (maxConcentrationChange_ > 0)  // the accuracy bound on c (docs/quasi-static.md)
     limits.bound[StableTimestep::ConcentrationChange] =
         dt_.forConcentrationChange(lastDt_, maxConcentrationChange_);
+  // The pass's cap of sub-steps, from the diffusion state the step's pass starts from.
+  if (diffusion_)
+    limits.bound[StableTimestep::DiffusionPassCap] =
+        diffusion_->longestPass(every, mpm_.materials());
   return limits;
 }
 
@@ -158,9 +162,22 @@ void ImplicitStep::computeWeights(Collective every) {
   mpm_.interpolateParticlesToGrid(every);
 }
 
-void ImplicitStep::diffuseOverStep(Collective every, double t, double dt) {
-  newton_.diffusionSubsteps +=
+double ImplicitStep::diffuseOverStep(Collective every, double t, double dt) {
+  const DiffusionPass::Pass pass =
       diffusion_->diffuse(every, *transfer_, mpm_.materials(), t, dt, concentrationChange_);
+  newton_.diffusionSubsteps += pass.evaluations;
+  return pass.covered;
+}
+
+std::string ImplicitStep::passCapFailure(double dt, double covered) {
+  std::ostringstream s;
+  s.precision(3);
+  s << "the diffusion pass over dt = " << dt << " needs more than "
+    << DiffusionPass::kMaxRateEvaluations
+    << (options_.diffusionIntegrator == ImplicitOptions::DiffusionIntegrator::Rkl2 ? " stages"
+                                                                                   : " sub-steps")
+    << ", which cover " << covered;
+  return s.str();
 }
 
 StepTaken ImplicitStep::advance(Collective every, double t, double dt, double ruleDt) {
@@ -183,10 +200,13 @@ StepTaken ImplicitStep::advance(Collective every, double t, double dt, double ru
     // <max_concentration_change> somewhere is retaken at the dt that bound allows.
     NewtonReport report;
     double failedChange = 0;  // the change of c that failed the attempt
+    double covered = dt;      // by the diffusion pass: less where its cap stopped it
     if (diffusion) {
-      diffuseOverStep(every, t, dt);
+      covered = diffuseOverStep(every, t, dt);
       maxConcentrationChange_ = collective::maximum(every, largestConcentrationChange());
-      if (dt_.retakesConcentrationChange(maxConcentrationChange_)) {
+      if (covered < dt) {
+        report.failure = passCapFailure(dt, covered);
+      } else if (dt_.retakesConcentrationChange(maxConcentrationChange_)) {
         std::ostringstream s;
         s.precision(3);
         s << "c changed by " << maxConcentrationChange_ << " in a particle, above twice "
@@ -228,7 +248,14 @@ StepTaken ImplicitStep::advance(Collective every, double t, double dt, double ru
         break;
       }
     }
-    const double smaller = dt_.retakeDt(dt, failedChange);
+    // A pass stopped by its cap is retaken over the time it covered; every retake's pass keeps
+    // to the cap from the diffusion state it starts from.
+    double smaller = covered < dt ? covered : dt_.retakeDt(dt, failedChange);
+    for (size_t m = 0; m < start.size(); ++m) materials[m].particles = start[m];
+    if (diffusion) {
+      diffusion_->returnToStepStart(every, materials, t);
+      smaller = std::min(smaller, diffusion_->longestPass(every, materials));
+    }
     const std::string refusal = dt_.refusesRetake(smaller, retakes);
     if (!refusal.empty()) stop(t, dt, refusal, report);
     ++retakes;
@@ -236,8 +263,6 @@ StepTaken ImplicitStep::advance(Collective every, double t, double dt, double ru
     reportRetake(t, smaller, report);
     dt = smaller;
     ruleDt = smaller;
-    for (size_t m = 0; m < start.size(); ++m) materials[m].particles = start[m];
-    if (diffusion) diffusion_->returnToStepStart(every, materials, t);
   }
   if (diffusion) diffusion_->releaseStepStart();
   {

@@ -85,8 +85,11 @@ class ImplicitStep : public Integrator {
   // A quasi-static step's predicted increments: the start-of-step nodal velocity times dt.
   void addPredictedIncrement(EquilibriumProblem& problem, double dt);
   // The diffusion over the step on its start-of-step configuration (after the step's full P2G);
-  // concentrationChange_ receives each particle's change.
-  void diffuseOverStep(Collective, double t, double dt);
+  // concentrationChange_ receives each particle's change. Returns the time the pass covered: dt,
+  // or less where DiffusionPass's cap stopped it.
+  double diffuseOverStep(Collective, double t, double dt);
+  // The failure of an attempt whose pass covered `covered` of dt.
+  std::string passCapFailure(double dt, double covered);
   // <concentration_coupling>trapezoidal: after diffuseOverStep on the step's start (`start`, the
   // diffusion's `atStart`), a Newton solve to kPredictorConvergence predicts the step's end; the
   // diffusion runs again on those particles from the start's c, and the particles are set back to

@@ -55,7 +55,10 @@ NewtonReport ImplicitStep::averageConcentrationChangeOverStep(
     }
     diffusion_->returnToStepStart(every, materials, t);  // D of the predicted stress
     computeWeights(every);
-    diffuseOverStep(every, t, dt);
+    // The predicted end's limits may hold the pass past its cap: on every rank alike (the
+    // limits are over all ranks), the step is retaken as for a failed prediction.
+    const double covered = diffuseOverStep(every, t, dt);
+    if (covered < dt) throw SimulationError(passCapFailure(dt, covered));
     // The start's particles with the means of the two passes (trapezoidal in the geometry, the
     // stress and J), and the lithium by which the mean differs from either pass.
     correction = 0;

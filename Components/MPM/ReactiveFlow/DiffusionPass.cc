@@ -55,9 +55,16 @@ void DiffusionPass::returnToStepStart(Collective every, std::vector<MPMMaterial>
   updateDiffusionState(every, materials, t);
 }
 
-long DiffusionPass::diffuse(Collective every, ConcentrationTransfer& grid,
-                            std::vector<MPMMaterial>& materials, double t, double dt,
-                            std::vector<std::vector<double>>& change) {
+double DiffusionPass::coveredBy(double limit) const {
+  const double n = static_cast<double>(kMaxRateEvaluations);
+  return integrator_ == ImplicitOptions::DiffusionIntegrator::Rkl2
+             ? limit * (n * n + n - 2) / 4  // rkl2Stages's reach
+             : limit * n;
+}
+
+DiffusionPass::Pass DiffusionPass::diffuse(Collective every, ConcentrationTransfer& grid,
+                                           std::vector<MPMMaterial>& materials, double t, double dt,
+                                           std::vector<std::vector<double>>& change) {
   change.resize(materials.size());
   for (size_t m = 0; m < materials.size(); ++m)
     change[m].assign(materials[m].particles.count(), 0.0);
@@ -70,12 +77,15 @@ long DiffusionPass::diffuse(Collective every, ConcentrationTransfer& grid,
   return diffuseInSubsteps(every, grid, materials, t, dt, change);
 }
 
-long DiffusionPass::diffuseInSubsteps(Collective every, ConcentrationTransfer& grid,
-                                      std::vector<MPMMaterial>& materials, double t, double dt,
-                                      std::vector<std::vector<double>>& change) {
+DiffusionPass::Pass DiffusionPass::diffuseInSubsteps(Collective every, ConcentrationTransfer& grid,
+                                                     std::vector<MPMMaterial>& materials, double t,
+                                                     double dt,
+                                                     std::vector<std::vector<double>>& change) {
   long substeps = 0;
   double done = 0;
-  while (done < dt) {
+  // At dt = coveredBy(limit) and a constant limit, the remainder rule below makes the last of
+  // kMaxRateEvaluations sub-steps end at t + dt.
+  while (done < dt && substeps < kMaxRateEvaluations) {
     const double limit = substepLimit(every, materials);
     // The last sub-step ends at t + dt exactly (a remainder below 1e-12 dt joins the one before).
     double h = std::min(limit, dt - done);
@@ -92,12 +102,17 @@ long DiffusionPass::diffuseInSubsteps(Collective every, ConcentrationTransfer& g
     ++substeps;
     updateDiffusionState(every, materials, t + done);
   }
-  return substeps;
+  return {substeps, done};
 }
 
-long DiffusionPass::diffuseInLegendreStages(Collective every, ConcentrationTransfer& grid,
-                                            std::vector<MPMMaterial>& materials, double t,
-                                            double dt, std::vector<std::vector<double>>& change) {
+DiffusionPass::Pass DiffusionPass::diffuseInLegendreStages(
+    Collective every, ConcentrationTransfer& grid, std::vector<MPMMaterial>& materials, double t,
+    double dt, std::vector<std::vector<double>>& change) {
+  // As many stages as the sub-steps' limit at the pass's start needs: more than the cap, and
+  // the pass does not start.
+  const double limit = substepLimit(every, materials);
+  const int s = rkl2Stages(dt / limit);
+  if (s > kMaxRateEvaluations) return {0, coveredBy(limit)};
   grid.computeNodalConcentration(true);  // the step's P2G (the nodal velocity)
   // c of the particles of the materials whose c changes, one after the other.
   std::vector<size_t> changing;
@@ -148,11 +163,9 @@ long DiffusionPass::diffuseInLegendreStages(Collective every, ConcentrationTrans
     setConcentrations(y);
     ++stages;
   };
-  // As many stages as the sub-steps' limit at the pass's start needs.
-  const double limit = substepLimit(every, materials);
   const std::vector<double> start = concentrations();
   std::vector<double> y = start;
-  stepRkl2(y, dt, rkl2Stages(dt / limit), rate);
+  stepRkl2(y, dt, s, rate);
   setConcentrations(y);
   size_t first = 0;
   for (size_t m : changing) {
@@ -163,7 +176,7 @@ long DiffusionPass::diffuseInLegendreStages(Collective every, ConcentrationTrans
   // grad c of the end (as a sub-step leaves it for the next one) and its diffusion state.
   gradientOfNodalConcentration();
   updateDiffusionState(every, materials, t + dt);
-  return stages;
+  return {stages, dt};
 }
 
 void DiffusionPass::relaxSubcellConcentration(Collective every, ConcentrationTransfer& grid,

@@ -28,13 +28,27 @@ class DiffusionPass {
   // `grid`: MPM's (its cell edges).
   DiffusionPass(ReactiveFlow& diffusion, const Grid& grid, const ImplicitOptions& options,
                 double substepMultiplier, TaskTimers& timers);
+  // The most sub-steps (euler) or stages (rkl2) of one pass: a pass's cost stays bounded however
+  // small the sub-steps' limit is against dt (docs/quasi-static.md, "Failure and dt").
+  static constexpr long kMaxRateEvaluations = 200;
   // A sub-step's length, the multiplier times the smaller of Eq. 44 and the flux
   // limit over all ranks.
   double substepLimit(Collective, const std::vector<MPMMaterial>& materials) const;
+  // The longest pass kMaxRateEvaluations cover from the present diffusion state: that many
+  // sub-steps of substepLimit, or the RKL2 step of that many stages.
+  double longestPass(Collective every, const std::vector<MPMMaterial>& materials) const {
+    return coveredBy(substepLimit(every, materials));
+  }
+  struct Pass {
+    long evaluations = 0;  // of the rate: sub-steps or stages
+    double covered = 0;    // the time the pass integrated: dt, or less where the cap stopped it
+  };
   // c over [t, t + dt] of the particles (after the step's full P2G on `grid`); each particle's
-  // change of c into change[m] (sized here), and the diffusion state of the end. Returns the
-  // evaluations of the rate it took (sub-steps or stages).
-  long diffuse(Collective, ConcentrationTransfer& grid, std::vector<MPMMaterial>& materials,
+  // change of c into change[m] (sized here), and the diffusion state of the end. A pass that
+  // would need more than kMaxRateEvaluations (the limit fell during the sub-steps, or the step
+  // started elsewhere than the state its dt was bounded from) stops there with `covered` < dt:
+  // the caller retakes the step.
+  Pass diffuse(Collective, ConcentrationTransfer& grid, std::vector<MPMMaterial>& materials,
                double t, double dt, std::vector<std::vector<double>>& change);
   // Keeps the diffusion state of the step's start (ReactiveFlow::StepState), which
   // returnToStepStart takes up again with the diffusion state of the particles at time t (the
@@ -45,11 +59,13 @@ class DiffusionPass {
   void releaseStepStart() { start_.reset(); }
 
  private:
-  long diffuseInSubsteps(Collective, ConcentrationTransfer& grid,
+  // The time kMaxRateEvaluations cover with sub-steps of `limit` (rkl2: its stability interval).
+  double coveredBy(double limit) const;
+  Pass diffuseInSubsteps(Collective, ConcentrationTransfer& grid,
                          std::vector<MPMMaterial>& materials, double t, double dt,
                          std::vector<std::vector<double>>& change);
   // One RKL2 step over dt, its stages as many as the sub-steps' limit at the start needs.
-  long diffuseInLegendreStages(Collective, ConcentrationTransfer& grid,
+  Pass diffuseInLegendreStages(Collective, ConcentrationTransfer& grid,
                                std::vector<MPMMaterial>& materials, double t, double dt,
                                std::vector<std::vector<double>>& change);
   // The particles drawn towards the grid's c of their P2G over dt, their change added.

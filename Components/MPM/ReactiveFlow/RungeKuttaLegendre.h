@@ -17,9 +17,12 @@
 
 namespace anode {
 
-// The fewest stages (at least 2) for a step of `ratio` forward-Euler limits.
+// The fewest stages (at least 2) for a step of `ratio` forward-Euler limits. A ratio within 1e-12
+// above a count's reach takes that count, so that a step of limit x (s^2 + s - 2)/4 takes s
+// stages whatever the rounding of the product and the quotient (DiffusionPass's cap).
 inline int rkl2Stages(double ratio) {
-  const int s = static_cast<int>(std::ceil((-1 + std::sqrt(9 + 16 * std::max(ratio, 0.0))) / 2));
+  const double r = std::max(ratio * (1 - 1e-12), 0.0);
+  const int s = static_cast<int>(std::ceil((-1 + std::sqrt(9 + 16 * r)) / 2));
   return std::max(s, 2);
 }
 
