@@ -170,6 +170,13 @@ INSTANTIATE_TEST_SUITE_P(
                     "<checkpoint cycle=\"2\" timestepInterval=\"1\"/>",
                     5,
                     {}},
+        // Quasi-static steps chosen by their error estimates: the controller's state (the last
+        // two estimates, their sum) is in the checkpoint.
+        RestartCase{"implicit_error_control",
+                    kSource + "/tests/checkpoint/ErrorControlledBar.ups",
+                    "",
+                    6,
+                    {}},
         // Implicit dynamics: the particles' accelerations (Newmark's state) are in the
         // checkpoint; blocks colliding at step 10.
         RestartCase{"implicit_dynamic",

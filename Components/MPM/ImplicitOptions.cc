@@ -1,5 +1,6 @@
 #include "Components/MPM/ImplicitOptions.h"
 
+#include <optional>
 #include <string>
 
 namespace anode {
@@ -43,10 +44,22 @@ ImplicitOptions ImplicitOptions::fromInput(const PSNode& mpm) {
     mpm.requireChild("jacobian_coupling_share")
         .fail("<jacobian_coupling_share> must be in [0, 1e-3]");
   o.jacobianReuse = mpm.get<bool>("jacobian_reuse", o.jacobianReuse);
-  o.maxConcentrationChange = mpm.get<double>("max_concentration_change", o.maxConcentrationChange);
-  if (!(o.maxConcentrationChange > 0 && o.maxConcentrationChange <= 1))
-    mpm.requireChild("max_concentration_change")
-        .fail("<max_concentration_change> must be in (0, 1]");
+  o.errorTolerance = mpm.get<double>("error_tolerance", o.errorTolerance);
+  if (!(o.errorTolerance >= 0 && o.errorTolerance < 1))
+    mpm.requireChild("error_tolerance").fail("<error_tolerance> must be in [0, 1)");
+  if (o.errorTolerance > 0) {
+    if (o.dynamic)
+      mpm.requireChild("error_tolerance")
+          .unsupported("<error_tolerance> with <dynamic>true (it serves quasi-static steps)");
+    o.maxConcentrationChange = 0;
+    o.concentrationCoupling = ConcentrationCoupling::Trapezoidal;
+  }
+  if (const std::optional<double> change = mpm.find<double>("max_concentration_change")) {
+    o.maxConcentrationChange = *change;
+    if (!(o.maxConcentrationChange > 0 && o.maxConcentrationChange <= 1))
+      mpm.requireChild("max_concentration_change")
+          .fail("<max_concentration_change> must be in (0, 1]");
+  }
   if (const PSNode coupling = mpm.child("concentration_coupling")) {
     const std::string name = coupling.value<std::string>();
     if (name == "trapezoidal")
@@ -54,6 +67,10 @@ ImplicitOptions ImplicitOptions::fromInput(const PSNode& mpm) {
     else if (name != "staggered")
       coupling.fail("<concentration_coupling> must be staggered or trapezoidal, found \"" + name +
                     "\"");
+    else if (o.errorTolerance > 0)
+      coupling.fail(
+          "<concentration_coupling>staggered with <error_tolerance>: the error estimate is the "
+          "difference of a trapezoidal step's two diffusion passes");
     if (o.dynamic && o.concentrationCoupling == ConcentrationCoupling::Trapezoidal)
       coupling.unsupported(
           "<concentration_coupling>trapezoidal with <dynamic>true (it serves "

@@ -38,8 +38,16 @@ struct ImplicitOptions {
   // every iteration.
   bool jacobianReuse = false;
   // <max_concentration_change> (ours): with diffusion, the next dt is at most the one whose
-  // largest change of a particle's c would be this (the last step's change scaled linearly).
+  // largest change of a particle's c would be this (the last step's change scaled linearly); 0:
+  // no such bound (the default with <error_tolerance>).
   double maxConcentrationChange = 0.05;
+  // <error_tolerance> (ours): with diffusion, quasi-static steps chosen by their error estimate
+  // (ImplicitStep's: half the largest difference of a particle's change of c / c_max between the
+  // step's two diffusion passes, the staggering's local error), each step's held to this and
+  // retaken above it, dt from a PI controller (TimestepController::afterErrorEstimate). It
+  // makes the coupling trapezoidal (a staggered one is an input error), Newton's iterations only
+  // shrink dt, and <max_concentration_change> applies only where given. 0 (the default): off.
+  double errorTolerance = 0;
   // <concentration_coupling> (ours): how a quasi-static step's diffusion sees the mechanics.
   // Staggered: the diffusion sub-steps run on the particles of the step's start, then Newton.
   // Trapezoidal: a Newton solve to kPredictorConvergence predicts the step's end; the sub-steps

@@ -22,6 +22,10 @@ struct StepCounts {
   // <concentration_coupling>trapezoidal: the lithium by which the step's two diffusion passes
   // differ (ImplicitStep::NewtonCounts::lastCouplingCorrection).
   double couplingCorrection = -1;
+  // With <error_tolerance>: the step's error estimate (ImplicitStep::NewtonCounts::
+  // lastErrorEstimate) and the attempts rejected (retaken with a smaller dt) before it.
+  double errorEstimate = -1;
+  int rejectedAttempts = -1;
 };
 
 class Integrator {

@@ -3,7 +3,8 @@
 // (docs/diffusion.md, "Time step"), each over all ranks, and which of them sets it. An implicit
 // run has two: the last dt grown or shrunk by its Newton iterations (ImpMPM's rule), and with
 // diffusion the dt whose largest change of c would be <max_concentration_change> and the dt its
-// diffusion pass covers in DiffusionPass::kMaxRateEvaluations sub-steps or stages.
+// diffusion pass covers in DiffusionPass::kMaxRateEvaluations sub-steps or stages; with
+// <error_tolerance>, the dt the error controller gives from the last steps' error estimates.
 #pragma once
 
 #include <algorithm>
@@ -13,12 +14,18 @@
 namespace anode {
 
 struct StableTimestep {
-  enum Limit { Mechanics, Diffusion, Flux, Newton, ConcentrationChange, DiffusionPassCap, kLimits };
+  enum Limit {
+    Mechanics,
+    Diffusion,
+    Flux,
+    Newton,
+    ConcentrationChange,
+    DiffusionPassCap,
+    ErrorEstimate,
+    kLimits
+  };
   // Each limit's dt; infinity where it does not apply.
-  std::array<double, kLimits> bound{
-      std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
-      std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
-      std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+  std::array<double, kLimits> bound = unbounded();
 
   double dt() const { return *std::min_element(bound.begin(), bound.end()); }
   Limit binding() const {
@@ -30,8 +37,16 @@ struct StableTimestep {
                                             "flux restriction",
                                             "Newton iterations",
                                             "concentration change per step",
-                                            "sub-steps per diffusion pass"};
+                                            "sub-steps per diffusion pass",
+                                            "error estimate"};
     return names[limit];
+  }
+
+ private:
+  static std::array<double, kLimits> unbounded() {
+    std::array<double, kLimits> all;
+    all.fill(std::numeric_limits<double>::infinity());
+    return all;
   }
 };
 

@@ -3,8 +3,9 @@
 // iterations and the bound on the change of c of the implicit step, both computed here), the
 // multiplier (explicit steps: an implicit run's <timestep_multiplier> is its diffusion
 // sub-steps'), <Time>'s clamps in Uintah's order, the output times (<clamp_time_to_output>), and
-// the dt of an implicit step retaken after a failed attempt. Each plan says which of them set
-// its dt.
+// the dt of an implicit step retaken after a failed attempt, and with <error_tolerance> the PI
+// controller on the steps' error estimates (whose state it keeps). Each plan says which of them
+// set its dt.
 #pragma once
 
 #include <optional>
@@ -30,9 +31,13 @@ class TimestepController {
     bool setByTimeControl = false;
   };
   // `growsFrom`: the dt the last step's limits grow from (StepTaken::ruleDt; 0 before the first
-  // step); `nextOutputTime`: the first output time after t, where outputs fall at times.
+  // step); `nextOutputTime`: the first output time after t, where outputs fall at times. With
+  // <error_tolerance> the error controller's dt is one more limit, steps end on the output times
+  // as with <clamp_time_to_output>, and the last on <maxTime> (<end_at_max_time_exactly>).
   Plan plan(const StableTimestep& limits, double growsFrom, double t,
             std::optional<double> nextOutputTime) const;
+  // Whether steps end on the output times (<clamp_time_to_output>, or <error_tolerance>).
+  bool endsStepsOnOutputs() const;
 
   // Implicit steps. ImpMPM's rule: the dt after a step of `dt` that took `iterations` Newton
   // iterations (the first step takes <delt_max> or <delt_init>).
@@ -52,9 +57,30 @@ class TimestepController {
   // The diffusion sub-steps' share of the explicit limits (<timestep_multiplier>).
   double substepMultiplier() const { return time_.multiplier; }
 
+  // Error control (<error_tolerance>; the estimate is ImplicitStep's, of order dt^2 on a step).
+  bool controlsError() const { return implicit_ && implicit_->errorTolerance > 0; }
+  // Whether a step of that estimate is retaken (above the tolerance).
+  bool rejectsErrorEstimate(double estimate) const;
+  // The dt a step of dt whose estimate was rejected is retaken with.
+  double retakeForError(double dt, double estimate) const;
+  // What the controller keeps between steps (and the checkpoints hold): the estimates of the last
+  // two steps (-1: none yet) and the last one's dt, a step shortened to end on an output time
+  // counting as the one it was cut from; and the sum of the steps' estimates.
+  struct ErrorControl {
+    double lastEstimate = -1, previousEstimate = -1, lastDt = 0, accumulated = 0;
+  };
+  // After a step taken over dt (of ruleDt) with that estimate (negative: none).
+  void recordStep(double estimate, double dt, double ruleDt);
+  const ErrorControl& errorControl() const { return error_; }
+  void resumeErrorControl(const ErrorControl& state) { error_ = state; }
+
  private:
+  // The PI controller's dt for the next step (DESIGN.md §4c).
+  double afterErrorEstimate() const;
+
   TimeControl time_;
   const ImplicitOptions* implicit_;
+  ErrorControl error_;
 };
 
 }  // namespace anode

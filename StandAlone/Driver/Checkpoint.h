@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "Components/MPM/StableTimestep.h"
+#include "Components/MPM/TimestepController.h"
 #include "Core/Parallel/Communicator.h"
 #include "Core/ProblemSpec/ProblemSpec.h"
 
@@ -67,7 +68,8 @@ struct CheckpointHeader {
   double t = 0, dt = 0;    // the state's time and the next step's dt
   double ruleDt = 0;       // the dt the limits chose, of which dt is a part (Simulation::ruleDt_)
   StableTimestep::Limit dtLimit = StableTimestep::Mechanics;  // the limit that set dt
-  bool dtSetByTimeControl = false;  // <Time>'s clamps changed the limit's dt (DtRule)
+  bool dtSetByTimeControl = false;                // <Time>'s clamps changed the limit's dt (DtRule)
+  TimestepController::ErrorControl errorControl;  // the error controller's state
   long step = 0;
   double particleSteps = 0;      // of every rank since step 0
   double wallSeconds = 0;        // of the runs up to the checkpoint

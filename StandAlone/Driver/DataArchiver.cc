@@ -126,13 +126,14 @@ const char* dtRuleName(int rule) {
   if (rule >= 0 && rule < kDtSetByTimeControl)
     return StableTimestep::name(static_cast<StableTimestep::Limit>(rule));
   if (rule == kDtDiffusionPassCap) return StableTimestep::name(StableTimestep::DiffusionPassCap);
+  if (rule == kDtErrorEstimate) return StableTimestep::name(StableTimestep::ErrorEstimate);
   if (rule == kDtSetByTimeControl)
     return "time control (<delt_max>, <delt_init>, <delt_min>, <max_delt_increase>, <maxTime>, "
            "<clamp_time_to_output>)";
   if (rule == kDtRetaken)
-    return "retaken with a smaller dt (Newton did not converge, c changed too much, or the "
-           "diffusion "
-           "pass needed more sub-steps than its cap)";
+    return "retaken with a smaller dt (Newton did not converge, c changed too much, the diffusion "
+           "pass needed more sub-steps than its cap, or the error estimate was above the "
+           "tolerance)";
   return "unknown";
 }
 
@@ -311,6 +312,8 @@ void DataArchiver::writeHistory() {
     if (unwritten_.front().record.newtonIterations >= 0)
       s << "newton_iterations,krylov_iterations,";
     if (unwritten_.front().record.couplingCorrection >= 0) s << "coupling_correction,";
+    if (unwritten_.front().record.errorEstimate >= 0)
+      s << "error_estimate,accumulated_error_estimate,rejected_attempts,";
     s << "wall_seconds\n";
   }
   s << std::setprecision(10);
@@ -328,6 +331,9 @@ void DataArchiver::writeHistory() {
     if (record.newtonIterations >= 0)
       s << record.newtonIterations << ',' << record.krylovIterations << ',';
     if (record.couplingCorrection >= 0) s << record.couplingCorrection << ',';
+    if (record.errorEstimate >= 0)
+      s << record.errorEstimate << ',' << record.accumulatedErrorEstimate << ','
+        << record.rejectedAttempts << ',';
     s << r.wallSeconds << '\n';
   }
   const std::string path = (fs::path(dir_) / "history.csv").string();

@@ -36,24 +36,32 @@ struct StepRecord {
   // whose c changes (MPM::NewtonCounts::lastCouplingCorrection; 0 before the first step); -1:
   // no column.
   double couplingCorrection = -1;
+  // With <error_tolerance>: the step's error estimate (ImplicitStep's), the sum of the estimates
+  // of the steps up to it, and the attempts rejected before it was taken; -1: no columns.
+  double errorEstimate = -1, accumulatedErrorEstimate = -1;
+  int rejectedAttempts = -1;
 };
 
 // history.csv's dt_limit: StableTimestep::Limit's codes (0 mechanics, Eq. 43; 1 diffusion, Eq.
-// 44; 2 flux restriction; 3 Newton iterations; 4 change of c per step), then these three (the
-// cap of a diffusion pass after the two older codes, which keep their numbers).
+// 44; 2 flux restriction; 3 Newton iterations; 4 change of c per step), then these four (the
+// limits after the two older codes, which keep their numbers).
 enum DtRule {
   kDtSetByTimeControl = StableTimestep::DiffusionPassCap,  // <delt_max>, <delt_init>, <delt_min>,
                                                            // <max_delt_increase>, the end at
                                                            // <maxTime>, or <clamp_time_to_output>
   kDtRetaken,           // an implicit step retaken with a smaller dt (Newton did not converge, or c
                         // changed by more than twice <max_concentration_change>, or its diffusion
-                        // pass needed more than its cap of sub-steps)
+                        // pass needed more than its cap of sub-steps, or its error estimate was
+                        // above <error_tolerance>)
   kDtDiffusionPassCap,  // StableTimestep::DiffusionPassCap
+  kDtErrorEstimate,     // StableTimestep::ErrorEstimate
   kDtRules
 };
 // The code of a limit.
 inline int dtRule(StableTimestep::Limit limit) {
-  return limit == StableTimestep::DiffusionPassCap ? int{kDtDiffusionPassCap} : int{limit};
+  if (limit == StableTimestep::DiffusionPassCap) return kDtDiffusionPassCap;
+  if (limit == StableTimestep::ErrorEstimate) return kDtErrorEstimate;
+  return limit;
 }
 // The rule's name, as the end summary and report.html write it.
 const char* dtRuleName(int rule);

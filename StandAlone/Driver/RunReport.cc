@@ -155,6 +155,16 @@ std::vector<PlotSpec> plots(const HistoryDigest& d) {
     addEnvelope(coupling, d, "coupling_correction", "coupling correction", "#2ca02c");
     out.push_back(std::move(coupling));
   }
+  if (d.column("error_estimate") >= 0) {
+    PlotSpec error = timePlot("error", "Error estimate: each step's and their sum",
+                              "c / c_max of a particle", true);
+    addEnvelope(error, d, "error_estimate", "step's estimate", "#1f77b4");
+    addEnvelope(error, d, "accumulated_error_estimate", "sum of the estimates", "#d62728");
+    out.push_back(std::move(error));
+    PlotSpec rejected = timePlot("rejected", "Attempts rejected before each step", "attempts");
+    addEnvelope(rejected, d, "rejected_attempts", "rejected attempts", "#7f7f7f");
+    out.push_back(std::move(rejected));
+  }
   return out;
 }
 

@@ -88,7 +88,7 @@ void Simulation::readInput() {
 void Simulation::takeStableTimestep(Collective every, double growsFrom) {
   const TimestepController::Plan plan = dtController_->plan(
       integrator_->stableTimestep(every), growsFrom, t_,
-      time_.clampTimeToOutput ? archiver_.nextOutputTimeAfter(t_) : std::nullopt);
+      dtController_->endsStepsOnOutputs() ? archiver_.nextOutputTimeAfter(t_) : std::nullopt);
   dt_ = plan.dt;
   ruleDt_ = plan.ruleDt;
   dtLimit_ = plan.limit;
@@ -99,6 +99,7 @@ void Simulation::stepMPM(Collective every) {
   const StepTaken taken = integrator_->advance(every, t_, dt_, ruleDt_);
   dt_ = taken.dt;
   growsFromDt_ = taken.ruleDt;
+  dtController_->recordStep(integrator_->lastStepCounts().errorEstimate, taken.dt, taken.ruleDt);
 }
 
 void Simulation::advance(Collective every) {
@@ -315,12 +316,17 @@ size_t Simulation::recordHistoryRow(Collective every, double stepDt, int dtRule)
   const StepCounts counts = integrator_->lastStepCounts();
   const double couplingCorrection =
       trapezoidal ? std::max(0.0, counts.couplingCorrection) / s.lithiumCapacity : -1.0;
+  StepRecord record{s.elasticEnergy, dtRule, counts.newtonIterations, counts.krylovIterations,
+                    couplingCorrection};
+  if (dtController_->controlsError() && s.diffusion) {  // 0 in row 0
+    record.errorEstimate = std::max(0.0, counts.errorEstimate);
+    record.accumulatedErrorEstimate = dtController_->errorControl().accumulated;
+    record.rejectedAttempts = std::max(0, counts.rejectedAttempts);
+  }
   archiver_.recordHistory({step_, s.particles, t_, stepDt, s.kineticEnergy, s.minJ, s.maxJ,
                            earlierWallSeconds_ + wallTime(), s.diffusion, s.totalLithium,
                            s.minConcentration, s.maxConcentration, lithiumRate, stateOfCharge_},
-                          {s.elasticEnergy, dtRule, counts.newtonIterations,
-                           counts.krylovIterations, couplingCorrection},
-                          s.perMaterial);
+                          record, s.perMaterial);
   return s.particles;
 }
 
@@ -420,6 +426,7 @@ CheckpointHeader Simulation::checkpointState() const {
   state.ruleDt = ruleDt_;
   state.dtLimit = dtLimit_;
   state.dtSetByTimeControl = dtSetByTimeControl_;
+  state.errorControl = dtController_->errorControl();
   state.step = step_;
   state.particleSteps = particleSteps_;
   state.wallSeconds = earlierWallSeconds_ + wallTime();
@@ -432,6 +439,7 @@ void Simulation::resumeFrom(const CheckpointHeader& read) {
   ruleDt_ = read.ruleDt;
   dtLimit_ = read.dtLimit;
   dtSetByTimeControl_ = read.dtSetByTimeControl;
+  dtController_->resumeErrorControl(read.errorControl);
   step_ = read.step;
   particleSteps_ = read.particleSteps;
   earlierWallSeconds_ = read.wallSeconds;

@@ -347,6 +347,7 @@ const std::vector<std::string>& implicitTags() {
                                                 "jacobian_coupling_share",
                                                 "jacobian_reuse",
                                                 "max_concentration_change",
+                                                "error_tolerance",
                                                 "concentration_coupling",
                                                 "diffusion_integrator",
                                                 "subcell_concentration_relaxation"};

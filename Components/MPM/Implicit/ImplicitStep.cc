@@ -137,7 +137,9 @@ StableTimestep ImplicitStep::stableTimestep(Collective every) const {
   limits.bound[StableTimestep::Newton] = ruleDt_ > 0
                                              ? dt_.afterNewton(ruleDt_, newton_.lastIterations)
                                              : std::numeric_limits<double>::max();
-  if (maxConcentrationChange_ > 0)  // the accuracy bound on c (docs/quasi-static.md)
+  // The accuracy bound on c (docs/quasi-static.md), unless <error_tolerance> without
+  // <max_concentration_change> leaves it out.
+  if (maxConcentrationChange_ > 0 && options_.maxConcentrationChange > 0)
     limits.bound[StableTimestep::ConcentrationChange] =
         dt_.forConcentrationChange(lastDt_, maxConcentrationChange_);
   // The pass's cap of sub-steps, from the diffusion state the step's pass starts from.
@@ -199,14 +201,16 @@ StepTaken ImplicitStep::advance(Collective every, double t, double dt, double ru
     // 2: c over dt; a step in which c changed by more than twice the bound of
     // <max_concentration_change> somewhere is retaken at the dt that bound allows.
     NewtonReport report;
-    double failedChange = 0;  // the change of c that failed the attempt
-    double covered = dt;      // by the diffusion pass: less where its cap stopped it
+    double failedChange = 0;      // the change of c that failed the attempt
+    double rejectedEstimate = 0;  // the error estimate that failed it
+    double covered = dt;          // by the diffusion pass: less where its cap stopped it
     if (diffusion) {
       covered = diffuseOverStep(every, t, dt);
       maxConcentrationChange_ = collective::maximum(every, largestConcentrationChange());
       if (covered < dt) {
         report.failure = passCapFailure(dt, covered);
-      } else if (dt_.retakesConcentrationChange(maxConcentrationChange_)) {
+      } else if (options_.maxConcentrationChange > 0 &&
+                 dt_.retakesConcentrationChange(maxConcentrationChange_)) {
         std::ostringstream s;
         s.precision(3);
         s << "c changed by " << maxConcentrationChange_ << " in a particle, above twice "
@@ -218,14 +222,22 @@ StepTaken ImplicitStep::advance(Collective every, double t, double dt, double ru
     // 2b (<concentration_coupling>trapezoidal): c over dt again on the predicted end
     std::vector<std::vector<Vec3>> predicted;
     NewtonReport prediction;
-    double couplingCorrection = -1;
+    double couplingCorrection = -1, errorEstimate = -1;
     if (report.failure.empty() && diffusion &&
         options_.concentrationCoupling == ImplicitOptions::ConcentrationCoupling::Trapezoidal) {
-      prediction =
-          averageConcentrationChangeOverStep(every, t, dt, start, predicted, couplingCorrection);
+      prediction = averageConcentrationChangeOverStep(every, t, dt, start, predicted,
+                                                      couplingCorrection, errorEstimate);
       if (!prediction.converged) {
         report = prediction;
         report.failure = "the prediction of the step's end: " + report.failure;
+      } else if (dt_.controlsError() && dt_.rejectsErrorEstimate(errorEstimate)) {
+        // 2c (<error_tolerance>): a step whose estimate is above the tolerance is retaken
+        std::ostringstream s;
+        s.precision(3);
+        s << "its error estimate " << errorEstimate << " is above <error_tolerance> "
+          << options_.errorTolerance;
+        report.failure = s.str();
+        rejectedEstimate = errorEstimate;
       }
     }
     if (report.failure.empty()) {
@@ -243,6 +255,8 @@ StepTaken ImplicitStep::advance(Collective every, double t, double dt, double ru
         newton_.lastPredictorIterations = prediction.iterations;
         newton_.lastKrylov = report.krylovIterations + prediction.krylovIterations;
         newton_.lastCouplingCorrection = couplingCorrection;
+        newton_.lastErrorEstimate = dt_.controlsError() ? errorEstimate : -1;
+        newton_.lastRetakes = retakes;
         newton_.lastRatios = report.ratios;
         newton_.lastLinearTolerances = report.linearTolerances;
         break;
@@ -250,7 +264,9 @@ StepTaken ImplicitStep::advance(Collective every, double t, double dt, double ru
     }
     // A pass stopped by its cap is retaken over the time it covered; every retake's pass keeps
     // to the cap from the diffusion state it starts from.
-    double smaller = covered < dt ? covered : dt_.retakeDt(dt, failedChange);
+    double smaller = covered < dt           ? covered
+                     : rejectedEstimate > 0 ? dt_.retakeForError(dt, rejectedEstimate)
+                                            : dt_.retakeDt(dt, failedChange);
     for (size_t m = 0; m < start.size(); ++m) materials[m].particles = start[m];
     if (diffusion) {
       diffusion_->returnToStepStart(every, materials, t);

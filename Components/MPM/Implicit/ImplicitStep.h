@@ -39,7 +39,7 @@ class ImplicitStep : public Integrator {
   std::string describeLastStep(StableTimestep::Limit) const override { return newton_.lastStep(); }
   StepCounts lastStepCounts() const override {
     return {newton_.lastIterations + newton_.lastPredictorIterations, newton_.lastKrylov,
-            newton_.lastCouplingCorrection};
+            newton_.lastCouplingCorrection, newton_.lastErrorEstimate, newton_.lastRetakes};
   }
   std::string summary(long steps) const override { return newton_.summary(steps); }
 
@@ -53,6 +53,12 @@ class ImplicitStep : public Integrator {
     // sum m |dc_2 - dc_1| / 2 over every rank's particles, dc_1 and dc_2 the two passes' changes
     // of c, the lithium by which the step's mean differs from either pass.
     double lastCouplingCorrection = -1;
+    // With <error_tolerance>: the last step's error estimate (-1 otherwise), the largest over
+    // every rank's particles of |dc_2 - dc_1| / (2 c_max), half the difference of the two
+    // passes' changes of a particle's c (the staggered step's local error, of order dt^2; the
+    // step keeps their mean); and the attempts retaken before the step was taken.
+    double lastErrorEstimate = -1;
+    int lastRetakes = 0;
     long iterations = 0, krylov = 0, retakes = 0, diffusionSubsteps = 0, preconditionerSetUps = 0,
          newTangents = 0;
     std::vector<std::pair<double, double>> lastRatios;  // NewtonReport::ratios of the last step
@@ -96,11 +102,12 @@ class ImplicitStep : public Integrator {
   // the start with c changed by the mean of the two passes (concentrationChange_ too). Returns the
   // prediction's Newton (a failed one: the step is retaken), its increments by field in
   // `predicted`, and the coupling correction in `correction`
-  // (NewtonCounts::lastCouplingCorrection).
+  // (NewtonCounts::lastCouplingCorrection) and the error estimate in `estimate`
+  // (NewtonCounts::lastErrorEstimate).
   NewtonReport averageConcentrationChangeOverStep(Collective, double t, double dt,
                                                   const std::vector<ParticleSet>& start,
                                                   std::vector<std::vector<Vec3>>& predicted,
-                                                  double& correction);
+                                                  double& correction, double& estimate);
   // The largest |dc| of a particle over the diffusion of the step.
   double largestConcentrationChange() const;
   // The particles after the converged step (positions, F, stress, the models' state).

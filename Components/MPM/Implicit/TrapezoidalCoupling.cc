@@ -22,7 +22,7 @@ constexpr double kPredictorConvergence = 1e-3;
 
 NewtonReport ImplicitStep::averageConcentrationChangeOverStep(
     Collective every, double t, double dt, const std::vector<ParticleSet>& start,
-    std::vector<std::vector<Vec3>>& predicted, double& correction) {
+    std::vector<std::vector<Vec3>>& predicted, double& correction, double& estimate) {
   std::vector<MPMMaterial>& materials = mpm_.materials();
   // Never tighter than the step's own criteria.
   ImplicitOptions loose = options_;
@@ -62,7 +62,9 @@ NewtonReport ImplicitStep::averageConcentrationChangeOverStep(
     // The start's particles with the means of the two passes (trapezoidal in the geometry, the
     // stress and J), and the lithium by which the mean differs from either pass.
     correction = 0;
+    estimate = 0;
     for (size_t m = 0; m < materials.size(); ++m) {
+      const double maxConcentration = mpm_.diffusion()->model(m).maxConcentration;
       const std::vector<Vec3> secondPassGradient =
           diffusionParticles(materials[m].particles).concentrationGradient;
       materials[m].particles = start[m];
@@ -70,13 +72,16 @@ NewtonReport ImplicitStep::averageConcentrationChangeOverStep(
       const std::vector<double>& mass = materials[m].particles.mass;
       std::vector<double>& change = concentrationChange_[m];
       for (size_t i = 0; i < d.concentration.size(); ++i) {
-        correction += mass[i] * 0.5 * std::abs(change[i] - firstPassChange[m][i]);
+        const double half = 0.5 * std::abs(change[i] - firstPassChange[m][i]);
+        correction += mass[i] * half;
+        estimate = std::max(estimate, half / maxConcentration);
         change[i] = 0.5 * (firstPassChange[m][i] + change[i]);
         d.concentration[i] += change[i];
         d.concentrationGradient[i] = 0.5 * (firstPassGradient[m][i] + secondPassGradient[i]);
       }
     }
     correction = collective::sum(every, correction);
+    estimate = collective::maximum(every, estimate);
     maxConcentrationChange_ = collective::maximum(every, largestConcentrationChange());
     {
       ScopedTimer s(mpm_.timers(), tasks_.diffusionState);
