@@ -4,7 +4,8 @@
 // run has two: the last dt grown or shrunk by its Newton iterations (ImpMPM's rule), and with
 // diffusion the dt whose largest change of c would be <max_concentration_change> and the dt its
 // diffusion pass covers in DiffusionPass::kMaxRateEvaluations sub-steps or stages; with
-// <error_tolerance>, the dt the error controller gives from the last steps' error estimates.
+// <error_tolerance>, the dt the error controller gives from the last steps' error estimates
+// (before the first estimate: the tolerance times the flux limit, ImplicitStep::stableTimestep).
 #pragma once
 
 #include <algorithm>

@@ -146,6 +146,15 @@ StableTimestep ImplicitStep::stableTimestep(Collective every) const {
   if (diffusion_)
     limits.bound[StableTimestep::DiffusionPassCap] =
         diffusion_->longestPass(every, mpm_.materials());
+  // The first step under error control, before any estimate: <error_tolerance> x the flux limit,
+  // the time in which the flux BCs change the fastest-filling particle's c by about the
+  // tolerance (g(c) / k <= 0.98 / k, docs/diffusion.md "Time step"); later steps the controller's.
+  if (diffusion_ && dt_.controlsError() && dt_.errorControl().lastEstimate < 0) {
+    StableTimestep explicitLimits;
+    mpm_.diffusion()->boundTimestep(every, mpm_.grid(), mpm_.materials(), explicitLimits);
+    limits.bound[StableTimestep::ErrorEstimate] =
+        options_.errorTolerance * explicitLimits.bound[StableTimestep::Flux];
+  }
   return limits;
 }
 
