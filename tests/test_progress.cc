@@ -101,5 +101,15 @@ TEST(StepForecast, OutOfReachStepsNameTheDensityGuess) {
   EXPECT_NE(stopped[0].find("the step limit 100 ends the run first"), std::string::npos);
 }
 
+// An implicit run's forecast says what its dt follows next: Newton's iterations, or under
+// <error_tolerance> the error estimates.
+TEST(StepForecast, ImplicitRunsSayWhatTheirDtFollows) {
+  StepForecastInput in = sphere(2.33, 2e4);
+  in.implicit = true;
+  EXPECT_NE(forecastSteps(in)[0].find("(dt then follows Newton's iterations)"), std::string::npos);
+  in.errorControlled = true;
+  EXPECT_NE(forecastSteps(in)[0].find("(dt then follows the error estimates)"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace anode

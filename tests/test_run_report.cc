@@ -123,7 +123,8 @@ TEST(RunReport, DigestThinsALongHistoryKeepingExtremes) {
   fs::remove_all(dir);
 }
 
-// The default input stopped early: the report of the stop holds every plot of a diffusion run,
+// The explicit pillar example stopped early: the report of the stop holds every plot of a
+// diffusion run,
 // the picture of t = 0 and the run's numbers as history.csv has them; render_vtu --report writes
 // the same page but for its status line.
 TEST(RunReport, WrittenAtAStopAndByRenderVtu) {
@@ -211,6 +212,26 @@ TEST(RunReport, TrapezoidalRunPlotsItsCouplingCorrection) {
       0);
   EXPECT_FALSE(parseReport(staggered / "report.html").plots.count("coupling"));
   fs::remove_all(staggered);
+}
+
+// The default input (quasi-static, <error_tolerance> 0.01) after 4 steps: history.csv's error
+// columns, their plots, and the largest estimate of a step within the tolerance.
+TEST(RunReport, ErrorControlledRunReportsItsEstimates) {
+  const fs::path dir = scratch("error_control");
+  const auto run = runSus({"-o", dir.string(), "--max-timesteps", "4",
+                           std::string(ANODE_SOURCE_DIR) + "/inputs/Pillar/PillarQuasiStatic.ups"});
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  const HistoryDigest d = digestHistory((dir / "history.csv").string(), 100, 1e-2);
+  for (const char* column : {"error_estimate", "accumulated_error_estimate", "rejected_attempts"})
+    EXPECT_GE(d.column(column), 0) << column;
+  const ParsedReport r = parseReport(dir / "report.html");
+  EXPECT_TRUE(r.plots.count("error") && r.plots.count("rejected"));
+  const double largest =
+      std::stod(r.value("error estimate of a step, largest (c / c_max of a particle)"));
+  EXPECT_GT(largest, 0);
+  EXPECT_LE(largest, 0.01);
+  EXPECT_NE(r.value("steps whose dt was set by: error estimate"), "");
+  fs::remove_all(dir);
 }
 
 // A run that fails (a time step beyond the stable one: exit 3) leaves the page of its last good

@@ -214,6 +214,12 @@ void numbersTable(std::ostream& html, const HistoryDigest& d) {
             number(d.newtonIterations > 0 ? d.krylovIterations / d.newtonIterations : NAN, "%.1f") +
             " a Newton iteration)");
   }
+  if (d.column("error_estimate") >= 0) {
+    row(html, "error estimate of a step, largest (c / c_max of a particle)",
+        number(at(d.maximum, "error_estimate"), "%.3g"));
+    row(html, "sum of the steps' error estimates",
+        number(at(d.last, "accumulated_error_estimate"), "%.3g"));
+  }
   row(html, "kinetic / elastic energy, largest",
       number(at(d.maximum, "kinetic_to_elastic"), "%.3g"));
   row(html, "steps above the bound " + number(kQuasiStaticEnergyRatio),

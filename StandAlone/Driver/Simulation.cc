@@ -298,6 +298,7 @@ StepForecastInput Simulation::stepForecastInput() const {
   in.limit = StableTimestep::name(dtLimit_);
   in.mechanicsLimited = dtLimit_ == StableTimestep::Mechanics;
   in.implicit = mpm_.problem().flags.implicit.has_value();
+  in.errorControlled = dtController_->controlsError();
   in.cellSize = mpm_.grid().dx.minCoeff();
   for (size_t m = 0; m < mpm_.materials().size(); ++m)
     in.densities.emplace_back(describeMaterial(mpm_.materials()[m], m),

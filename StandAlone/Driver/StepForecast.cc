@@ -26,7 +26,10 @@ std::vector<std::string> forecastSteps(const StepForecastInput& in) {
                    double(in.maxTimesteps), in.startTime + in.maxTimesteps * in.dt);
   else
     line += format("about %.3g steps to maxTime %.4g at that dt", steps, in.maxTime);
-  if (in.implicit) line += " (dt then follows Newton's iterations)";
+  if (in.errorControlled)
+    line += " (dt then follows the error estimates)";
+  else if (in.implicit)
+    line += " (dt then follows Newton's iterations)";
   lines.push_back(line);
   if (stepLimited || in.implicit || steps < kStepsOutOfReach || !in.mechanicsLimited) return lines;
   std::string note = format(

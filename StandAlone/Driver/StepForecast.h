@@ -14,8 +14,9 @@ struct StepForecastInput {
   double dt = 0;          // the first step's
   std::string limit;      // what set it (StableTimestep::name)
   bool mechanicsLimited = false;
-  bool implicit = false;  // dt then follows Newton's iterations and the change of c
-  double cellSize = 0;    // the grid's smallest spacing
+  bool implicit = false;         // dt then follows Newton's iterations and the change of c
+  bool errorControlled = false;  // <error_tolerance>: dt then follows the error estimates
+  double cellSize = 0;           // the grid's smallest spacing
   std::vector<std::pair<std::string, double>> densities;  // per material: its name, rho0
 };
 
