@@ -54,14 +54,12 @@ void MPM::problemSetup(const PSNode& root, double initTime, double maxTime, bool
                                   ", but there are " + std::to_string(materials_.size()));
   problem_.contact = Contact::fromInput(mpmMats, static_cast<int>(materials_.size()));
   const PhysicalBCs physical = readPhysicalBCs(root);
-  diffusion_ = ReactiveFlow::fromInput(root, problem_.flags, materials_, maxTime, physical);
-  problem_.gridBCs = readGridBoundaryConditions(gridNode, static_cast<int>(materials_.size()),
-                                                [this](const BCType& bc) {
-                                                  if (diffusion_)
-                                                    diffusion_->readConcentrationBC(bc);
-                                                  else
-                                                    ConcentrationBC::rejectWithoutDiffusion(bc);
-                                                });
+  std::vector<BCType> concentrationBCs;  // SD-Type, for the diffusion subcomponent
+  problem_.gridBCs =
+      readGridBoundaryConditions(gridNode, static_cast<int>(materials_.size()),
+                                 [&](const BCType& bc) { concentrationBCs.push_back(bc); });
+  diffusion_ = ReactiveFlow::fromInput(root, problem_.flags, materials_, maxTime, physical,
+                                       concentrationBCs);
   for (size_t m = 0; m < materials_.size(); ++m)
     seeds_[m].checkPiecesInsideGrid(grid(), problem_.gridBCs.symmetryPlanes(static_cast<int>(m)));
   problem_.swellingNotes =

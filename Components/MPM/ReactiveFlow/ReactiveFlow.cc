@@ -62,7 +62,7 @@ void setInitialState(const ScalarDiffusionModel& model, const MaterialSeeds& see
 
 ReactiveFlow::ReactiveFlow(const PSNode& root, const MPMFlags& flags,
                            const std::vector<MPMMaterial>& materials, double maxTime,
-                           const PhysicalBCs& physical)
+                           const PhysicalBCs& physical, const std::vector<BCType>& concentrationBCs)
     : flags_(flags),
       interface_(DiffusionInterface::fromInput(
           root.requireChild("MaterialProperties").requireChild("MPM"), true, materials.size())),
@@ -73,14 +73,17 @@ ReactiveFlow::ReactiveFlow(const PSNode& root, const MPMFlags& flags,
     mat.reducesConcentration = nodes[m].get<bool>("do_conc_reduction", false);
     mat.model = createDiffusionModel(nodes[m].requireChild("diffusion_model"), maxTime);
   }
+  for (const BCType& bc : concentrationBCs)
+    concentrationBCs_.push_back(ConcentrationBC::fromInput(bc));
 }
 
 std::unique_ptr<ReactiveFlow> ReactiveFlow::fromInput(const PSNode& root, const MPMFlags& flags,
                                                       const std::vector<MPMMaterial>& materials,
-                                                      double maxTime, const PhysicalBCs& physical) {
+                                                      double maxTime, const PhysicalBCs& physical,
+                                                      const std::vector<BCType>& concentrationBCs) {
   if (flags.doScalarDiffusion)
     return std::unique_ptr<ReactiveFlow>(
-        new ReactiveFlow(root, flags, materials, maxTime, physical));
+        new ReactiveFlow(root, flags, materials, maxTime, physical, concentrationBCs));
   DiffusionInterface::fromInput(root.requireChild("MaterialProperties").requireChild("MPM"), false,
                                 0);
   readFluxBCs(root, flags, physical);
@@ -90,6 +93,7 @@ std::unique_ptr<ReactiveFlow> ReactiveFlow::fromInput(const PSNode& root, const 
     for (const PSNode& object : material.children("geom_object"))
       object.acceptInert("concentration");  // it matters only with diffusion
   }
+  if (!concentrationBCs.empty()) ConcentrationBC::rejectWithoutDiffusion(concentrationBCs.front());
   return nullptr;
 }
 

@@ -33,17 +33,15 @@ namespace anode {
 class ReactiveFlow {
  public:
   // With <do_scalar_diffusion>true: reads <diffusion_interface>, the <scalar_flux> blocks of
-  // `physical` and each material's <diffusion_model> (`maxTime` bounds its diff_curve). Without
-  // it: null, and the tags that would need diffusion are errors, not silently dropped; the
-  // diffusion tags of the materials are read as Uintah reads them then (not at all).
+  // `physical`, each material's <diffusion_model> (`maxTime` bounds its diff_curve) and the
+  // SD-Type <BCType>s of <Grid><BoundaryConditions> (`concentrationBCs`, in file order). Without
+  // it: null, and the tags that would need diffusion are errors, not silently dropped (an SD-Type
+  // condition: ConcentrationBC::rejectWithoutDiffusion); the diffusion tags of the materials are
+  // read as Uintah reads them then (not at all).
   static std::unique_ptr<ReactiveFlow> fromInput(const PSNode& root, const MPMFlags& flags,
                                                  const std::vector<MPMMaterial>& materials,
-                                                 double maxTime, const PhysicalBCs& physical);
-  // An SD-Type <BCType>, which MPM's reader of <Grid><BoundaryConditions> hands over (in a run
-  // without diffusion an error: ConcentrationBC::rejectWithoutDiffusion).
-  void readConcentrationBC(const BCType& bc) {
-    concentrationBCs_.push_back(ConcentrationBC::fromInput(bc));
-  }
+                                                 double maxTime, const PhysicalBCs& physical,
+                                                 const std::vector<BCType>& concentrationBCs);
 
   // Whether setup shares a BC's surface out among the particles near it (a curved face of a
   // grid-filled body, or a <surface>; FluxSurfaceArea.h): a rank then holds, while it flags the
@@ -156,7 +154,8 @@ class ReactiveFlow {
 
  private:
   ReactiveFlow(const PSNode& root, const MPMFlags& flags, const std::vector<MPMMaterial>& materials,
-               double maxTime, const PhysicalBCs& physical);
+               double maxTime, const PhysicalBCs& physical,
+               const std::vector<BCType>& concentrationBCs);
   void computeDiffusivity(std::vector<MPMMaterial>& materials, double t);
   void checkConcentrationRange(const std::vector<MPMMaterial>& materials, double t) const;
   bool concentrationCanChange(size_t m, const ScalarDiffusionModel& model) const;
