@@ -95,9 +95,10 @@ void MPM::problemSetup(const PSNode& root, double initTime, double maxTime, bool
   communicationTask_ = layout_.distributed() ? timers_.task("communication") : -1;
 }
 
-void MPM::distributeOverRanks(Collective every) {
+void MPM::distributeOverRanks(Collective every, bool concentrationOfEveryMaterial) {
   layout_.completeSetup(every);
-  if (diffusion_) diffusion_->completeSetup(every, materials_, initTime_);
+  if (diffusion_)
+    diffusion_->completeSetup(every, materials_, initTime_, concentrationOfEveryMaterial);
   seeds_.clear();
 }
 

@@ -66,8 +66,10 @@ class MPM {
   void problemSetup(const PSNode& root, double initTime, double maxTime, bool withParticles = true,
                     const std::function<void()>& problemRead = {});
   // After problemSetup: lays out this rank's grid and completes the setup over the ranks (the
-  // flux BCs' areas and capacities, their report).
-  void distributeOverRanks(Collective);
+  // flux BCs' areas and capacities, their report). `concentrationOfEveryMaterial`: the output
+  // saves the nodal concentration or p.concentrationGradient, which diffusion then computes for
+  // every material (ReactiveFlow::completeSetup).
+  void distributeOverRanks(Collective, bool concentrationOfEveryMaterial);
 
   // --- the tasks a step is made of (DESIGN.md §4), in the explicit step's order ---
 

@@ -38,9 +38,8 @@ void Simulation::setup(const std::function<void()>& readSpec) {
     readInput();
   });
   if (options_.countParticlesOnly) return;
-  mpm_.distributeOverRanks(every);
-  if (archiver_.savesConcentrationFields() || scenes_.draws("p.concentrationGradient"))
-    mpm_.diffusion()->computeEveryMaterial();
+  mpm_.distributeOverRanks(
+      every, archiver_.savesConcentrationFields() || scenes_.draws("p.concentrationGradient"));
   takeStableTimestep(every, 0.0);
   setupSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   rusage usage{};

@@ -161,7 +161,12 @@ void ReactiveFlow::initialize(const PSNode& root, const Grid& grid,
 }
 
 void ReactiveFlow::completeSetup(Collective every, std::vector<MPMMaterial>& materials,
-                                 double initTime) {
+                                 double initTime, bool everyMaterial) {
+  if (everyMaterial) {
+    everyMaterial_ = true;
+    for (size_t m = 0; m < fields_.size(); ++m)
+      if (!changes_[m]) fields_[m].resize(grid_.numNodes(), receivesFlux_[m]);
+  }
   // What the BCs flagged, the areas of their shared surfaces (each rank's part) and each
   // material's mass, over every rank.
   const bool overRanks = Communicator::size() > 1;
@@ -248,12 +253,6 @@ void ReactiveFlow::layOutGrid(const Grid& grid, const GhostNodes* ghosts) {
   fields_.assign(receivesFlux_.size(), {});
   for (size_t m = 0; m < fields_.size(); ++m)
     if (computesConcentration(m)) fields_[m].resize(nodes, receivesFlux_[m]);
-}
-
-void ReactiveFlow::computeEveryMaterial() {
-  everyMaterial_ = true;
-  for (size_t m = 0; m < fields_.size(); ++m)
-    if (!changes_[m]) fields_[m].resize(grid_.numNodes(), receivesFlux_[m]);
 }
 
 bool ReactiveFlow::concentrationCanChange(size_t m, const ScalarDiffusionModel& model) const {

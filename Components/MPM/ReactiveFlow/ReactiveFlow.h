@@ -58,8 +58,11 @@ class ReactiveFlow {
                   const CellBox& region, double initTime);
   // Once each rank holds only its own particles: the flagged particles, their areas and the
   // capacities over every rank, the input errors they show (a BC flagging nothing), the setup
-  // report and the initial flux rates.
-  void completeSetup(Collective, std::vector<MPMMaterial>& materials, double initTime);
+  // report and the initial flux rates. `everyMaterial`: the output saves a nodal concentration
+  // (g.concentration*) or p.concentrationGradient, which are then computed for every material,
+  // those whose concentration no step can change included.
+  void completeSetup(Collective, std::vector<MPMMaterial>& materials, double initTime,
+                     bool everyMaterial);
   // Lays out the grid fields on the nodes this rank stores (`grid`: the whole grid, or this
   // rank's window); `ghosts` completes the source marks on the nodes shared with other ranks
   // (none: a run of one rank).
@@ -126,9 +129,6 @@ class ReactiveFlow {
   // The materials whose concentration can change, when two or more can (else empty): the ones
   // history.csv gives columns of their own.
   std::vector<size_t> lithiumTakingMaterials() const;
-  // Computes every material's nodal concentration and p.concentrationGradient, for an output
-  // that saves them (g.concentration*, p.concentrationGradient). Before the first step.
-  void computeEveryMaterial();
 
   // Per material; empty for one that does not compute its concentration.
   const std::vector<ConcentrationGridFields>& gridFields() const { return fields_; }
@@ -174,7 +174,7 @@ class ReactiveFlow {
   std::vector<double> constantRate_;             // per material: constant_rate (0 for the others)
   std::vector<bool> receivesFlux_;               // per material
   std::vector<bool> changes_;                    // per material: concentrationCanChange
-  bool everyMaterial_ = false;                   // computeEveryMaterial was called
+  bool everyMaterial_ = false;                   // completeSetup's everyMaterial
   double maxDiffusivity_ = 0;                    // over all particles, for Eq. 44
   std::vector<ConcentrationGridFields> fields_;  // per material
   std::vector<std::string> setupReport_;
