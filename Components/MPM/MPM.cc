@@ -98,7 +98,8 @@ void MPM::problemSetup(const PSNode& root, double initTime, double maxTime, bool
 void MPM::distributeOverRanks(Collective every, bool concentrationOfEveryMaterial) {
   layout_.completeSetup(every);
   if (diffusion_)
-    diffusion_->completeSetup(every, materials_, initTime_, concentrationOfEveryMaterial);
+    problem_.diffusionNotes =
+        diffusion_->completeSetup(every, materials_, initTime_, concentrationOfEveryMaterial);
   seeds_.clear();
 }
 

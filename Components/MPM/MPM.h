@@ -36,6 +36,9 @@ struct MPMProblem {
   Contact contact;
   // Setup's notes on bodies that would swell into a Symmetric face (SwellingRoom.h).
   std::vector<std::string> swellingNotes;
+  // Setup's lines on diffusion: per flux BC and material, the particles flagged and their area,
+  // and the materials that take up no lithium (ReactiveFlow::completeSetup).
+  std::vector<std::string> diffusionNotes;
 };
 
 // The grid's part of a step: per material the nodal fields and the particles' interpolation
@@ -66,7 +69,7 @@ class MPM {
   void problemSetup(const PSNode& root, double initTime, double maxTime, bool withParticles = true,
                     const std::function<void()>& problemRead = {});
   // After problemSetup: lays out this rank's grid and completes the setup over the ranks (the
-  // flux BCs' areas and capacities, their report). `concentrationOfEveryMaterial`: the output
+  // flux BCs' areas and capacities, their notes). `concentrationOfEveryMaterial`: the output
   // saves the nodal concentration or p.concentrationGradient, which diffusion then computes for
   // every material (ReactiveFlow::completeSetup).
   void distributeOverRanks(Collective, bool concentrationOfEveryMaterial);

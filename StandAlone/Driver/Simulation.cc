@@ -277,9 +277,8 @@ void Simulation::reportSetup(Collective every) {
                    "sus: %d ranks: %s, ghost layers %d cells; particles per rank max/mean %.3f\n",
                    Communicator::size(), mpm_.layout().boxes().describe().c_str(),
                    mpm_.layout().ghostWidth(), imbalance);
-    if (mpm_.diffusion())
-      for (const std::string& line : mpm_.diffusion()->setupReport())
-        std::fprintf(stderr, "sus: %s\n", line.c_str());
+    for (const std::string& line : mpm_.problem().diffusionNotes)
+      std::fprintf(stderr, "sus: %s\n", line.c_str());
     for (const std::string& line : forecastSteps(stepForecastInput()))
       std::fprintf(stderr, "%s%s\n", line.rfind("note:", 0) == 0 ? "" : "sus: ", line.c_str());
   }

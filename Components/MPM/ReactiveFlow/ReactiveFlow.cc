@@ -153,15 +153,14 @@ void ReactiveFlow::initialize(const PSNode& root, const Grid& grid,
     cmax_.push_back(model(m).maxConcentration);
     constantRate_.push_back(model(m).constantRate());
   }
-  for (size_t m = 0; m < materials.size(); ++m) {
+  for (size_t m = 0; m < materials.size(); ++m)
     changes_.push_back(concentrationCanChange(m, model(m)));
-    if (!changes_.back()) noUptake_.push_back(describeMaterial(materials[m], m));
-  }
   computeDiffusivity(materials, initTime);
 }
 
-void ReactiveFlow::completeSetup(Collective every, std::vector<MPMMaterial>& materials,
-                                 double initTime, bool everyMaterial) {
+std::vector<std::string> ReactiveFlow::completeSetup(Collective every,
+                                                     std::vector<MPMMaterial>& materials,
+                                                     double initTime, bool everyMaterial) {
   if (everyMaterial) {
     everyMaterial_ = true;
     for (size_t m = 0; m < fields_.size(); ++m)
@@ -213,6 +212,7 @@ void ReactiveFlow::completeSetup(Collective every, std::vector<MPMMaterial>& mat
       capacities[f.bc] += materialMass[f.material] * model(f.material).maxConcentration;
     }
   });
+  std::vector<std::string> lines;
   for (const ExternalScalarFlux::Flagged& f : flagged) {
     std::ostringstream s;
     s << "<scalar_flux> " << f.bc + 1 << " (line " << flux_.bcs()[f.bc].line << ") flags "
@@ -239,10 +239,18 @@ void ReactiveFlow::completeSetup(Collective every, std::vector<MPMMaterial>& mat
            "c) with k = "
         << bc.surfaceRate;
     }
-    setupReport_.push_back(s.str());
+    lines.push_back(s.str());
   }
+  for (size_t m = 0; m < materials.size(); ++m)
+    if (!changes_[m])
+      lines.push_back(describeMaterial(materials[m], m) +
+                      " takes up no lithium (no diffusivity, flux or concentration condition): its "
+                      "concentration stays as given" +
+                      (everyMaterial_ ? "; its nodal concentration is computed for the output"
+                                      : " and is not computed"));
   flux_.setCapacities(std::move(capacities));
   flux_.computeFluxRates(every, materials, materials_, initTime, overRanks);
+  return lines;
 }
 
 void ReactiveFlow::layOutGrid(const Grid& grid, const GhostNodes* ghosts) {
@@ -261,17 +269,6 @@ bool ReactiveFlow::concentrationCanChange(size_t m, const ScalarDiffusionModel& 
   return std::any_of(
       concentrationBCs_.begin(), concentrationBCs_.end(),
       [m](const ConcentrationBC& b) { return b.face.appliesTo(static_cast<int>(m)); });
-}
-
-std::vector<std::string> ReactiveFlow::setupReport() const {
-  std::vector<std::string> lines = setupReport_;
-  for (const std::string& material : noUptake_)
-    lines.push_back(material +
-                    " takes up no lithium (no diffusivity, flux or concentration condition): its "
-                    "concentration stays as given" +
-                    (everyMaterial_ ? "; its nodal concentration is computed for the output"
-                                    : " and is not computed"));
-  return lines;
 }
 
 void ReactiveFlow::addScatteredArrays(std::vector<NodeArray>& arrays) {

@@ -57,12 +57,14 @@ class ReactiveFlow {
                   const std::vector<MaterialSeeds>& seeds, const CellBox& box,
                   const CellBox& region, double initTime);
   // Once each rank holds only its own particles: the flagged particles, their areas and the
-  // capacities over every rank, the input errors they show (a BC flagging nothing), the setup
-  // report and the initial flux rates. `everyMaterial`: the output saves a nodal concentration
+  // capacities over every rank, the input errors they show (a BC flagging nothing) and the
+  // initial flux rates. `everyMaterial`: the output saves a nodal concentration
   // (g.concentration*) or p.concentrationGradient, which are then computed for every material,
-  // those whose concentration no step can change included.
-  void completeSetup(Collective, std::vector<MPMMaterial>& materials, double initTime,
-                     bool everyMaterial);
+  // those whose concentration no step can change included. Returns the lines for the user: per
+  // flux BC and material, the particles flagged and their area, and the materials that take up
+  // no lithium (the same on every rank).
+  std::vector<std::string> completeSetup(Collective, std::vector<MPMMaterial>& materials,
+                                         double initTime, bool everyMaterial);
   // Lays out the grid fields on the nodes this rank stores (`grid`: the whole grid, or this
   // rank's window); `ghosts` completes the source marks on the nodes shared with other ranks
   // (none: a run of one rank).
@@ -132,9 +134,6 @@ class ReactiveFlow {
 
   // Per material; empty for one that does not compute its concentration.
   const std::vector<ConcentrationGridFields>& gridFields() const { return fields_; }
-  // Lines for the user at setup: per flux BC and material, the particles flagged and their area,
-  // and the materials that take up no lithium.
-  std::vector<std::string> setupReport() const;
   // What happened in the steps since the last call that the user should know (a galvanostatic
   // BC's current ending); the same on every rank.
   std::vector<std::string> takeRunNotes() { return flux_.takeNotes(); }
@@ -177,10 +176,8 @@ class ReactiveFlow {
   bool everyMaterial_ = false;                   // completeSetup's everyMaterial
   double maxDiffusivity_ = 0;                    // over all particles, for Eq. 44
   std::vector<ConcentrationGridFields> fields_;  // per material
-  std::vector<std::string> setupReport_;
   std::vector<ExternalScalarFlux::Flagged> flagged_;  // this rank's, between the two setup calls
   std::string inputFile_;                             // for the errors completeSetup finds
-  std::vector<std::string> noUptake_;  // "material m (name)" of those that take up no lithium
   const GhostNodes* ghosts_ = nullptr;
 };
 
