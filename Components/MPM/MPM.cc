@@ -380,8 +380,10 @@ StepSummary MPM::summarize(Collective every) const {
     s.chargeableLithium = sums[3], s.lithiumCapacity = sums[4], s.elasticEnergy = sums[5];
     s.minJ = lows[0], s.minConcentration = lows[1], s.maxJ = highs[0],
     s.maxConcentration = highs[1];
-    for (size_t k = 0; k < s.perMaterial.size(); ++k)
-      s.perMaterial[k] = {sums[6 + k], lows[2 + k], highs[2 + k]};
+    for (size_t k = 0; k < s.perMaterial.size(); ++k) {
+      StepSummary::MaterialLithium& m = s.perMaterial[k];
+      m.lithium = sums[6 + k], m.minConcentration = lows[2 + k], m.maxConcentration = highs[2 + k];
+    }
   }
   return s;
 }

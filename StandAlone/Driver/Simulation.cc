@@ -71,8 +71,7 @@ void Simulation::readInput() {
         .warn(
             "<clamp_time_to_output>true clamps no step: the outputs come every "
             "<outputTimestepInterval> steps, not at times (<outputInterval>)");
-  if (mpm_.diffusion())
-    archiver_.setMaterialColumns(mpm_.materials(), mpm_.diffusion()->lithiumTakingMaterials());
+  archiver_.setMaterialColumns(mpm_.materials());
   checkpoints_ = RunCheckpoints(CheckpointSchedule::fromInput(root.requireChild("DataArchiver")),
                                 time_.initTime);
   scenes_ = SceneOutput::fromInput(root, time_, mpm_);

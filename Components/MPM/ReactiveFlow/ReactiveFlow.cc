@@ -378,18 +378,18 @@ double ReactiveFlow::diffusionTimestep(const Grid& grid) const {
 void ReactiveFlow::summarize(const std::vector<MPMMaterial>& materials, StepSummary& s) const {
   s.diffusion = true;
   // The range is of the materials whose concentration can change (a substrate's fixed c would
-  // pin it), of every material when none can.
-  const bool anyChanges = std::find(changes_.begin(), changes_.end(), true) != changes_.end();
-  const std::vector<size_t> separate = lithiumTakingMaterials();
-  s.perMaterial.assign(separate.size(), {0.0, std::numeric_limits<double>::infinity(),
-                                         -std::numeric_limits<double>::infinity()});
+  // pin it), of every material when none can; history.csv gives each of them columns of its own
+  // when there are two or more.
+  const auto changing = std::count(changes_.begin(), changes_.end(), true);
   for (size_t m = 0; m < materials.size(); ++m) {
     const ParticleSet& p = materials[m].particles;
     const std::vector<double>& c = diffusionParticles(p).concentration;
-    const bool inRange = changes_[m] || !anyChanges;
-    const auto own = std::find(separate.begin(), separate.end(), m);
-    StepSummary::MaterialLithium* material =
-        own == separate.end() ? nullptr : &s.perMaterial[own - separate.begin()];
+    const bool inRange = changes_[m] || changing == 0;
+    StepSummary::MaterialLithium* material = nullptr;
+    if (changing > 1 && changes_[m])
+      material = &s.perMaterial.emplace_back(
+          StepSummary::MaterialLithium{m, 0.0, std::numeric_limits<double>::infinity(),
+                                       -std::numeric_limits<double>::infinity()});
     for (size_t i = 0; i < p.count(); ++i) {
       s.totalLithium += p.mass[i] * c[i];
       if (!inRange) continue;
@@ -403,14 +403,6 @@ void ReactiveFlow::summarize(const std::vector<MPMMaterial>& materials, StepSumm
       material->maxConcentration = std::max(material->maxConcentration, c[i]);
     }
   }
-}
-
-std::vector<size_t> ReactiveFlow::lithiumTakingMaterials() const {
-  std::vector<size_t> which;
-  for (size_t m = 0; m < changes_.size(); ++m)
-    if (changes_[m]) which.push_back(m);
-  if (which.size() < 2) which.clear();
-  return which;
 }
 
 ReactiveFlow::StepState ReactiveFlow::stepState() const {

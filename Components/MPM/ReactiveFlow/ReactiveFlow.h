@@ -112,7 +112,7 @@ class ReactiveFlow {
   // Adds the total lithium and the concentration range (initialised by the caller): the range
   // of the materials whose concentration can change (computesConcentration without output's
   // request), of every material when none can; with two or more such materials, each one's
-  // sum and range (StepSummary::perMaterial, in the order of lithiumTakingMaterials).
+  // sum and range (appended to StepSummary::perMaterial).
   void summarize(const std::vector<MPMMaterial>& materials, StepSummary& s) const;
   void saveState(BinaryWriter& out) const;
   // `merge`: a further part of a distributed checkpoint read by this rank (another rank count):
@@ -128,9 +128,6 @@ class ReactiveFlow {
   // SD-Type concentration conditions (<BCType ... label="Concentration">) on some grid face
   // (DiffusionPass::checkIntegrator).
   bool hasConcentrationBCs() const { return !concentrationBCs_.empty(); }
-  // The materials whose concentration can change, when two or more can (else empty): the ones
-  // history.csv gives columns of their own.
-  std::vector<size_t> lithiumTakingMaterials() const;
 
   // Per material; empty for one that does not compute its concentration.
   const std::vector<ConcentrationGridFields>& gridFields() const { return fields_; }
