@@ -7,6 +7,7 @@
 #include <cstring>
 #include <limits>
 #include <sstream>
+#include <type_traits>
 
 #include "Components/MPM/Materials/ConstitutiveModels/ConcreteModels.h"
 #include "Components/MPM/Materials/MaterialOverlap.h"
@@ -183,13 +184,18 @@ void MPM::scatterParticlesToGrid(Collective every, bool concentrationOnly) {
   const std::vector<NodeRange> cleared =
       ActiveNodes::of(grid(), hullOf(step_.active.box, previous_)).rows;
   for (size_t m = 0; m < materials_.size(); ++m) {
-    if (!scatters(m, concentrationOnly)) continue;
     if (!concentrationOnly)
       forEachNodeRange(cleared,
                        [&](long begin, long end) { step_.fields[m].clearAll(begin, end); });
-    withScatterKernel(
-        every, diffusion_.get(), m, materials_[m].particles, step_.weights[m], cleared,
-        [&](const auto& concentration) { scatterMaterial(m, concentration, concentrationOnly); });
+    const auto scatter = [&](const auto& concentration) {
+      // A material whose concentration is not computed (NoConcentration) has no sums in a P2G of
+      // the concentration alone.
+      using Kernel = std::decay_t<decltype(concentration)>;
+      if (concentrationOnly && std::is_same_v<Kernel, NoConcentration>) return;
+      scatterMaterial(m, concentration, concentrationOnly);
+    };
+    withScatterKernel(every, diffusion_.get(), m, materials_[m].particles, step_.weights[m],
+                      cleared, scatter);
   }
 }
 

@@ -157,10 +157,6 @@ class MPM {
   [[noreturn]] void throwOutsideWindow(size_t m, long i) const;
   // P2G on this rank (`concentrationOnly`: as interpolateParticlesToGrid's).
   void scatterParticlesToGrid(Collective, bool concentrationOnly = false);
-  // Material m takes part in that P2G (and its ghost sums).
-  bool scatters(size_t m, bool concentrationOnly) const {
-    return !concentrationOnly || diffusion_->computesConcentration(m);
-  }
   // Completes the nodal sums of P2G on the nodes shared with other ranks (`concentrationOnly`:
   // as interpolateParticlesToGrid's).
   void sumGhostNodes(Collective, bool concentrationOnly = false);
