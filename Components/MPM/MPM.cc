@@ -71,7 +71,8 @@ void MPM::problemSetup(const PSNode& root, double initTime, double maxTime, bool
   // This rank's particles: those of its box (the whole grid on one rank) and, while the flux
   // particles are flagged, those setup needs around it.
   const CellBox box = withParticles ? layout_.drawSetupBoxes(seedCounts()) : CellBox{};
-  const CellBox region = grownBySetupReach(box);
+  const CellBox region =
+      diffusion_ ? diffusion_->setupRegion(box, layout_.problemGrid(), seeds_) : box;
   checkParticlesOfRank(region);
   for (size_t m = 0; m < materials_.size(); ++m) {
     materials_[m].placeParticles(seeds_[m], grid(), region);

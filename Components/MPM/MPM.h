@@ -163,11 +163,9 @@ class MPM {
   // Sizes the grid fields to this rank's window (RankLayout calls it when it lays one out).
   void layOutGrid();
   // Setup per box (MPMRanks.cc): the particles per cell seeds_ lay out (RankLayout draws the
-  // setup's boxes from them); the box grown by what flagging the flux particles needs around it;
-  // the particle count of a region against the memory budget; dropping the particles beyond the
-  // box once flagged.
+  // setup's boxes from them); the particle count of a region against the memory budget; dropping
+  // the particles beyond the box once the flux particles are flagged (ReactiveFlow::setupRegion).
   Decomposition::ParticleCounts seedCounts() const;
-  CellBox grownBySetupReach(const CellBox& box) const;
   void checkParticlesOfRank(const CellBox& region) const;
   void keepParticlesOfBox(const CellBox& box);
   // The grid arrays the ghost sums after P2G complete (`concentrationOnly`: the concentration's).

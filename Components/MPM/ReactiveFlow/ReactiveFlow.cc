@@ -97,11 +97,23 @@ std::unique_ptr<ReactiveFlow> ReactiveFlow::fromInput(const PSNode& root, const 
   return nullptr;
 }
 
-bool ReactiveFlow::sharesSurfacesAtSetup() const {
-  return std::any_of(flux_.bcs().begin(), flux_.bcs().end(), [](const ScalarFluxBC& bc) {
-    return bc.face == ScalarFluxBC::Face::Surface ||
-           (bc.face != ScalarFluxBC::Face::Box && !bc.particleFaceArea);
-  });
+CellBox ReactiveFlow::setupRegion(const CellBox& box, const Grid& whole,
+                                  const std::vector<MaterialSeeds>& seeds) const {
+  const bool sharesSurfaces =
+      std::any_of(flux_.bcs().begin(), flux_.bcs().end(), [](const ScalarFluxBC& bc) {
+        return bc.face == ScalarFluxBC::Face::Surface ||
+               (bc.face != ScalarFluxBC::Face::Box && !bc.particleFaceArea);
+      });
+  if (Communicator::size() == 1 || !sharesSurfaces) return box;
+  // A sample of a BC's surface goes to the nearest flagged particle within 1.5 particle spacings
+  // (FluxSurfaceArea.h): the samples a particle of the box can get lie within 1.5 spacings of
+  // it, and the particles they can go to within 3.
+  Vec3 spacing = Vec3::Zero();
+  for (const MaterialSeeds& s : seeds)
+    for (const MaterialSeeds::Object& object : s.objects)
+      spacing = spacing.cwiseMax(object.spacing);
+  const int reach = static_cast<int>(std::ceil(3 * spacing.norm() / whole.dx.minCoeff())) + 1;
+  return {(box.lower.array() - reach).max(0), (box.upper.array() + reach).min(whole.cells.array())};
 }
 
 void ReactiveFlow::checkSurfaceBCs(const PSNode& root, const std::vector<MPMMaterial>& materials,

@@ -43,10 +43,13 @@ class ReactiveFlow {
                                                  double maxTime, const PhysicalBCs& physical,
                                                  const std::vector<BCType>& concentrationBCs);
 
-  // Whether setup shares a BC's surface out among the particles near it (a curved face of a
-  // grid-filled body, or a <surface>; FluxSurfaceArea.h): a rank then holds, while it flags the
-  // flux particles, the particles within 3 particle spacings of its box as well.
-  bool sharesSurfacesAtSetup() const;
+  // The cells whose particles a rank holds while it flags the flux particles of `box` (its box of
+  // the problem's grid `whole`; `seeds`: what the geom_objects lay out): the box, and in a
+  // distributed run where setup shares a BC's surface out among the particles near it (a curved
+  // face of a grid-filled body, or a <surface>; FluxSurfaceArea.h) the cells within 3 particle
+  // spacings of it as well.
+  CellBox setupRegion(const CellBox& box, const Grid& whole,
+                      const std::vector<MaterialSeeds>& seeds) const;
   // Declares the diffusion arrays on the materials' particles (this rank's, and in a distributed
   // run those around its box) and sets their initial state: each <geom_object>'s
   // <concentration> (`seeds`: which object laid out which particles) and the diffusivity D0;
