@@ -32,6 +32,8 @@ namespace anode {
 
 class ReactiveFlow {
  public:
+  // --- What MPM and the driver ask of it. At setup, in this order: ---
+
   // With <do_scalar_diffusion>true: reads <diffusion_interface>, the <scalar_flux> blocks of
   // `physical`, each material's <diffusion_model> (`maxTime` bounds its diff_curve) and the
   // SD-Type <BCType>s of <Grid><BoundaryConditions> (`concentrationBCs`, in file order). Without
@@ -42,7 +44,6 @@ class ReactiveFlow {
                                                  const std::vector<MPMMaterial>& materials,
                                                  double maxTime, const PhysicalBCs& physical,
                                                  const std::vector<BCType>& concentrationBCs);
-
   // The cells whose particles a rank holds while it flags the flux particles of `box` (its box of
   // the problem's grid `whole`; `seeds`: what the geom_objects lay out): the box, and in a
   // distributed run where setup shares a BC's surface out among the particles near it (a curved
@@ -73,13 +74,9 @@ class ReactiveFlow {
   // (none: a run of one rank).
   void layOutGrid(const Grid& grid, const GhostNodes* ghosts);
 
-  // --- the step's diffusion tasks, in the order ExplicitStep::advance calls them ---
+  // --- In the step, in the order ExplicitStep::advance asks (P2G and G2P run the kernels of
+  // withScatterKernel and withGatherKernel, below): ---
 
-  // Before P2G of material m: zeroes its fields on the nodes of `cleared` and marks the nodes
-  // its flux sources reach; then calls f with the material's P2G kernel.
-  template <class F>
-  void withScatter(Collective, size_t m, const ParticleSet& p, const InterpolationWeights& W,
-                   const std::vector<NodeRange>& cleared, F&& f);
   // Adds the nodal arrays P2G sums (per material) to `arrays`, for the ranks to complete them.
   void addScatteredArrays(std::vector<NodeArray>& arrays);
   // Eq. 5: c = (mc)/m, then the SD-Type conditions, per material; after all materials, the
@@ -89,9 +86,10 @@ class ReactiveFlow {
   // Eq. 18: c* = c + (R + G)/m dt and the nodal rate that drives Eq. 8.
   void integrateConcentration(const std::vector<GridFields>& mechanics, double dt,
                               const std::vector<NodeRange>& nodes);
-  // Calls f with material m's G2P kernel (Eq. 8).
-  template <class F>
-  void withGather(size_t m, ParticleSet& p, F&& f);
+  // After particle splitting: the flux faces of the split particles shared among their children.
+  void shareFluxFaces(ParticleSet& p, const std::vector<SplitParticle>& splits) const {
+    flux_.shareFacesOnSplit(p, splits);
+  }
   // After G2P at time t: the range diagnostic, the auto-cycle switch, and the new state's
   // diffusivity (Eq. 23 or 24) and flux rates (Eqs. 16-17), which output, the next time step
   // and the next step use.
@@ -103,40 +101,52 @@ class ReactiveFlow {
     limits.bound[StableTimestep::Diffusion] = diffusionTimestep(grid);
     limits.bound[StableTimestep::Flux] = fluxTimestep(every, materials);
   }
+
+  // --- For checkpoints and output: ---
+
+  void saveState(BinaryWriter& out) const;
+  // `merge`: a further part of a distributed checkpoint read by this rank (another rank count):
+  // the largest diffusivity and flux rates are the largest of the parts', whose particles this
+  // rank now holds some of (the time-step limits are minimums over the ranks).
+  void loadState(BinaryReader& in, bool merge = false);
+  // Adds the total lithium and the concentration range (initialised by the caller): the range
+  // of the materials whose concentration can change (computesConcentration without output's
+  // request), of every material when none can; with two or more such materials, each one's
+  // sum and range (appended to StepSummary::perMaterial).
+  void summarize(const std::vector<MPMMaterial>& materials, StepSummary& s) const;
+  // Per material; empty for one that does not compute its concentration.
+  const std::vector<ConcentrationGridFields>& gridFields() const { return fields_; }
+  // Material m's diffusivity model.
+  const ScalarDiffusionModel& model(size_t m) const { return *materials_[m].model; }
+  // What happened in the steps since the last call that the user should know (a galvanostatic
+  // BC's current ending); the same on every rank.
+  std::vector<std::string> takeRunNotes() { return flux_.takeNotes(); }
+
+  // --- What the diffusion folder asks of it: the kernel choice (withScatterKernel,
+  // withGatherKernel) and the quasi-static step (DiffusionPass). ---
+
+  // Before P2G of material m: zeroes its fields on the nodes of `cleared` and marks the nodes
+  // its flux sources reach; then calls f with the material's P2G kernel.
+  template <class F>
+  void withScatter(Collective, size_t m, const ParticleSet& p, const InterpolationWeights& W,
+                   const std::vector<NodeRange>& cleared, F&& f);
+  // Calls f with material m's G2P kernel (Eq. 8).
+  template <class F>
+  void withGather(size_t m, ParticleSet& p, F&& f);
+  // False for a material whose concentration no step can change: no diffusivity, no constant
+  // rate, no <scalar_flux>, no SD-Type condition, no common interface (docs/diffusion.md,
+  // "Materials that take up no lithium"). Its P2G and G2P run without concentration, its
+  // diffusivity stays 0 and it has no nodal concentration fields, unless the output saves them.
+  bool computesConcentration(size_t m) const { return changes_[m] || everyMaterial_; }
+  // SD-Type concentration conditions (<BCType ... label="SD-Type">) on some grid face
+  // (DiffusionPass::checkIntegrator).
+  bool hasConcentrationBCs() const { return !concentrationBCs_.empty(); }
   // Eq. 44 over this rank's particles: dx^2 / (2 D_max), infinity without diffusivity.
   double diffusionTimestep(const Grid& grid) const;
   // The flux limit over all ranks (docs/diffusion.md, "Time step").
   double fluxTimestep(Collective every, const std::vector<MPMMaterial>& materials) const {
     return flux_.stableTimestep(every, materials, materials_);
   }
-  // Material m's diffusivity model.
-  const ScalarDiffusionModel& model(size_t m) const { return *materials_[m].model; }
-
-  // Adds the total lithium and the concentration range (initialised by the caller): the range
-  // of the materials whose concentration can change (computesConcentration without output's
-  // request), of every material when none can; with two or more such materials, each one's
-  // sum and range (appended to StepSummary::perMaterial).
-  void summarize(const std::vector<MPMMaterial>& materials, StepSummary& s) const;
-  void saveState(BinaryWriter& out) const;
-  // `merge`: a further part of a distributed checkpoint read by this rank (another rank count):
-  // the largest diffusivity and flux rates are the largest of the parts', whose particles this
-  // rank now holds some of (the time-step limits are minimums over the ranks).
-  void loadState(BinaryReader& in, bool merge = false);
-
-  // False for a material whose concentration no step can change: no diffusivity, no constant
-  // rate, no <scalar_flux>, no SD-Type condition, no common interface (docs/diffusion.md,
-  // "Materials that take up no lithium"). Its P2G and G2P run without concentration, its
-  // diffusivity stays 0 and it has no nodal concentration fields, unless the output saves them.
-  bool computesConcentration(size_t m) const { return changes_[m] || everyMaterial_; }
-  // SD-Type concentration conditions (<BCType ... label="Concentration">) on some grid face
-  // (DiffusionPass::checkIntegrator).
-  bool hasConcentrationBCs() const { return !concentrationBCs_.empty(); }
-
-  // Per material; empty for one that does not compute its concentration.
-  const std::vector<ConcentrationGridFields>& gridFields() const { return fields_; }
-  // What happened in the steps since the last call that the user should know (a galvanostatic
-  // BC's current ending); the same on every rank.
-  std::vector<std::string> takeRunNotes() { return flux_.takeNotes(); }
   // The state a quasi-static step retaken with a smaller dt starts again from (DiffusionPass):
   // the flux BCs' (the auto-cycle sign, the galvanostatic currents ended, their notes) and the
   // diffusivity models' (the interval a <diff_curve> is in).
@@ -146,10 +156,6 @@ class ReactiveFlow {
   };
   StepState stepState() const;
   void restoreStepState(const StepState& state);
-  // After particle splitting: the flux faces of the split particles shared among their children.
-  void shareFluxFaces(ParticleSet& p, const std::vector<SplitParticle>& splits) const {
-    flux_.shareFacesOnSplit(p, splits);
-  }
 
  private:
   ReactiveFlow(const PSNode& root, const MPMFlags& flags, const std::vector<MPMMaterial>& materials,
