@@ -116,7 +116,9 @@ void MPM::layOutGrid() {
   threadScatter_.assign(std::max(omp_get_max_threads() - 1, 0),
                         std::vector<NodeQuad>(scatterQuads));
   GhostNodes* ghosts = layout_.ghosts();
-  if (diffusion_) diffusion_->layOutGrid(grid(), ghosts && !ghosts->empty() ? ghosts : nullptr);
+  step_.concentration =
+      diffusion_ ? &diffusion_->layOutGrid(grid(), ghosts && !ghosts->empty() ? ghosts : nullptr)
+                 : nullptr;
   step_.active = {};
   previous_ = {};
 }

@@ -49,6 +49,9 @@ struct StepGrid {
   std::vector<GridFields> fields;
   std::vector<InterpolationWeights> weights;
   ActiveNodes active;
+  // With diffusion, its nodal fields per material (ReactiveFlow's, laid out with the others:
+  // ReactiveFlow::layOutGrid); null without.
+  std::vector<ConcentrationGridFields>* concentration = nullptr;
 };
 
 class MPM {

@@ -66,7 +66,8 @@ std::vector<NodeArray> MPM::ghostSumArrays(bool concentrationOnly) {
       sums.push_back({g.momentum.data()->data(), 3});
       sums.push_back({g.internalForce.data()->data(), 3});
     }
-  if (diffusion_) diffusion_->addScatteredArrays(sums);
+  if (step_.concentration)
+    for (ConcentrationGridFields& g : *step_.concentration) g.addScatteredArrays(sums);
   return sums;
 }
 

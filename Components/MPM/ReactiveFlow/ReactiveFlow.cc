@@ -265,7 +265,8 @@ std::vector<std::string> ReactiveFlow::completeSetup(Collective every,
   return lines;
 }
 
-void ReactiveFlow::layOutGrid(const Grid& grid, const GhostNodes* ghosts) {
+std::vector<ConcentrationGridFields>& ReactiveFlow::layOutGrid(const Grid& grid,
+                                                               const GhostNodes* ghosts) {
   grid_ = grid;
   ghosts_ = ghosts;
   dirichletMask_ = dirichletNodeMasks(grid, concentrationBCs_, receivesFlux_.size());
@@ -273,6 +274,7 @@ void ReactiveFlow::layOutGrid(const Grid& grid, const GhostNodes* ghosts) {
   fields_.assign(receivesFlux_.size(), {});
   for (size_t m = 0; m < fields_.size(); ++m)
     if (computesConcentration(m)) fields_[m].resize(nodes, receivesFlux_[m]);
+  return fields_;
 }
 
 bool ReactiveFlow::concentrationCanChange(size_t m, const ScalarDiffusionModel& model) const {
@@ -281,13 +283,6 @@ bool ReactiveFlow::concentrationCanChange(size_t m, const ScalarDiffusionModel& 
   return std::any_of(
       concentrationBCs_.begin(), concentrationBCs_.end(),
       [m](const ConcentrationBC& b) { return b.face.appliesTo(static_cast<int>(m)); });
-}
-
-void ReactiveFlow::addScatteredArrays(std::vector<NodeArray>& arrays) {
-  for (ConcentrationGridFields& g : fields_)
-    for (std::vector<double>* f : {&g.massConcentration, &g.diffusionRate, &g.fluxSource,
-                                   &g.receiverWeightIn, &g.receiverWeightOut})
-      if (!f->empty()) arrays.push_back({f->data(), 1});
 }
 
 void ReactiveFlow::computeNodalConcentration(const std::vector<GridFields>& mechanics,

@@ -71,14 +71,16 @@ class ReactiveFlow {
                                          double initTime, bool everyMaterial);
   // Lays out the grid fields on the nodes this rank stores (`grid`: the whole grid, or this
   // rank's window); `ghosts` completes the source marks on the nodes shared with other ranks
-  // (none: a run of one rank).
-  void layOutGrid(const Grid& grid, const GhostNodes* ghosts);
+  // (none: a run of one rank). Returns them, per material (empty for one that does not compute
+  // its concentration), for MPM's grid of the step to hold beside the mechanics' fields
+  // (StepGrid::concentration), as the diffusion's particle arrays are held on MPM's particles:
+  // the ghost sums after P2G complete those P2G summed there. The vector stays in place until the
+  // next call; completeSetup may lay out more of its fields.
+  std::vector<ConcentrationGridFields>& layOutGrid(const Grid& grid, const GhostNodes* ghosts);
 
   // --- In the step, in the order ExplicitStep::advance asks (P2G and G2P run the kernels of
   // withScatterKernel and withGatherKernel, below): ---
 
-  // Adds the nodal arrays P2G sums (per material) to `arrays`, for the ranks to complete them.
-  void addScatteredArrays(std::vector<NodeArray>& arrays);
   // Eq. 5: c = (mc)/m, then the SD-Type conditions, per material; after all materials, the
   // interface. All on the nodes of `nodes` (the step's active nodes).
   void computeNodalConcentration(const std::vector<GridFields>& mechanics,
