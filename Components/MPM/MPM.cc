@@ -295,7 +295,7 @@ void MPM::interpolateConcentrationChange(size_t m, double dt, std::vector<double
 
 void MPM::interpolateConcentrationGradient(size_t m) {
   gatherConcentrationGradient(materials_[m].particles, step_.weights[m],
-                              diffusion_->gridFields()[m].concentration);
+                              (*step_.concentration)[m].concentration);
 }
 
 void MPM::splitParticles(Collective every) {

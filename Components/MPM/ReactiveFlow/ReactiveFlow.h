@@ -116,8 +116,6 @@ class ReactiveFlow {
   // request), of every material when none can; with two or more such materials, each one's
   // sum and range (appended to StepSummary::perMaterial).
   void summarize(const std::vector<MPMMaterial>& materials, StepSummary& s) const;
-  // Per material; empty for one that does not compute its concentration.
-  const std::vector<ConcentrationGridFields>& gridFields() const { return fields_; }
   // Material m's diffusivity model.
   const ScalarDiffusionModel& model(size_t m) const { return *materials_[m].model; }
   // What happened in the steps since the last call that the user should know (a galvanostatic
@@ -140,6 +138,9 @@ class ReactiveFlow {
   // "Materials that take up no lithium"). Its P2G and G2P run without concentration, its
   // diffusivity stays 0 and it has no nodal concentration fields, unless the output saves them.
   bool computesConcentration(size_t m) const { return changes_[m] || everyMaterial_; }
+  // The grid fields layOutGrid returned (DiffusionPass's sub-cell relaxation); outside the
+  // folder the step's grid holds them (StepGrid::concentration).
+  const std::vector<ConcentrationGridFields>& gridFields() const { return fields_; }
   // SD-Type concentration conditions (<BCType ... label="SD-Type">) on some grid face
   // (DiffusionPass::checkIntegrator).
   bool hasConcentrationBCs() const { return !concentrationBCs_.empty(); }
