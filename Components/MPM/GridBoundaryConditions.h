@@ -3,7 +3,8 @@
 // face nodes and the extra nodes beyond them. Symmetric visits only the face nodes within a box,
 // the step's active nodes: no particle reads a node outside them, where the fields are zero but
 // for the values Dirichlet conditions set. The SD-Type conditions on concentration belong to the
-// diffusion subcomponent (ReactiveFlow/ConcentrationBCs.h), to which the reader hands them.
+// diffusion subcomponent (ReactiveFlow/ConcentrationBCs.h): the reader hands them to its caller,
+// which passes them on (ReactiveFlow::fromInput).
 #pragma once
 
 #include <array>

@@ -7,6 +7,7 @@
 #include <cstring>
 #include <limits>
 #include <sstream>
+#include <type_traits>
 
 #include "Components/MPM/Materials/ConstitutiveModels/ConcreteModels.h"
 #include "Components/MPM/Materials/MaterialOverlap.h"
@@ -54,14 +55,12 @@ void MPM::problemSetup(const PSNode& root, double initTime, double maxTime, bool
                                   ", but there are " + std::to_string(materials_.size()));
   problem_.contact = Contact::fromInput(mpmMats, static_cast<int>(materials_.size()));
   const PhysicalBCs physical = readPhysicalBCs(root);
-  diffusion_ = ReactiveFlow::fromInput(root, problem_.flags, materials_, maxTime, physical);
-  problem_.gridBCs = readGridBoundaryConditions(gridNode, static_cast<int>(materials_.size()),
-                                                [this](const BCType& bc) {
-                                                  if (diffusion_)
-                                                    diffusion_->readConcentrationBC(bc);
-                                                  else
-                                                    ConcentrationBC::rejectWithoutDiffusion(bc);
-                                                });
+  std::vector<BCType> concentrationBCs;  // SD-Type, for the diffusion subcomponent
+  problem_.gridBCs =
+      readGridBoundaryConditions(gridNode, static_cast<int>(materials_.size()),
+                                 [&](const BCType& bc) { concentrationBCs.push_back(bc); });
+  diffusion_ = ReactiveFlow::fromInput(root, problem_.flags, materials_, maxTime, physical,
+                                       concentrationBCs);
   for (size_t m = 0; m < materials_.size(); ++m)
     seeds_[m].checkPiecesInsideGrid(grid(), problem_.gridBCs.symmetryPlanes(static_cast<int>(m)));
   problem_.swellingNotes =
@@ -72,7 +71,8 @@ void MPM::problemSetup(const PSNode& root, double initTime, double maxTime, bool
   // This rank's particles: those of its box (the whole grid on one rank) and, while the flux
   // particles are flagged, those setup needs around it.
   const CellBox box = withParticles ? layout_.drawSetupBoxes(seedCounts()) : CellBox{};
-  const CellBox region = grownBySetupReach(box);
+  const CellBox region =
+      diffusion_ ? diffusion_->setupRegion(box, layout_.problemGrid(), seeds_) : box;
   checkParticlesOfRank(region);
   for (size_t m = 0; m < materials_.size(); ++m) {
     materials_[m].placeParticles(seeds_[m], grid(), region);
@@ -97,9 +97,11 @@ void MPM::problemSetup(const PSNode& root, double initTime, double maxTime, bool
   communicationTask_ = layout_.distributed() ? timers_.task("communication") : -1;
 }
 
-void MPM::distributeOverRanks(Collective every) {
+void MPM::distributeOverRanks(Collective every, bool concentrationOfEveryMaterial) {
   layout_.completeSetup(every);
-  if (diffusion_) diffusion_->completeSetup(every, materials_, initTime_);
+  if (diffusion_)
+    problem_.diffusionNotes =
+        diffusion_->completeSetup(every, materials_, initTime_, concentrationOfEveryMaterial);
   seeds_.clear();
 }
 
@@ -114,7 +116,9 @@ void MPM::layOutGrid() {
   threadScatter_.assign(std::max(omp_get_max_threads() - 1, 0),
                         std::vector<NodeQuad>(scatterQuads));
   GhostNodes* ghosts = layout_.ghosts();
-  if (diffusion_) diffusion_->layOutGrid(grid(), ghosts && !ghosts->empty() ? ghosts : nullptr);
+  step_.concentration =
+      diffusion_ ? &diffusion_->layOutGrid(grid(), ghosts && !ghosts->empty() ? ghosts : nullptr)
+                 : nullptr;
   step_.active = {};
   previous_ = {};
 }
@@ -183,13 +187,18 @@ void MPM::scatterParticlesToGrid(Collective every, bool concentrationOnly) {
   const std::vector<NodeRange> cleared =
       ActiveNodes::of(grid(), hullOf(step_.active.box, previous_)).rows;
   for (size_t m = 0; m < materials_.size(); ++m) {
-    if (!scatters(m, concentrationOnly)) continue;
     if (!concentrationOnly)
       forEachNodeRange(cleared,
                        [&](long begin, long end) { step_.fields[m].clearAll(begin, end); });
-    withScatterKernel(
-        every, diffusion_.get(), m, materials_[m].particles, step_.weights[m], cleared,
-        [&](const auto& concentration) { scatterMaterial(m, concentration, concentrationOnly); });
+    const auto scatter = [&](const auto& concentration) {
+      // A material whose concentration is not computed (NoConcentration) has no sums in a P2G of
+      // the concentration alone.
+      using Kernel = std::decay_t<decltype(concentration)>;
+      if (concentrationOnly && std::is_same_v<Kernel, NoConcentration>) return;
+      scatterMaterial(m, concentration, concentrationOnly);
+    };
+    withScatterKernel(every, diffusion_.get(), m, materials_[m].particles, step_.weights[m],
+                      cleared, scatter);
   }
 }
 
@@ -286,7 +295,7 @@ void MPM::interpolateConcentrationChange(size_t m, double dt, std::vector<double
 
 void MPM::interpolateConcentrationGradient(size_t m) {
   gatherConcentrationGradient(materials_[m].particles, step_.weights[m],
-                              diffusion_->gridFields()[m].concentration);
+                              (*step_.concentration)[m].concentration);
 }
 
 void MPM::splitParticles(Collective every) {
@@ -380,8 +389,10 @@ StepSummary MPM::summarize(Collective every) const {
     s.chargeableLithium = sums[3], s.lithiumCapacity = sums[4], s.elasticEnergy = sums[5];
     s.minJ = lows[0], s.minConcentration = lows[1], s.maxJ = highs[0],
     s.maxConcentration = highs[1];
-    for (size_t k = 0; k < s.perMaterial.size(); ++k)
-      s.perMaterial[k] = {sums[6 + k], lows[2 + k], highs[2 + k]};
+    for (size_t k = 0; k < s.perMaterial.size(); ++k) {
+      StepSummary::MaterialLithium& m = s.perMaterial[k];
+      m.lithium = sums[6 + k], m.minConcentration = lows[2 + k], m.maxConcentration = highs[2 + k];
+    }
   }
   return s;
 }

@@ -36,6 +36,9 @@ struct MPMProblem {
   Contact contact;
   // Setup's notes on bodies that would swell into a Symmetric face (SwellingRoom.h).
   std::vector<std::string> swellingNotes;
+  // Setup's lines on diffusion: per flux BC and material, the particles flagged and their area,
+  // and the materials that take up no lithium (ReactiveFlow::completeSetup).
+  std::vector<std::string> diffusionNotes;
 };
 
 // The grid's part of a step: per material the nodal fields and the particles' interpolation
@@ -46,6 +49,9 @@ struct StepGrid {
   std::vector<GridFields> fields;
   std::vector<InterpolationWeights> weights;
   ActiveNodes active;
+  // With diffusion, its nodal fields per material (ReactiveFlow's, laid out with the others:
+  // ReactiveFlow::layOutGrid); null without.
+  std::vector<ConcentrationGridFields>* concentration = nullptr;
 };
 
 class MPM {
@@ -66,8 +72,10 @@ class MPM {
   void problemSetup(const PSNode& root, double initTime, double maxTime, bool withParticles = true,
                     const std::function<void()>& problemRead = {});
   // After problemSetup: lays out this rank's grid and completes the setup over the ranks (the
-  // flux BCs' areas and capacities, their report).
-  void distributeOverRanks(Collective);
+  // flux BCs' areas and capacities, their notes). `concentrationOfEveryMaterial`: the output
+  // saves the nodal concentration or p.concentrationGradient, which diffusion then computes for
+  // every material (ReactiveFlow::completeSetup).
+  void distributeOverRanks(Collective, bool concentrationOfEveryMaterial);
 
   // --- the tasks a step is made of (DESIGN.md §4), in the explicit step's order ---
 
@@ -152,21 +160,15 @@ class MPM {
   [[noreturn]] void throwOutsideWindow(size_t m, long i) const;
   // P2G on this rank (`concentrationOnly`: as interpolateParticlesToGrid's).
   void scatterParticlesToGrid(Collective, bool concentrationOnly = false);
-  // Material m takes part in that P2G (and its ghost sums).
-  bool scatters(size_t m, bool concentrationOnly) const {
-    return !concentrationOnly || diffusion_->computesConcentration(m);
-  }
   // Completes the nodal sums of P2G on the nodes shared with other ranks (`concentrationOnly`:
   // as interpolateParticlesToGrid's).
   void sumGhostNodes(Collective, bool concentrationOnly = false);
   // Sizes the grid fields to this rank's window (RankLayout calls it when it lays one out).
   void layOutGrid();
   // Setup per box (MPMRanks.cc): the particles per cell seeds_ lay out (RankLayout draws the
-  // setup's boxes from them); the box grown by what flagging the flux particles needs around it;
-  // the particle count of a region against the memory budget; dropping the particles beyond the
-  // box once flagged.
+  // setup's boxes from them); the particle count of a region against the memory budget; dropping
+  // the particles beyond the box once the flux particles are flagged (ReactiveFlow::setupRegion).
   Decomposition::ParticleCounts seedCounts() const;
-  CellBox grownBySetupReach(const CellBox& box) const;
   void checkParticlesOfRank(const CellBox& region) const;
   void keepParticlesOfBox(const CellBox& box);
   // The grid arrays the ghost sums after P2G complete (`concentrationOnly`: the concentration's).

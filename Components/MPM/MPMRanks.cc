@@ -22,20 +22,6 @@ Decomposition::ParticleCounts MPM::seedCounts() const {
           nullptr};
 }
 
-CellBox MPM::grownBySetupReach(const CellBox& box) const {
-  if (Communicator::size() == 1 || !diffusion_ || !diffusion_->sharesSurfacesAtSetup()) return box;
-  // A sample of a BC's surface goes to the nearest flagged particle within 1.5 particle spacings
-  // (FluxSurfaceArea.h): the samples a particle of the box can get lie within 1.5 spacings of
-  // it, and the particles they can go to within 3.
-  Vec3 spacing = Vec3::Zero();
-  for (const MaterialSeeds& s : seeds_)
-    for (const MaterialSeeds::Object& object : s.objects)
-      spacing = spacing.cwiseMax(object.spacing);
-  const Grid& whole = layout_.problemGrid();
-  const int reach = static_cast<int>(std::ceil(3 * spacing.norm() / whole.dx.minCoeff())) + 1;
-  return {(box.lower.array() - reach).max(0), (box.upper.array() + reach).min(whole.cells.array())};
-}
-
 void MPM::checkParticlesOfRank(const CellBox& region) const {
   const double limit = std::floor(maxParticles(problem_.flags));
   double n = 0;
@@ -80,7 +66,8 @@ std::vector<NodeArray> MPM::ghostSumArrays(bool concentrationOnly) {
       sums.push_back({g.momentum.data()->data(), 3});
       sums.push_back({g.internalForce.data()->data(), 3});
     }
-  if (diffusion_) diffusion_->addScatteredArrays(sums);
+  if (step_.concentration)
+    for (ConcentrationGridFields& g : *step_.concentration) g.addScatteredArrays(sums);
   return sums;
 }
 

@@ -19,8 +19,9 @@ struct StepSummary {
   double chargeableLithium = 0, lithiumCapacity = 0;
   double minConcentration = 0, maxConcentration = 0;
   // Per material whose c can change, in material order, when two or more can (history.csv's
-  // per-material columns): its sum m c and its range of c.
+  // per-material columns): the material's index, its sum m c and its range of c.
   struct MaterialLithium {
+    size_t material = 0;
     double lithium = 0, minConcentration, maxConcentration;
   };
   std::vector<MaterialLithium> perMaterial;

@@ -278,15 +278,14 @@ std::string DataArchiver::writeFailedState(Collective every, long step, const MP
   return (fs::path(dir_) / file).string();
 }
 
-void DataArchiver::setMaterialColumns(const std::vector<MPMMaterial>& materials,
-                                      const std::vector<size_t>& which) {
+void DataArchiver::setMaterialColumns(const std::vector<MPMMaterial>& materials) {
   const auto column = [](std::string name) {
     for (char& ch : name)
       if (!std::isalnum(static_cast<unsigned char>(ch)) && ch != '-' && ch != '_') ch = '_';
     return name;
   };
   materialColumns_.clear();
-  for (size_t m : which) {
+  for (size_t m = 0; m < materials.size(); ++m) {
     const std::string name = column(materials[m].name);
     const bool shared = std::count_if(materials.begin(), materials.end(), [&](const auto& other) {
                           return column(other.name) == name;
@@ -305,8 +304,10 @@ void DataArchiver::writeHistory() {
     s << "step,time,dt,particles,kinetic_energy,min_J,max_J,";
     if (unwritten_.front().row.diffusion) {
       s << "total_lithium,min_c,max_c,lithium_rate,state_of_charge,capacity_mAh_g,";
-      for (const std::string& name : materialColumns_)
+      for (const StepSummary::MaterialLithium& m : unwritten_.front().perMaterial) {
+        const std::string& name = materialColumns_[m.material];
         s << "lithium_" << name << ",min_c_" << name << ",max_c_" << name << ',';
+      }
     }
     s << "elastic_energy,dt_limit,";
     if (unwritten_.front().record.newtonIterations >= 0)

@@ -104,12 +104,11 @@ class DataArchiver {
   // Writes the particles of a step that failed a check to particles/failed_step_NNNNNN.vtu (or
   // .pvtu), outside the .pvd series; returns that path.
   std::string writeFailedState(Collective, long step, const MPM& mpm) const;
-  // history.csv's per-material columns (lithium_NAME, min_c_NAME, max_c_NAME) for materials
-  // `which`, in the order of each row's perMaterial; none by default. NAME is the material's
+  // The names of history.csv's per-material columns (lithium_NAME, min_c_NAME, max_c_NAME),
+  // which the materials of the first row's perMaterial have, in its order. NAME is the material's
   // name attribute with characters other than letters, digits, '-' and '_' as '_', or
   // "material<index>" when it has none or another material's comes out the same.
-  void setMaterialColumns(const std::vector<MPMMaterial>& materials,
-                          const std::vector<size_t>& which);
+  void setMaterialColumns(const std::vector<MPMMaterial>& materials);
   void recordHistory(const HistoryRow& row, const StepRecord& record,
                      std::vector<StepSummary::MaterialLithium> perMaterial = {}) {
     unwritten_.push_back({row, record, std::move(perMaterial)});

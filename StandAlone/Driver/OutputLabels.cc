@@ -292,7 +292,7 @@ GridData gatherGrid(const MPM& mpm, const std::vector<std::string>& labels) {
       const GridFields& f = mpm.stepGrid().fields[m];
       const std::string name = nm > 1 ? label + "_m" + std::to_string(m) : label;
       if (isNodalConcentrationLabel(label)) {
-        const ConcentrationGridFields& c = mpm.diffusion()->gridFields()[m];
+        const ConcentrationGridFields& c = (*mpm.stepGrid().concentration)[m];
         const std::vector<double>& v = label == "g.concentration"       ? c.concentration
                                        : label == "g.concentrationRate" ? c.concentrationRate
                                        : label == "g.concentrationStar" ? c.concentrationStar

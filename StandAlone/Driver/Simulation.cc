@@ -38,9 +38,8 @@ void Simulation::setup(const std::function<void()>& readSpec) {
     readInput();
   });
   if (options_.countParticlesOnly) return;
-  mpm_.distributeOverRanks(every);
-  if (archiver_.savesConcentrationFields() || scenes_.draws("p.concentrationGradient"))
-    mpm_.diffusion()->computeEveryMaterial();
+  mpm_.distributeOverRanks(
+      every, archiver_.savesConcentrationFields() || scenes_.draws("p.concentrationGradient"));
   takeStableTimestep(every, 0.0);
   setupSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   rusage usage{};
@@ -72,8 +71,7 @@ void Simulation::readInput() {
         .warn(
             "<clamp_time_to_output>true clamps no step: the outputs come every "
             "<outputTimestepInterval> steps, not at times (<outputInterval>)");
-  if (mpm_.diffusion())
-    archiver_.setMaterialColumns(mpm_.materials(), mpm_.diffusion()->lithiumTakingMaterials());
+  archiver_.setMaterialColumns(mpm_.materials());
   checkpoints_ = RunCheckpoints(CheckpointSchedule::fromInput(root.requireChild("DataArchiver")),
                                 time_.initTime);
   scenes_ = SceneOutput::fromInput(root, time_, mpm_);
@@ -279,9 +277,8 @@ void Simulation::reportSetup(Collective every) {
                    "sus: %d ranks: %s, ghost layers %d cells; particles per rank max/mean %.3f\n",
                    Communicator::size(), mpm_.layout().boxes().describe().c_str(),
                    mpm_.layout().ghostWidth(), imbalance);
-    if (mpm_.diffusion())
-      for (const std::string& line : mpm_.diffusion()->setupReport())
-        std::fprintf(stderr, "sus: %s\n", line.c_str());
+    for (const std::string& line : mpm_.problem().diffusionNotes)
+      std::fprintf(stderr, "sus: %s\n", line.c_str());
     for (const std::string& line : forecastSteps(stepForecastInput()))
       std::fprintf(stderr, "%s%s\n", line.rfind("note:", 0) == 0 ? "" : "sus: ", line.c_str());
   }

@@ -15,7 +15,7 @@ struct ConcentrationBC {
   enum class Kind { Dirichlet, Neumann } kind = Kind::Dirichlet;
   double value = 0;  // the concentration (Dirichlet) or its gradient (Neumann)
 
-  // An SD-Type <BCType>, which MPM's reader of <Grid><BoundaryConditions> hands over.
+  // An SD-Type <BCType> of <Grid><BoundaryConditions> (ReactiveFlow::fromInput reads them).
   static ConcentrationBC fromInput(const BCType& bc);
   // The same in a run without diffusion: an error.
   [[noreturn]] static void rejectWithoutDiffusion(const BCType& bc);

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <vector>
 
+#include "Components/MPM/GhostNodes.h"
+
 namespace anode {
 
 // What P2G sums (spread from the node quads, NodeQuads.h).
@@ -26,6 +28,13 @@ struct ConcentrationScatterFields {
     for (auto* f :
          {&massConcentration, &diffusionRate, &fluxSource, &receiverWeightIn, &receiverWeightOut})
       if (!f->empty()) std::fill(f->begin() + begin, f->begin() + end, 0.0);
+  }
+  // Adds the fields laid out to `arrays`, for the ranks to complete their sums on the nodes they
+  // share (GhostNodes::sumOverRanks).
+  void addScatteredArrays(std::vector<NodeArray>& arrays) {
+    for (std::vector<double>* f :
+         {&massConcentration, &diffusionRate, &fluxSource, &receiverWeightIn, &receiverWeightOut})
+      if (!f->empty()) arrays.push_back({f->data(), 1});
   }
 };
 

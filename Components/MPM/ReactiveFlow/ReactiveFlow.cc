@@ -62,7 +62,7 @@ void setInitialState(const ScalarDiffusionModel& model, const MaterialSeeds& see
 
 ReactiveFlow::ReactiveFlow(const PSNode& root, const MPMFlags& flags,
                            const std::vector<MPMMaterial>& materials, double maxTime,
-                           const PhysicalBCs& physical)
+                           const PhysicalBCs& physical, const std::vector<BCType>& concentrationBCs)
     : flags_(flags),
       interface_(DiffusionInterface::fromInput(
           root.requireChild("MaterialProperties").requireChild("MPM"), true, materials.size())),
@@ -73,14 +73,17 @@ ReactiveFlow::ReactiveFlow(const PSNode& root, const MPMFlags& flags,
     mat.reducesConcentration = nodes[m].get<bool>("do_conc_reduction", false);
     mat.model = createDiffusionModel(nodes[m].requireChild("diffusion_model"), maxTime);
   }
+  for (const BCType& bc : concentrationBCs)
+    concentrationBCs_.push_back(ConcentrationBC::fromInput(bc));
 }
 
 std::unique_ptr<ReactiveFlow> ReactiveFlow::fromInput(const PSNode& root, const MPMFlags& flags,
                                                       const std::vector<MPMMaterial>& materials,
-                                                      double maxTime, const PhysicalBCs& physical) {
+                                                      double maxTime, const PhysicalBCs& physical,
+                                                      const std::vector<BCType>& concentrationBCs) {
   if (flags.doScalarDiffusion)
     return std::unique_ptr<ReactiveFlow>(
-        new ReactiveFlow(root, flags, materials, maxTime, physical));
+        new ReactiveFlow(root, flags, materials, maxTime, physical, concentrationBCs));
   DiffusionInterface::fromInput(root.requireChild("MaterialProperties").requireChild("MPM"), false,
                                 0);
   readFluxBCs(root, flags, physical);
@@ -90,14 +93,27 @@ std::unique_ptr<ReactiveFlow> ReactiveFlow::fromInput(const PSNode& root, const 
     for (const PSNode& object : material.children("geom_object"))
       object.acceptInert("concentration");  // it matters only with diffusion
   }
+  if (!concentrationBCs.empty()) ConcentrationBC::rejectWithoutDiffusion(concentrationBCs.front());
   return nullptr;
 }
 
-bool ReactiveFlow::sharesSurfacesAtSetup() const {
-  return std::any_of(flux_.bcs().begin(), flux_.bcs().end(), [](const ScalarFluxBC& bc) {
-    return bc.face == ScalarFluxBC::Face::Surface ||
-           (bc.face != ScalarFluxBC::Face::Box && !bc.particleFaceArea);
-  });
+CellBox ReactiveFlow::setupRegion(const CellBox& box, const Grid& whole,
+                                  const std::vector<MaterialSeeds>& seeds) const {
+  const bool sharesSurfaces =
+      std::any_of(flux_.bcs().begin(), flux_.bcs().end(), [](const ScalarFluxBC& bc) {
+        return bc.face == ScalarFluxBC::Face::Surface ||
+               (bc.face != ScalarFluxBC::Face::Box && !bc.particleFaceArea);
+      });
+  if (Communicator::size() == 1 || !sharesSurfaces) return box;
+  // A sample of a BC's surface goes to the nearest flagged particle within 1.5 particle spacings
+  // (FluxSurfaceArea.h): the samples a particle of the box can get lie within 1.5 spacings of
+  // it, and the particles they can go to within 3.
+  Vec3 spacing = Vec3::Zero();
+  for (const MaterialSeeds& s : seeds)
+    for (const MaterialSeeds::Object& object : s.objects)
+      spacing = spacing.cwiseMax(object.spacing);
+  const int reach = static_cast<int>(std::ceil(3 * spacing.norm() / whole.dx.minCoeff())) + 1;
+  return {(box.lower.array() - reach).max(0), (box.upper.array() + reach).min(whole.cells.array())};
 }
 
 void ReactiveFlow::checkSurfaceBCs(const PSNode& root, const std::vector<MPMMaterial>& materials,
@@ -149,15 +165,19 @@ void ReactiveFlow::initialize(const PSNode& root, const Grid& grid,
     cmax_.push_back(model(m).maxConcentration);
     constantRate_.push_back(model(m).constantRate());
   }
-  for (size_t m = 0; m < materials.size(); ++m) {
+  for (size_t m = 0; m < materials.size(); ++m)
     changes_.push_back(concentrationCanChange(m, model(m)));
-    if (!changes_.back()) noUptake_.push_back(describeMaterial(materials[m], m));
-  }
   computeDiffusivity(materials, initTime);
 }
 
-void ReactiveFlow::completeSetup(Collective every, std::vector<MPMMaterial>& materials,
-                                 double initTime) {
+std::vector<std::string> ReactiveFlow::completeSetup(Collective every,
+                                                     std::vector<MPMMaterial>& materials,
+                                                     double initTime, bool everyMaterial) {
+  if (everyMaterial) {
+    everyMaterial_ = true;
+    for (size_t m = 0; m < fields_.size(); ++m)
+      if (!changes_[m]) fields_[m].resize(grid_.numNodes(), receivesFlux_[m]);
+  }
   // What the BCs flagged, the areas of their shared surfaces (each rank's part) and each
   // material's mass, over every rank.
   const bool overRanks = Communicator::size() > 1;
@@ -204,6 +224,7 @@ void ReactiveFlow::completeSetup(Collective every, std::vector<MPMMaterial>& mat
       capacities[f.bc] += materialMass[f.material] * model(f.material).maxConcentration;
     }
   });
+  std::vector<std::string> lines;
   for (const ExternalScalarFlux::Flagged& f : flagged) {
     std::ostringstream s;
     s << "<scalar_flux> " << f.bc + 1 << " (line " << flux_.bcs()[f.bc].line << ") flags "
@@ -230,13 +251,22 @@ void ReactiveFlow::completeSetup(Collective every, std::vector<MPMMaterial>& mat
            "c) with k = "
         << bc.surfaceRate;
     }
-    setupReport_.push_back(s.str());
+    lines.push_back(s.str());
   }
+  for (size_t m = 0; m < materials.size(); ++m)
+    if (!changes_[m])
+      lines.push_back(describeMaterial(materials[m], m) +
+                      " takes up no lithium (no diffusivity, flux or concentration condition): its "
+                      "concentration stays as given" +
+                      (everyMaterial_ ? "; its nodal concentration is computed for the output"
+                                      : " and is not computed"));
   flux_.setCapacities(std::move(capacities));
   flux_.computeFluxRates(every, materials, materials_, initTime, overRanks);
+  return lines;
 }
 
-void ReactiveFlow::layOutGrid(const Grid& grid, const GhostNodes* ghosts) {
+std::vector<ConcentrationGridFields>& ReactiveFlow::layOutGrid(const Grid& grid,
+                                                               const GhostNodes* ghosts) {
   grid_ = grid;
   ghosts_ = ghosts;
   dirichletMask_ = dirichletNodeMasks(grid, concentrationBCs_, receivesFlux_.size());
@@ -244,12 +274,7 @@ void ReactiveFlow::layOutGrid(const Grid& grid, const GhostNodes* ghosts) {
   fields_.assign(receivesFlux_.size(), {});
   for (size_t m = 0; m < fields_.size(); ++m)
     if (computesConcentration(m)) fields_[m].resize(nodes, receivesFlux_[m]);
-}
-
-void ReactiveFlow::computeEveryMaterial() {
-  everyMaterial_ = true;
-  for (size_t m = 0; m < fields_.size(); ++m)
-    if (!changes_[m]) fields_[m].resize(grid_.numNodes(), receivesFlux_[m]);
+  return fields_;
 }
 
 bool ReactiveFlow::concentrationCanChange(size_t m, const ScalarDiffusionModel& model) const {
@@ -258,24 +283,6 @@ bool ReactiveFlow::concentrationCanChange(size_t m, const ScalarDiffusionModel& 
   return std::any_of(
       concentrationBCs_.begin(), concentrationBCs_.end(),
       [m](const ConcentrationBC& b) { return b.face.appliesTo(static_cast<int>(m)); });
-}
-
-std::vector<std::string> ReactiveFlow::setupReport() const {
-  std::vector<std::string> lines = setupReport_;
-  for (const std::string& material : noUptake_)
-    lines.push_back(material +
-                    " takes up no lithium (no diffusivity, flux or concentration condition): its "
-                    "concentration stays as given" +
-                    (everyMaterial_ ? "; its nodal concentration is computed for the output"
-                                    : " and is not computed"));
-  return lines;
-}
-
-void ReactiveFlow::addScatteredArrays(std::vector<NodeArray>& arrays) {
-  for (ConcentrationGridFields& g : fields_)
-    for (std::vector<double>* f : {&g.massConcentration, &g.diffusionRate, &g.fluxSource,
-                                   &g.receiverWeightIn, &g.receiverWeightOut})
-      if (!f->empty()) arrays.push_back({f->data(), 1});
 }
 
 void ReactiveFlow::computeNodalConcentration(const std::vector<GridFields>& mechanics,
@@ -378,18 +385,18 @@ double ReactiveFlow::diffusionTimestep(const Grid& grid) const {
 void ReactiveFlow::summarize(const std::vector<MPMMaterial>& materials, StepSummary& s) const {
   s.diffusion = true;
   // The range is of the materials whose concentration can change (a substrate's fixed c would
-  // pin it), of every material when none can.
-  const bool anyChanges = std::find(changes_.begin(), changes_.end(), true) != changes_.end();
-  const std::vector<size_t> separate = lithiumTakingMaterials();
-  s.perMaterial.assign(separate.size(), {0.0, std::numeric_limits<double>::infinity(),
-                                         -std::numeric_limits<double>::infinity()});
+  // pin it), of every material when none can; history.csv gives each of them columns of its own
+  // when there are two or more.
+  const auto changing = std::count(changes_.begin(), changes_.end(), true);
   for (size_t m = 0; m < materials.size(); ++m) {
     const ParticleSet& p = materials[m].particles;
     const std::vector<double>& c = diffusionParticles(p).concentration;
-    const bool inRange = changes_[m] || !anyChanges;
-    const auto own = std::find(separate.begin(), separate.end(), m);
-    StepSummary::MaterialLithium* material =
-        own == separate.end() ? nullptr : &s.perMaterial[own - separate.begin()];
+    const bool inRange = changes_[m] || changing == 0;
+    StepSummary::MaterialLithium* material = nullptr;
+    if (changing > 1 && changes_[m])
+      material = &s.perMaterial.emplace_back(
+          StepSummary::MaterialLithium{m, 0.0, std::numeric_limits<double>::infinity(),
+                                       -std::numeric_limits<double>::infinity()});
     for (size_t i = 0; i < p.count(); ++i) {
       s.totalLithium += p.mass[i] * c[i];
       if (!inRange) continue;
@@ -403,14 +410,6 @@ void ReactiveFlow::summarize(const std::vector<MPMMaterial>& materials, StepSumm
       material->maxConcentration = std::max(material->maxConcentration, c[i]);
     }
   }
-}
-
-std::vector<size_t> ReactiveFlow::lithiumTakingMaterials() const {
-  std::vector<size_t> which;
-  for (size_t m = 0; m < changes_.size(); ++m)
-    if (changes_[m]) which.push_back(m);
-  if (which.size() < 2) which.clear();
-  return which;
 }
 
 ReactiveFlow::StepState ReactiveFlow::stepState() const {

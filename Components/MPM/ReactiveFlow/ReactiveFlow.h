@@ -32,23 +32,25 @@ namespace anode {
 
 class ReactiveFlow {
  public:
+  // --- What MPM and the driver ask of it. At setup, in this order: ---
+
   // With <do_scalar_diffusion>true: reads <diffusion_interface>, the <scalar_flux> blocks of
-  // `physical` and each material's <diffusion_model> (`maxTime` bounds its diff_curve). Without
-  // it: null, and the tags that would need diffusion are errors, not silently dropped; the
-  // diffusion tags of the materials are read as Uintah reads them then (not at all).
+  // `physical`, each material's <diffusion_model> (`maxTime` bounds its diff_curve) and the
+  // SD-Type <BCType>s of <Grid><BoundaryConditions> (`concentrationBCs`, in file order). Without
+  // it: null, and the tags that would need diffusion are errors, not silently dropped (an SD-Type
+  // condition: ConcentrationBC::rejectWithoutDiffusion); the diffusion tags of the materials are
+  // read as Uintah reads them then (not at all).
   static std::unique_ptr<ReactiveFlow> fromInput(const PSNode& root, const MPMFlags& flags,
                                                  const std::vector<MPMMaterial>& materials,
-                                                 double maxTime, const PhysicalBCs& physical);
-  // An SD-Type <BCType>, which MPM's reader of <Grid><BoundaryConditions> hands over (in a run
-  // without diffusion an error: ConcentrationBC::rejectWithoutDiffusion).
-  void readConcentrationBC(const BCType& bc) {
-    concentrationBCs_.push_back(ConcentrationBC::fromInput(bc));
-  }
-
-  // Whether setup shares a BC's surface out among the particles near it (a curved face of a
-  // grid-filled body, or a <surface>; FluxSurfaceArea.h): a rank then holds, while it flags the
-  // flux particles, the particles within 3 particle spacings of its box as well.
-  bool sharesSurfacesAtSetup() const;
+                                                 double maxTime, const PhysicalBCs& physical,
+                                                 const std::vector<BCType>& concentrationBCs);
+  // The cells whose particles a rank holds while it flags the flux particles of `box` (its box of
+  // the problem's grid `whole`; `seeds`: what the geom_objects lay out): the box, and in a
+  // distributed run where setup shares a BC's surface out among the particles near it (a curved
+  // face of a grid-filled body, or a <surface>; FluxSurfaceArea.h) the cells within 3 particle
+  // spacings of it as well.
+  CellBox setupRegion(const CellBox& box, const Grid& whole,
+                      const std::vector<MaterialSeeds>& seeds) const;
   // Declares the diffusion arrays on the materials' particles (this rank's, and in a distributed
   // run those around its box) and sets their initial state: each <geom_object>'s
   // <concentration> (`seeds`: which object laid out which particles) and the diffusivity D0;
@@ -59,23 +61,26 @@ class ReactiveFlow {
                   const std::vector<MaterialSeeds>& seeds, const CellBox& box,
                   const CellBox& region, double initTime);
   // Once each rank holds only its own particles: the flagged particles, their areas and the
-  // capacities over every rank, the input errors they show (a BC flagging nothing), the setup
-  // report and the initial flux rates.
-  void completeSetup(Collective, std::vector<MPMMaterial>& materials, double initTime);
+  // capacities over every rank, the input errors they show (a BC flagging nothing) and the
+  // initial flux rates. `everyMaterial`: the output saves a nodal concentration
+  // (g.concentration*) or p.concentrationGradient, which are then computed for every material,
+  // those whose concentration no step can change included. Returns the lines for the user: per
+  // flux BC and material, the particles flagged and their area, and the materials that take up
+  // no lithium (the same on every rank).
+  std::vector<std::string> completeSetup(Collective, std::vector<MPMMaterial>& materials,
+                                         double initTime, bool everyMaterial);
   // Lays out the grid fields on the nodes this rank stores (`grid`: the whole grid, or this
   // rank's window); `ghosts` completes the source marks on the nodes shared with other ranks
-  // (none: a run of one rank).
-  void layOutGrid(const Grid& grid, const GhostNodes* ghosts);
+  // (none: a run of one rank). Returns them, per material (empty for one that does not compute
+  // its concentration), for MPM's grid of the step to hold beside the mechanics' fields
+  // (StepGrid::concentration), as the diffusion's particle arrays are held on MPM's particles:
+  // the ghost sums after P2G complete those P2G summed there. The vector stays in place until the
+  // next call; completeSetup may lay out more of its fields.
+  std::vector<ConcentrationGridFields>& layOutGrid(const Grid& grid, const GhostNodes* ghosts);
 
-  // --- the step's diffusion tasks, in the order ExplicitStep::advance calls them ---
+  // --- In the step, in the order ExplicitStep::advance asks (P2G and G2P run the kernels of
+  // withScatterKernel and withGatherKernel, below): ---
 
-  // Before P2G of material m: zeroes its fields on the nodes of `cleared` and marks the nodes
-  // its flux sources reach; then calls f with the material's P2G kernel.
-  template <class F>
-  void withScatter(Collective, size_t m, const ParticleSet& p, const InterpolationWeights& W,
-                   const std::vector<NodeRange>& cleared, F&& f);
-  // Adds the nodal arrays P2G sums (per material) to `arrays`, for the ranks to complete them.
-  void addScatteredArrays(std::vector<NodeArray>& arrays);
   // Eq. 5: c = (mc)/m, then the SD-Type conditions, per material; after all materials, the
   // interface. All on the nodes of `nodes` (the step's active nodes).
   void computeNodalConcentration(const std::vector<GridFields>& mechanics,
@@ -83,9 +88,10 @@ class ReactiveFlow {
   // Eq. 18: c* = c + (R + G)/m dt and the nodal rate that drives Eq. 8.
   void integrateConcentration(const std::vector<GridFields>& mechanics, double dt,
                               const std::vector<NodeRange>& nodes);
-  // Calls f with material m's G2P kernel (Eq. 8).
-  template <class F>
-  void withGather(size_t m, ParticleSet& p, F&& f);
+  // After particle splitting: the flux faces of the split particles shared among their children.
+  void shareFluxFaces(ParticleSet& p, const std::vector<SplitParticle>& splits) const {
+    flux_.shareFacesOnSplit(p, splits);
+  }
   // After G2P at time t: the range diagnostic, the auto-cycle switch, and the new state's
   // diffusivity (Eq. 23 or 24) and flux rates (Eqs. 16-17), which output, the next time step
   // and the next step use.
@@ -97,49 +103,53 @@ class ReactiveFlow {
     limits.bound[StableTimestep::Diffusion] = diffusionTimestep(grid);
     limits.bound[StableTimestep::Flux] = fluxTimestep(every, materials);
   }
+
+  // --- For checkpoints and output: ---
+
+  void saveState(BinaryWriter& out) const;
+  // `merge`: a further part of a distributed checkpoint read by this rank (another rank count):
+  // the largest diffusivity and flux rates are the largest of the parts', whose particles this
+  // rank now holds some of (the time-step limits are minimums over the ranks).
+  void loadState(BinaryReader& in, bool merge = false);
+  // Adds the total lithium and the concentration range (initialised by the caller): the range
+  // of the materials whose concentration can change (computesConcentration without output's
+  // request), of every material when none can; with two or more such materials, each one's
+  // sum and range (appended to StepSummary::perMaterial).
+  void summarize(const std::vector<MPMMaterial>& materials, StepSummary& s) const;
+  // Material m's diffusivity model.
+  const ScalarDiffusionModel& model(size_t m) const { return *materials_[m].model; }
+  // What happened in the steps since the last call that the user should know (a galvanostatic
+  // BC's current ending); the same on every rank.
+  std::vector<std::string> takeRunNotes() { return flux_.takeNotes(); }
+
+  // --- What the diffusion folder asks of it: the kernel choice (withScatterKernel,
+  // withGatherKernel) and the quasi-static step (DiffusionPass). ---
+
+  // Before P2G of material m: zeroes its fields on the nodes of `cleared` and marks the nodes
+  // its flux sources reach; then calls f with the material's P2G kernel.
+  template <class F>
+  void withScatter(Collective, size_t m, const ParticleSet& p, const InterpolationWeights& W,
+                   const std::vector<NodeRange>& cleared, F&& f);
+  // Calls f with material m's G2P kernel (Eq. 8).
+  template <class F>
+  void withGather(size_t m, ParticleSet& p, F&& f);
+  // False for a material whose concentration no step can change: no diffusivity, no constant
+  // rate, no <scalar_flux>, no SD-Type condition, no common interface (docs/diffusion.md,
+  // "Materials that take up no lithium"). Its P2G and G2P run without concentration, its
+  // diffusivity stays 0 and it has no nodal concentration fields, unless the output saves them.
+  bool computesConcentration(size_t m) const { return changes_[m] || everyMaterial_; }
+  // The grid fields layOutGrid returned (DiffusionPass's sub-cell relaxation); outside the
+  // folder the step's grid holds them (StepGrid::concentration).
+  const std::vector<ConcentrationGridFields>& gridFields() const { return fields_; }
+  // SD-Type concentration conditions (<BCType ... label="SD-Type">) on some grid face
+  // (DiffusionPass::checkIntegrator).
+  bool hasConcentrationBCs() const { return !concentrationBCs_.empty(); }
   // Eq. 44 over this rank's particles: dx^2 / (2 D_max), infinity without diffusivity.
   double diffusionTimestep(const Grid& grid) const;
   // The flux limit over all ranks (docs/diffusion.md, "Time step").
   double fluxTimestep(Collective every, const std::vector<MPMMaterial>& materials) const {
     return flux_.stableTimestep(every, materials, materials_);
   }
-  // Material m's diffusivity model.
-  const ScalarDiffusionModel& model(size_t m) const { return *materials_[m].model; }
-
-  // Adds the total lithium and the concentration range (initialised by the caller): the range
-  // of the materials whose concentration can change (computesConcentration without output's
-  // request), of every material when none can; with two or more such materials, each one's
-  // sum and range (StepSummary::perMaterial, in the order of lithiumTakingMaterials).
-  void summarize(const std::vector<MPMMaterial>& materials, StepSummary& s) const;
-  void saveState(BinaryWriter& out) const;
-  // `merge`: a further part of a distributed checkpoint read by this rank (another rank count):
-  // the largest diffusivity and flux rates are the largest of the parts', whose particles this
-  // rank now holds some of (the time-step limits are minimums over the ranks).
-  void loadState(BinaryReader& in, bool merge = false);
-
-  // False for a material whose concentration no step can change: no diffusivity, no constant
-  // rate, no <scalar_flux>, no SD-Type condition, no common interface (docs/diffusion.md,
-  // "Materials that take up no lithium"). Its P2G and G2P run without concentration, its
-  // diffusivity stays 0 and it has no nodal concentration fields, unless the output saves them.
-  bool computesConcentration(size_t m) const { return changes_[m] || everyMaterial_; }
-  // SD-Type concentration conditions (<BCType ... label="Concentration">) on some grid face
-  // (DiffusionPass::checkIntegrator).
-  bool hasConcentrationBCs() const { return !concentrationBCs_.empty(); }
-  // The materials whose concentration can change, when two or more can (else empty): the ones
-  // history.csv gives columns of their own.
-  std::vector<size_t> lithiumTakingMaterials() const;
-  // Computes every material's nodal concentration and p.concentrationGradient, for an output
-  // that saves them (g.concentration*, p.concentrationGradient). Before the first step.
-  void computeEveryMaterial();
-
-  // Per material; empty for one that does not compute its concentration.
-  const std::vector<ConcentrationGridFields>& gridFields() const { return fields_; }
-  // Lines for the user at setup: per flux BC and material, the particles flagged and their area,
-  // and the materials that take up no lithium.
-  std::vector<std::string> setupReport() const;
-  // What happened in the steps since the last call that the user should know (a galvanostatic
-  // BC's current ending); the same on every rank.
-  std::vector<std::string> takeRunNotes() { return flux_.takeNotes(); }
   // The state a quasi-static step retaken with a smaller dt starts again from (DiffusionPass):
   // the flux BCs' (the auto-cycle sign, the galvanostatic currents ended, their notes) and the
   // diffusivity models' (the interval a <diff_curve> is in).
@@ -149,14 +159,11 @@ class ReactiveFlow {
   };
   StepState stepState() const;
   void restoreStepState(const StepState& state);
-  // After particle splitting: the flux faces of the split particles shared among their children.
-  void shareFluxFaces(ParticleSet& p, const std::vector<SplitParticle>& splits) const {
-    flux_.shareFacesOnSplit(p, splits);
-  }
 
  private:
   ReactiveFlow(const PSNode& root, const MPMFlags& flags, const std::vector<MPMMaterial>& materials,
-               double maxTime, const PhysicalBCs& physical);
+               double maxTime, const PhysicalBCs& physical,
+               const std::vector<BCType>& concentrationBCs);
   void computeDiffusivity(std::vector<MPMMaterial>& materials, double t);
   void checkConcentrationRange(const std::vector<MPMMaterial>& materials, double t) const;
   bool concentrationCanChange(size_t m, const ScalarDiffusionModel& model) const;
@@ -175,13 +182,11 @@ class ReactiveFlow {
   std::vector<double> constantRate_;             // per material: constant_rate (0 for the others)
   std::vector<bool> receivesFlux_;               // per material
   std::vector<bool> changes_;                    // per material: concentrationCanChange
-  bool everyMaterial_ = false;                   // computeEveryMaterial was called
+  bool everyMaterial_ = false;                   // completeSetup's everyMaterial
   double maxDiffusivity_ = 0;                    // over all particles, for Eq. 44
   std::vector<ConcentrationGridFields> fields_;  // per material
-  std::vector<std::string> setupReport_;
   std::vector<ExternalScalarFlux::Flagged> flagged_;  // this rank's, between the two setup calls
   std::string inputFile_;                             // for the errors completeSetup finds
-  std::vector<std::string> noUptake_;  // "material m (name)" of those that take up no lithium
   const GhostNodes* ghosts_ = nullptr;
 };
 
