@@ -122,6 +122,19 @@ bool DataArchiver::savesConcentrationFields() const {
              particleLabels_.end();
 }
 
+StepRecord stepRecord(const StepSummary& s, int dtRule, const StepCounts& counts, bool trapezoidal,
+                      const TimestepController::ErrorControl* error) {
+  StepRecord record{s.elasticEnergy, dtRule, counts.newtonIterations, counts.krylovIterations};
+  if (trapezoidal && s.diffusion && s.lithiumCapacity > 0)
+    record.couplingCorrection = std::max(0.0, counts.couplingCorrection) / s.lithiumCapacity;
+  if (error && s.diffusion) {
+    record.errorEstimate = std::max(0.0, counts.errorEstimate);
+    record.accumulatedErrorEstimate = error->accumulated;
+    record.rejectedAttempts = std::max(0, counts.rejectedAttempts);
+  }
+  return record;
+}
+
 const char* dtRuleName(int rule) {
   if (rule >= 0 && rule < kDtSetByTimeControl)
     return StableTimestep::name(static_cast<StableTimestep::Limit>(rule));

@@ -5,8 +5,10 @@
 #include <string>
 #include <vector>
 
+#include "Components/MPM/Integrator.h"
 #include "Components/MPM/MPM.h"
 #include "Components/MPM/StableTimestep.h"
+#include "Components/MPM/TimestepController.h"
 #include "Core/Util/BinaryStream.h"
 #include "vis/VTKWriters.h"
 
@@ -41,6 +43,12 @@ struct StepRecord {
   double errorEstimate = -1, accumulatedErrorEstimate = -1;
   int rejectedAttempts = -1;
 };
+
+// The record of a step from its summary and its integrator's counts: with diffusion, the coupling
+// correction over the capacity (`trapezoidal` quasi-static steps) and the error estimates
+// (`error`: the controller's state under <error_tolerance>, else null); 0 in row 0.
+StepRecord stepRecord(const StepSummary& s, int dtRule, const StepCounts& counts, bool trapezoidal,
+                      const TimestepController::ErrorControl* error);
 
 // history.csv's dt_limit: StableTimestep::Limit's codes (0 mechanics, Eq. 43; 1 diffusion, Eq.
 // 44; 2 flux restriction; 3 Newton iterations; 4 change of c per step), then these four (the

@@ -308,23 +308,16 @@ size_t Simulation::recordHistoryRow(Collective every, double stepDt, int dtRule)
   const double lithiumRate =
       stepDt > 0 ? (s.totalLithium - archiver_.lastHistoryRow().totalLithium) / stepDt : 0.0;
   stateOfCharge_ = s.lithiumCapacity > 0 ? s.chargeableLithium / s.lithiumCapacity : 0.0;
-  const bool trapezoidal = mpm_.problem().flags.implicit && s.diffusion && s.lithiumCapacity > 0 &&
-                           mpm_.problem().flags.implicit->concentrationCoupling ==
-                               ImplicitOptions::ConcentrationCoupling::Trapezoidal;
-  const StepCounts counts = integrator_->lastStepCounts();
-  const double couplingCorrection =
-      trapezoidal ? std::max(0.0, counts.couplingCorrection) / s.lithiumCapacity : -1.0;
-  StepRecord record{s.elasticEnergy, dtRule, counts.newtonIterations, counts.krylovIterations,
-                    couplingCorrection};
-  if (dtController_->controlsError() && s.diffusion) {  // 0 in row 0
-    record.errorEstimate = std::max(0.0, counts.errorEstimate);
-    record.accumulatedErrorEstimate = dtController_->errorControl().accumulated;
-    record.rejectedAttempts = std::max(0, counts.rejectedAttempts);
-  }
-  archiver_.recordHistory({step_, s.particles, t_, stepDt, s.kineticEnergy, s.minJ, s.maxJ,
-                           earlierWallSeconds_ + wallTime(), s.diffusion, s.totalLithium,
-                           s.minConcentration, s.maxConcentration, lithiumRate, stateOfCharge_},
-                          record, s.perMaterial);
+  const std::optional<ImplicitOptions>& implicit = mpm_.problem().flags.implicit;
+  const bool trapezoidal = implicit && implicit->concentrationCoupling ==
+                                           ImplicitOptions::ConcentrationCoupling::Trapezoidal;
+  archiver_.recordHistory(
+      {step_, s.particles, t_, stepDt, s.kineticEnergy, s.minJ, s.maxJ,
+       earlierWallSeconds_ + wallTime(), s.diffusion, s.totalLithium, s.minConcentration,
+       s.maxConcentration, lithiumRate, stateOfCharge_},
+      stepRecord(s, dtRule, integrator_->lastStepCounts(), trapezoidal,
+                 dtController_->controlsError() ? &dtController_->errorControl() : nullptr),
+      s.perMaterial);
   return s.particles;
 }
 
