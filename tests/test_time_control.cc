@@ -110,8 +110,14 @@ TEST(TimestepController, ErrorEstimatesChooseTheSteps) {
   // A step without an estimate (no diffusion in it) changes nothing.
   c.recordStep(-1, 1, 1);
   EXPECT_DOUBLE_EQ(c.errorControl().lastEstimate, 1e-9);
-  // Steps end on the output times without <clamp_time_to_output>.
+  // Steps end on the output times without <clamp_time_to_output>, and the steps to an output time
+  // are of one length: 1.0 to go in steps of at most 0.4 is three of 1/3.
   EXPECT_EQ(c.plan(limits(0.5, StableTimestep::Newton), 0.5, 0, 0.2).dt, 0.2);
+  const TimestepController::Plan even = c.plan(limits(0.4, StableTimestep::Newton), 0.4, 0, 1.0);
+  EXPECT_DOUBLE_EQ(even.dt, 1.0 / 3);
+  EXPECT_DOUBLE_EQ(even.ruleDt, 0.4);
+  EXPECT_TRUE(even.setByTimeControl);
+  EXPECT_DOUBLE_EQ(c.plan(limits(0.5, StableTimestep::Newton), 0.5, 0, 1.0).dt, 0.5);
 }
 
 TEST(TimestepController, AnImplicitRunsMultiplierIsItsSubstepsNotItsDt) {

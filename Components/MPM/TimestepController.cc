@@ -44,6 +44,15 @@ TimestepController::Plan TimestepController::plan(const StableTimestep& limits, 
   if (endsStepsOnOutputs() && nextOutputTime && t + p.dt > *nextOutputTime * (1 + 1e-12)) {
     p.dt = *nextOutputTime - t;
     p.setByTimeControl = true;
+  } else if (controlsError() && nextOutputTime) {
+    // Under error control the steps to the next output time are of one length, at most the
+    // controller's: no short step left before it.
+    const double remaining = *nextOutputTime - t;
+    const double steps = std::ceil(remaining / p.dt * (1 - 1e-12));
+    if (steps > 1 && remaining / steps < p.dt) {
+      p.dt = remaining / steps;
+      p.setByTimeControl = true;
+    }
   }
   return p;
 }
