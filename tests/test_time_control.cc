@@ -116,7 +116,8 @@ TEST(TimestepController, ErrorEstimatesChooseTheSteps) {
   const TimestepController::Plan even = c.plan(limits(0.4, StableTimestep::Newton), 0.4, 0, 1.0);
   EXPECT_DOUBLE_EQ(even.dt, 1.0 / 3);
   EXPECT_DOUBLE_EQ(even.ruleDt, 0.4);
-  EXPECT_TRUE(even.setByTimeControl);
+  EXPECT_EQ(even.limit, StableTimestep::Newton);  // the pace is the limit's
+  EXPECT_FALSE(even.setByTimeControl);
   EXPECT_DOUBLE_EQ(c.plan(limits(0.5, StableTimestep::Newton), 0.5, 0, 1.0).dt, 0.5);
 }
 

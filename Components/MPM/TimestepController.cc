@@ -46,13 +46,11 @@ TimestepController::Plan TimestepController::plan(const StableTimestep& limits, 
     p.setByTimeControl = true;
   } else if (controlsError() && nextOutputTime) {
     // Under error control the steps to the next output time are of one length, at most the
-    // controller's: no short step left before it.
+    // controller's: no short step left before it. Each is an even share of the limit's dt, which
+    // the plan still names.
     const double remaining = *nextOutputTime - t;
     const double steps = std::ceil(remaining / p.dt * (1 - 1e-12));
-    if (steps > 1 && remaining / steps < p.dt) {
-      p.dt = remaining / steps;
-      p.setByTimeControl = true;
-    }
+    if (steps > 1) p.dt = std::min(p.dt, remaining / steps);
   }
   return p;
 }

@@ -23,8 +23,8 @@ class TimestepController {
   TimestepController(const TimeControl& time, const ImplicitOptions* implicit);
 
   // The step from t: its dt, the dt the limits and <Time>'s clamps chose (dt is less where it
-  // ends on an output time), the limit that set the stable dt, and whether the clamps or the
-  // output time changed it.
+  // ends on an output time, or is an even share of the steps to one), the limit that set the
+  // stable dt, and whether the clamps or the output time it ends on changed it.
   struct Plan {
     double dt = 0, ruleDt = 0;
     StableTimestep::Limit limit = StableTimestep::Mechanics;
