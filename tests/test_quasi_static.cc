@@ -510,16 +510,23 @@ struct BarRun {
   double lithium = 0;
   ImplicitStep::NewtonCounts counts;
 };
+// The bar's lithium, sum of m c.
+double barLithium(Simulation& sim) {
+  const ParticleSet& p = sim.mpm().materials()[0].particles;
+  const std::vector<double>& c = diffusionParticles(p).concentration;
+  double lithium = 0;
+  for (size_t i = 0; i < p.count(); ++i) lithium += p.mass[i] * c[i];
+  return lithium;
+}
+
 BarRun runBar(const std::string& coupling, double dt, const std::string& extra = "") {
   RunOptions o;
   o.progress = false;
   Simulation sim(lithiatedBar(coupling, dt, extra), "bar.ups", o);
   while (sim.time() < 1 - 1e-9) sim.advance();
   EXPECT_NEAR(sim.time(), 1, 1e-9);
-  const ParticleSet& p = sim.mpm().materials()[0].particles;
-  const std::vector<double>& c = diffusionParticles(p).concentration;
   BarRun run;
-  for (size_t i = 0; i < p.count(); ++i) run.lithium += p.mass[i] * c[i];
+  run.lithium = barLithium(sim);
   run.counts = sim.implicitStep().newtonCounts();
   return run;
 }
@@ -561,9 +568,7 @@ BarCorrections sumCouplingCorrections(double dt) {
     r.positive += correction > 0;
     ++r.steps;
   }
-  const ParticleSet& p = sim.mpm().materials()[0].particles;
-  for (size_t i = 0; i < p.count(); ++i)
-    r.lithium += p.mass[i] * diffusionParticles(p).concentration[i];
+  r.lithium = barLithium(sim);
   return r;
 }
 
@@ -636,9 +641,7 @@ ErrorControlledBar runErrorControlledBar(double tolerance) {
     ++r.steps;
   }
   EXPECT_DOUBLE_EQ(sim.time(), 1);
-  const ParticleSet& p = sim.mpm().materials()[0].particles;
-  for (size_t i = 0; i < p.count(); ++i)
-    r.lithium += p.mass[i] * diffusionParticles(p).concentration[i];
+  r.lithium = barLithium(sim);
   return r;
 }
 
