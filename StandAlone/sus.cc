@@ -6,16 +6,19 @@
 #include <malloc.h>
 #include <omp.h>
 #include <sched.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <string>
+#include <vector>
 
 #include "Core/Parallel/StopTogether.h"
 #include "Core/Util/InstructionSet.h"
+#include "Core/Util/StopRequest.h"
+#include "StandAlone/Driver/OwnRanks.h"
 #include "StandAlone/Driver/Simulation.h"
-#include "StandAlone/Driver/StopRequest.h"
 
 namespace {
 
@@ -27,7 +30,10 @@ const char* kUsage =
     "                       <DataArchiver>), with DIR/input.ups; the same thread count gives the\n"
     "                       uninterrupted run's results bit for bit\n"
     "  --max-timesteps N    stop after N steps (at most; the input's max_Timesteps still holds)\n"
-    "  --threads N          OpenMP threads (default: OMP_NUM_THREADS or all cores)\n"
+    "  --threads N          OpenMP threads (default: OMP_NUM_THREADS or all cores); an\n"
+    "                       implicit input started without mpirun runs on N ranks of 1\n"
+    "                       thread instead (mpirun -np N sus --threads 1), N > 1\n"
+    "  --one-process        an implicit input on one process of N threads\n"
     "  --ignore-unsupported run without features the input asks for but this code lacks,\n"
     "                       listing each as a warning\n"
     "  --decompose N        set the input up (one process), print the boxes N ranks would\n"
@@ -51,11 +57,42 @@ int coresOfThisRank() {
   return CPU_COUNT(&set);
 }
 
+// The arguments for the ranks of the one-command mode: this run's, with --threads 1.
+std::vector<std::string> argumentsOfRanks(int argc, char** argv) {
+  std::vector<std::string> arguments = {"--threads", "1"};
+  for (int i = 1; i < argc; ++i) {
+    if (std::strcmp(argv[i], "--threads") == 0)
+      ++i;  // and its value
+    else
+      arguments.push_back(argv[i]);
+  }
+  return arguments;
+}
+
+// The one-command mode (OwnRanks.h): this run on `ranks` ranks of one thread; its exit code, or
+// -1 (said why) when mpirun cannot start.
+int runOnOwnRanks(int ranks, int argc, char** argv) {
+  char self[4096];
+  const ssize_t n = readlink("/proc/self/exe", self, sizeof self - 1);
+  const std::string program = n > 0 ? std::string(self, static_cast<size_t>(n)) : argv[0];
+  std::fprintf(stderr,
+               "sus: an implicit input: %d ranks of 1 thread under mpirun (--one-process: 1 "
+               "process of %d threads)\n",
+               ranks, ranks);
+  std::string why;
+  const int code = anode::runOnOwnRanks(ranks, program, argumentsOfRanks(argc, argv), why);
+  if (code < 0)
+    std::fprintf(stderr, "warning: %s: the run is 1 process of %d threads\n", why.c_str(), ranks);
+  return code;
+}
+
 }  // namespace
 
 // Runs the input (or with decomposeRanks > 0 only describes its boxes); returns the exit code.
 int run(anode::RunOptions& options, long decomposeRanks) {
   const bool root = anode::Communicator::isRoot();
+  // A stop asked for during setup ends the run at its first step (its checkpoint at step 0).
+  anode::catchStopSignals();
   try {
     anode::Simulation sim(options);
     if (decomposeRanks > 0) {
@@ -84,7 +121,6 @@ int run(anode::RunOptions& options, long decomposeRanks) {
                      "slot:pe=N, srun --cpus-per-task=N)\n",
                      crowded, omp_get_max_threads());
     }
-    anode::catchStopSignals();
     try {
       sim.run();
     } catch (const anode::StoppedOnAnotherRank&) {
@@ -138,6 +174,7 @@ int main(int argc, char** argv) {
   }
   anode::RunOptions options;
   long decomposeRanks = 0;
+  bool oneProcess = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     const char* next = i + 1 < argc ? argv[i + 1] : nullptr;
@@ -164,6 +201,8 @@ int main(int argc, char** argv) {
     } else if (a == "--threads") {
       omp_set_num_threads(static_cast<int>(positiveNumber("--threads", next)));
       ++i;
+    } else if (a == "--one-process") {
+      oneProcess = true;
     } else if (a == "--decompose") {
       decomposeRanks = positiveNumber("--decompose", next);
       ++i;
@@ -194,6 +233,11 @@ int main(int argc, char** argv) {
   if (decomposeRanks > 0 && !options.restartDir.empty()) {
     std::fprintf(stderr, "sus: --decompose takes an input, not -restart\n%s", kUsage);
     return 2;
+  }
+  if (!oneProcess && decomposeRanks == 0 && omp_get_max_threads() > 1 &&
+      !anode::Communicator::launchedByLauncher() && anode::asksForImplicitPath(options.input)) {
+    const int code = runOnOwnRanks(omp_get_max_threads(), argc, argv);
+    if (code >= 0) return code;
   }
   anode::Communicator::start(&argc, &argv);
   if (decomposeRanks > 0 && anode::Communicator::size() > 1) {

@@ -2,7 +2,7 @@
 // and continued with `sus -restart DIR` writes the same files as the uninterrupted run, bit for bit
 // with the same thread count; a damaged newest checkpoint is skipped for the one before; a run
 // killed with SIGKILL at any moment leaves every file under its final name complete, and can be
-// continued to the uninterrupted run's result.
+// continued to the uninterrupted run's result; a stop signal in a quasi-static step drops it.
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/wait.h>
@@ -53,9 +53,9 @@ struct Scratch {
   ~Scratch() { fs::remove_all(dir); }
 };
 
-// sus with 2 threads and `args`, then `more`.
+// sus on one process of 2 threads (an implicit input too) with `args`, then `more`.
 testing::SusResult sus(std::vector<std::string> args, const std::vector<std::string>& more = {}) {
-  args.insert(args.begin(), {"--threads", "2"});
+  args.insert(args.begin(), {"--one-process", "--threads", "2"});
   args.insert(args.end(), more.begin(), more.end());
   return testing::runSus(args);
 }
@@ -597,6 +597,76 @@ TEST(Restart, KilledRunsLeaveCompleteFilesAndContinueToTheSameResult) {
   expectEveryFileComplete(run, 12660);
   expectSameOutputs(s.dir / "whole", run);
 }
+
+// A stop signal in a quasi-static step drops the step under way within 5 s (exit code 4): the
+// checkpoint of the step before is the run's last, and the restart continues from it to the
+// uninterrupted run's files. On one process (its threads) and in the one-command mode (two ranks
+// under mpirun, the signal to sus passed on to mpirun as SIGUSR1), for each stop signal.
+struct StopCase {
+  std::string name;
+  std::vector<std::string> mode;  // the arguments that choose one process or the ranks
+  int signal;
+  bool restart;  // and the restart compared with the uninterrupted run
+};
+
+void PrintTo(const StopCase& c, std::ostream* os) {
+  *os << c.name;
+}
+
+class StopInStep : public ::testing::TestWithParam<StopCase> {};
+
+TEST_P(StopInStep, DropsTheStepUnderWayAndTheRestartContinuesBitForBit) {
+  const StopCase& c = GetParam();
+  Scratch s("stop_" + c.name);
+  // Its first step takes several seconds (Newton 10, diffusion sub-steps) on 2 cores.
+  const std::string input = kSource + "/inputs/Paper/QuasiStatic_Fig4.ups";
+  const auto withMode = [&](std::vector<std::string> args) {
+    args.insert(args.begin(), c.mode.begin(), c.mode.end());
+    return args;
+  };
+  const fs::path run = s.dir / "stopped";
+  const pid_t pid =
+      startSus(withMode({"--max-timesteps", "2", "-o", run.string(), input}), s.dir / "log");
+  ASSERT_GE(pid, 0);
+  // The start's checkpoint is its last write before the first step.
+  for (int i = 0; i < 600 && listCheckpoints(run.string()).empty(); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  std::this_thread::sleep_for(std::chrono::milliseconds(1000));
+  const auto sent = std::chrono::steady_clock::now();
+  kill(pid, c.signal);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - sent).count();
+  const std::string log = readFile(s.dir / "log");
+  ASSERT_TRUE(WIFEXITED(status)) << log;
+  EXPECT_EQ(WEXITSTATUS(status), 4) << log;
+  EXPECT_LT(seconds, 5.0) << log;
+  EXPECT_NE(log.find("step 1 dropped"), std::string::npos) << log;
+  EXPECT_NE(log.find("stopped on request"), std::string::npos) << log;
+  if (!c.restart) return;
+  const fs::path whole = s.dir / "whole";
+  const testing::SusResult uninterrupted =
+      testing::runSus(withMode({"--max-timesteps", "2", "-o", whole.string(), input}));
+  ASSERT_EQ(uninterrupted.exitCode, 0) << uninterrupted.output;
+  const testing::SusResult restart =
+      testing::runSus(withMode({"--max-timesteps", "2", "-restart", run.string()}));
+  ASSERT_EQ(restart.exitCode, 0) << restart.output;
+  expectSameOutputs(whole, run);
+}
+
+const std::vector<std::string> kOneProcess = {"--one-process", "--threads", "2"};
+const std::vector<std::string> kOneCommand = {"--threads", "2"};
+
+INSTANTIATE_TEST_SUITE_P(
+    Signals, StopInStep,
+    ::testing::Values(StopCase{"sigint_one_process", kOneProcess, SIGINT, true},
+                      StopCase{"sigterm_one_process", kOneProcess, SIGTERM, false},
+                      StopCase{"sigusr1_one_process", kOneProcess, SIGUSR1, false},
+                      StopCase{"sigint_one_command", kOneCommand, SIGINT, true},
+                      StopCase{"sigterm_one_command", kOneCommand, SIGTERM, false},
+                      StopCase{"sigusr1_one_command", kOneCommand, SIGUSR1, false}),
+    [](const ::testing::TestParamInfo<StopCase>& i) { return i.param.name; });
 
 }  // namespace
 }  // namespace anode

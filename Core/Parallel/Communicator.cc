@@ -129,6 +129,10 @@ struct MessageTypes {
 
 }  // namespace
 
+bool Communicator::launchedByLauncher() {
+  return launchedByMpi();
+}
+
 void Communicator::start(int* argc, char*** argv) {
   if (!launchedByMpi()) return;
   int provided = 0;

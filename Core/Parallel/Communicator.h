@@ -29,6 +29,8 @@ class Communicator {
   // Starts MPI (threads funnelled through the main thread) when the environment shows a launch
   // by an MPI launcher; otherwise does nothing. `stop` ends MPI if `start` began it.
   static void start(int* argc, char*** argv);
+  // Whether the environment shows such a launch (mpirun, srun, MPICH's hydra).
+  static bool launchedByLauncher();
   static void stop();
   // Runs `f` in `stop` before MPI ends (a library that uses MPI too, such as PETSc, ends first);
   // when `start` did not begin MPI, at the process's exit.

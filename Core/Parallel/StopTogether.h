@@ -9,6 +9,7 @@
 
 #include "Core/Parallel/Communicator.h"
 #include "Core/Util/Errors.h"
+#include "Core/Util/StopRequest.h"
 
 namespace anode {
 
@@ -32,7 +33,21 @@ class SetupFailedOnAnotherRank : public std::runtime_error {
   bool input;
 };
 
+// A stop request (StopRequest.h) every rank found at the same point of a step: the step under
+// way is dropped, its particles set back to its start, and the run ends as after a stop between
+// steps.
+class StopRequestedInStep : public std::runtime_error {
+ public:
+  StopRequestedInStep() : std::runtime_error("stopped on request in a step") {}
+};
+
 namespace collective {
+
+// Throws StopRequestedInStep on every rank when a stop signal reached any rank. One reduction of
+// a bool (nothing on a run of one rank).
+inline void stopIfRequested(Collective every) {
+  if (any(every, stopRequested())) throw StopRequestedInStep();
+}
 
 // Runs `phase`, a setup that calls no collective (reading the input, building what it asks for);
 // when it throws on any rank (an input one rank cannot read, a memory check on one node), every

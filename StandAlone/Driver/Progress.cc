@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <string>
 
 namespace anode {
@@ -28,7 +29,7 @@ ProgressReporter::ProgressReporter(double startTime, double maxTime, long startS
       maxTime_(maxTime),
       startStep_(startStep),
       maxSteps_(maxSteps),
-      terminal_(::isatty(STDERR_FILENO)),
+      terminal_(::isatty(STDERR_FILENO) || std::getenv(kProgressOnTerminal)),
       start_(std::chrono::steady_clock::now()),
       last_(start_) {}
 

@@ -7,6 +7,10 @@
 
 namespace anode {
 
+// Set in the environment of the ranks of the one-command mode (OwnRanks.h) when its stderr is a
+// terminal: mpirun passes their stderr on to it, a line rewritten included.
+constexpr const char* kProgressOnTerminal = "ANODE_PROGRESS_ON_TERMINAL";
+
 // Seconds as the ETA shows them: 42s, 3m05s, 5h07m, 12 days, 3.4e+03 years; "?" if negative.
 std::string durationText(double seconds);
 

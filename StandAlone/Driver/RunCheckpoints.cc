@@ -56,6 +56,7 @@ void RunCheckpoints::write(Collective every, CheckpointKind kind, CheckpointHead
   if (Communicator::isRoot() && std::filesystem::exists(history)) syncToDisk(history.string());
   if (kind == CheckpointKind::Scheduled) lastScheduledTime_ = state.t;
   newest_ = checkpointPath(dir, state.step, kind);
+  newestStep_ = state.step;
   state.threads = omp_get_max_threads();
   state.ranks = Communicator::size();
   state.inputHash = inputHash_;
@@ -167,6 +168,7 @@ CheckpointHeader RunCheckpoints::loadNewest(Collective every, const std::string&
     // written) stops the restart, and is no reason to go back to an older checkpoint.
     archiver.restoreOutputsTo(every, read.step);
     newest_ = path;
+    newestStep_ = read.step;
     return read;
   }
   throw std::runtime_error("no complete checkpoint in " + dir + "/checkpoints");

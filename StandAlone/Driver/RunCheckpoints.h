@@ -24,6 +24,8 @@ class RunCheckpoints {
   bool isDue(long step, double time) const;
   // The newest checkpoint of either kind, where a replay to the last good state starts.
   const std::string& newest() const { return newest_; }
+  // Its step (-1 before any).
+  long newestStep() const { return newestStep_; }
 
   // A fresh run's directory may hold an earlier run's checkpoints (an -o used before): rank 0
   // removes them before this run writes anything (its history and outputs replace that run's, so
@@ -64,6 +66,7 @@ class RunCheckpoints {
   std::string input_;       // the input file
   uint64_t inputHash_ = 0;  // its hash, stored in checkpoints
   std::string newest_;      // of either kind
+  long newestStep_ = -1;
   // The time of the newest of the input's checkpoints (before any: the start's).
   double lastScheduledTime_ = 0;
 };

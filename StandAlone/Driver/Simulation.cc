@@ -12,10 +12,10 @@
 #include "Components/MPM/IntegratorFactory.h"
 #include "Core/Parallel/Communicator.h"
 #include "Core/Parallel/StopTogether.h"
+#include "Core/Util/StopRequest.h"
 #include "StandAlone/Driver/RunReport.h"
 #include "StandAlone/Driver/RunTimings.h"
 #include "StandAlone/Driver/StepForecast.h"
-#include "StandAlone/Driver/StopRequest.h"
 
 namespace anode {
 
@@ -134,7 +134,13 @@ void Simulation::run() {
   if (nothingLeft && archiver_.lastOutputStep() != step_) writeOutput(every, false);
   while (!nothingLeft) {
     const StableTimestep::Limit stepLimit = dtLimit_;
-    const double stepDt = advanceAndRecord(every);
+    double stepDt = 0;
+    try {
+      stepDt = advanceAndRecord(every);
+    } catch (const StopRequestedInStep&) {
+      stopInStep(every);
+      break;
+    }
     const bool done = finished(every);
     const bool atInputEnd = done && reachedInputEnd();
     // A rebalance is followed by a checkpoint, so a replay to the last good state never
@@ -161,6 +167,17 @@ void Simulation::run() {
     if (done || stoppedOnRequest_) break;
   }
   finishRun();
+}
+
+void Simulation::stopInStep(Collective every) {
+  stoppedOnRequest_ = true;
+  if (progress_) progress_->finish();
+  if (Communicator::isRoot())
+    std::fprintf(stderr, "sus: step %ld dropped: a stop was requested while it ran\n", step_ + 1);
+  // The particles are the last completed step's again: its checkpoint (unless written), then
+  // its output as the series' last entry, as a stop between steps leaves them.
+  if (checkpoints_.newestStep() != step_) writeCheckpoint(every, CheckpointKind::Automatic);
+  if (archiver_.lastOutputStep() != step_) writeOutput(every, false);
 }
 
 double Simulation::advanceAndRecord(Collective every) {

@@ -86,6 +86,9 @@ class Simulation {
   // One step of the time loop: advance() (a failed step: writeStateOnStop, and the error
   // rethrown), the step's history row and counts, and its notes; returns the dt it took.
   double advanceAndRecord(Collective);
+  // A step dropped by a stop request in one of its long phases (StopRequestedInStep): the
+  // checkpoint and the output of the last completed step.
+  void stopInStep(Collective);
   // The progress line after a step of `stepDt`, whose dt `stepLimit` set.
   void updateProgress(StableTimestep::Limit stepLimit, double stepDt, bool done);
   // The run's end: a stopped run's way to continue (RunCheckpoints::atEnd), report.html and the

@@ -12,6 +12,7 @@
 #include <utility>
 
 #include "Components/MPM/Implicit/Newmark.h"
+#include "Core/Parallel/StopTogether.h"
 
 namespace anode {
 
@@ -175,6 +176,7 @@ NewtonReport EquilibriumSolver::solve(Collective every, const EquilibriumProblem
                        " iterations (<iters_before_timestep_restart>)";
       return report;
     }
+    collective::stopIfRequested(every);  // a stop drops the step between iterations
     ++report.iterations;
     const bool keepTangent =
         report.iterations == 1

@@ -200,11 +200,44 @@ StepTaken ImplicitStep::advance(Collective every, double t, double dt, double ru
   }
   // A step retaken with a smaller dt diffuses again from the particles of the step's start.
   std::vector<ParticleSet> start;
-  int retakes = 0;
   if (diffusion) {
     for (const MPMMaterial& mat : materials) start.push_back(mat.particles);
     diffusion_->keepStepStart();
   }
+  // A stop request in a long phase drops the step: its particles and diffusion state are set
+  // back to its start, as the last completed step left them (bit for bit: its checkpoint is
+  // the run's last).
+  try {
+    takeEquilibriumStep(every, t, dt, ruleDt, start);  // 2-4: c over dt, then Newton
+  } catch (const StopRequestedInStep&) {
+    for (size_t m = 0; m < start.size(); ++m) materials[m].particles = start[m];
+    if (diffusion) diffusion_->dropStep();
+    throw;
+  }
+  if (diffusion) diffusion_->releaseStepStart();
+  {
+    ScopedTimer s(mpm_.timers(), tasks_.particleUpdate);
+    // 5: x, F, stress and the models' state
+    collective::stopTogether(every, [&] { updateParticlesFromEquilibrium(dt); });
+  }
+  if (mpm_.problem().flags.refineParticles) {
+    ScopedTimer s(mpm_.timers(), tasks_.splitting);
+    mpm_.splitParticles(every);
+  }
+  if (mpm_.layout().distributed()) {
+    ScopedTimer s(mpm_.timers(), tasks_.communication);
+    mpm_.migrateParticles(every);  // particles that left the rank's box go to its owner
+  }
+  lastDt_ = dt;
+  ruleDt_ = ruleDt;
+  return {dt, ruleDt};
+}
+
+void ImplicitStep::takeEquilibriumStep(Collective every, double t, double& dt, double& ruleDt,
+                                       const std::vector<ParticleSet>& start) {
+  std::vector<MPMMaterial>& materials = mpm_.materials();
+  const bool diffusion = mpm_.diffusion();
+  int retakes = 0;
   while (true) {
     mpm_.interpolateParticlesToGrid(every);  // the nodal masses (and the concentration's sums)
     // 2: c over dt; a step in which c changed by more than twice the bound of
@@ -276,9 +309,8 @@ StepTaken ImplicitStep::advance(Collective every, double t, double dt, double ru
     double smaller = covered < dt           ? covered
                      : rejectedEstimate > 0 ? dt_.retakeForError(dt, rejectedEstimate)
                                             : dt_.retakeDt(dt, failedChange);
-    for (size_t m = 0; m < start.size(); ++m) materials[m].particles = start[m];
     if (diffusion) {
-      diffusion_->returnToStepStart(every, materials, t);
+      returnToStepStart(every, t, start);
       smaller = std::min(smaller, diffusion_->longestPass(every, materials));
     }
     const std::string refusal = dt_.refusesRetake(smaller, retakes);
@@ -289,23 +321,13 @@ StepTaken ImplicitStep::advance(Collective every, double t, double dt, double ru
     dt = smaller;
     ruleDt = smaller;
   }
-  if (diffusion) diffusion_->releaseStepStart();
-  {
-    ScopedTimer s(mpm_.timers(), tasks_.particleUpdate);
-    // 5: x, F, stress and the models' state
-    collective::stopTogether(every, [&] { updateParticlesFromEquilibrium(dt); });
-  }
-  if (mpm_.problem().flags.refineParticles) {
-    ScopedTimer s(mpm_.timers(), tasks_.splitting);
-    mpm_.splitParticles(every);
-  }
-  if (mpm_.layout().distributed()) {
-    ScopedTimer s(mpm_.timers(), tasks_.communication);
-    mpm_.migrateParticles(every);  // particles that left the rank's box go to its owner
-  }
-  lastDt_ = dt;
-  ruleDt_ = ruleDt;
-  return {dt, ruleDt};
+}
+
+void ImplicitStep::returnToStepStart(Collective every, double t,
+                                     const std::vector<ParticleSet>& start) {
+  std::vector<MPMMaterial>& materials = mpm_.materials();
+  for (size_t m = 0; m < start.size(); ++m) materials[m].particles = start[m];
+  diffusion_->returnToStepStart(every, materials, t);
 }
 
 void ImplicitStep::stop(double t, double dt, const std::string& refusal,

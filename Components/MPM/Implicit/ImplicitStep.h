@@ -108,6 +108,13 @@ class ImplicitStep : public Integrator {
                                                   const std::vector<ParticleSet>& start,
                                                   std::vector<std::vector<Vec3>>& predicted,
                                                   double& correction, double& estimate);
+  // Steps 2-4 from t over dt: the diffusion (twice with the trapezoidal coupling) and Newton,
+  // retaken with a smaller dt (and ruleDt) until they hold; `start` holds the step's particles
+  // with diffusion. Leaves the particles as the diffusion left them and Newton's increments.
+  void takeEquilibriumStep(Collective, double t, double& dt, double& ruleDt,
+                           const std::vector<ParticleSet>& start);
+  // The particles of `start` and the diffusion state of the step's start, at t (with diffusion).
+  void returnToStepStart(Collective, double t, const std::vector<ParticleSet>& start);
   // The largest |dc| of a particle over the diffusion of the step.
   double largestConcentrationChange() const;
   // The particles after the converged step (positions, F, stress, the models' state).

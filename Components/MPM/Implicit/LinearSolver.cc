@@ -6,7 +6,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "Core/Parallel/Communicator.h"
+#include "Core/Parallel/StopTogether.h"
 
 namespace anode {
 
@@ -44,6 +44,33 @@ void startPetsc(Collective) {
   Communicator::beforeStop(endPetsc);
 }
 
+// KSP's default convergence test, and a stop request (StopRequest.h) of any rank ends the solve
+// between two Krylov iterations: `stopped`, for LinearSolver::run to throw StopRequestedInStep
+// (not through PETSc). Every rank tests the same iteration: one reduction of a bool each.
+struct StopTest {
+  Collective every;
+  void* defaults = nullptr;  // KSPConvergedDefault's context
+  bool stopped = false;
+};
+
+PetscErrorCode convergedOrStopped(KSP ksp, PetscInt iteration, PetscReal norm,
+                                  KSPConvergedReason* reason, void* context) {
+  auto* test = static_cast<StopTest*>(context);
+  PetscCall(KSPConvergedDefault(ksp, iteration, norm, reason, test->defaults));
+  if (*reason == KSP_CONVERGED_ITERATING && collective::any(test->every, stopRequested())) {
+    test->stopped = true;
+    *reason = KSP_DIVERGED_ITS;
+  }
+  return 0;
+}
+
+PetscErrorCode destroyStopTest(void* context) {
+  auto* test = static_cast<StopTest*>(context);
+  PetscCall(KSPConvergedDefaultDestroy(test->defaults));
+  delete test;
+  return 0;
+}
+
 }  // namespace
 
 // One PETSc object of each kind the solves use.
@@ -53,6 +80,7 @@ struct LinearSolver::Objects {
   Mat part[2] = {nullptr, nullptr};
   Vec x = nullptr, b = nullptr, scale = nullptr, residual = nullptr;
   KSP ksp = nullptr;
+  StopTest* stopTest = nullptr;  // the ksp's (destroyed with it)
   ~Objects() {
     KSPDestroy(&ksp);
     VecDestroy(&residual);
@@ -119,6 +147,10 @@ LinearSolver::LinearSolver(Collective every, const BlockMatrix& pattern, RowLayo
   // Krylov iterations in 16 Newton iterations; 119 in 9 with the preconditioner built anew).
   check(PCGAMGSetReuseInterpolation(pc, PETSC_FALSE), "PCGAMGSetReuseInterpolation");
   check(KSPSetFromOptions(o_->ksp), "KSPSetFromOptions");
+  o_->stopTest = new StopTest{every};
+  check(KSPConvergedDefaultCreate(&o_->stopTest->defaults), "KSPConvergedDefaultCreate");
+  check(KSPSetConvergenceTest(o_->ksp, convergedOrStopped, o_->stopTest, destroyStopTest),
+        "KSPSetConvergenceTest");
 }
 
 LinearSolver::~LinearSolver() = default;
@@ -316,6 +348,7 @@ LinearSolve LinearSolver::run(Collective every, const std::vector<double>& b,
   for (int i : fixedOwned_) bb[i] = 0;
   check(VecRestoreArray(o_->b, &bb), "VecRestoreArray");
   check(KSPSolve(o_->ksp, o_->b, o_->x), "KSPSolve");
+  if (o_->stopTest->stopped) throw StopRequestedInStep();
 
   LinearSolve s;
   s.newPreconditioner = newPreconditioner;

@@ -4,7 +4,7 @@
 
 #include "Components/MPM/ReactiveFlow/RungeKuttaLegendre.h"
 #include "Components/MPM/ReactiveFlow/SubcellRelaxation.h"
-#include "Core/Parallel/Communicator.h"
+#include "Core/Parallel/StopTogether.h"
 
 namespace anode {
 
@@ -86,6 +86,7 @@ DiffusionPass::Pass DiffusionPass::diffuseInSubsteps(Collective every, Concentra
   // At dt = coveredBy(limit) and a constant limit, the remainder rule below makes the last of
   // kMaxRateEvaluations sub-steps end at t + dt.
   while (done < dt && substeps < kMaxRateEvaluations) {
+    collective::stopIfRequested(every);  // a stop drops the step between sub-steps
     const double limit = substepLimit(every, materials);
     // The last sub-step ends at t + dt exactly (a remainder below 1e-12 dt joins the one before).
     double h = std::min(limit, dt - done);
@@ -147,6 +148,7 @@ DiffusionPass::Pass DiffusionPass::diffuseInLegendreStages(
   // m D grad c and the flux sources, and the nodal rates gathered with the sources each particle
   // receives (ConcentrationGather's update over a unit time).
   const auto rate = [&](const std::vector<double>& y, std::vector<double>& f) {
+    collective::stopIfRequested(every);  // a stop drops the step between stages
     setConcentrations(y);
     updateDiffusionState(every, materials, middle);
     gradientOfNodalConcentration();

@@ -57,6 +57,12 @@ class DiffusionPass {
   void returnToStepStart(Collective, std::vector<MPMMaterial>& materials, double t);
   // Frees that state once the step is taken (it holds the flux BCs' state).
   void releaseStepStart() { start_.reset(); }
+  // A step dropped: that state as it was kept (the caller's particles hold the rest of the
+  // start, their diffusion state as the step before left it), then freed.
+  void dropStep() {
+    diffusion_.restoreStepState(*start_);
+    start_.reset();
+  }
 
  private:
   // The time kMaxRateEvaluations cover with sub-steps of `limit` (rkl2: its stability interval).

@@ -413,13 +413,14 @@ void ReactiveFlow::summarize(const std::vector<MPMMaterial>& materials, StepSumm
 }
 
 ReactiveFlow::StepState ReactiveFlow::stepState() const {
-  StepState state{flux_, {}};
+  StepState state{flux_, {}, maxDiffusivity_};
   for (const DiffusionMaterial& mat : materials_) state.models.push_back(mat.model->stepState());
   return state;
 }
 
 void ReactiveFlow::restoreStepState(const StepState& state) {
   flux_ = state.flux;
+  maxDiffusivity_ = state.maxDiffusivity;
   for (size_t m = 0; m < materials_.size(); ++m)
     materials_[m].model->restoreStepState(state.models[m]);
 }

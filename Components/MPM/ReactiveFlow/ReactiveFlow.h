@@ -152,10 +152,12 @@ class ReactiveFlow {
   }
   // The state a quasi-static step retaken with a smaller dt starts again from (DiffusionPass):
   // the flux BCs' (the auto-cycle sign, the galvanostatic currents ended, their notes) and the
-  // diffusivity models' (the interval a <diff_curve> is in).
+  // diffusivity models' (the interval a <diff_curve> is in) and the largest diffusivity: all
+  // saveState writes, so a step dropped leaves the checkpoint of the step before.
   struct StepState {
     ExternalScalarFlux flux;
     std::vector<std::vector<uint64_t>> models;
+    double maxDiffusivity = 0;
   };
   StepState stepState() const;
   void restoreStepState(const StepState& state);

@@ -1,4 +1,4 @@
-#include "StandAlone/Driver/StopRequest.h"
+#include "Core/Util/StopRequest.h"
 
 #include <csignal>
 
