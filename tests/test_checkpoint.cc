@@ -338,6 +338,34 @@ TEST(Restart, LeavesMissingOutputsOutOfTheSeries) {
     EXPECT_TRUE(fs::exists(s.dir / "run" / (*m)[1].str())) << (*m)[1].str();
 }
 
+// A restart that cannot write particles.pvd stops (exit code 1) with every output file and
+// history.csv as they were: the outputs after its checkpoint (here the stop's output at the
+// checkpoint's own step) go only once the series and the history are written.
+TEST(Restart, KeepsEveryOutputWhenItCannotWriteTheSeries) {
+  Scratch s("unwritable");
+  const fs::path run = s.dir / "run";
+  ASSERT_EQ(sus({"--max-timesteps", "1000", "-o", run.string(),
+                 kSource + "/tests/checkpoint/AutoCycleSlab.ups"})
+                .exitCode,
+            0);
+  const auto outputs = [&] {
+    std::vector<std::string> names;
+    for (const auto& e : fs::directory_iterator(run / "particles"))
+      names.push_back(e.path().filename().string());
+    std::sort(names.begin(), names.end());
+    return names;
+  };
+  const std::vector<std::string> before = outputs();
+  ASSERT_NE(std::find(before.begin(), before.end(), "step_001000.vtu"), before.end());
+  const std::string history = readFile(run / "history.csv");
+  fs::remove(run / "particles.pvd");
+  fs::create_directories(run / "particles.pvd" / "in_the_way");
+  const testing::SusResult restart = sus({"--max-timesteps", "1100", "-restart", run.string()});
+  EXPECT_EQ(restart.exitCode, 1) << restart.output;
+  EXPECT_EQ(outputs(), before);
+  EXPECT_EQ(readFile(run / "history.csv"), history);
+}
+
 TEST(CheckpointSchedule, KeepsUintahsTwoWithoutCycle) {
   const auto spec = ProblemSpec::fromText(
       "<Uintah_specification><DataArchiver><checkpoint timestepInterval=\"5\"/></DataArchiver>"

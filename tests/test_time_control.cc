@@ -8,6 +8,7 @@
 #include <limits>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "Components/MPM/TimestepController.h"
 #include "Core/Grid/TimeControl.h"
@@ -161,6 +162,31 @@ TEST(TimestepController, ARetakeStopsBelowDeltMinOrAfterTwentyRetakes) {
   EXPECT_NE(c.refusesRetake(1e-7, 0).find("below <delt_min>"), std::string::npos);
   EXPECT_EQ(c.refusesRetake(1e-3, 19), "");
   EXPECT_NE(c.refusesRetake(1e-3, 20).find("20 retakes"), std::string::npos);
+}
+
+// Newton stalling at the same ratios however small dt becomes stops the retakes once the
+// attempts span 3 retakes and 8x in dt; ratios that move, or too small a span, do not.
+TEST(TimestepController, ANewtonThatStallsWhateverDtStopsTheRetakes) {
+  using Failed = TimestepController::FailedNewton;
+  std::vector<Failed> failed;
+  for (double dt = 17; failed.size() < 6; dt *= 0.6) failed.push_back({dt, 0.1, 6.7e-5});
+  // 17 x 0.6^4 = 2.2: five attempts span 7.7x, six 12.9x.
+  EXPECT_EQ(TimestepController::refusesStalledNewton({failed.begin(), failed.begin() + 5}), "");
+  const std::string refusal = TimestepController::refusesStalledNewton(failed);
+  EXPECT_NE(refusal.find("Newton stalls whatever dt"), std::string::npos) << refusal;
+  EXPECT_NE(refusal.find("over 6 attempts"), std::string::npos) << refusal;
+  // Ratios 4% apart still stall; one 6% off the newest does not.
+  failed[2].dispRatio = 0.104;
+  EXPECT_NE(TimestepController::refusesStalledNewton(failed), "");
+  failed[0].energyRatio = 6.7e-5 * 1.06;
+  failed[1].energyRatio = 6.7e-5 * 1.06;
+  EXPECT_EQ(TimestepController::refusesStalledNewton(failed), "");
+  // The newest attempts alone can span 8x with a sharper cut: four attempts at 0.5 do.
+  std::vector<Failed> halved;
+  for (double dt = 16; halved.size() < 4; dt /= 2) halved.push_back({dt, 0.3, 0.01});
+  EXPECT_NE(TimestepController::refusesStalledNewton(halved), "");
+  halved.pop_back();
+  EXPECT_EQ(TimestepController::refusesStalledNewton(halved), "");
 }
 
 TEST(TimeControl, ClampsInUintahsOrder) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <sstream>
 
 namespace anode {
 
@@ -117,6 +118,30 @@ std::string TimestepController::refusesRetake(double retake, int retakes) const 
            std::to_string(time_.deltMin);
   if (retakes >= kMaxRetakes)
     return std::to_string(kMaxRetakes) + " retakes with a smaller dt failed";
+  return {};
+}
+
+std::string TimestepController::refusesStalledNewton(const std::vector<FailedNewton>& failed) {
+  if (failed.size() < 4) return {};
+  const FailedNewton& newest = failed.back();
+  const auto near = [](double a, double b) { return std::abs(a - b) <= 0.05 * std::abs(b); };
+  double largestDt = newest.dt;
+  for (size_t k = failed.size() - 1; k-- > 0;) {
+    const FailedNewton& f = failed[k];
+    if (!near(f.dispRatio, newest.dispRatio) || !near(f.energyRatio, newest.energyRatio)) return {};
+    largestDt = std::max(largestDt, f.dt);
+    const size_t attempts = failed.size() - k;
+    if (attempts >= 4 && largestDt >= 8 * newest.dt) {
+      std::ostringstream s;
+      s.precision(3);
+      s << "Newton stalls whatever dt: its last ratios stayed within 5% of (" << newest.dispRatio
+        << ", " << newest.energyRatio << ") over " << attempts
+        << " attempts from dt = " << largestDt << " to " << newest.dt
+        << ", so a smaller dt cures nothing (the equilibrium problem itself, not the step, "
+           "stops it)";
+      return s.str();
+    }
+  }
   return {};
 }
 

@@ -10,6 +10,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "Components/MPM/ImplicitOptions.h"
 #include "Components/MPM/StableTimestep.h"
@@ -56,6 +57,14 @@ class TimestepController {
   // Why a retake of dt `retake` after `retakes` earlier ones of the same step is not taken:
   // below <delt_min>, or past kMaxRetakes; empty when it is.
   std::string refusesRetake(double retake, int retakes) const;
+  // A Newton solve of a step that failed: its dt and its last ratios (NewtonReport::ratios).
+  struct FailedNewton {
+    double dt, dispRatio, energyRatio;
+  };
+  // Why no retake is taken after the failed Newton solves of a step, oldest first, when Newton
+  // stalls whatever dt: each last ratio within 5% of the newest solve's over attempts that span
+  // 3 retakes or more and 8x or more in dt (a smaller dt then cures nothing); empty otherwise.
+  static std::string refusesStalledNewton(const std::vector<FailedNewton>& failed);
   // The diffusion sub-steps' share of the explicit limits (<timestep_multiplier>).
   double substepMultiplier() const { return time_.multiplier; }
 

@@ -406,20 +406,21 @@ namespace {
 
 // history.csv without the rows after `step` (and without a last line a kill cut short); returns
 // an error message, empty on success.
-std::string truncateHistory(const std::string& path, long step) {
+// The rows of history.csv at `path` up to `step` into `kept`; an error message (empty: none).
+std::string historyUpTo(const std::string& path, long step, std::string& kept) {
   std::ifstream in(path);
   std::string header;
   if (!std::getline(in, header))
     return path + ": missing or empty; a restart continues the history its run wrote";
   const auto fields = std::count(header.begin(), header.end(), ',');
-  std::string kept = header + '\n', line;
+  kept = header + '\n';
+  std::string line;
   while (std::getline(in, line) && !in.eof()) {  // a last line with no newline was cut short
     char* end = nullptr;
     const long rowStep = std::strtol(line.c_str(), &end, 10);
     if (std::count(line.begin(), line.end(), ',') != fields || *end != ',' || rowStep > step) break;
     kept += line + '\n';
   }
-  writeFileAtomically(path, kept);
   return "";
 }
 
@@ -428,15 +429,20 @@ std::string truncateHistory(const std::string& path, long step) {
 void DataArchiver::restoreOutputsTo(Collective every, long step) {
   unwritten_.clear();
   historyStarted_ = true;
-  // On rank 0, history.csv first: when it cannot be restored the restart stops with every output
-  // kept. Its errors reach every rank.
+  // On rank 0: history.csv read, then the .pvd files and history.csv written (each replaced
+  // whole), and only then the outputs after the checkpoint removed, so that an error (a file
+  // that cannot be read or written) stops the restart with every output file kept. Its errors
+  // reach every rank.
   collective::onRootTogether(
       every,
       [&] {
-        const std::string error = truncateHistory((fs::path(dir_) / "history.csv").string(), step);
+        const std::string history = (fs::path(dir_) / "history.csv").string();
+        std::string kept;
+        const std::string error = historyUpTo(history, step, kept);
         if (error.empty()) {
-          removeOutputFilesAfter(step);
           writeIndexFiles();
+          writeFileAtomically(history, kept);
+          removeOutputFilesAfter(step);
         }
         return error;
       },

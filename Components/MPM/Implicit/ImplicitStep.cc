@@ -238,6 +238,7 @@ void ImplicitStep::takeEquilibriumStep(Collective every, double t, double& dt, d
   std::vector<MPMMaterial>& materials = mpm_.materials();
   const bool diffusion = mpm_.diffusion();
   int retakes = 0;
+  std::vector<TimestepController::FailedNewton> failedNewton;  // of this step's attempts
   while (true) {
     mpm_.interpolateParticlesToGrid(every);  // the nodal masses (and the concentration's sums)
     // 2: c over dt; a step in which c changed by more than twice the bound of
@@ -303,6 +304,9 @@ void ImplicitStep::takeEquilibriumStep(Collective every, double t, double& dt, d
         newton_.lastLinearTolerances = report.linearTolerances;
         break;
       }
+      // The first iteration's ratios are 1 by definition: a stall shows from the second on.
+      if (report.ratios.size() >= 2)
+        failedNewton.push_back({dt, report.ratios.back().first, report.ratios.back().second});
     }
     // A pass stopped by its cap is retaken over the time it covered; every retake's pass keeps
     // to the cap from the diffusion state it starts from.
@@ -313,7 +317,9 @@ void ImplicitStep::takeEquilibriumStep(Collective every, double t, double& dt, d
       returnToStepStart(every, t, start);
       smaller = std::min(smaller, diffusion_->longestPass(every, materials));
     }
-    const std::string refusal = dt_.refusesRetake(smaller, retakes);
+    std::string refusal = dt_.refusesRetake(smaller, retakes);
+    if (refusal.empty() && rejectedEstimate == 0 && failedChange == 0 && covered == dt)
+      refusal = TimestepController::refusesStalledNewton(failedNewton);
     if (!refusal.empty()) stop(t, dt, refusal, report);
     ++retakes;
     ++newton_.retakes;

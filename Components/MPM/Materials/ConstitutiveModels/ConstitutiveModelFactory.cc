@@ -1,3 +1,5 @@
+#include <cmath>
+
 #include "Components/MPM/Materials/ConstitutiveModels/ConcreteModels.h"
 #include "Components/MPM/Materials/ConstitutiveModels/ConstitutiveModel.h"
 
@@ -17,10 +19,18 @@ ElasticConstants ElasticConstants::fromInput(const PSNode& node, bool diffusion)
   if (!(c.K > 0)) node.requireChild("bulk_modulus").fail("<bulk_modulus> must be positive");
   c.G = node.require<double>("shear_modulus");
   if (!(c.G > 0)) node.requireChild("shear_modulus").fail("<shear_modulus> must be positive");
-  if (diffusion)
+  if (diffusion) {
     c.eta = node.require<double>("volume_expansion_coeff");
-  else
+    // The swelling J = exp(3 eta c) of the stress-free particle (c = c / c_max in [0, 1]) within
+    // 1/1000 and 1000 at c = 1: silicon's is about 4 (eta = 0.46), the paper's eta 0.56.
+    if (!(std::abs(c.eta) <= std::log(1000.0) / 3))
+      node.requireChild("volume_expansion_coeff")
+          .fail(
+              "<volume_expansion_coeff> must lie within -2.3 and 2.3: the swelling J = exp(3 "
+              "eta c) at c = c_max within 1/1000 and 1000 (silicon's eta is about 0.46)");
+  } else {
     node.acceptInert("volume_expansion_coeff");
+  }
   return c;
 }
 
