@@ -5,7 +5,6 @@
 // same code on every rank and prints each message once.
 #include <malloc.h>
 #include <omp.h>
-#include <sched.h>
 #include <unistd.h>
 
 #include <cstdio>
@@ -47,14 +46,6 @@ long positiveNumber(const char* flag, const char* value) {
     std::exit(2);
   }
   return v;
-}
-
-// The cores this process may run on (its affinity mask), 0 if unknown.
-int coresOfThisRank() {
-  cpu_set_t set;
-  CPU_ZERO(&set);
-  if (sched_getaffinity(0, sizeof set, &set) != 0) return 0;
-  return CPU_COUNT(&set);
 }
 
 // The arguments for the ranks of the one-command mode: this run's, with --threads 1.
@@ -103,7 +94,7 @@ int run(anode::RunOptions& options, long decomposeRanks) {
       for (const std::string& w : sim.warnings()) std::fprintf(stderr, "warning: %s\n", w.c_str());
     // A launcher that binds each rank to fewer cores than it has threads (Open MPI binds to one
     // core for 2 ranks or fewer) makes the threads take turns: said once, not changed.
-    const int cores = coresOfThisRank();
+    const int cores = anode::coresOfThisProcess();
     const int crowded = anode::collective::firstRankWith(
         anode::Communicator::everyRank(), cores > 0 && omp_get_max_threads() > cores);
     if (root) {

@@ -42,13 +42,13 @@ std::string findOnPath(const char* name) {
   return {};
 }
 
+}  // namespace
+
 int coresOfThisProcess() {
   cpu_set_t set;
   CPU_ZERO(&set);
   return sched_getaffinity(0, sizeof set, &set) == 0 ? CPU_COUNT(&set) : 0;
 }
-
-}  // namespace
 
 bool asksForImplicitPath(const std::string& path) {
   try {

@@ -10,6 +10,9 @@
 
 namespace anode {
 
+// The cores this process may run on (its affinity mask), 0 if unknown.
+int coresOfThisProcess();
+
 // Whether the input at `path` asks for the implicit path (<MPM><time_integrator>implicit); false
 // when it cannot be read (the run then says why).
 bool asksForImplicitPath(const std::string& path);

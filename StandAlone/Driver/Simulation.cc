@@ -15,6 +15,7 @@
 #include "Core/Util/StopRequest.h"
 #include "StandAlone/Driver/RunReport.h"
 #include "StandAlone/Driver/RunTimings.h"
+#include "StandAlone/Driver/SetupReport.h"
 #include "StandAlone/Driver/StepForecast.h"
 
 namespace anode {
@@ -273,32 +274,9 @@ bool Simulation::finished(Collective every) const {
 void Simulation::reportSetup(Collective every) {
   const size_t particles = mpm_.summarize(every).particles;
   const double imbalance = balance_.start(every, mpm_);
-  // Setup's wall time and the memory it left (the peak so far), of the slowest and the largest
-  // rank and of the smallest.
-  double setup[4] = {setupSeconds_, setupPeakBytes_, -setupSeconds_, -setupPeakBytes_};
-  if (Communicator::size() > 1) collective::maximum(every, setup, 4);
-  if (Communicator::isRoot()) {
-    if (Communicator::size() > 1)
-      std::fprintf(stderr,
-                   "sus: setup %.2f s on the slowest rank (%.2f s on the fastest), peak memory "
-                   "%.1f MB on the largest rank (%.1f MB on the smallest)\n",
-                   setup[0], -setup[2], setup[1] / 1e6, -setup[3] / 1e6);
-    else
-      std::fprintf(stderr, "sus: setup %.2f s, peak memory %.1f MB\n", setup[0], setup[1] / 1e6);
-    std::fprintf(stderr,
-                 "sus: %zu particles in %zu material(s), grid %dx%dx%d cells, output in %s\n",
-                 particles, mpm_.materials().size(), mpm_.grid().cells.x(), mpm_.grid().cells.y(),
-                 mpm_.grid().cells.z(), archiver_.directory().c_str());
-    if (Communicator::size() > 1)
-      std::fprintf(stderr,
-                   "sus: %d ranks: %s, ghost layers %d cells; particles per rank max/mean %.3f\n",
-                   Communicator::size(), mpm_.layout().boxes().describe().c_str(),
-                   mpm_.layout().ghostWidth(), imbalance);
-    for (const std::string& line : mpm_.problem().diffusionNotes)
-      std::fprintf(stderr, "sus: %s\n", line.c_str());
-    for (const std::string& line : forecastSteps(stepForecastInput()))
-      std::fprintf(stderr, "%s%s\n", line.rfind("note:", 0) == 0 ? "" : "sus: ", line.c_str());
-  }
+  printSetupReport(
+      every, mpm_, {particles, imbalance, setupSeconds_, setupPeakBytes_, archiver_.directory()},
+      Communicator::isRoot() ? forecastSteps(stepForecastInput()) : std::vector<std::string>{});
   for (const std::string& note : symmetryFaces_.start(every, mpm_))
     if (Communicator::isRoot()) std::fprintf(stderr, "%s\n", note.c_str());
 }

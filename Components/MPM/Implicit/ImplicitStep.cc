@@ -318,8 +318,7 @@ void ImplicitStep::takeEquilibriumStep(Collective every, double t, double& dt, d
       smaller = std::min(smaller, diffusion_->longestPass(every, materials));
     }
     std::string refusal = dt_.refusesRetake(smaller, retakes);
-    if (refusal.empty() && rejectedEstimate == 0 && failedChange == 0 && covered == dt)
-      refusal = TimestepController::refusesStalledNewton(failedNewton);
+    if (refusal.empty()) refusal = TimestepController::refusesStalledNewton(failedNewton);
     if (!refusal.empty()) stop(t, dt, refusal, report);
     ++retakes;
     ++newton_.retakes;
