@@ -119,6 +119,10 @@ int run(anode::RunOptions& options, long decomposeRanks) {
     } catch (const anode::SimulationError& e) {
       std::fprintf(stderr, "sus: simulation stopped: %s\n", e.what());
       return 3;
+    } catch (const anode::LibraryFailure& e) {  // of one rank of several (Errors.h)
+      std::fprintf(stderr, "sus: simulation stopped on rank %d: %s\n", anode::Communicator::rank(),
+                   e.what());
+      anode::Communicator::abort(3);
     }
     sim.printTimings(anode::Communicator::everyRank());
     if (sim.stoppedOnRequest()) return 4;

@@ -27,4 +27,13 @@ class SimulationError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// A numerical library (PETSc) failed in a step: the run cannot continue (exit 3). Unlike a
+// SimulationError the ranks do not agree on it (collective::stopTogether): the others may wait in
+// the library's own collectives, so under several ranks the rank that found it reports it and
+// ends every rank (Simulation::advance).
+class LibraryFailure : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 }  // namespace anode

@@ -109,12 +109,20 @@ void Simulation::advance(Collective every) {
   } catch (const StoppedOnAnotherRank&) {
     throw;
   } catch (const SimulationError& e) {
-    std::ostringstream s;
-    s << "step " << step_ + 1 << ", t = " << t_ + dt_ << ": " << e.what();
-    throw SimulationError(s.str());
+    throw SimulationError(atThisStep(e.what()));
+  } catch (const LibraryFailure& e) {
+    // On several ranks sus reports it and ends them all (the others may wait in the library).
+    if (Communicator::size() > 1) throw LibraryFailure(atThisStep(e.what()));
+    throw SimulationError(atThisStep(e.what()));
   }
   lastStepDt_ = dt_;
   finishStep(every);
+}
+
+std::string Simulation::atThisStep(const std::string& problem) const {
+  std::ostringstream s;
+  s << "step " << step_ + 1 << ", t = " << t_ + dt_ << ": " << problem;
+  return s.str();
 }
 
 void Simulation::finishStep(Collective every) {

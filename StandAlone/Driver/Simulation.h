@@ -74,6 +74,8 @@ class Simulation {
   void stepMPM(Collective);
   // advance() on the run's tag: the step, its state checks and finishStep.
   void advance(Collective);
+  // `problem` prefixed with the step under way and its end time, as diagnostics name them.
+  std::string atThisStep(const std::string& problem) const;
   // The end of a step: time, step count and the next dt.
   void finishStep(Collective);
   // dt_ for the step from t_ (TimestepController's plan), the last step's limits grown from

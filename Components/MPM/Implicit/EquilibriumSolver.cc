@@ -13,6 +13,7 @@
 
 #include "Components/MPM/Implicit/Newmark.h"
 #include "Core/Parallel/StopTogether.h"
+#include "Core/Util/Errors.h"
 
 namespace anode {
 
@@ -156,7 +157,13 @@ NewtonReport EquilibriumSolver::solve(Collective every, const EquilibriumProblem
     hourglass_.clear();
     hourglassTangent_.clear();
   }
-  if (!solverKept) buildLinearSolver(every, problem);
+  if (!solverKept) {
+    try {
+      buildLinearSolver(every, problem);
+    } catch (const LibraryFailure& e) {
+      throw LibraryFailure(std::string("setting up the linear solver: ") + e.what());
+    }
+  }
   setUp.reset();
   // Every return frees the linear solver unless the next solve is to take it.
   struct Release {
@@ -205,7 +212,12 @@ NewtonReport EquilibriumSolver::solve(Collective every, const EquilibriumProblem
     {
       std::optional<ScopedTimer> s;
       if (timers_) s.emplace(*timers_, solveTask_);
-      linear = linearSolver_->solve(every, K_, residual_, tolerance, du, !keepTangent);
+      try {
+        linear = linearSolver_->solve(every, K_, residual_, tolerance, du, !keepTangent);
+      } catch (const LibraryFailure& e) {
+        throw LibraryFailure("the linear solve of Newton iteration " +
+                             std::to_string(report.iterations) + ": " + e.what());
+      }
       du.resize(residual_.size());
       completeOverRanks(every, problem, du, 3, true);
     }

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "Core/Parallel/StopTogether.h"
+#include "Core/Util/Errors.h"
 
 namespace anode {
 
@@ -25,10 +26,17 @@ constexpr int kReusedPreconditionerSlowdown = 4;
 // Newton a retake at a smaller dt anyway.
 constexpr int kMaxIterations = 500;
 
+// A PETSc call that failed, in PETSc's words: a LibraryFailure (exit 3; Errors.h).
 void check(PetscErrorCode code, const char* what) {
-  if (code != 0)
-    throw std::runtime_error(std::string("PETSc: ") + what + " failed (error " +
-                             std::to_string(static_cast<int>(code)) + ")");
+  if (code == 0) return;
+  const char* text = nullptr;
+  char* specific = nullptr;
+  PetscErrorMessage(code, &text, &specific);
+  std::string message =
+      std::string("PETSc's ") + what + " failed (error " + std::to_string(static_cast<int>(code));
+  if (text) message += std::string(": ") + text;
+  if (specific && *specific) message += std::string(": ") + specific;
+  throw LibraryFailure(message + ")");
 }
 
 void endPetsc() {
@@ -41,6 +49,8 @@ void startPetsc(Collective) {
   check(PetscInitialized(&started), "PetscInitialized");
   if (started) return;
   check(PetscInitializeNoArguments(), "PetscInitialize");
+  // PETSc's errors come back as codes, and check() reports them: PETSc prints nothing itself.
+  check(PetscPushErrorHandler(PetscReturnErrorHandler, nullptr), "PetscPushErrorHandler");
   Communicator::beforeStop(endPetsc);
 }
 
