@@ -1,10 +1,18 @@
 // Pins the progress line's fraction done (StandAlone/Driver/Progress.h), which its ETA
 // extrapolates: by simulated time or by steps, whichever limit ends the run first, counted from
 // this run's start (a restart's checkpoint), not from the simulation's; and its pace, that of the
-// last minutes rather than the run's average; long ETAs in days and years; and the setup's
-// forecast of the steps (StepForecast.h) with its guess at a density typed in kg/m^3.
+// last minutes rather than the run's average; a long step's own lines; long ETAs in days and
+// years; and the setup's forecast of the steps (StepForecast.h) with its guess at a density typed
+// in kg/m^3.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <string>
+#include <thread>
+
+#include "Core/Util/StepActivity.h"
 #include "StandAlone/Driver/Progress.h"
 #include "StandAlone/Driver/StepForecast.h"
 
@@ -52,6 +60,40 @@ TEST(Progress, FirstMinuteIsMeasuredFromTheStart) {
   const ProgressReporter::Estimate pace = run.estimate(30, 0.05, 6000);
   EXPECT_DOUBLE_EQ(pace.particleStepsPerSecond, 200);
   EXPECT_NEAR(pace.secondsLeft, 30 * 0.95 / 0.05, 1e-9);
+}
+
+// A step running longer than the watch interval gets lines of its own, naming what it is doing
+// (its phases' notes); none after finish() until the next step, and none for a short step.
+TEST(Progress, ALongStepSaysWhatItIsDoing) {
+  std::FILE* out = std::tmpfile();
+  ASSERT_NE(out, nullptr);
+  {
+    ProgressReporter run(0, 100, 12, 0, 0.2, out);
+    noteStepActivity(0, "Newton iteration", 4);
+    noteStepActivity(1, "Krylov iteration", 230);
+    std::this_thread::sleep_for(std::chrono::milliseconds(1000));
+    run.finish();
+    noteStepActivity(0, "diffusion sub-step", 7);  // idle: not shown
+    std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  }
+  std::rewind(out);
+  std::string text;
+  char buffer[512];
+  while (std::fgets(buffer, sizeof buffer, out)) text += buffer;
+  std::fclose(out);
+  EXPECT_NE(text.find("step 13 under way for 0s: Newton iteration 4, Krylov iteration 230\n"),
+            std::string::npos)
+      << text;
+  const size_t lines = static_cast<size_t>(std::count(text.begin(), text.end(), '\n'));
+  EXPECT_GE(lines, 2u) << text;  // one every 0.2 s from 0.2 s on, each up to 0.05 s late
+  EXPECT_LE(lines, 5u) << text;
+  EXPECT_EQ(text.find("diffusion sub-step"), std::string::npos) << text;
+  // Level 0 clears level 1.
+  noteStepActivity(1, "Krylov iteration", 3);
+  noteStepActivity(0, "RKL2 stage", 2);
+  EXPECT_EQ(describeStepActivity(), "RKL2 stage 2");
+  clearStepActivity();
+  EXPECT_EQ(describeStepActivity(), "");
 }
 
 // A run of 1e11 steps shows an ETA in years, not "?" (the ETA of a step that moves the run by

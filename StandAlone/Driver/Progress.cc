@@ -6,6 +6,8 @@
 #include <cstdlib>
 #include <string>
 
+#include "Core/Util/StepActivity.h"
+
 namespace anode {
 
 std::string durationText(double s) {
@@ -24,14 +26,59 @@ std::string durationText(double s) {
   return buf;
 }
 
-ProgressReporter::ProgressReporter(double startTime, double maxTime, long startStep, long maxSteps)
+ProgressReporter::ProgressReporter(double startTime, double maxTime, long startStep, long maxSteps,
+                                   double watchSeconds, std::FILE* out)
     : startTime_(startTime),
       maxTime_(maxTime),
       startStep_(startStep),
       maxSteps_(maxSteps),
-      terminal_(::isatty(STDERR_FILENO) || std::getenv(kProgressOnTerminal)),
+      watchInterval_(watchSeconds),
+      out_(out),
+      terminal_((out == stderr && ::isatty(STDERR_FILENO)) || std::getenv(kProgressOnTerminal)),
       start_(std::chrono::steady_clock::now()),
-      last_(start_) {}
+      last_(start_),
+      lastStep_(startStep),
+      stepStart_(start_),
+      lastWatchLine_(start_) {
+  clearStepActivity();
+  watcher_ = std::thread([this] { watchSteps(); });
+}
+
+ProgressReporter::~ProgressReporter() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    ending_ = true;
+  }
+  wake_.notify_one();
+  watcher_.join();
+}
+
+void ProgressReporter::watchSteps() {
+  std::unique_lock<std::mutex> lock(mutex_);
+  while (!ending_) {
+    wake_.wait_for(lock, std::min(watchInterval_ / 4, std::chrono::duration<double>(1.0)));
+    const auto now = std::chrono::steady_clock::now();
+    if (ending_ || idle_ || now - stepStart_ < watchInterval_ ||
+        now - lastWatchLine_ < watchInterval_)
+      continue;
+    lastWatchLine_ = now;
+    const std::string activity = describeStepActivity();
+    const std::string line = "step " + std::to_string(lastStep_ + 1) + " under way for " +
+                             durationText(std::chrono::duration<double>(now - stepStart_).count()) +
+                             (activity.empty() ? "" : ": " + activity);
+    show(line.c_str());
+  }
+}
+
+void ProgressReporter::show(const char* line) {
+  if (terminal_) {
+    std::fprintf(out_, "\r%-100s", line);
+    pending_ = true;
+  } else {
+    std::fprintf(out_, "%s\n", line);
+  }
+  std::fflush(out_);
+}
 
 double ProgressReporter::fractionDone(long step, double time) const {
   // Since this run's start (which a restart moves): by simulated time, or by steps when the
@@ -58,6 +105,11 @@ ProgressReporter::Estimate ProgressReporter::estimate(double seconds, double don
 void ProgressReporter::update(long step, double time, double dt, const char* limit,
                               double particleSteps, bool force) {
   const auto now = std::chrono::steady_clock::now();
+  std::lock_guard<std::mutex> lock(mutex_);
+  clearStepActivity();
+  lastStep_ = step;
+  stepStart_ = lastWatchLine_ = now;
+  idle_ = false;
   const double sinceLast = std::chrono::duration<double>(now - last_).count();
   if (!force && sinceLast < (terminal_ ? 0.25 : 10.0)) return;
   last_ = now;
@@ -68,18 +120,14 @@ void ProgressReporter::update(long step, double time, double dt, const char* lim
                 "step %ld  t = %.4e / %.4e  dt = %.3e (%s)  %.3e particle-steps/s  ETA %s", step,
                 time, maxTime_, dt, limit, pace.particleStepsPerSecond,
                 durationText(pace.secondsLeft).c_str());
-  if (terminal_) {
-    std::fprintf(stderr, "\r%-100s", line);
-    pending_ = true;
-  } else {
-    std::fprintf(stderr, "%s\n", line);
-  }
-  std::fflush(stderr);
+  show(line);
 }
 
 void ProgressReporter::finish() {
-  if (pending_) std::fprintf(stderr, "\n");
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (pending_) std::fprintf(out_, "\n");
   pending_ = false;
+  idle_ = true;
 }
 
 }  // namespace anode

@@ -2,8 +2,11 @@
 #pragma once
 
 #include <chrono>
+#include <condition_variable>
 #include <cstdio>
+#include <mutex>
 #include <string>
+#include <thread>
 
 namespace anode {
 
@@ -17,12 +20,19 @@ std::string durationText(double seconds);
 class ProgressReporter {
  public:
   // The run starts here at (startTime, startStep) (a restart: the checkpoint's) and ends at
-  // maxTime or maxSteps (0: no step limit), whichever comes first.
-  ProgressReporter(double startTime, double maxTime, long startStep, long maxSteps);
+  // maxTime or maxSteps (0: no step limit), whichever comes first. A step running longer than
+  // `watchSeconds` gets a line of its own every `watchSeconds` ("step 13 under way for 40s:
+  // Newton iteration 4, Krylov iteration 230", StepActivity.h), from a thread that only reads.
+  ProgressReporter(double startTime, double maxTime, long startStep, long maxSteps,
+                   double watchSeconds = 10, std::FILE* out = stderr);
+  ~ProgressReporter();
+  ProgressReporter(const ProgressReporter&) = delete;
+  ProgressReporter& operator=(const ProgressReporter&) = delete;
   // Called after every step; prints at most a few times per second (terminal) or every 10 s.
   // `limit` names what set dt.
   void update(long step, double time, double dt, const char* limit, double particleSteps,
               bool force = false);
+  // Ends the status line (before other messages); the step watch waits for the next update.
   void finish();
   // The fraction of the run done at (step, time), which the ETA extrapolates.
   double fractionDone(long step, double time) const;
@@ -42,11 +52,26 @@ class ProgressReporter {
   };
   static constexpr double kWindowSeconds = 60;
 
+  // Writes `line` as the status line (terminal) or a line of its own; mutex_ held.
+  void show(const char* line);
+  // The step watch's thread: a line about the step under way when it runs long.
+  void watchSteps();
+
   double startTime_, maxTime_;
   long startStep_, maxSteps_;
+  std::chrono::duration<double> watchInterval_;
+  std::FILE* out_;
   bool terminal_;
   bool pending_ = false;
   std::chrono::steady_clock::time_point start_, last_;
+  // The step watch: the step under way (lastStep_ + 1) started at stepStart_; no line while
+  // idle_ (after finish()) and not before lastWatchLine_ + watchInterval_.
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  bool ending_ = false, idle_ = false;
+  long lastStep_;
+  std::chrono::steady_clock::time_point stepStart_, lastWatchLine_;
+  std::thread watcher_;
   // The window's start (older_) and the sample that becomes it a minute later (newer_).
   Sample older_{0, 0, 0}, newer_{0, 0, 0};
 };

@@ -14,6 +14,7 @@
 #include "Components/MPM/Implicit/Newmark.h"
 #include "Core/Parallel/StopTogether.h"
 #include "Core/Util/Errors.h"
+#include "Core/Util/StepActivity.h"
 
 namespace anode {
 
@@ -185,6 +186,7 @@ NewtonReport EquilibriumSolver::solve(Collective every, const EquilibriumProblem
     }
     collective::stopIfRequested(every);  // a stop drops the step between iterations
     ++report.iterations;
+    noteStepActivity(0, "Newton iteration", report.iterations);
     const bool keepTangent =
         report.iterations == 1
             ? tangentKept

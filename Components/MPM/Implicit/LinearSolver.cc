@@ -8,6 +8,7 @@
 
 #include "Core/Parallel/StopTogether.h"
 #include "Core/Util/Errors.h"
+#include "Core/Util/StepActivity.h"
 
 namespace anode {
 
@@ -67,6 +68,7 @@ PetscErrorCode convergedOrStopped(KSP ksp, PetscInt iteration, PetscReal norm,
                                   KSPConvergedReason* reason, void* context) {
   auto* test = static_cast<StopTest*>(context);
   PetscCall(KSPConvergedDefault(ksp, iteration, norm, reason, test->defaults));
+  noteStepActivity(1, "Krylov iteration", iteration);
   if (*reason == KSP_CONVERGED_ITERATING && collective::any(test->every, stopRequested())) {
     test->stopped = true;
     *reason = KSP_DIVERGED_ITS;

@@ -5,6 +5,7 @@
 #include "Components/MPM/ReactiveFlow/RungeKuttaLegendre.h"
 #include "Components/MPM/ReactiveFlow/SubcellRelaxation.h"
 #include "Core/Parallel/StopTogether.h"
+#include "Core/Util/StepActivity.h"
 
 namespace anode {
 
@@ -87,6 +88,7 @@ DiffusionPass::Pass DiffusionPass::diffuseInSubsteps(Collective every, Concentra
   // kMaxRateEvaluations sub-steps end at t + dt.
   while (done < dt && substeps < kMaxRateEvaluations) {
     collective::stopIfRequested(every);  // a stop drops the step between sub-steps
+    noteStepActivity(0, "diffusion sub-step", substeps + 1);
     const double limit = substepLimit(every, materials);
     // The last sub-step ends at t + dt exactly (a remainder below 1e-12 dt joins the one before).
     double h = std::min(limit, dt - done);
@@ -149,6 +151,7 @@ DiffusionPass::Pass DiffusionPass::diffuseInLegendreStages(
   // receives (ConcentrationGather's update over a unit time).
   const auto rate = [&](const std::vector<double>& y, std::vector<double>& f) {
     collective::stopIfRequested(every);  // a stop drops the step between stages
+    noteStepActivity(0, "RKL2 stage", stages + 1);
     setConcentrations(y);
     updateDiffusionState(every, materials, middle);
     gradientOfNodalConcentration();
