@@ -658,6 +658,37 @@ TEST(QuasiStatic, ErrorToleranceChoosesTheSteps) {
   EXPECT_LT(std::abs(tight.lithium / reference - 1), 0.7 * std::abs(loose.lithium / reference - 1));
 }
 
+// Under error control a step that would pass a time of a flux load curve (where its slope
+// changes) ends on it, as on an output time: the bar's flux steps down from 0.05 to 0.02 between
+// t = 0.3719 and 0.6.
+TEST(QuasiStatic, ErrorControlledStepsEndOnTheLoadCurvesTimes) {
+  std::string text =
+      lithiatedBar("trapezoidal", 1,
+                   "<hourglass_stabilization>0</hourglass_stabilization><error_tolerance>0.02</"
+                   "error_tolerance>");
+  const std::string constant = "<time_point><time>1e6</time><load>0.05</load></time_point>";
+  ASSERT_NE(text.find(constant), std::string::npos);
+  text.replace(text.find(constant), constant.size(),
+               "<time_point><time>0.3719</time><load>0.05</load></time_point><time_point><time>0.6"
+               "</time><load>0.02</load></time_point><time_point><time>1e6</time><load>0.02</load>"
+               "</time_point>");
+  RunOptions o;
+  o.progress = false;
+  Simulation sim(text, "bar.ups", o);
+  std::vector<double> ends;
+  while (sim.time() < 1 - 1e-9) {
+    sim.advance();
+    ends.push_back(sim.time());
+  }
+  for (double breakpoint : {0.3719, 0.6}) {
+    const auto at = std::find_if(ends.begin(), ends.end(), [&](double t) {
+      return std::abs(t - breakpoint) <= 1e-12 * breakpoint;
+    });
+    EXPECT_NE(at, ends.end()) << "no step ends on " << breakpoint;
+  }
+  EXPECT_GE(ends.size(), 3u);
+}
+
 // <diffusion_integrator>rkl2: each pass of the bar's trapezoidal steps is one RKL2 step instead of
 // forward-Euler sub-steps (their limit 0.1: timestep_multiplier 0.4 of Eq. 44). In steps of 0.25
 // (2.5 limits a pass: 3 stages, as many as sub-steps) its lithium is closer to the steps of 0.01

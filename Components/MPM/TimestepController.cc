@@ -28,8 +28,7 @@ TimestepController::TimestepController(const TimeControl& time, const ImplicitOp
 }
 
 TimestepController::Plan TimestepController::plan(const StableTimestep& limits, double growsFrom,
-                                                  double t,
-                                                  std::optional<double> nextOutputTime) const {
+                                                  double t, std::optional<double> nextEnd) const {
   Plan p;
   StableTimestep all = limits;
   if (controlsError() && error_.lastEstimate >= 0)
@@ -41,15 +40,16 @@ TimestepController::Plan TimestepController::plan(const StableTimestep& limits, 
   p.setByTimeControl = p.dt != scaled;
   p.ruleDt = p.dt;
   // <clamp_time_to_output>: a step that would pass an output time ends on it, so the outputs fall
-  // at the times the input asks for (without it, on the first step after each, as Uintah's).
-  if (endsStepsOnOutputs() && nextOutputTime && t + p.dt > *nextOutputTime * (1 + 1e-12)) {
-    p.dt = *nextOutputTime - t;
+  // at the times the input asks for (without it, on the first step after each, as Uintah's); and
+  // under error control on a load curve's time, where the load's slope changes.
+  if (endsStepsOnOutputs() && nextEnd && t + p.dt > *nextEnd * (1 + 1e-12)) {
+    p.dt = *nextEnd - t;
     p.setByTimeControl = true;
-  } else if (controlsError() && nextOutputTime) {
-    // Under error control the steps to the next output time are of one length, at most the
+  } else if (controlsError() && nextEnd) {
+    // Under error control the steps to the next such time are of one length, at most the
     // controller's: no short step left before it. Each is an even share of the limit's dt, which
     // the plan still names.
-    const double remaining = *nextOutputTime - t;
+    const double remaining = std::min(*nextEnd, time_.maxTime) - t;
     const double steps = std::ceil(remaining / p.dt * (1 - 1e-12));
     if (steps > 1) p.dt = std::min(p.dt, remaining / steps);
   }

@@ -32,13 +32,14 @@ class TimestepController {
     bool setByTimeControl = false;
   };
   // `growsFrom`: the dt the last step's limits grow from (StepTaken::ruleDt; 0 before the first
-  // step); `nextOutputTime`: the first output time after t, where outputs fall at times. With
-  // <error_tolerance> the error controller's dt is one more limit, steps end on the output times
-  // as with <clamp_time_to_output>, the steps to the next output time are of one length (the
-  // remaining time over the number of steps of the limits' dt it needs), and the last ends on
-  // <maxTime> (<end_at_max_time_exactly>).
+  // step); `nextEnd`: the first time after t a step ends on (an output time where outputs fall
+  // at times; under error control also a flux load curve's next time). With <error_tolerance>
+  // the error controller's dt is one more limit, steps end on the output times (as with
+  // <clamp_time_to_output>) and on the load curves' times, the steps to the next such time are of
+  // one length (the remaining time over the number of steps of the limits' dt it needs), and the
+  // last ends on <maxTime> (<end_at_max_time_exactly>).
   Plan plan(const StableTimestep& limits, double growsFrom, double t,
-            std::optional<double> nextOutputTime) const;
+            std::optional<double> nextEnd) const;
   // Whether steps end on the output times (<clamp_time_to_output>, or <error_tolerance>).
   bool endsStepsOnOutputs() const;
 

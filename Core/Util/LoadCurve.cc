@@ -1,5 +1,7 @@
 #include "Core/Util/LoadCurve.h"
 
+#include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace anode {
@@ -32,6 +34,12 @@ double LoadCurve::at(double t) const {
   while (i < n - 1 && times_[i] < t) ++i;
   const double s = (t - times_[i - 1]) / (times_[i] - times_[i - 1]);
   return loads_[i - 1] + s * (loads_[i] - loads_[i - 1]);
+}
+
+double LoadCurve::nextTimeAfter(double t) const {
+  for (double time : times_)
+    if (time > t + 1e-12 * std::abs(t)) return time;
+  return std::numeric_limits<double>::infinity();
 }
 
 }  // namespace anode

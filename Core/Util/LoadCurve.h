@@ -16,6 +16,9 @@ class LoadCurve {
   static LoadCurve fromInput(const PSNode& node);
 
   double at(double t) const;
+  // The first of its times after t (beyond t by more than 1e-12 of t, so a step that ended on one
+  // does not name it again), where the curve's slope changes; infinity past the last.
+  double nextTimeAfter(double t) const;
   const std::vector<double>& times() const { return times_; }
   const std::vector<double>& loads() const { return loads_; }
 

@@ -264,6 +264,13 @@ bool DataArchiver::isOutputStep(long step, double time) const {
   return time >= *nextOutputTimeAfter(lastOutputTime_) * (1 - 1e-12);
 }
 
+std::string chargeText(double stateOfCharge) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.2f%% = %.0f mAh/g", 100 * stateOfCharge,
+                stateOfCharge * kSiliconCapacityAtFull);
+  return text;
+}
+
 std::optional<double> DataArchiver::nextOutputTimeAfter(double time) const {
   if (!outputsByTime()) return std::nullopt;
   return (std::floor(time / *interval_ + 1e-9) + 1) * *interval_;

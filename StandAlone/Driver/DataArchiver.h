@@ -77,6 +77,8 @@ const char* dtRuleName(int rule);
 // The specific capacity at c = max_concentration of silicon normalised as the paper (c = 1 at
 // Li15Si4, 3.75 Li per Si): 3.75 F / M_Si, in mAh per gram of silicon.
 constexpr double kSiliconCapacityAtFull = 3.75 * 96485.33212 / 28.0855 / 3.6;
+// "56.30% = 2011 mAh/g": the state of charge as the progress line shows it.
+std::string chargeText(double stateOfCharge);
 
 class DataArchiver {
  public:

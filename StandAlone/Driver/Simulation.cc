@@ -85,13 +85,22 @@ void Simulation::readInput() {
 }
 
 void Simulation::takeStableTimestep(Collective every, double growsFrom) {
-  const TimestepController::Plan plan = dtController_->plan(
-      integrator_->stableTimestep(every), growsFrom, t_,
-      dtController_->endsStepsOnOutputs() ? archiver_.nextOutputTimeAfter(t_) : std::nullopt);
+  const TimestepController::Plan plan =
+      dtController_->plan(integrator_->stableTimestep(every), growsFrom, t_, nextTimeToEndOn());
   dt_ = plan.dt;
   ruleDt_ = plan.ruleDt;
   dtLimit_ = plan.limit;
   dtSetByTimeControl_ = plan.setByTimeControl;
+}
+
+std::optional<double> Simulation::nextTimeToEndOn() const {
+  std::optional<double> next;
+  if (dtController_->endsStepsOnOutputs()) next = archiver_.nextOutputTimeAfter(t_);
+  if (dtController_->controlsError() && mpm_.diffusion()) {
+    const double load = mpm_.diffusion()->nextLoadChangeAfter(t_);
+    if (load < time_.maxTime && (!next || load < *next)) next = load;
+  }
+  return next;
 }
 
 void Simulation::stepMPM(Collective every) {
@@ -204,19 +213,13 @@ double Simulation::advanceAndRecord(Collective every) {
   const double particles = static_cast<double>(recordHistoryRow(every, stepDt, rule));
   particleSteps_ += particles;
   particleStepsOfThisProcess_ += particles;
-  reportSymmetryFaces(every);
-  reportDiffusionNotes();
+  reportRunNotes(every);
   return stepDt;
 }
 
 void Simulation::updateProgress(StableTimestep::Limit stepLimit, double stepDt, bool done) {
   std::string limit = integrator_->describeLastStep(stepLimit);
-  if (mpm_.diffusion()) {
-    char charge[64];
-    std::snprintf(charge, sizeof charge, ", SOC %.2f%% = %.0f mAh/g", 100 * stateOfCharge_,
-                  stateOfCharge_ * kSiliconCapacityAtFull);
-    limit += charge;
-  }
+  if (mpm_.diffusion()) limit += ", SOC " + chargeText(stateOfCharge_);
   progress_->update(step_, t_, stepDt, limit.c_str(), particleStepsOfThisProcess_, done);
 }
 
@@ -335,19 +338,14 @@ void Simulation::writeOutput(Collective every, bool afterStep) {
   archiver_.writeOutput(every, step_, t_, mpm_);
 }
 
-void Simulation::reportSymmetryFaces(Collective every) {
-  for (const std::string& warning : symmetryFaces_.afterStep(every, mpm_, step_, t_)) {
+void Simulation::reportRunNotes(Collective every) {
+  std::vector<std::string> lines = symmetryFaces_.afterStep(every, mpm_, step_, t_);
+  if (mpm_.diffusion())
+    for (const std::string& note : mpm_.diffusion()->takeRunNotes())
+      if (Communicator::isRoot()) lines.push_back("note: " + note);  // the same on every rank
+  for (const std::string& line : lines) {
     if (progress_) progress_->finish();
-    std::fprintf(stderr, "%s\n", warning.c_str());
-  }
-}
-
-void Simulation::reportDiffusionNotes() {
-  if (!mpm_.diffusion()) return;
-  for (const std::string& note : mpm_.diffusion()->takeRunNotes()) {
-    if (!Communicator::isRoot()) continue;  // every rank holds the same notes
-    if (progress_) progress_->finish();
-    std::fprintf(stderr, "note: %s\n", note.c_str());
+    std::fprintf(stderr, "%s\n", line.c_str());
   }
 }
 

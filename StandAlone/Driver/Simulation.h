@@ -78,6 +78,9 @@ class Simulation {
   std::string atThisStep(const std::string& problem) const;
   // The end of a step: time, step count and the next dt.
   void finishStep(Collective);
+  // The time after t_ the next step ends on, if any (TimestepController::plan): the next output
+  // time where steps end on them, and under error control a flux load curve's next time.
+  std::optional<double> nextTimeToEndOn() const;
   // dt_ for the step from t_ (TimestepController's plan), the last step's limits grown from
   // `growsFrom`.
   void takeStableTimestep(Collective, double growsFrom);
@@ -114,10 +117,9 @@ class Simulation {
   size_t recordHistoryRow(Collective, double stepDt, int dtRule);
   // Writes the output of step_; `afterStep`: the grid labels hold the last step's nodal values.
   void writeOutput(Collective, bool afterStep);
-  // Prints the symmetry-face warnings of the step just taken.
-  void reportSymmetryFaces(Collective);
-  // Prints the diffusion's notes of the step just taken (a galvanostatic current ending).
-  void reportDiffusionNotes();
+  // Prints the symmetry-face warnings (from the rank that found them) and the diffusion's notes
+  // (a galvanostatic current ending) of the step just taken.
+  void reportRunNotes(Collective);
   // What any rank asks for at the end of a step (none after the last): to stop, and its own
   // checkpoint (kReplayInterval of wall time since the last one). One exchange.
   struct Requests {

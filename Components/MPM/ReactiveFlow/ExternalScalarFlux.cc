@@ -348,6 +348,12 @@ void ExternalScalarFlux::updateAutoCycle(Collective every,
   if (sign_ < 0 && (flags.autoCycleUseMinMax ? hi : mean) < flags.autoCycleMin) sign_ = 1;
 }
 
+double ExternalScalarFlux::nextLoadCurveTimeAfter(double t) const {
+  double next = std::numeric_limits<double>::infinity();
+  for (const ScalarFluxBC& bc : bcs_) next = std::min(next, bc.load.nextTimeAfter(t));
+  return next;
+}
+
 void ExternalScalarFlux::shareFacesOnSplit(ParticleSet& p,
                                            const std::vector<SplitParticle>& splits) const {
   if (diffusionParticles(p).loadCurveID.empty()) return;

@@ -26,6 +26,8 @@ class ExternalScalarFlux {
   explicit ExternalScalarFlux(std::vector<ScalarFluxBC> bcs) : bcs_(std::move(bcs)) {}
 
   const std::vector<ScalarFluxBC>& bcs() const { return bcs_; }
+  // The first time after t at which a BC's load curve changes its slope (infinity: none).
+  double nextLoadCurveTimeAfter(double t) const;
 
   // What one BC flagged in one material (the setup report).
   struct Flagged {

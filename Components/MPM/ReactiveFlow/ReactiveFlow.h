@@ -121,6 +121,9 @@ class ReactiveFlow {
   // What happened in the steps since the last call that the user should know (a galvanostatic
   // BC's current ending); the same on every rank.
   std::vector<std::string> takeRunNotes() { return flux_.takeNotes(); }
+  // The first time after t at which a flux BC's load curve changes its slope (infinity: none):
+  // an error-controlled step ends there.
+  double nextLoadChangeAfter(double t) const { return flux_.nextLoadCurveTimeAfter(t); }
 
   // --- What the diffusion folder asks of it: the kernel choice (withScatterKernel,
   // withGatherKernel) and the quasi-static step (DiffusionPass). ---
