@@ -499,15 +499,20 @@ void expectEveryFileComplete(const fs::path& dir, long particles) {
 }
 
 // Starts sus with `args` in a child process, its stderr to `log`; returns the child's pid.
-pid_t startSus(const std::vector<std::string>& args, const fs::path& log) {
+// Starts sus with `args`, or `launcher` (e.g. mpirun -np 2) with sus and `args`; its stderr to
+// `log`.
+pid_t startSus(const std::vector<std::string>& args, const fs::path& log,
+               const std::vector<std::string>& launcher = {}) {
   const pid_t pid = fork();
   if (pid == 0) {
-    std::vector<char*> argv{const_cast<char*>(kSus.c_str())};
+    std::vector<char*> argv;
+    for (const std::string& a : launcher) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(const_cast<char*>(kSus.c_str()));
     for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
     argv.push_back(nullptr);
     FILE* out = std::freopen(log.c_str(), "w", stderr);
     (void)out;
-    execv(kSus.c_str(), argv.data());
+    execvp(argv[0], argv.data());
     _exit(127);
   }
   return pid;
@@ -629,12 +634,15 @@ TEST(Restart, KilledRunsLeaveCompleteFilesAndContinueToTheSameResult) {
 // A stop signal in a quasi-static step drops the step under way within 5 s (exit code 4): the
 // checkpoint of the step before is the run's last, and the restart continues from it to the
 // uninterrupted run's files. On one process (its threads) and in the one-command mode (two ranks
-// under mpirun, the signal to sus passed on to mpirun as SIGUSR1), for each stop signal.
+// under mpirun, the signal to sus passed on to mpirun as SIGUSR1), for each stop signal; and
+// under mpirun started by hand, SIGUSR1 sent to mpirun (SIGINT and SIGTERM it turns into
+// SIGKILL; its restart is the one-command mode's, the same two ranks of one thread).
 struct StopCase {
   std::string name;
   std::vector<std::string> mode;  // the arguments that choose one process or the ranks
   int signal;
-  bool restart;  // and the restart compared with the uninterrupted run
+  bool restart;                            // and the restart compared with the uninterrupted run
+  std::vector<std::string> launcher = {};  // the stopped run's (mpirun -np 2), then mode's
 };
 
 void PrintTo(const StopCase& c, std::ostream* os) {
@@ -642,6 +650,11 @@ void PrintTo(const StopCase& c, std::ostream* os) {
 }
 
 class StopInStep : public ::testing::TestWithParam<StopCase> {};
+
+std::vector<std::string> ranksOfOneThread(std::vector<std::string> args) {
+  args.insert(args.begin(), {"--threads", "1"});
+  return args;
+}
 
 TEST_P(StopInStep, DropsTheStepUnderWayAndTheRestartContinuesBitForBit) {
   const StopCase& c = GetParam();
@@ -653,8 +666,10 @@ TEST_P(StopInStep, DropsTheStepUnderWayAndTheRestartContinuesBitForBit) {
     return args;
   };
   const fs::path run = s.dir / "stopped";
-  const pid_t pid =
-      startSus(withMode({"--max-timesteps", "2", "-o", run.string(), input}), s.dir / "log");
+  // Under a launcher: its ranks of one thread, as the one-command mode runs them.
+  std::vector<std::string> stopped = {"--max-timesteps", "2", "-o", run.string(), input};
+  stopped = c.launcher.empty() ? withMode(stopped) : ranksOfOneThread(stopped);
+  const pid_t pid = startSus(stopped, s.dir / "log", c.launcher);
   ASSERT_GE(pid, 0);
   // The start's checkpoint is its last write before the first step.
   for (int i = 0; i < 600 && listCheckpoints(run.string()).empty(); ++i)
@@ -685,6 +700,9 @@ TEST_P(StopInStep, DropsTheStepUnderWayAndTheRestartContinuesBitForBit) {
 
 const std::vector<std::string> kOneProcess = {"--one-process", "--threads", "2"};
 const std::vector<std::string> kOneCommand = {"--threads", "2"};
+// As root here (tests and CI run as root), on 2 cores.
+const std::vector<std::string> kMpirun = {"mpirun",          "-q",  "--allow-run-as-root",
+                                          "--oversubscribe", "-np", "2"};
 
 INSTANTIATE_TEST_SUITE_P(
     Signals, StopInStep,
@@ -693,7 +711,8 @@ INSTANTIATE_TEST_SUITE_P(
                       StopCase{"sigusr1_one_process", kOneProcess, SIGUSR1, false},
                       StopCase{"sigint_one_command", kOneCommand, SIGINT, true},
                       StopCase{"sigterm_one_command", kOneCommand, SIGTERM, false},
-                      StopCase{"sigusr1_one_command", kOneCommand, SIGUSR1, false}),
+                      StopCase{"sigusr1_one_command", kOneCommand, SIGUSR1, false},
+                      StopCase{"sigusr1_mpirun", kOneCommand, SIGUSR1, false, kMpirun}),
     [](const ::testing::TestParamInfo<StopCase>& i) { return i.param.name; });
 
 }  // namespace
