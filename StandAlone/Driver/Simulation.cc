@@ -162,11 +162,12 @@ void Simulation::run() {
     const bool done = finished(every);
     const bool atInputEnd = done && reachedInputEnd();
     // A rebalance is followed by a checkpoint, so a replay to the last good state never
-    // crosses one (it takes the same steps with the same boxes).
+    // crosses one (it takes the same steps with the same boxes); a run stopped before the input's
+    // end rebalances as the uninterrupted one would, so its restart continues with those boxes.
     bool rebalanced = false;
     if (atInputEnd || archiver_.isOutputStep(step_, t_)) {
       writeOutput(every, true);
-      rebalanced = !done && balance_.rebalance(every, mpm_, step_);
+      rebalanced = !atInputEnd && balance_.rebalance(every, mpm_, step_);
     }
     scenes_.renderDue(every, t_, mpm_, archiver_.directory());
     const Requests anyRank = requestsOfAnyRank(every, done);

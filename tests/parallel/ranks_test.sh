@@ -6,6 +6,8 @@
 #                                write the same bytes
 #   restart INPUT STEPS FROM TO  FROM ranks stop at 3/5 of STEPS, TO ranks continue from the
 #                                checkpoint to STEPS; agrees with one rank
+#   resume INPUT STEPS STOP      2 ranks stopped at STOP (--max-timesteps) and restarted on 2
+#                                write the uninterrupted 2-rank run's files byte for byte
 #   decompose INPUT RANKS        sus --decompose RANKS prints the boxes and imbalance a RANKS-rank
 #                                run draws at setup
 #   setup INPUT                  4 ranks each set up only their box: the largest rank's memory
@@ -105,6 +107,22 @@ total, per = map(float, re.search(r"sent (\S+) bytes in all, (\S+) per step", lo
 print("sent %.4g bytes in the %d steps after the restart: %.4g per step; the summary: %.4g" % (total, steps, total / steps, per))
 sys.exit(abs(per - total / steps) > 1e-2 * total / steps)  # both printed to 4 digits
 EOF
+    ;;
+  resume)
+    input=$1 steps=$2 stop=$3
+    run 2 "$work/whole" --max-timesteps "$steps" "$input" || fail "uninterrupted: exit $?"
+    run 2 "$work/r" --max-timesteps "$stop" "$input" || fail "stopped: exit $?"
+    grep "boxes drawn anew" "$work/whole.log" "$work/r.log"
+    restartRun 2 "$work/r" --max-timesteps "$steps" || fail "restart: exit $? ($(tail -3 "$work/r.restart.log"))"
+    for f in "$work"/whole/particles/*.vtu; do
+      cmp -s "$f" "$work/r/particles/$(basename "$f")" || fail "$(basename "$f") differs after the restart"
+    done
+    for run in whole r; do  # history.csv without its wall time
+      awk -F, -v OFS=, 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == "wall_seconds") w = i }
+                        { $w = ""; print }' "$work/$run/history.csv" > "$work/$run.csv"
+    done
+    cmp -s "$work/whole.csv" "$work/r.csv" || fail "history.csv differs after the restart"
+    echo "stopped at step $stop, restarted: the uninterrupted run's files"
     ;;
   decompose)
     # sus --decompose N (one process) draws the boxes an N-rank run draws at setup, with the same
