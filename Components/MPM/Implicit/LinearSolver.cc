@@ -250,7 +250,7 @@ void LinearSolver::locateOwnedEntries(Collective, const BlockMatrix& pattern) {
   rowsOfParts(false);
 }
 
-void LinearSolver::setMatrix(Collective, const BlockMatrix& K) {
+void LinearSolver::setMatrix(Collective every, const BlockMatrix& K) {
   // The owned rows' entries written where they lie in PETSc's arrays, the other rows added
   // through PETSc (to the ranks that own them) when the matrix is assembled.
   check(MatZeroEntries(o_->A), "MatZeroEntries");
@@ -258,19 +258,28 @@ void LinearSolver::setMatrix(Collective, const BlockMatrix& K) {
   for (int part = 0; part < 2; ++part)
     if (o_->part[part])
       check(MatSeqAIJGetArray(o_->part[part], &values[part]), "MatSeqAIJGetArray");
+  bool finite = true;
   for (int r = 0; r < rows_.owned; ++r)
     for (int e = K.rowStart[r]; e < K.rowStart[r + 1]; ++e) {
       const int c = K.column[e];
       for (int a = 0; a < 3; ++a) {
         const int at = entryAt_[3 * static_cast<size_t>(e) + a];
         PetscScalar* v = at >= 0 ? values[0] + at : values[1] + (-at - 1);
-        for (int g = 0; g < 3; ++g) v[g] = entryOf(K, r, c, e, a, g);
+        for (int g = 0; g < 3; ++g) {
+          v[g] = entryOf(K, r, c, e, a, g);
+          finite &= std::isfinite(v[g]);
+        }
       }
     }
   for (int part = 0; part < 2; ++part)
     if (o_->part[part])
       check(MatSeqAIJRestoreArray(o_->part[part], &values[part]), "MatSeqAIJRestoreArray");
-  for (int r = rows_.owned; r < K.rows(); ++r) addRow(o_->A, K, r);
+  for (int r = rows_.owned; r < K.rows(); ++r) {
+    for (int e = K.rowStart[r]; e < K.rowStart[r + 1]; ++e) finite &= K.block[e].allFinite();
+    addRow(o_->A, K, r);
+  }
+  // Every rank knows before any of them calls PETSc with it (solve gives up on such a matrix).
+  nonFinite_ = collective::any(every, !finite);
   check(MatAssemblyBegin(o_->A, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
   check(MatAssemblyEnd(o_->A, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
   // Symmetric diagonal scaling, D K D with D = |diag K|^-1/2: nodes a particle's corner just
@@ -402,6 +411,13 @@ LinearSolve LinearSolver::solve(Collective every, const BlockMatrix& K,
                                 const std::vector<double>& b, double relativeTolerance,
                                 std::vector<double>& x, bool newValues) {
   if (newValues) setMatrix(every, K);
+  // A trial state no model can take (an inverted particle) gives entries that are not numbers:
+  // a solve that failed, without PETSc, so Newton retakes the step with a smaller dt.
+  if (nonFinite_) {
+    LinearSolve failed;
+    failed.reason = "a Jacobian entry that is not a number";
+    return failed;
+  }
   LinearSolve s = run(every, b, relativeTolerance, freshIterations_ < 0, x);
   if (!s.newPreconditioner && !s.converged) {  // solved again with a new one
     const int spent = s.iterations;

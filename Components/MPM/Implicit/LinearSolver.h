@@ -62,7 +62,7 @@ class LinearSolver {
  private:
   struct Objects;
   // The PETSc matrix (every rank's parts of K added; fixed rows and columns: identity) scaled
-  // symmetrically by its diagonal; sets scale_.
+  // symmetrically by its diagonal; sets scale_ and nonFinite_.
   void setMatrix(Collective, const BlockMatrix& K);
   // Block row r of K added to `target` (the preallocator, or the matrix for rows of other ranks).
   void addRow(_p_Mat* target, const BlockMatrix& K, int r);
@@ -90,6 +90,7 @@ class LinearSolver {
   // Krylov iterations of the last solve with a new preconditioner (< 0: the next solve builds
   // one) and the decades its residual fell.
   int freshIterations_ = -1;
+  bool nonFinite_ = false;  // the matrix holds an entry that is not a number (on some rank)
   double freshDecades_ = 1;
 };
 
