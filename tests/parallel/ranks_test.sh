@@ -119,7 +119,7 @@ EOF
     done
     for run in whole r; do  # history.csv without its wall time
       awk -F, -v OFS=, 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == "wall_seconds") w = i }
-                        { $w = ""; print }' "$work/$run/history.csv" > "$work/$run.csv"
+                        { if (w) $w = ""; print }' "$work/$run/history.csv" > "$work/$run.csv"
     done
     cmp -s "$work/whole.csv" "$work/r.csv" || fail "history.csv differs after the restart"
     echo "stopped at step $stop, restarted: the uninterrupted run's files"
