@@ -72,10 +72,11 @@ TEST(TimestepController, AnOutputTimeShortensTheStepButNotTheRuleDt) {
   EXPECT_EQ(unclamped.plan(limits(0.02), 0, 0.3, 0.305).dt, 0.01);
 }
 
-// <error_tolerance>: a step's estimate above it is retaken at dt x 0.9 (tol / e)^(1/2), at least
-// a fifth of dt; after the first estimate dt grows by 0.9 (tol / e)^(1/2), at most 5 times; a step
-// shortened to end on an output time counts as the one it was cut from; Newton's iterations only
-// shrink dt; the sum of the estimates is kept; steps end on the output times.
+// <error_tolerance>: a step's estimate (of order dt^3) above it is retaken at
+// dt x 0.9 (tol / e)^(1/3), at least a fifth of dt; after the first estimate dt grows by
+// 0.9 (tol / e)^(1/3), at most 5 times; a step shortened to end on an output time counts as the
+// one it was cut from, while the dt it took is kept for the next estimate; Newton's iterations
+// only shrink dt; the sum of the estimates is kept; steps end on the output times.
 TEST(TimestepController, ErrorEstimatesChooseTheSteps) {
   ImplicitOptions options;
   options.errorTolerance = 0.01;
@@ -87,27 +88,28 @@ TEST(TimestepController, ErrorEstimatesChooseTheSteps) {
   EXPECT_TRUE(c.endsStepsOnOutputs());
   EXPECT_TRUE(c.rejectsErrorEstimate(0.0101));
   EXPECT_FALSE(c.rejectsErrorEstimate(0.01));
-  EXPECT_DOUBLE_EQ(c.retakeForError(1, 0.04), 0.45);
+  EXPECT_DOUBLE_EQ(c.retakeForError(1, 0.08), 0.45);
   EXPECT_DOUBLE_EQ(c.retakeForError(1, 100), 0.2);
   EXPECT_EQ(c.afterNewton(1, options.itersToIncrease), std::numeric_limits<double>::infinity());
   EXPECT_EQ(c.afterNewton(1, options.itersToDecrease), options.decreaseFactor);
   // Before any estimate the controller sets no limit.
   EXPECT_EQ(c.plan(limits(3, StableTimestep::Newton), 0, 0, std::nullopt).dt, 3);
-  c.recordStep(0.0025, 1, 1);  // first estimate: 0.9 x 2
+  c.recordStep(0.00125, 1, 1);  // first estimate: 0.9 x 2
   TimestepController::Plan p = c.plan(limits(100, StableTimestep::Newton), 1, 1, std::nullopt);
   EXPECT_DOUBLE_EQ(p.dt, 1.8);
   EXPECT_EQ(p.limit, StableTimestep::ErrorEstimate);
-  // A step of 0.5 cut from 1 by an output time, its estimate a quarter of the same step's.
+  // A step of 0.5 cut from 1 by an output time, its estimate an eighth of the same step's.
   TimestepController cut(time, &options);
-  cut.recordStep(0.0025 / 4, 0.5, 1);
+  cut.recordStep(0.00125 / 8, 0.5, 1);
   EXPECT_DOUBLE_EQ(cut.plan(limits(100), 1, 1, std::nullopt).dt, 1.8);
-  // PI: 0.9 (tol / e_n)^(1/2 - 0.03) (e_{n-1} / tol)^0.04; growth at most 5x.
+  EXPECT_DOUBLE_EQ(cut.errorControl().takenDt, 0.5);
+  // PI: 0.9 (tol / e_n)^(1/3 - 0.03) (e_{n-1} / tol)^0.04; growth at most 5x.
   c.recordStep(0.01, 1.8, 1.8);
   EXPECT_DOUBLE_EQ(c.plan(limits(100), 1.8, 2.8, std::nullopt).dt,
-                   1.8 * 0.9 * std::pow(0.0025 / 0.01, 0.04));
+                   1.8 * 0.9 * std::pow(0.00125 / 0.01, 0.04));
   c.recordStep(1e-9, 1, 1);
   EXPECT_DOUBLE_EQ(c.plan(limits(100), 1, 3.8, std::nullopt).dt, 5);
-  EXPECT_DOUBLE_EQ(c.errorControl().accumulated, 0.0025 + 0.01 + 1e-9);
+  EXPECT_DOUBLE_EQ(c.errorControl().accumulated, 0.00125 + 0.01 + 1e-9);
   // A step without an estimate (no diffusion in it) changes nothing.
   c.recordStep(-1, 1, 1);
   EXPECT_DOUBLE_EQ(c.errorControl().lastEstimate, 1e-9);

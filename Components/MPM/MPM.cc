@@ -87,6 +87,8 @@ void MPM::problemSetup(const PSNode& root, double initTime, double maxTime, bool
       materials_[m].particles.enable(Physics::Inertia);
     if (problem_.flags.implicit && problem_.flags.implicit->hourglassStabilization > 0)
       materials_[m].particles.enable(Physics::Hourglass);
+    if (diffusion_ && problem_.flags.implicit && problem_.flags.implicit->errorTolerance > 0)
+      materials_[m].particles.enable(Physics::CouplingHistory);
   }
   checkProblemSize(gridNode, grid(), problem_.flags, materials_.size(), countParticles(materials_),
                    omp_get_max_threads());

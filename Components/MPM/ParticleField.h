@@ -8,13 +8,15 @@ namespace anode {
 // The physics a particle array belongs to: the array exists (one entry per particle) only when
 // the material has that physics, and is empty otherwise.
 enum class Physics : uint8_t {
-  Mechanics,   // always
-  Plasticity,  // a constitutive model that can yield
-  Diffusion,   // <do_scalar_diffusion>true
-  FluxBC,      // a material that diffuses, with <scalar_flux> blocks
-  Splitting,   // <refine_particles>true for this material
-  Inertia,     // implicit dynamics (<dynamic>true): the particles' acceleration
-  Hourglass,   // implicit steps with <hourglass_stabilization> above 0: its memory
+  Mechanics,        // always
+  Plasticity,       // a constitutive model that can yield
+  Diffusion,        // <do_scalar_diffusion>true
+  FluxBC,           // a material that diffuses, with <scalar_flux> blocks
+  Splitting,        // <refine_particles>true for this material
+  Inertia,          // implicit dynamics (<dynamic>true): the particles' acceleration
+  Hourglass,        // implicit steps with <hourglass_stabilization> above 0: its memory
+  CouplingHistory,  // quasi-static steps with diffusion under <error_tolerance>: the last step's
+                    // coupling rate, the error estimate's history
 };
 
 // What splitting a particle in four (ParticleSplitting.cc) does to an array: the children copy

@@ -46,6 +46,9 @@ struct ParticleSet {
   std::vector<Vec3> acceleration;
   // Implicit steps with hourglass stabilization only.
   std::vector<HourglassMemory> hourglassMemory;
+  // Quasi-static steps with diffusion under <error_tolerance> only: the last step's coupling rate
+  // (dc_2 - dc_1) / dt^2 of its two diffusion passes (Implicit/TrapezoidalCoupling.cc).
+  std::vector<double> couplingRate;
 
   size_t count() const { return x.size(); }
 
@@ -168,6 +171,7 @@ struct ParticleSet {
     f(s.refined, ParticleField<uint8_t>{"p.refinedMPM", P::Splitting, 0, S::Own});
     f(s.acceleration, ParticleField<Vec3>{"p.acceleration", P::Inertia, Vec3::Zero(), S::Copy});
     f(s.hourglassMemory, ParticleField<HourglassMemory>{nullptr, P::Hourglass, {}, S::Copy});
+    f(s.couplingRate, ParticleField<double>{nullptr, P::CouplingHistory, 0.0, S::Copy});
   }
 
   uint8_t physics_ = bit(Physics::Mechanics);

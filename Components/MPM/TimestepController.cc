@@ -13,11 +13,12 @@ constexpr int kMaxRetakes = 20;  // of one step: with <delt_min> 0, 0.6^20 = 4e-
 // at dt x bound / change, but no less than dt x kSmallestConcentrationRetake.
 constexpr double kConcentrationChangeRetake = 2, kSmallestConcentrationRetake = 0.1;
 // The PI controller of Hairer's DOPRI5 (Hairer, Norsett & Wanner, Solving ODEs I, §II.4) for an
-// estimate e of order dt^k, k = 2: dt x safety x (tol / e_n)^alpha x (e_{n-1} / tol)^beta,
-// beta = 0.04, alpha = 1/k - 0.75 beta, after the first estimate dt x safety x (tol / e)^(1/k), by
-// a factor of at most kLargestGrowth and at least kSmallestShrink; a rejected step is retaken at
-// dt x safety x (tol / e)^(1/k), at least dt x kSmallestShrink.
-constexpr double kEstimateOrder = 2, kSafety = 0.9, kLargestGrowth = 5, kSmallestShrink = 0.2;
+// estimate e of order dt^k, k = 3 (the trapezoidal coupling's local error): dt x safety x (tol /
+// e_n)^alpha x (e_{n-1} / tol)^beta, beta = 0.04, alpha = 1/k - 0.75 beta, after the first estimate
+// dt x safety x (tol / e)^(1/k), by a factor of at most kLargestGrowth and at least
+// kSmallestShrink; a rejected step is retaken at dt x safety x (tol / e)^(1/k), at least dt x
+// kSmallestShrink.
+constexpr double kEstimateOrder = 3, kSafety = 0.9, kLargestGrowth = 5, kSmallestShrink = 0.2;
 constexpr double kBeta = 0.04, kAlpha = 1 / kEstimateOrder - 0.75 * kBeta;
 }  // namespace
 
@@ -100,6 +101,7 @@ void TimestepController::recordStep(double estimate, double dt, double ruleDt) {
   error_.lastEstimate = estimate * std::pow(base / dt, kEstimateOrder);
   error_.lastDt = base;
   error_.accumulated += estimate;
+  error_.takenDt = dt;
 }
 
 double TimestepController::afterErrorEstimate() const {

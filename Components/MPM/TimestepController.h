@@ -69,7 +69,7 @@ class TimestepController {
   // The diffusion sub-steps' share of the explicit limits (<timestep_multiplier>).
   double substepMultiplier() const { return time_.multiplier; }
 
-  // Error control (<error_tolerance>; the estimate is ImplicitStep's, of order dt^2 on a step).
+  // Error control (<error_tolerance>; the estimate is ImplicitStep's, of order dt^3 on a step).
   bool controlsError() const { return implicit_ && implicit_->errorTolerance > 0; }
   // Whether a step of that estimate is retaken (above the tolerance).
   bool rejectsErrorEstimate(double estimate) const;
@@ -77,9 +77,10 @@ class TimestepController {
   double retakeForError(double dt, double estimate) const;
   // What the controller keeps between steps (and the checkpoints hold): the estimates of the last
   // two steps (-1: none yet) and the last one's dt, a step shortened to end on an output time
-  // counting as the one it was cut from; and the sum of the steps' estimates.
+  // counting as the one it was cut from; the sum of the steps' estimates; and the dt the last
+  // step took (0 before the first), which the next step's estimate needs.
   struct ErrorControl {
-    double lastEstimate = -1, previousEstimate = -1, lastDt = 0, accumulated = 0;
+    double lastEstimate = -1, previousEstimate = -1, lastDt = 0, accumulated = 0, takenDt = 0;
   };
   // After a step taken over dt (of ruleDt) with that estimate (negative: none).
   void recordStep(double estimate, double dt, double ruleDt);

@@ -4,12 +4,18 @@ silicon, flux and base) run at fixed steps dt to one time, one run per dt.
 
     python3 StandAlone/Studies/quasi_static_dt.py --runs DIR [--sus build/StandAlone/sus]
         [--dts 1,0.5,0.25,0.125] [--end 12] [--set hourglass_stabilization=0.5] [--threads 1]
+        [--tolerances 0.003,0.001]
 
 Each run takes dt = <delt_init> = <delt_max> and keeps it (<num_iters_to_decrease_delT> 1000);
 its outputs come every second. `--set TAG=VALUE` adds <MPM><TAG> to every run. Prints a markdown
 table at the end time: per dt the steps, Newton iterations, wall seconds, lithium (% of
-capacity), the particles' mean c, the largest difference of a 5 nm slab's mean c from the
-smallest dt's, the mean von Mises stress and pressure (GPa) and the mean plastic strain.
+capacity), the particles' mean c, the largest difference of a 5 nm slab's mean c and of a
+particle's c from the smallest dt's, the mean von Mises stress and pressure (GPa) and the mean
+plastic strain. `--tolerances` adds a run per tolerance without step hints (<delt_max>1e12, no
+<delt_init>, <max_concentration_change>, <num_iters_*> or <clamp_time_to_output>) under
+<error_tolerance>, and a second table: its steps, rejected attempts, the sum of its error
+estimates against the largest difference of a particle's c from the smallest dt's run (at the
+end, and over the outputs every second), and the same columns.
 """
 import argparse
 import os
@@ -66,21 +72,42 @@ def small_pillar(text, dt, end, settings):
     return text
 
 
-def run(sus, runs, dt, end, settings, threads):
-    """Makes the run of step dt in runs/dt_<dt> unless it reached `end`; returns its wall time."""
-    run_dir = os.path.join(runs, "dt_%g" % dt)
+def without_step_hints(text, tolerance):
+    """The small pillar's input of small_pillar(text, 1, ...) without step hints, under
+    <error_tolerance>."""
+    replacements = [
+        ("<delt_max>1e+06</delt_max><delt_init>1e+06</delt_init>", "<delt_max>1e12</delt_max>"),
+        ("<clamp_time_to_output>true</clamp_time_to_output>", ""),
+        ("<max_concentration_change>1</max_concentration_change>", ""),
+        (
+            "<num_iters_to_increase_delT>7</num_iters_to_increase_delT>"
+            "<num_iters_to_decrease_delT>1000</num_iters_to_decrease_delT>",
+            "<error_tolerance>%g</error_tolerance>" % tolerance,
+        ),
+    ]
+    for old, new in replacements:
+        if old not in text:
+            raise RuntimeError("the small pillar no longer holds %s: update this study" % old)
+        text = text.replace(old, new)
+    return text
+
+
+def run(sus, runs, name, end, text_of, threads):
+    """Makes the run `name` (its input text_of(the input's text)) in runs/<name> unless it reached
+    `end`; returns its wall time."""
+    run_dir = os.path.join(runs, name)
     if os.path.exists(os.path.join(run_dir, "particles.pvd")):
         last = paper_numbers.last_output_time(run_dir)
         if last is not None and last >= end * 1e6 * (1 - 1e-9):
             return None
     os.makedirs(runs, exist_ok=True)
-    path = os.path.join(runs, "small_pillar_dt_%g.ups" % dt)
+    path = os.path.join(runs, "small_pillar_%s.ups" % name)
     with open(INPUT) as f:
-        text = small_pillar(f.read(), dt, end, settings)
+        text = text_of(f.read())
     with open(path, "w") as f:
         f.write(text)
     start = time.time()
-    with open(os.path.join(runs, "dt_%g.log" % dt), "w") as log:
+    with open(os.path.join(runs, "%s.log" % name), "w") as log:
         subprocess.run(
             [sus, "--threads", str(threads), "-o", run_dir, path], check=True, stderr=log
         )
@@ -116,37 +143,84 @@ def main():
     parser.add_argument("--end", type=float, default=12.0, help="seconds")
     parser.add_argument("--set", action="append", default=[], help="<MPM> TAG=VALUE")
     parser.add_argument("--threads", type=int, default=1)
+    parser.add_argument("--tolerances", default="", help="<error_tolerance> runs, comma-separated")
     args = parser.parse_args()
     dts = sorted((float(x) for x in args.dts.split(",")), reverse=True)
     settings = [tuple(s.split("=", 1)) for s in args.set]
-    walls = {dt: run(args.sus, args.runs, dt, args.end, settings, args.threads) for dt in dts}
-    states = {dt: state(os.path.join(args.runs, "dt_%g" % dt), args.end) for dt in dts}
-    finest = states[dts[-1]]
-    print(
-        "| dt (s) | steps | Newton | wall (s) | lithium (%% of capacity) | mean c | "
-        "largest slab c difference from dt %g s | von Mises (GPa) | pressure (GPa) | "
-        "plastic strain |" % dts[-1]
-    )
-    print("|---|---|---|---|---|---|---|---|---|---|")
-    for dt in dts:
-        run_dir = os.path.join(args.runs, "dt_%g" % dt)
+    tolerances = [float(x) for x in args.tolerances.split(",")] if args.tolerances else []
+
+    def fixed(dt):
+        return lambda text: small_pillar(text, dt, args.end, settings)
+
+    def controlled(tolerance):
+        return lambda text: without_step_hints(small_pillar(text, 1, args.end, settings), tolerance)
+
+    names = {dt: "dt_%g" % dt for dt in dts}
+    names.update({tol: "tol_%g" % tol for tol in tolerances})
+    makers = [(dt, fixed(dt)) for dt in dts] + [(tol, controlled(tol)) for tol in tolerances]
+    walls = {
+        key: run(args.sus, args.runs, names[key], args.end, text_of, args.threads)
+        for key, text_of in makers
+    }
+    finest_dir = os.path.join(args.runs, names[dts[-1]])
+    finest = state(finest_dir, args.end)
+
+    def columns(key):
+        """Steps, Newton, wall, lithium, mean c, slab and particle differences, stress."""
+        run_dir = os.path.join(args.runs, names[key])
         last = paper_numbers.last_history_row(run_dir)
-        rows = paper_numbers.history_rows(run_dir)
-        s = states[dt]
-        wall = "%.0f" % walls[dt] if walls[dt] is not None else "(kept)"
+        rows = list(paper_numbers.history_rows(run_dir))
+        s = state(run_dir, args.end)
+        particle = paper_numbers.pair_difference(run_dir, finest_dir, args.end * 1e6)["max_dc"]
+        wall = "%.0f" % walls[key] if walls[key] is not None else "(kept)"
+        return rows, [
+            "%d" % int(last["step"]),
+            "%d" % sum(int(r["newton_iterations"]) for r in rows),
+            wall,
+            "%.2f" % (100 * last["state_of_charge"]),
+            "%.4f" % s["c"],
+            "%.4f" % np.abs(s["slabs"] - finest["slabs"]).max(),
+            "%.4f" % particle,
+            "%.4f" % s["mises"],
+            "%.4f" % s["pressure"],
+            "%.4f" % s["plastic"],
+        ]
+
+    common = (
+        "steps | Newton | wall (s) | lithium (%% of capacity) | mean c | largest slab c "
+        "difference from dt %g s | largest particle c difference | von Mises (GPa) | "
+        "pressure (GPa) | plastic strain |" % dts[-1]
+    )
+    print("| dt (s) | " + common)
+    print("|---" * 11 + "|")
+    for dt in dts:
+        print("| %g | %s |" % (dt, " | ".join(columns(dt)[1])))
+    if not tolerances:
+        return
+    print()
+    print(
+        "| tolerance | rejected | sum of the estimates | largest particle c difference over "
+        "the outputs | sum / that at the end | " + common
+    )
+    print("|---" * 15 + "|")
+    for tol in tolerances:
+        rows, cells = columns(tol)
+        run_dir = os.path.join(args.runs, names[tol])
+        over_outputs = max(
+            paper_numbers.pair_difference(run_dir, finest_dir, t)["max_dc"]
+            for t, _ in paper_numbers.outputs(run_dir)
+            if t > 0
+        )
+        estimates = rows[-1]["accumulated_error_estimate"]
         print(
-            "| %g | %d | %d | %s | %.2f | %.4f | %.4f | %.4f | %.4f | %.4f |"
+            "| %g | %d | %.4f | %.4f | %.1f | %s |"
             % (
-                dt,
-                int(last["step"]),
-                sum(int(r["newton_iterations"]) for r in rows),
-                wall,
-                100 * last["state_of_charge"],
-                s["c"],
-                np.abs(s["slabs"] - finest["slabs"]).max(),
-                s["mises"],
-                s["pressure"],
-                s["plastic"],
+                tol,
+                sum(int(r["rejected_attempts"]) for r in rows),
+                estimates,
+                over_outputs,
+                estimates / float(cells[6]),
+                " | ".join(cells),
             )
         )
 
