@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "Components/MPM/ImplicitOptions.h"
 #include "Components/MPM/TimestepController.h"
 #include "Core/Grid/TimeControl.h"
 #include "Core/ProblemSpec/ProblemSpec.h"
@@ -70,6 +71,33 @@ TEST(TimestepController, AnOutputTimeShortensTheStepButNotTheRuleDt) {
   EXPECT_FALSE(p.setByTimeControl);
   const TimestepController unclamped(read(""), nullptr);
   EXPECT_EQ(unclamped.plan(limits(0.02), 0, 0.3, 0.305).dt, 0.01);
+}
+
+ImplicitOptions readImplicit(const std::string& mpm) {
+  const auto spec =
+      ProblemSpec::fromText("<Uintah_specification>\n<MPM>\n<dynamic>false</dynamic>" + mpm +
+                                "\n</MPM>\n</Uintah_specification>",
+                            "mpm.ups");
+  return ImplicitOptions::fromInput(spec->root().requireChild("MPM"));
+}
+
+// Under <error_tolerance> Newton's criteria the input leaves out are (tol / 10)^2 and 4x that,
+// never below ImpMPM's defaults (1e-10, 4e-10); criteria given are kept.
+TEST(TimestepController, ErrorToleranceSetsNewtonsCriteria) {
+  const ImplicitOptions none = readImplicit("");
+  EXPECT_EQ(none.convergenceDisp, 1e-10);
+  EXPECT_EQ(none.convergenceEnergy, 4e-10);
+  const ImplicitOptions loose = readImplicit("<error_tolerance>0.01</error_tolerance>");
+  EXPECT_DOUBLE_EQ(loose.convergenceDisp, 1e-6);
+  EXPECT_DOUBLE_EQ(loose.convergenceEnergy, 4e-6);
+  const ImplicitOptions tight = readImplicit("<error_tolerance>1e-6</error_tolerance>");
+  EXPECT_EQ(tight.convergenceDisp, 1e-10);
+  EXPECT_EQ(tight.convergenceEnergy, 4e-10);
+  const ImplicitOptions given = readImplicit(
+      "<error_tolerance>0.01</error_tolerance><convergence_criteria_disp>1e-9"
+      "</convergence_criteria_disp>");
+  EXPECT_EQ(given.convergenceDisp, 1e-9);
+  EXPECT_DOUBLE_EQ(given.convergenceEnergy, 4e-6);
 }
 
 // <error_tolerance>: a step's estimate (of order dt^3) above it is retaken at

@@ -1,5 +1,6 @@
 #include "Components/MPM/ImplicitOptions.h"
 
+#include <algorithm>
 #include <optional>
 #include <string>
 
@@ -53,6 +54,15 @@ ImplicitOptions ImplicitOptions::fromInput(const PSNode& mpm) {
           .unsupported("<error_tolerance> with <dynamic>true (it serves quasi-static steps)");
     o.maxConcentrationChange = 0;
     o.concentrationCoupling = ConcentrationCoupling::Trapezoidal;
+    // Newton's criteria that the input leaves out follow the tolerance: the last correction at
+    // most a tenth of it against the step's largest, (tol / 10)^2 of |du|^2, and 4x that for the
+    // energy as ImpMPM's defaults are; never tighter than those (docs/quasi-static.md, "Steps by
+    // error estimate").
+    const double disp = (o.errorTolerance / 10) * (o.errorTolerance / 10);
+    if (!mpm.child("convergence_criteria_disp"))
+      o.convergenceDisp = std::max(o.convergenceDisp, disp);
+    if (!mpm.child("convergence_criteria_energy"))
+      o.convergenceEnergy = std::max(o.convergenceEnergy, 4 * disp);
   }
   if (const std::optional<double> change = mpm.find<double>("max_concentration_change")) {
     o.maxConcentrationChange = *change;
@@ -69,8 +79,8 @@ ImplicitOptions ImplicitOptions::fromInput(const PSNode& mpm) {
                     "\"");
     else if (o.errorTolerance > 0)
       coupling.fail(
-          "<concentration_coupling>staggered with <error_tolerance>: the error estimate is the "
-          "difference of a trapezoidal step's two diffusion passes");
+          "<concentration_coupling>staggered with <error_tolerance>: the error estimate is made "
+          "from a trapezoidal step's two diffusion passes");
     if (o.dynamic && o.concentrationCoupling == ConcentrationCoupling::Trapezoidal)
       coupling.unsupported(
           "<concentration_coupling>trapezoidal with <dynamic>true (it serves "
