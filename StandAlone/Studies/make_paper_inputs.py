@@ -652,6 +652,30 @@ add_variant(
     **NEWTON_STEPS,
 )
 
+# The same pillar without step hints: dt chosen by the error estimate (docs/quasi-static.md, "Steps
+# by error estimate"), <delt_max> as the explicit inputs', Newton's criteria from the tolerance.
+add_variant(
+    "Density_2.33e18",
+    name="QuasiStatic_Fig4_NoHints",
+    title="Quasi-static: 2.33e3 kg/m^3, steps by error estimate",
+    notes=describe(
+        COMMON
+        + [
+            "Linear isotropic hardening, yield 1.4 GPa, modulus 1.15 GPa.",
+            "Density 2.33e3 kg/m^3 (real silicon), D0 = 1e-17 m^2/s, flux 1e-9 m/s, quasi-static",
+            "(implicit) steps chosen by their error estimate (error_tolerance 0.01), without",
+            "step hints: QuasiStatic_Fig4 without its delt_max of 1 s, max_concentration_change,",
+            "num_iters_to_increase_delT and clamp_time_to_output. Steps end on the output times",
+            "(every 1 s). docs/quasi-static.md, 'Figure 4's pillar without step hints'.",
+        ]
+    ),
+    **dict(
+        REAL_DENSITY,
+        delt_max=1e12,
+        implicit_extra="\n    <error_tolerance>0.01</error_tolerance>",
+    ),
+)
+
 # §4.4's faster flux at the real density, quasi-static: the explicit Flux_1e-8 stops at 16.06 s
 # with c = 1.0000037 (docs/paper); here dt follows Newton's iterations alone as QuasiStatic_Fig4.
 add_variant(
