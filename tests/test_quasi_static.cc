@@ -303,7 +303,7 @@ TEST(QuasiStatic, RejectsWhatItDoesNotSupport) {
 // swelling eta dc of the step, so its J is exp(3 N 2 atanh(eta dc / 2)) after N steps: 8.4e-6
 // above exp(3 eta c) here.
 // An octant of a cube, CPDI, 2 particles per cell and axis, symmetry planes x-, y-, z-; its
-// concentration rises uniformly at rate 1 (constant_rate), dt at most 0.05.
+// concentration rises uniformly at rate 1 (constant_rate), dt at most 0.05 (no error control).
 std::string swellingInput(const std::string& model, const std::string& extraMPM) {
   std::ostringstream s;
   s << "<Uintah_specification><SimulationComponent type=\"impm\"/><Time><maxTime>0.5</maxTime>"
@@ -312,7 +312,7 @@ std::string swellingInput(const std::string& model, const std::string& extraMPM)
        "<DataArchiver><filebase>fs.uda</filebase><outputTimestepInterval>1000</"
        "outputTimestepInterval></DataArchiver><MPM><interpolator>cpdi</interpolator>"
        "<do_scalar_diffusion>true</do_scalar_diffusion><time_integrator>implicit</"
-       "time_integrator><dynamic>false</dynamic>"
+       "time_integrator><dynamic>false</dynamic><error_tolerance>0</error_tolerance>"
     << extraMPM
     << "</MPM><MaterialProperties><MPM><material><density>1000</density><constitutive_model "
        "type=\""
@@ -408,7 +408,8 @@ std::string diffCurveSlab(const std::string& firstDt) {
          "</filebase><outputTimestepInterval>1000</outputTimestepInterval><save "
          "label=\"p.diffusivity\"/></DataArchiver><MPM><time_integrator>implicit</time_integrator>"
          "<dynamic>false</dynamic><max_concentration_change>0.01</max_concentration_change>"
-         "<interpolator>gimp</interpolator><do_scalar_diffusion>true</do_scalar_diffusion>"
+         "<error_tolerance>0</error_tolerance><interpolator>gimp</"
+         "interpolator><do_scalar_diffusion>true</do_scalar_diffusion>"
          "<use_load_curves>true</use_load_curves></MPM><MaterialProperties><MPM><material>"
          "<density>1</density><constitutive_model type=\"rf_elastic_plastic\"><bulk_modulus>1e6"
          "</bulk_modulus><shear_modulus>1e6</shear_modulus><volume_expansion_coeff>0.05"
@@ -485,7 +486,8 @@ TEST(QuasiStatic, RetakenStepRestoresTheDiffusivityCurve) {
 }
 
 // A bar lithiated through its x+ end (flux 0.05, D 0.02), swelling by eta = 0.5 as it fills, in
-// quasi-static steps. Staggered, each step's diffusion sees the bar of the step's start: the flux
+// quasi-static steps of dt (fixed: <error_tolerance>0 unless `extra` gives one). Staggered, each
+// step's diffusion sees the bar of the step's start: the flux
 // enters the unswollen surface particles, and steps of 0.25 take up 4.4% more lithium by t = 1
 // than steps of 0.01 (measured). Trapezoidal, the diffusion runs again on the predicted end and
 // the step takes the mean: 1.0% more with the same steps, 0.15% in steps of 0.05 (measured).
@@ -499,6 +501,9 @@ std::string lithiatedBar(const std::string& coupling, double dt, const std::stri
        "<filebase>bar.uda</filebase><outputTimestepInterval>1000</outputTimestepInterval>"
        "</DataArchiver><MPM><time_integrator>implicit</time_integrator><dynamic>false</dynamic>"
        "<max_concentration_change>1</max_concentration_change>"
+    << (extra.find("<error_tolerance>") == std::string::npos
+            ? "<error_tolerance>0</error_tolerance>"
+            : "")
     << extra << "<concentration_coupling>" << coupling
     << "</concentration_coupling><interpolator>gimp</interpolator><do_scalar_diffusion>true"
        "</do_scalar_diffusion><use_load_curves>true</use_load_curves></MPM><MaterialProperties>"
@@ -776,7 +781,8 @@ std::string steppedBar(bool relax) {
        "<timestep_multiplier>0.4</timestep_multiplier></Time><DataArchiver><filebase>bar.uda"
        "</filebase><outputTimestepInterval>1000</outputTimestepInterval></DataArchiver><MPM>"
        "<time_integrator>implicit</time_integrator><dynamic>false</dynamic>"
-       "<max_concentration_change>1</max_concentration_change><subcell_concentration_relaxation>"
+       "<max_concentration_change>1</max_concentration_change><error_tolerance>0</error_tolerance>"
+       "<subcell_concentration_relaxation>"
     << (relax ? "true" : "false")
     << "</subcell_concentration_relaxation><interpolator>gimp</interpolator>"
        "<do_scalar_diffusion>true</do_scalar_diffusion></MPM><MaterialProperties><MPM><material>"

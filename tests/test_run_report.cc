@@ -185,8 +185,7 @@ TEST(RunReport, ImplicitRunGivesNewtonAndKrylov) {
 }
 
 // A quasi-static run with <concentration_coupling>trapezoidal: the history's coupling_correction
-// (0 at step 0, above 0 at each step that diffuses) and its plot; the staggered input of the
-// test above has neither.
+// (0 at step 0, above 0 at each step that diffuses) and its plot; a staggered input has neither.
 TEST(RunReport, TrapezoidalRunPlotsItsCouplingCorrection) {
   const fs::path dir = scratch("trapezoidal");
   const auto run =
@@ -202,11 +201,10 @@ TEST(RunReport, TrapezoidalRunPlotsItsCouplingCorrection) {
   fs::remove_all(dir);
 
   const fs::path staggered = scratch("staggered");
-  ASSERT_EQ(
-      runSus({"-o", staggered.string(), "--max-timesteps", "1",
-              std::string(ANODE_SOURCE_DIR) + "/inputs/Stability/Implicit_swelling_eta_0.56.ups"})
-          .exitCode,
-      0);
+  ASSERT_EQ(runSus({"-o", staggered.string(), "--max-timesteps", "1",
+                    std::string(ANODE_SOURCE_DIR) + "/tests/parallel/ImplicitSwelling.ups"})
+                .exitCode,
+            0);
   EXPECT_LT(
       digestHistory((staggered / "history.csv").string(), 100, 1e-2).column("coupling_correction"),
       0);

@@ -73,28 +73,52 @@ TEST(TimestepController, AnOutputTimeShortensTheStepButNotTheRuleDt) {
   EXPECT_EQ(unclamped.plan(limits(0.02), 0, 0.3, 0.305).dt, 0.01);
 }
 
-ImplicitOptions readImplicit(const std::string& mpm) {
-  const auto spec =
-      ProblemSpec::fromText("<Uintah_specification>\n<MPM>\n<dynamic>false</dynamic>" + mpm +
-                                "\n</MPM>\n</Uintah_specification>",
-                            "mpm.ups");
-  return ImplicitOptions::fromInput(spec->root().requireChild("MPM"));
+ImplicitOptions readImplicit(const std::string& mpm, bool diffusion = false) {
+  const auto spec = ProblemSpec::fromText(
+      "<Uintah_specification>\n<MPM>\n" + mpm + "\n</MPM>\n</Uintah_specification>", "mpm.ups");
+  return ImplicitOptions::fromInput(spec->root().requireChild("MPM"), diffusion);
+}
+
+// Quasi-static steps with diffusion are error-controlled by default (tolerance 0.01, trapezoidal
+// coupling, Newton's criteria from it); not without diffusion, not on dynamic steps, not when the
+// input asks for a staggered coupling or gives <error_tolerance>0.
+TEST(TimestepController, ErrorControlIsTheDefaultWithDiffusion) {
+  const std::string quasiStatic = "<dynamic>false</dynamic>";
+  const ImplicitOptions lithiated = readImplicit(quasiStatic, true);
+  EXPECT_EQ(lithiated.errorTolerance, ImplicitOptions::kDefaultErrorTolerance);
+  EXPECT_EQ(lithiated.concentrationCoupling, ImplicitOptions::ConcentrationCoupling::Trapezoidal);
+  EXPECT_EQ(lithiated.maxConcentrationChange, 0);
+  EXPECT_DOUBLE_EQ(lithiated.convergenceDisp, 1e-6);
+  EXPECT_EQ(readImplicit(quasiStatic, false).errorTolerance, 0);
+  EXPECT_EQ(readImplicit("<dynamic>true</dynamic>", true).errorTolerance, 0);
+  const ImplicitOptions staggered = readImplicit(
+      quasiStatic + "<concentration_coupling>staggered</concentration_coupling>", true);
+  EXPECT_EQ(staggered.errorTolerance, 0);
+  EXPECT_EQ(staggered.concentrationCoupling, ImplicitOptions::ConcentrationCoupling::Staggered);
+  const ImplicitOptions off =
+      readImplicit(quasiStatic + "<error_tolerance>0</error_tolerance>", true);
+  EXPECT_EQ(off.errorTolerance, 0);
+  EXPECT_EQ(off.concentrationCoupling, ImplicitOptions::ConcentrationCoupling::Staggered);
+  EXPECT_EQ(off.convergenceDisp, 1e-10);
 }
 
 // Under <error_tolerance> Newton's criteria the input leaves out are (tol / 10)^2 and 4x that,
 // never below ImpMPM's defaults (1e-10, 4e-10); criteria given are kept.
 TEST(TimestepController, ErrorToleranceSetsNewtonsCriteria) {
-  const ImplicitOptions none = readImplicit("");
+  const ImplicitOptions none = readImplicit("<dynamic>false</dynamic>");
   EXPECT_EQ(none.convergenceDisp, 1e-10);
   EXPECT_EQ(none.convergenceEnergy, 4e-10);
-  const ImplicitOptions loose = readImplicit("<error_tolerance>0.01</error_tolerance>");
+  const ImplicitOptions loose =
+      readImplicit("<dynamic>false</dynamic><error_tolerance>0.01</error_tolerance>");
   EXPECT_DOUBLE_EQ(loose.convergenceDisp, 1e-6);
   EXPECT_DOUBLE_EQ(loose.convergenceEnergy, 4e-6);
-  const ImplicitOptions tight = readImplicit("<error_tolerance>1e-6</error_tolerance>");
+  const ImplicitOptions tight =
+      readImplicit("<dynamic>false</dynamic><error_tolerance>1e-6</error_tolerance>");
   EXPECT_EQ(tight.convergenceDisp, 1e-10);
   EXPECT_EQ(tight.convergenceEnergy, 4e-10);
   const ImplicitOptions given = readImplicit(
-      "<error_tolerance>0.01</error_tolerance><convergence_criteria_disp>1e-9"
+      "<dynamic>false</dynamic><error_tolerance>0.01</"
+      "error_tolerance><convergence_criteria_disp>1e-9"
       "</convergence_criteria_disp>");
   EXPECT_EQ(given.convergenceDisp, 1e-9);
   EXPECT_DOUBLE_EQ(given.convergenceEnergy, 4e-6);

@@ -16,9 +16,14 @@ void readPositive(const PSNode& mpm, const char* tag, T& value) {
 
 }  // namespace
 
-ImplicitOptions ImplicitOptions::fromInput(const PSNode& mpm) {
+ImplicitOptions ImplicitOptions::fromInput(const PSNode& mpm, bool diffusion) {
   ImplicitOptions o;
   o.dynamic = mpm.get<bool>("dynamic", o.dynamic);
+  // Quasi-static steps with diffusion are chosen by their error estimate unless the input says
+  // otherwise (<error_tolerance>0, or a staggered coupling, which has no estimate).
+  const PSNode coupling = mpm.child("concentration_coupling");
+  if (diffusion && !o.dynamic && !(coupling && coupling.value<std::string>() == "staggered"))
+    o.errorTolerance = kDefaultErrorTolerance;
   readPositive(mpm, "convergence_criteria_disp", o.convergenceDisp);
   readPositive(mpm, "convergence_criteria_energy", o.convergenceEnergy);
   readPositive(mpm, "iters_before_timestep_restart", o.maxIterations);
@@ -70,7 +75,7 @@ ImplicitOptions ImplicitOptions::fromInput(const PSNode& mpm) {
       mpm.requireChild("max_concentration_change")
           .fail("<max_concentration_change> must be in (0, 1]");
   }
-  if (const PSNode coupling = mpm.child("concentration_coupling")) {
+  if (coupling) {
     const std::string name = coupling.value<std::string>();
     if (name == "trapezoidal")
       o.concentrationCoupling = ConcentrationCoupling::Trapezoidal;

@@ -42,11 +42,14 @@ struct ImplicitOptions {
   // no such bound (the default with <error_tolerance>).
   double maxConcentrationChange = 0.05;
   // <error_tolerance> (ours): with diffusion, quasi-static steps chosen by their error estimate
-  // (ImplicitStep's: half the largest difference of a particle's change of c / c_max between the
-  // step's two diffusion passes, the staggering's local error), each step's held to this and
-  // retaken above it, dt from a PI controller (TimestepController::afterErrorEstimate). It
-  // makes the coupling trapezoidal (a staggered one is an input error), Newton's iterations only
-  // shrink dt, and <max_concentration_change> applies only where given. 0 (the default): off.
+  // (ImplicitStep's: the largest local error of a particle's c / c_max that the trapezoidal mean
+  // of the step's two diffusion passes leaves, Implicit/TrapezoidalCoupling.h), each step's held
+  // to this and retaken above it, dt from a PI controller (TimestepController::afterErrorEstimate).
+  // It makes the coupling trapezoidal (a staggered one is an input error), Newton's iterations
+  // only shrink dt, and <max_concentration_change> applies only where given. The default is
+  // kDefaultErrorTolerance on quasi-static steps with diffusion unless the input asks for
+  // <concentration_coupling>staggered; 0 otherwise, and 0 turns it off.
+  static constexpr double kDefaultErrorTolerance = 0.01;
   double errorTolerance = 0;
   // <concentration_coupling> (ours): how a quasi-static step's diffusion sees the mechanics.
   // Staggered: the diffusion sub-steps run on the particles of the step's start, then Newton.
@@ -68,8 +71,9 @@ struct ImplicitOptions {
   // (ReactiveFlow/SubcellRelaxation.h); off, Eq. 8 carries them unchanged.
   bool subcellConcentrationRelaxation = false;
 
-  // Reads the ImpMPM tags of <MPM> (only with <time_integrator>implicit).
-  static ImplicitOptions fromInput(const PSNode& mpm);
+  // Reads the ImpMPM tags of <MPM> (only with <time_integrator>implicit); `diffusion`: whether
+  // the run diffuses lithium (<do_scalar_diffusion>), which sets <error_tolerance>'s default.
+  static ImplicitOptions fromInput(const PSNode& mpm, bool diffusion);
 };
 
 }  // namespace anode

@@ -103,9 +103,10 @@ MPMFlags MPMFlags::fromInput(const PSNode& root) {
     return f;
   }
 
+  f.doScalarDiffusion = mpm.get<bool>("do_scalar_diffusion", false);
   const std::string integrator = mpm.get<std::string>("time_integrator", "explicit");
   if (integrator == "implicit") {
-    f.implicit = ImplicitOptions::fromInput(mpm);
+    f.implicit = ImplicitOptions::fromInput(mpm, f.doScalarDiffusion);
   } else if (integrator != "explicit") {
     mpm.requireChild("time_integrator")
         .fail("time_integrator \"" + integrator +
@@ -129,7 +130,6 @@ MPMFlags MPMFlags::fromInput(const PSNode& root) {
   if (const PSNode lcrit = mpm.child("cpdi_lcrit"))
     if (lcrit.value<double>() < 1e10) lcrit.unsupported("CPDI corner limiting <cpdi_lcrit>");
 
-  f.doScalarDiffusion = mpm.get<bool>("do_scalar_diffusion", false);
   f.useLoadCurves = mpm.get<bool>("use_load_curves", false);
   // This code's extension (docs/diffusion.md): how SD-Type Dirichlet conditions reach particles.
   if (const PSNode t = mpm.child("concentration_dirichlet")) {
