@@ -23,8 +23,9 @@ struct StepCounts {
   // differ (ImplicitStep::NewtonCounts::lastCouplingCorrection).
   double couplingCorrection = -1;
   // With <error_tolerance>: the step's error estimate (ImplicitStep::NewtonCounts::
-  // lastErrorEstimate) and the attempts rejected (retaken with a smaller dt) before it.
-  double errorEstimate = -1;
+  // lastErrorEstimate), the particles' largest sum of their estimates up to it
+  // (accumulatedErrorEstimate) and the attempts rejected (retaken with a smaller dt) before it.
+  double errorEstimate = -1, accumulatedErrorEstimate = -1;
   int rejectedAttempts = -1;
 };
 

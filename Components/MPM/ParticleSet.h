@@ -47,8 +47,9 @@ struct ParticleSet {
   // Implicit steps with hourglass stabilization only.
   std::vector<HourglassMemory> hourglassMemory;
   // Quasi-static steps with diffusion under <error_tolerance> only: the last step's coupling rate
-  // (dc_2 - dc_1) / dt^2 of its two diffusion passes (Implicit/TrapezoidalCoupling.cc).
-  std::vector<double> couplingRate;
+  // (dc_2 - dc_1) / dt^2 of its two diffusion passes, and the sum of the particle's signed local
+  // error estimates of c / c_max over the steps (Implicit/TrapezoidalCoupling.cc).
+  std::vector<double> couplingRate, concentrationErrorEstimate;
 
   size_t count() const { return x.size(); }
 
@@ -172,6 +173,8 @@ struct ParticleSet {
     f(s.acceleration, ParticleField<Vec3>{"p.acceleration", P::Inertia, Vec3::Zero(), S::Copy});
     f(s.hourglassMemory, ParticleField<HourglassMemory>{nullptr, P::Hourglass, {}, S::Copy});
     f(s.couplingRate, ParticleField<double>{nullptr, P::CouplingHistory, 0.0, S::Copy});
+    f(s.concentrationErrorEstimate,
+      ParticleField<double>{nullptr, P::CouplingHistory, 0.0, S::Copy});
   }
 
   uint8_t physics_ = bit(Physics::Mechanics);

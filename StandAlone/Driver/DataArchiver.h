@@ -38,8 +38,8 @@ struct StepRecord {
   // whose c changes (MPM::NewtonCounts::lastCouplingCorrection; 0 before the first step); -1:
   // no column.
   double couplingCorrection = -1;
-  // With <error_tolerance>: the step's error estimate (ImplicitStep's), the sum of the estimates
-  // of the steps up to it, and the attempts rejected before it was taken; -1: no columns.
+  // With <error_tolerance>: the step's error estimate (ImplicitStep's), the particles' largest
+  // accumulated estimate up to it, and the attempts rejected before it was taken; -1: no columns.
   double errorEstimate = -1, accumulatedErrorEstimate = -1;
   int rejectedAttempts = -1;
 };

@@ -156,10 +156,12 @@ std::vector<PlotSpec> plots(const HistoryDigest& d) {
     out.push_back(std::move(coupling));
   }
   if (d.column("error_estimate") >= 0) {
-    PlotSpec error = timePlot("error", "Error estimate: each step's and their sum",
-                              "c / c_max of a particle", true);
+    PlotSpec error =
+        timePlot("error", "Error estimate: each step's, and accumulated over the steps",
+                 "c / c_max of a particle", true);
     addEnvelope(error, d, "error_estimate", "step's estimate", "#1f77b4");
-    addEnvelope(error, d, "accumulated_error_estimate", "sum of the estimates", "#d62728");
+    addEnvelope(error, d, "accumulated_error_estimate", "accumulated (a particle's largest)",
+                "#d62728");
     out.push_back(std::move(error));
     PlotSpec rejected = timePlot("rejected", "Attempts rejected before each step", "attempts");
     addEnvelope(rejected, d, "rejected_attempts", "rejected attempts", "#7f7f7f");
@@ -217,7 +219,7 @@ void numbersTable(std::ostream& html, const HistoryDigest& d) {
   if (d.column("error_estimate") >= 0) {
     row(html, "error estimate of a step, largest (c / c_max of a particle)",
         number(at(d.maximum, "error_estimate"), "%.3g"));
-    row(html, "sum of the steps' error estimates",
+    row(html, "accumulated error estimate (c / c_max of a particle)",
         number(at(d.last, "accumulated_error_estimate"), "%.3g"));
   }
   row(html, "kinetic / elastic energy, largest",

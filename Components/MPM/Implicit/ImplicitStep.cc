@@ -265,11 +265,11 @@ void ImplicitStep::takeEquilibriumStep(Collective every, double t, double& dt, d
     // 2b (<concentration_coupling>trapezoidal): c over dt again on the predicted end
     std::vector<std::vector<Vec3>> predicted;
     NewtonReport prediction;
-    double couplingCorrection = -1, errorEstimate = -1;
+    double couplingCorrection = -1, errorEstimate = -1, accumulatedEstimate = -1;
     if (report.failure.empty() && diffusion &&
         options_.concentrationCoupling == ImplicitOptions::ConcentrationCoupling::Trapezoidal) {
-      prediction = averageConcentrationChangeOverStep(every, t, dt, start, predicted,
-                                                      couplingCorrection, errorEstimate);
+      prediction = averageConcentrationChangeOverStep(
+          every, t, dt, start, predicted, couplingCorrection, errorEstimate, accumulatedEstimate);
       if (!prediction.converged) {
         report = prediction;
         report.failure = "the prediction of the step's end: " + report.failure;
@@ -299,6 +299,7 @@ void ImplicitStep::takeEquilibriumStep(Collective every, double t, double& dt, d
         newton_.lastKrylov = report.krylovIterations + prediction.krylovIterations;
         newton_.lastCouplingCorrection = couplingCorrection;
         newton_.lastErrorEstimate = dt_.controlsError() ? errorEstimate : -1;
+        newton_.accumulatedErrorEstimate = dt_.controlsError() ? accumulatedEstimate : -1;
         newton_.lastRetakes = retakes;
         newton_.lastRatios = report.ratios;
         newton_.lastLinearTolerances = report.linearTolerances;

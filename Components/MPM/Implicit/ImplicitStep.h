@@ -38,8 +38,12 @@ class ImplicitStep : public Integrator {
   StepTaken advance(Collective, double t, double dt, double ruleDt) override;
   std::string describeLastStep(StableTimestep::Limit) const override { return newton_.lastStep(); }
   StepCounts lastStepCounts() const override {
-    return {newton_.lastIterations + newton_.lastPredictorIterations, newton_.lastKrylov,
-            newton_.lastCouplingCorrection, newton_.lastErrorEstimate, newton_.lastRetakes};
+    return {newton_.lastIterations + newton_.lastPredictorIterations,
+            newton_.lastKrylov,
+            newton_.lastCouplingCorrection,
+            newton_.lastErrorEstimate,
+            newton_.accumulatedErrorEstimate,
+            newton_.lastRetakes};
   }
   std::string summary(long steps) const override { return newton_.summary(steps); }
 
@@ -54,10 +58,11 @@ class ImplicitStep : public Integrator {
     // of c, the lithium by which the step's mean differs from either pass.
     double lastCouplingCorrection = -1;
     // With <error_tolerance>: the last step's error estimate (-1 otherwise), the largest over
-    // every rank's particles of |dc_2 - dc_1| / (2 c_max), half the difference of the two
-    // passes' changes of a particle's c (the staggered step's local error, of order dt^2; the
-    // step keeps their mean); and the attempts retaken before the step was taken.
-    double lastErrorEstimate = -1;
+    // every rank's particles of the local error of the trapezoidal mean in c / c_max
+    // (Implicit/TrapezoidalCoupling.cc); the largest over the particles of the sum of a
+    // particle's signed local errors over the steps up to it (ParticleSet::
+    // concentrationErrorEstimate); and the attempts retaken before the step was taken.
+    double lastErrorEstimate = -1, accumulatedErrorEstimate = -1;
     int lastRetakes = 0;
     long iterations = 0, krylov = 0, retakes = 0, diffusionSubsteps = 0, preconditionerSetUps = 0,
          newTangents = 0;
@@ -102,12 +107,14 @@ class ImplicitStep : public Integrator {
   // the start with c changed by the mean of the two passes (concentrationChange_ too). Returns the
   // prediction's Newton (a failed one: the step is retaken), its increments by field in
   // `predicted`, and the coupling correction in `correction`
-  // (NewtonCounts::lastCouplingCorrection) and the error estimate in `estimate`
-  // (NewtonCounts::lastErrorEstimate).
+  // (NewtonCounts::lastCouplingCorrection), the error estimate in `estimate`
+  // (NewtonCounts::lastErrorEstimate) and the particles' largest accumulated estimate in
+  // `accumulated` (NewtonCounts::accumulatedErrorEstimate).
   NewtonReport averageConcentrationChangeOverStep(Collective, double t, double dt,
                                                   const std::vector<ParticleSet>& start,
                                                   std::vector<std::vector<Vec3>>& predicted,
-                                                  double& correction, double& estimate);
+                                                  double& correction, double& estimate,
+                                                  double& accumulated);
   // Steps 2-4 from t over dt: the diffusion (twice with the trapezoidal coupling) and Newton,
   // retaken with a smaller dt (and ruleDt) until they hold; `start` holds the step's particles
   // with diffusion. Leaves the particles as the diffusion left them and Newton's increments.

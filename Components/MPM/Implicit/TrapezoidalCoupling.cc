@@ -26,15 +26,17 @@ constexpr double kPredictorConvergence = 1e-3;
 // the step's ends; M's curvature leaves an error dt^3/12 (df/dM) M'' = dt^3/12 g', g = (df/dM) M'.
 // The passes differ by dc_2 - dc_1 = dt^2 g at the step's middle (to first order), so r samples g
 // at the middles of consecutive steps, (dt + lastDt) / 2 apart. Before the first step g is 0 (a
-// body at rest under a flux switched on at its start): r_last = 0 and lastDt = 0.
+// body at rest under a flux switched on at its start): r_last = 0 and lastDt = 0. Signed, so that a
+// particle's errors over the steps add up as they do in its c.
 double localCouplingError(double rate, double lastRate, double dt, double lastDt) {
-  return dt * dt * dt * std::abs(rate - lastRate) / (6 * (dt + lastDt));
+  return dt * dt * dt * (rate - lastRate) / (6 * (dt + lastDt));
 }
 }  // namespace
 
 NewtonReport ImplicitStep::averageConcentrationChangeOverStep(
     Collective every, double t, double dt, const std::vector<ParticleSet>& start,
-    std::vector<std::vector<Vec3>>& predicted, double& correction, double& estimate) {
+    std::vector<std::vector<Vec3>>& predicted, double& correction, double& estimate,
+    double& accumulated) {
   std::vector<MPMMaterial>& materials = mpm_.materials();
   // Never tighter than the step's own criteria.
   ImplicitOptions loose = options_;
@@ -73,9 +75,11 @@ NewtonReport ImplicitStep::averageConcentrationChangeOverStep(
     if (covered < dt) throw SimulationError(passCapFailure(dt, covered));
     // The start's particles with the means of the two passes (trapezoidal in the geometry, the
     // stress and J), the lithium by which the mean differs from either pass, and under
-    // <error_tolerance> the estimate of the mean's local error.
+    // <error_tolerance> the estimate of the mean's local error, and each particle's sum of its
+    // estimates over the steps.
     correction = 0;
     estimate = 0;
+    accumulated = 0;
     const double lastDt = dt_.errorControl().takenDt;
     for (size_t m = 0; m < materials.size(); ++m) {
       const double maxConcentration = mpm_.diffusion()->model(m).maxConcentration;
@@ -86,13 +90,17 @@ NewtonReport ImplicitStep::averageConcentrationChangeOverStep(
       const std::vector<double>& mass = materials[m].particles.mass;
       std::vector<double>& change = concentrationChange_[m];
       std::vector<double>& couplingRate = materials[m].particles.couplingRate;
+      std::vector<double>& errorSum = materials[m].particles.concentrationErrorEstimate;
       for (size_t i = 0; i < d.concentration.size(); ++i) {
         const double difference = change[i] - firstPassChange[m][i];
         correction += mass[i] * 0.5 * std::abs(difference);
         if (!couplingRate.empty()) {
           const double rate = difference / (dt * dt);
-          estimate = std::max(
-              estimate, localCouplingError(rate, couplingRate[i], dt, lastDt) / maxConcentration);
+          const double local =
+              localCouplingError(rate, couplingRate[i], dt, lastDt) / maxConcentration;
+          estimate = std::max(estimate, std::abs(local));
+          errorSum[i] += local;
+          accumulated = std::max(accumulated, std::abs(errorSum[i]));
           couplingRate[i] = rate;
         }
         change[i] = 0.5 * (firstPassChange[m][i] + change[i]);
@@ -102,6 +110,7 @@ NewtonReport ImplicitStep::averageConcentrationChangeOverStep(
     }
     correction = collective::sum(every, correction);
     estimate = collective::maximum(every, estimate);
+    accumulated = collective::maximum(every, accumulated);
     maxConcentrationChange_ = collective::maximum(every, largestConcentrationChange());
     {
       ScopedTimer s(mpm_.timers(), tasks_.diffusionState);
