@@ -80,8 +80,9 @@ ImplicitOptions readImplicit(const std::string& mpm, bool diffusion = false) {
 }
 
 // Quasi-static steps with diffusion are error-controlled by default (tolerance 0.01, trapezoidal
-// coupling, Newton's criteria from it); not without diffusion, not on dynamic steps, not when the
-// input asks for a staggered coupling or gives <error_tolerance>0.
+// coupling, Newton's criteria and a Jacobian without round-off couplings from it); not without
+// diffusion, not on dynamic steps, not when the input asks for a staggered coupling or gives
+// <error_tolerance>0.
 TEST(TimestepController, ErrorControlIsTheDefaultWithDiffusion) {
   const std::string quasiStatic = "<dynamic>false</dynamic>";
   const ImplicitOptions lithiated = readImplicit(quasiStatic, true);
@@ -89,6 +90,10 @@ TEST(TimestepController, ErrorControlIsTheDefaultWithDiffusion) {
   EXPECT_EQ(lithiated.concentrationCoupling, ImplicitOptions::ConcentrationCoupling::Trapezoidal);
   EXPECT_EQ(lithiated.maxConcentrationChange, 0);
   EXPECT_DOUBLE_EQ(lithiated.convergenceDisp, 1e-6);
+  EXPECT_EQ(lithiated.jacobianCouplingShare, ImplicitOptions::kErrorControlCouplingShare);
+  EXPECT_EQ(readImplicit(quasiStatic + "<jacobian_coupling_share>0</jacobian_coupling_share>", true)
+                .jacobianCouplingShare,
+            0);
   EXPECT_EQ(readImplicit(quasiStatic, false).errorTolerance, 0);
   EXPECT_EQ(readImplicit("<dynamic>true</dynamic>", true).errorTolerance, 0);
   const ImplicitOptions staggered = readImplicit(
@@ -100,6 +105,7 @@ TEST(TimestepController, ErrorControlIsTheDefaultWithDiffusion) {
   EXPECT_EQ(off.errorTolerance, 0);
   EXPECT_EQ(off.concentrationCoupling, ImplicitOptions::ConcentrationCoupling::Staggered);
   EXPECT_EQ(off.convergenceDisp, 1e-10);
+  EXPECT_EQ(off.jacobianCouplingShare, 0);
 }
 
 // Under <error_tolerance> Newton's criteria the input leaves out are (tol / 10)^2 and 4x that,

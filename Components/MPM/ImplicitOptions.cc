@@ -68,6 +68,10 @@ ImplicitOptions ImplicitOptions::fromInput(const PSNode& mpm, bool diffusion) {
       o.convergenceDisp = std::max(o.convergenceDisp, disp);
     if (!mpm.child("convergence_criteria_energy"))
       o.convergenceEnergy = std::max(o.convergenceEnergy, 4 * disp);
+    // A Newton held to those criteria needs no exact Jacobian: where the input leaves it out,
+    // the Jacobian drops the round-off couplings (docs/quasi-static.md, "Steps by error
+    // estimate"); the residual keeps them, so the equilibrium is the same.
+    if (!mpm.child("jacobian_coupling_share")) o.jacobianCouplingShare = kErrorControlCouplingShare;
   }
   if (const std::optional<double> change = mpm.find<double>("max_concentration_change")) {
     o.maxConcentrationChange = *change;

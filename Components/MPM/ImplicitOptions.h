@@ -29,7 +29,9 @@ struct ImplicitOptions {
   // Newton converges to the same equilibrium (docs/quasi-static.md, "Assembly"). 0 (the default)
   // keeps all, and the exact Jacobian's quadratic convergence; the large pillar's cycle takes
   // 1e-4. At most 1e-3: at 1e-2, on the CPDI compression of test_quasi_static, Newton stopped with
-  // the stresses 43% from those of the full Jacobian (57 iterations against 12).
+  // the stresses 43% from those of the full Jacobian (57 iterations against 12). Under
+  // <error_tolerance> the default is kErrorControlCouplingShare.
+  static constexpr double kErrorControlCouplingShare = 1e-4;
   double jacobianCouplingShare = 0;
   // <jacobian_reuse> (ours): Newton keeps its last Jacobian for the next correction after a small,
   // fast one (Implicit/EquilibriumSolver.cc, kKeptTangentRatio): an iteration without the
