@@ -92,7 +92,7 @@ double TimestepController::retakeForError(double dt, double estimate) const {
                                                            1 / kEstimateOrder));
 }
 
-void TimestepController::recordStep(double estimate, double accumulated, double dt, double ruleDt) {
+void TimestepController::recordStep(double estimate, double dt, double ruleDt) {
   if (estimate < 0) return;
   // A step shortened to end on an output time counts as the step it was cut from: its estimate
   // scaled to that dt by the estimate's order.
@@ -100,7 +100,6 @@ void TimestepController::recordStep(double estimate, double accumulated, double 
   error_.previousEstimate = error_.lastEstimate;
   error_.lastEstimate = estimate * std::pow(base / dt, kEstimateOrder);
   error_.lastDt = base;
-  error_.accumulated = accumulated;
   error_.takenDt = dt;
 }
 

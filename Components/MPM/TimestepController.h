@@ -77,15 +77,13 @@ class TimestepController {
   double retakeForError(double dt, double estimate) const;
   // What the controller keeps between steps (and the checkpoints hold): the estimates of the last
   // two steps (-1: none yet) and the last one's dt, a step shortened to end on an output time
-  // counting as the one it was cut from; the particles' largest sum of their estimates up to it
-  // (ImplicitStep's); and the dt the last step took (0 before the first), which the next step's
-  // estimate needs.
+  // counting as the one it was cut from; and the dt the last step took (0 before the first),
+  // which the next step's estimate needs. (The accumulated estimate is the particles'.)
   struct ErrorControl {
-    double lastEstimate = -1, previousEstimate = -1, lastDt = 0, accumulated = 0, takenDt = 0;
+    double lastEstimate = -1, previousEstimate = -1, lastDt = 0, takenDt = 0;
   };
-  // After a step taken over dt (of ruleDt) with that estimate (negative: none) and accumulated
-  // estimate.
-  void recordStep(double estimate, double accumulated, double dt, double ruleDt);
+  // After a step taken over dt (of ruleDt) with that estimate (negative: none).
+  void recordStep(double estimate, double dt, double ruleDt);
   const ErrorControl& errorControl() const { return error_; }
   void resumeErrorControl(const ErrorControl& state) { error_ = state; }
 

@@ -172,7 +172,7 @@ constexpr char kCheckpointMagic[] = "anode-mpm checkpoint";
 // A distributed run's checkpoint: the manifest under the checkpoint's name, one part per rank.
 constexpr char kDistributedCheckpointMagic[] = "anode-mpm distributed checkpoint";
 constexpr char kCheckpointPartMagic[] = "anode-mpm checkpoint part";
-constexpr uint32_t kCheckpointVersion = 9;
+constexpr uint32_t kCheckpointVersion = 10;
 
 // This rank's part of a distributed checkpoint; returns its hash.
 uint64_t writePart(const std::string& checkpoint, const MPM& mpm) {
@@ -214,8 +214,7 @@ CheckpointHeader readCheckpoint(const std::string& path, DataArchiver* outputs, 
     throw std::runtime_error(path + ": unknown time-step limit " + std::to_string(header.dtLimit));
   header.dtSetByTimeControl = in.value<int32_t>() != 0;
   TimestepController::ErrorControl& error = header.errorControl;
-  for (double* v : {&error.lastEstimate, &error.previousEstimate, &error.lastDt, &error.accumulated,
-                    &error.takenDt})
+  for (double* v : {&error.lastEstimate, &error.previousEstimate, &error.lastDt, &error.takenDt})
     *v = in.value<double>();
   header.step = in.value<long>();
   header.particleSteps = in.value<double>();
@@ -308,8 +307,7 @@ void writeCheckpoint(Collective every, const std::string& path, const Checkpoint
         out.value<int32_t>(header.dtLimit);
         out.value<int32_t>(header.dtSetByTimeControl ? 1 : 0);
         const TimestepController::ErrorControl& error = header.errorControl;
-        for (double v : {error.lastEstimate, error.previousEstimate, error.lastDt,
-                         error.accumulated, error.takenDt})
+        for (double v : {error.lastEstimate, error.previousEstimate, error.lastDt, error.takenDt})
           out.value(v);
         out.value(header.step);
         out.value(header.particleSteps);

@@ -129,7 +129,7 @@ StepRecord stepRecord(const StepSummary& s, int dtRule, const StepCounts& counts
     record.couplingCorrection = std::max(0.0, counts.couplingCorrection) / s.lithiumCapacity;
   if (error && s.diffusion) {
     record.errorEstimate = std::max(0.0, counts.errorEstimate);
-    record.accumulatedErrorEstimate = error->accumulated;
+    record.accumulatedErrorEstimate = std::max(0.0, counts.accumulatedErrorEstimate);
     record.rejectedAttempts = std::max(0, counts.rejectedAttempts);
   }
   return record;

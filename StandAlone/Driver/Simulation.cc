@@ -107,9 +107,7 @@ void Simulation::stepMPM(Collective every) {
   const StepTaken taken = integrator_->advance(every, t_, dt_, ruleDt_);
   dt_ = taken.dt;
   growsFromDt_ = taken.ruleDt;
-  const StepCounts counts = integrator_->lastStepCounts();
-  dtController_->recordStep(counts.errorEstimate, counts.accumulatedErrorEstimate, taken.dt,
-                            taken.ruleDt);
+  dtController_->recordStep(integrator_->lastStepCounts().errorEstimate, taken.dt, taken.ruleDt);
 }
 
 void Simulation::advance(Collective every) {
