@@ -86,6 +86,54 @@ TEST(Galvanostatic, SphereTakesUpRateTimesTimeThenStopsAtTheCutoff) {
   EXPECT_NEAR(totalLithium(sim), atEnd.totalLithium, 1e-12 * atEnd.totalLithium);
 }
 
+// Two turns on the sphere: charge at the rate above until 2e5 us, discharge until 4e5, charge
+// again. Each half-cycle's cutoff ends its current (the surface nearly full on charge, nearly
+// empty on discharge, where R(1 - c) restricts), and the next segment of the load curve resumes it.
+TEST(Galvanostatic, CutoffEndsEachHalfCycleAndTheNextSegmentResumesIt) {
+  const double rate = 4.575e11;
+  std::string points;
+  for (const auto& [time, load] : {std::pair{0.0, rate},
+                                   {2e5, rate},
+                                   {2.01e5, -rate},
+                                   {4e5, -rate},
+                                   {4.01e5, rate},
+                                   {6e5, rate}})
+    points += "<time_point><time>" + std::to_string(time) + "</time><load>" + std::to_string(load) +
+              "</load></time_point>";
+  std::string text = galvanostatic(readInput("inputs/Particles/SiliconSphereOctant.ups"), "0");
+  text = std::regex_replace(text, std::regex("<load_curve><id>1</id>.*</load_curve>"),
+                            "<load_curve><id>1</id>" + points + "</load_curve>");
+  text = std::regex_replace(text, std::regex("\\[40, 40, 40\\]"), "[20, 20, 20]");
+  Simulation sim(text, "sphere.ups", quiet());
+  // Near each segment's end: the lithium, and whether the current had ended by then.
+  std::vector<double> lithium;
+  std::vector<bool> ended;
+  std::string notes;
+  for (double end : {1.95e5, 3.95e5, 4.9e5}) {
+    while (sim.time() < end) {
+      sim.advance();
+      for (const std::string& note : sim.mpm().diffusion()->takeRunNotes()) notes += note + "\n";
+    }
+    lithium.push_back(totalLithium(sim));
+    ended.push_back(!anyFluxRate(sim));
+  }
+  EXPECT_EQ(ended, std::vector<bool>({true, true, true})) << notes;
+  EXPECT_LT(lithium[1], 0.5 * lithium[0]);
+  EXPECT_GT(lithium[2], 2 * lithium[1]);
+  // The notes, in this order.
+  size_t at = 0;
+  for (const char* note :
+       {"(the surface is nearly full), until its load curve's next segment at t = 200000\n",
+        "its current resumes at t = 20",
+        "(the surface is nearly empty), until its load curve's "
+        "next segment at t = 400000\n",
+        "its current resumes at t = 40",
+        "(the surface is nearly full), until its load curve's next segment at t = 600000\n"}) {
+    at = notes.find(note, at);
+    ASSERT_NE(at, std::string::npos) << "no \"" << note << "\" in order in:\n" << notes;
+  }
+}
+
 // A C-rate load: n C is n times the sphere's lithium at max_concentration (sum m c_max) per
 // hour, an hour being <hour> in the input's time unit.
 TEST(Galvanostatic, CRateIsTheCapacityPerHour) {

@@ -37,6 +37,19 @@ TEST(LoadCurve, AStepIsTwoCloseTimePoints) {
   EXPECT_EQ(c.at(50), -1.0);
 }
 
+TEST(LoadCurve, SegmentsStartAtTheTimePoints) {
+  // A cycle: charge to 10, a ramp to the discharge, discharge to 100.
+  const LoadCurve c({0, 10, 10.001, 100}, {1, 1, -1, -1});
+  EXPECT_EQ(c.segmentAt(0), 1u);
+  EXPECT_EQ(c.segmentAt(9.99), 1u);
+  EXPECT_EQ(c.segmentAt(10), 2u);  // a step ending on a time point is in the next segment
+  EXPECT_EQ(c.segmentAt(10 * (1 - 1e-13)), 2u);
+  EXPECT_EQ(c.segmentAt(10.0005), 2u);
+  EXPECT_EQ(c.segmentAt(50), 3u);
+  EXPECT_EQ(c.segmentAt(100), 4u);
+  EXPECT_EQ(LoadCurve({1, 3}, {2, 6}).segmentAt(0.5), 0u);
+}
+
 TEST(LoadCurve, ReadFromInputWithItsChecks) {
   const auto read = [](const std::string& points) {
     auto spec = ProblemSpec::fromText(

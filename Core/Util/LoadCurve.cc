@@ -42,4 +42,10 @@ double LoadCurve::nextTimeAfter(double t) const {
   return std::numeric_limits<double>::infinity();
 }
 
+size_t LoadCurve::segmentAt(double t) const {
+  size_t segment = 0;
+  while (segment < times_.size() && !(times_[segment] > t + 1e-12 * std::abs(t))) ++segment;
+  return segment;
+}
+
 }  // namespace anode

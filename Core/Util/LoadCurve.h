@@ -19,6 +19,9 @@ class LoadCurve {
   // The first of its times after t (beyond t by more than 1e-12 of t, so a step that ended on one
   // does not name it again), where the curve's slope changes; infinity past the last.
   double nextTimeAfter(double t) const;
+  // The segment t lies in: the number of the curve's times at or before t (within 1e-12 of t,
+  // as nextTimeAfter), so 0 before the first time and times().size() after the last.
+  size_t segmentAt(double t) const;
   const std::vector<double>& times() const { return times_; }
   const std::vector<double>& loads() const { return loads_; }
 

@@ -150,7 +150,7 @@ std::vector<double> ExternalScalarFlux::fluxes(Collective every,
     galvanostatic = galvanostatic || bcs_[b].mode == ScalarFluxBC::Mode::Galvanostatic;
   }
   if (!galvanostatic) return J;
-  ended_.resize(n, 0);
+  endedIn_.resize(n, -1);
   // Per BC: sum m R(c) A / V cmax (the lithium rate per unit J) and sum m A / V cmax (the same
   // unrestricted), in particle order (the same bits run to run).
   std::vector<double> sums(2 * n, 0.0);
@@ -175,17 +175,30 @@ std::vector<double> ExternalScalarFlux::fluxes(Collective every,
     if (bc.mode != ScalarFluxBC::Mode::Galvanostatic) continue;
     // The flagged surface's mean restriction (weighted as the flux shares the rate).
     const double meanRestriction = sums[n + b] > 0 ? sums[b] / sums[n + b] : 0.0;
-    if (!ended_[b] && meanRestriction <= bc.cutoff) {
-      ended_[b] = 1;
-      std::ostringstream s;
-      s << "<scalar_flux> " << b + 1 << " (line " << bc.line << ", galvanostatic): its current "
-        << "ends at t = " << t << ": the flagged surface's mean restriction R is "
-        << meanRestriction << ", at or below <cutoff> " << bc.cutoff
-        << " (the surface is nearly full)";
+    const long segment = 2 * static_cast<long>(bc.load.segmentAt(t)) + (sign_ < 0 ? 1 : 0);
+    const bool resumes = endedIn_[b] >= 0 && endedIn_[b] != segment;
+    if (resumes) endedIn_[b] = -1;
+    const bool charging = J[b] >= 0;
+    std::ostringstream s;
+    s << "<scalar_flux> " << b + 1 << " (line " << bc.line << ", galvanostatic): its current ";
+    if (endedIn_[b] < 0 && meanRestriction <= bc.cutoff) {
+      endedIn_[b] = segment;
+      const double next = bc.load.nextTimeAfter(t);
+      s << "ends at t = " << t << ": the flagged surface's mean restriction R is "
+        << meanRestriction << ", at or below <cutoff> " << bc.cutoff << " (the surface is nearly "
+        << (charging ? "full" : "empty") << ")";
+      if (std::isfinite(next))
+        s << ", until its load curve's next segment at t = " << next;
+      else
+        s << ", for the rest of the run";
+      notes_.push_back(s.str());
+    } else if (resumes) {
+      s << "resumes at t = " << t << " (" << (charging ? "charging" : "discharging")
+        << ", the flagged surface's mean restriction R " << meanRestriction << ")";
       notes_.push_back(s.str());
     }
     const double lithiumRate = bc.hour > 0 ? J[b] * capacities_[b] / bc.hour : J[b];
-    J[b] = ended_[b] ? 0.0 : lithiumRate / sums[b];
+    J[b] = endedIn_[b] >= 0 ? 0.0 : lithiumRate / sums[b];
   }
   return J;
 }
@@ -364,8 +377,8 @@ void ExternalScalarFlux::saveState(BinaryWriter& out) const {
   out.value(sign_);
   out.value(maxInflowRate_);
   out.value(maxOutflowRate_);
-  out.value<uint64_t>(ended_.size());
-  for (char e : ended_) out.value(e);
+  out.value<uint64_t>(endedIn_.size());
+  for (long e : endedIn_) out.value(e);
 }
 
 void ExternalScalarFlux::loadState(BinaryReader& in, bool merge) {
@@ -373,8 +386,8 @@ void ExternalScalarFlux::loadState(BinaryReader& in, bool merge) {
   const double inflow = in.value<double>(), outflow = in.value<double>();
   maxInflowRate_ = merge ? std::max(maxInflowRate_, inflow) : inflow;
   maxOutflowRate_ = merge ? std::max(maxOutflowRate_, outflow) : outflow;
-  ended_.resize(in.value<uint64_t>());
-  for (char& e : ended_) e = in.value<char>();
+  endedIn_.resize(in.value<uint64_t>());
+  for (long& e : endedIn_) e = in.value<long>();
 }
 
 void markSourceNodes(const ParticleSet& p, const InterpolationWeights& W,

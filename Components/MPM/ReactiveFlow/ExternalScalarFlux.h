@@ -86,13 +86,16 @@ class ExternalScalarFlux {
                        std::vector<int>& slots, SurfaceShare& share) const;
   // The flux J_k of each BC at time t: its load (times the auto-cycle sign), or for a
   // galvanostatic BC the J that delivers its lithium rate (its load, or for a C-rate the load
-  // times its capacity per hour; 0 once its current ended).
+  // times its capacity per hour; 0 from its cutoff to the end of its load curve's segment).
   std::vector<double> fluxes(Collective, const std::vector<MPMMaterial>& materials,
                              const std::vector<DiffusionMaterial>& diffusion, double t,
                              bool overRanks);
 
   std::vector<ScalarFluxBC> bcs_;
-  std::vector<char> ended_;         // per BC: a galvanostatic BC whose surface reached its cutoff
+  // Per BC: -1 while a galvanostatic BC's current runs; once its flagged surface reached its
+  // cutoff, the load curve's segment (LoadCurve::segmentAt) at that time, times 2, plus 1 if the
+  // auto-cycle sign was negative. The current resumes in the next segment (or sign).
+  std::vector<long> endedIn_;
   std::vector<double> capacities_;  // per BC (setCapacities)
   std::vector<std::string> notes_;
   double sign_ = 1;            // do_auto_cycle_bc: +1 lithiates, -1 delithiates
