@@ -161,6 +161,27 @@ TEST(Render, DataStaysOutOfTheColourBarAndTitle) {
   EXPECT_GT(coveredFraction(r, scene.background), 0.99);  // the data fills the view
 }
 
+// A scene that holds its frame: with <camera><position> and <focal_point> the camera stays where
+// the input put it, so a body twice as large covers more of the view as perspective says (its
+// front face, half-width a, seen from 0.6 - a: (0.2 / 0.5)^2 / (0.1 / 0.55)^2 = 4.84 times),
+// where a preset frames each picture afresh and the two look alike.
+TEST(Render, PositionedCameraHoldsItsFrameWhereAPresetReframes) {
+  const auto covered = [](const Scene& scene, double h) {
+    SceneRenderer renderer;
+    return coveredFraction(renderer.render(scene, makeSprites(scene, block(10, h)), 0.0),
+                           scene.background);
+  };
+  Scene fixed = frontScene();
+  fixed.camera.preset = CameraPreset::Custom;
+  fixed.camera.position = Vec3(0, -0.6, 0);
+  fixed.camera.focalPoint = Vec3::Zero();
+  const double small = covered(fixed, 0.01), large = covered(fixed, 0.02);
+  EXPECT_GT(small, 0.02);
+  EXPECT_NEAR(large / small, (0.4 * 0.4) / (0.1 / 0.55 * 0.1 / 0.55), 0.25);
+  const Scene preset = frontScene();
+  EXPECT_NEAR(covered(preset, 0.02) / covered(preset, 0.01), 1.0, 0.05);
+}
+
 TEST(Render, ColourAtParticlesMatchesTheColourMap) {
   const int n = 10;
   const double h = 0.01;

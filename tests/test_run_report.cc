@@ -133,8 +133,10 @@ TEST(RunReport, WrittenAtAStopAndByRenderVtu) {
                            std::string(ANODE_SOURCE_DIR) + "/inputs/Pillar/PillarLithiation.ups"});
   ASSERT_EQ(run.exitCode, 0) << run.output;
   const ParsedReport r = parseReport(dir / "report.html");
-  EXPECT_EQ(r.plots, (std::set<std::string>{"lithium", "state_of_charge", "dt", "energy_ratio",
-                                            "concentration", "jacobian"}));
+  EXPECT_EQ(r.plots,
+            (std::set<std::string>{"lithium", "state_of_charge", "current", "dt", "energy_ratio",
+                                   "concentration", "jacobian", "stress_silicon",
+                                   "plastic_work_silicon", "stress_soc_silicon"}));
   EXPECT_EQ(r.pictures, 1);  // cutaway at t = 0
   EXPECT_NE(r.status.find("stopped before its end, after step 30"), std::string::npos) << r.status;
   EXPECT_EQ(r.value("steps"), "30");

@@ -363,12 +363,23 @@ StepSummary MPM::summarize(Collective every) const {
   for (const MPMMaterial& mat : materials_) {
     const ParticleSet& p = mat.particles;
     const double K = mat.model->bulkModulus(), G = mat.model->shearModulus();
+    StepSummary::MaterialStress& stress = s.stress.emplace_back();
+    const std::vector<double>* plasticRate = mat.model->plasticStrainRate(p);
+    stress.yields = plasticRate != nullptr;
     for (size_t i = 0; i < p.count(); ++i) {
       s.kineticEnergy += 0.5 * p.mass[i] * p.velocity[i].squaredNorm();
       s.elasticEnergy += p.volume[i] * ConstitutiveModel::elasticEnergyDensity(p.stress[i], K, G);
       const double J = p.volume[i] * mat.density / p.mass[i];
       s.minJ = std::min(s.minJ, J);
       s.maxJ = std::max(s.maxJ, J);
+      const Mat3& sigma = p.stress[i];
+      const double V = p.volume[i], vonMises = ConstitutiveModel::vonMises(sigma);
+      stress.volume += V;
+      const double components[6] = {sigma(0, 0), sigma(1, 1), sigma(2, 2),
+                                    sigma(1, 2), sigma(0, 2), sigma(0, 1)};
+      for (int k = 0; k < 6; ++k) stress.stressIntegral[k] += V * components[k];
+      stress.vonMisesIntegral += V * vonMises;
+      if (plasticRate) stress.plasticWorkRate += V * vonMises * (*plasticRate)[i];
     }
     s.particles += p.count();
   }
@@ -384,6 +395,13 @@ StepSummary MPM::summarize(Collective every) const {
       lows.push_back(m.minConcentration);
       highs.push_back(m.maxConcentration);
     }
+    const size_t stressSums = sums.size();
+    for (const StepSummary::MaterialStress& m : s.stress) {
+      sums.push_back(m.volume);
+      sums.insert(sums.end(), m.stressIntegral, m.stressIntegral + 6);
+      sums.push_back(m.vonMisesIntegral);
+      sums.push_back(m.plasticWorkRate);
+    }
     collective::sum(every, sums.data(), static_cast<int>(sums.size()));
     collective::minimum(every, lows.data(), static_cast<int>(lows.size()));
     collective::maximum(every, highs.data(), static_cast<int>(highs.size()));
@@ -394,6 +412,14 @@ StepSummary MPM::summarize(Collective every) const {
     for (size_t k = 0; k < s.perMaterial.size(); ++k) {
       StepSummary::MaterialLithium& m = s.perMaterial[k];
       m.lithium = sums[6 + k], m.minConcentration = lows[2 + k], m.maxConcentration = highs[2 + k];
+    }
+    for (size_t k = 0; k < s.stress.size(); ++k) {
+      StepSummary::MaterialStress& m = s.stress[k];
+      const double* sum = &sums[stressSums + 9 * k];
+      m.volume = sum[0];
+      std::copy(sum + 1, sum + 7, m.stressIntegral);
+      m.vonMisesIntegral = sum[7];
+      m.plasticWorkRate = sum[8];
     }
   }
   return s;

@@ -82,6 +82,11 @@ void StateChecks::afterStep(Collective every, const MPM& mpm, double dt) {
     concentration_.assign(count, {});
     concentrationIncrement_.assign(count, {});
   }
+  // A quasi-static step's velocity is its displacement over dt, with no inertia behind it: it
+  // turns with the load (a charge turning to a discharge reverses it) and is not watched for
+  // oscillation or growth; its concentrations are.
+  const std::optional<ImplicitOptions>& implicit = mpm.problem().flags.implicit;
+  const bool dynamics = !implicit || implicit->dynamic;
   // One pass per material: finite values and J, kinetic energy, the increments of the step.
   double energy = 0, totalMass = 0, velocityEnergy = 0, velocityProduct = 0,
          concentrationEnergy = 0, concentrationProduct = 0;
@@ -131,7 +136,8 @@ void StateChecks::afterStep(Collective every, const MPM& mpm, double dt) {
       const bool reversedAndGrew =
           d.dot(dv[i]) < kAlternation * std::sqrt(dd * pp) && dd > kLocalGrowth * kLocalGrowth * pp;
       streak[i] = reversedAndGrew ? static_cast<uint8_t>(std::min(streak[i] + 1, 255)) : 0;
-      if (streak[i] >= kLocalSteps && dd > localFloor2) firstLocal = std::min(firstLocal, i);
+      if (dynamics && streak[i] >= kLocalSteps && dd > localFloor2)
+        firstLocal = std::min(firstLocal, i);
       ve += half * dd;
       vp += half * d.dot(dv[i]);
       v[i] = p.velocity[i];
@@ -165,11 +171,11 @@ void StateChecks::afterStep(Collective every, const MPM& mpm, double dt) {
   if (restart) {
     velocityOscillation_ = concentrationOscillation_ = Oscillation();
   } else {
-    checkOscillation(every, mpm, velocityEnergy, velocityProduct, concentrationEnergy,
-                     concentrationProduct);
+    checkOscillation(every, mpm, dynamics ? velocityEnergy : 0.0, velocityProduct,
+                     concentrationEnergy, concentrationProduct);
   }
   lastMass_ = totalMass;
-  checkKineticEnergy(every, mpm, energy);
+  if (dynamics) checkKineticEnergy(every, mpm, energy);
 }
 
 void StateChecks::followReordering(const ParticleReordering& r, size_t m, const ParticleSet& p) {

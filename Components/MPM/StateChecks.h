@@ -2,8 +2,10 @@
 // ones the step itself makes (a particle leaving the grid, det F <= 0, a concentration out of
 // range): a non-finite position, velocity or stress; J = V rho0 / m outside [kMinJ, kMaxJ]; the
 // oscillation of an explicit update beyond its stable time step, in the velocities or the
-// concentrations; a kinetic energy that grows geometrically. Each throws a SimulationError naming
-// the particle (ID, material, position), the field and the offending value.
+// concentrations; a kinetic energy that grows geometrically. The velocity and kinetic-energy
+// watches serve steps with inertia (explicit, or implicit with <dynamic>true): a quasi-static
+// step's velocity is its displacement over dt and turns with the load. Each throws a
+// SimulationError naming the particle (ID, material, position), the field and the offending value.
 #pragma once
 
 #include <cstdint>

@@ -25,6 +25,18 @@ struct StepSummary {
     double lithium = 0, minConcentration, maxConcentration;
   };
   std::vector<MaterialLithium> perMaterial;
+  // Per material, in material order (history.csv's stress columns): its volume, the volume
+  // integral of its Cauchy stress (xx, yy, zz, yz, xz, xy) and of the von Mises stress, and for
+  // a material that yields the plastic work rate sum V sigma_e dep/dt (the equivalent stress
+  // times the step's equivalent plastic strain rate: sigma : D^p of the radial return).
+  struct MaterialStress {
+    double volume = 0;
+    double stressIntegral[6] = {0, 0, 0, 0, 0, 0};
+    double vonMisesIntegral = 0;
+    bool yields = false;
+    double plasticWorkRate = 0;
+  };
+  std::vector<MaterialStress> stress;
 };
 
 }  // namespace anode

@@ -76,6 +76,12 @@ DataArchiver DataArchiver::fromInput(const PSNode& a, bool diffusion, int numMat
   if (t > 0 && d.stepInterval_ > 0)
     steps.fail("give <outputInterval> or <outputTimestepInterval> above 0, not both");
   if (t > 0) d.interval_ = t;
+  if (const PSNode normal = a.child("film_normal")) {
+    const std::string axis = normal.value<std::string>();
+    if (axis != "x" && axis != "y" && axis != "z")
+      normal.fail("<film_normal> must be x, y or z, found \"" + axis + "\"");
+    d.filmNormal_ = axis[0] - 'x';
+  }
   for (const char* inert :
        {"outputInitTimestep", "outputLastTimestep", "compression", "outputDoubleAsFloat"})
     a.acceptInert(
@@ -298,7 +304,12 @@ std::string DataArchiver::writeFailedState(Collective every, long step, const MP
   return (fs::path(dir_) / file).string();
 }
 
-void DataArchiver::setMaterialColumns(const std::vector<MPMMaterial>& materials) {
+void DataArchiver::setMaterialColumns(const std::vector<MPMMaterial>& materials, const Grid& grid) {
+  if (filmNormal_ >= 0) {
+    const Vec3 extent = grid.upper - grid.lower;
+    filmArea_ = extent.prod() / extent[filmNormal_];
+  }
+
   const auto column = [](std::string name) {
     for (char& ch : name)
       if (!std::isalnum(static_cast<unsigned char>(ch)) && ch != '-' && ch != '_') ch = '_';
@@ -329,6 +340,16 @@ void DataArchiver::writeHistory() {
         s << "lithium_" << name << ",min_c_" << name << ",max_c_" << name << ',';
       }
     }
+    for (size_t m = 0; m < unwritten_.front().stress.size(); ++m) {
+      const std::string& name = materialColumns_[m];
+      s << "volume_" << name;
+      for (const char* component : {"sxx", "syy", "szz", "syz", "sxz", "sxy"})
+        s << ",mean_" << component << '_' << name;
+      s << ",mean_pressure_" << name << ",mean_von_mises_" << name << ',';
+      if (unwritten_.front().stress[m].yields)
+        s << "plastic_work_" << name << ",plastic_work_rate_" << name << ',';
+      if (filmNormal_ >= 0) s << "stress_thickness_" << name << ',';
+    }
     s << "elastic_energy,dt_limit,";
     if (unwritten_.front().record.newtonIterations >= 0)
       s << "newton_iterations,krylov_iterations,";
@@ -338,7 +359,7 @@ void DataArchiver::writeHistory() {
     s << "wall_seconds\n";
   }
   s << std::setprecision(10);
-  for (const auto& [r, record, perMaterial] : unwritten_) {
+  for (const auto& [r, record, perMaterial, stress, plasticWork] : unwritten_) {
     s << r.step << ',' << r.time << ',' << r.dt << ',' << r.particles << ',' << r.kineticEnergy
       << ',' << r.minJ << ',' << r.maxJ << ',';
     if (r.diffusion) {
@@ -347,6 +368,22 @@ void DataArchiver::writeHistory() {
         << r.stateOfCharge * kSiliconCapacityAtFull << ',';
       for (const StepSummary::MaterialLithium& m : perMaterial)
         s << m.lithium << ',' << m.minConcentration << ',' << m.maxConcentration << ',';
+    }
+    for (size_t m = 0; m < stress.size(); ++m) {
+      const StepSummary::MaterialStress& st = stress[m];
+      const double V = st.volume > 0 ? st.volume : std::numeric_limits<double>::quiet_NaN();
+      s << st.volume;
+      for (double integral : st.stressIntegral) s << ',' << integral / V;
+      const double mean =
+          (st.stressIntegral[0] + st.stressIntegral[1] + st.stressIntegral[2]) / (3 * V);
+      s << ',' << -mean << ',' << st.vonMisesIntegral / V << ',';
+      if (st.yields) s << plasticWork[m] << ',' << st.plasticWorkRate << ',';
+      if (filmNormal_ >= 0) {
+        // The in-plane mean stress times the thickness: sum V (sigma_a + sigma_b) / 2 over the
+        // plan area, a and b the axes across the normal.
+        const int a = (filmNormal_ + 1) % 3, b = (filmNormal_ + 2) % 3;
+        s << 0.5 * (st.stressIntegral[a] + st.stressIntegral[b]) / filmArea_ << ',';
+      }
     }
     s << record.elasticEnergy << ',' << record.dtRule << ',';
     if (record.newtonIterations >= 0)
@@ -398,6 +435,8 @@ void DataArchiver::saveState(BinaryWriter& out) const {
   std::memset(reinterpret_cast<unsigned char*>(&row) + padding, 0,
               offsetof(HistoryRow, totalLithium) - padding);
   out.value(row);
+  out.value<uint64_t>(plasticWork_.size());
+  for (double w : plasticWork_) out.value(w);
 }
 
 void DataArchiver::loadState(BinaryReader& in) {
@@ -406,6 +445,8 @@ void DataArchiver::loadState(BinaryReader& in) {
   particleSeries_ = loadSeries(in);
   gridSeries_ = loadSeries(in);
   lastRow_ = in.value<HistoryRow>();
+  plasticWork_.resize(in.value<uint64_t>());
+  for (double& w : plasticWork_) w = in.value<double>();
   unwritten_.clear();
 }
 

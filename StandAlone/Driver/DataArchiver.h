@@ -1,6 +1,7 @@
 // <DataArchiver> (UINTAH_UPS.md §2.3, DESIGN.md §6): what is saved, when, and where.
 #pragma once
 
+#include <algorithm>
 #include <optional>
 #include <string>
 #include <vector>
@@ -118,10 +119,20 @@ class DataArchiver {
   // which the materials of the first row's perMaterial have, in its order. NAME is the material's
   // name attribute with characters other than letters, digits, '-' and '_' as '_', or
   // "material<index>" when it has none or another material's comes out the same.
-  void setMaterialColumns(const std::vector<MPMMaterial>& materials);
+  // The per-material stress columns (volume_NAME, mean_sxx_NAME ... mean_sxy_NAME,
+  // mean_pressure_NAME, mean_von_mises_NAME; plastic_work_NAME and plastic_work_rate_NAME for a
+  // material that yields; with <film_normal> stress_thickness_NAME) take the same names; the
+  // grid's plan area across <film_normal> is the film's.
+  void setMaterialColumns(const std::vector<MPMMaterial>& materials, const Grid& grid);
+  // A step's row: its state, its record, and the summary's per-material lithium and stress; the
+  // plastic work accumulates the step's rate times its dt.
   void recordHistory(const HistoryRow& row, const StepRecord& record,
-                     std::vector<StepSummary::MaterialLithium> perMaterial = {}) {
-    unwritten_.push_back({row, record, std::move(perMaterial)});
+                     std::vector<StepSummary::MaterialLithium> perMaterial = {},
+                     std::vector<StepSummary::MaterialStress> stress = {}) {
+    plasticWork_.resize(std::max(plasticWork_.size(), stress.size()), 0.0);
+    for (size_t m = 0; m < stress.size(); ++m)
+      plasticWork_[m] += stress[m].plasticWorkRate * row.dt;
+    unwritten_.push_back({row, record, std::move(perMaterial), std::move(stress), plasticWork_});
     lastRow_ = row;
   }
   // Appends the rows recorded since the last call to history.csv (the header first), so a long
@@ -168,10 +179,16 @@ class DataArchiver {
     HistoryRow row;
     StepRecord record;
     std::vector<StepSummary::MaterialLithium> perMaterial;
+    std::vector<StepSummary::MaterialStress> stress;
+    std::vector<double> plasticWork;  // per material, up to the row's step
   };
   std::vector<UnwrittenRow> unwritten_;  // recorded, not yet in history.csv
   std::vector<std::string> materialColumns_;
   HistoryRow lastRow_{};
+  // Per material, sum over the steps of the plastic work rate times dt (in the checkpoints).
+  std::vector<double> plasticWork_;
+  int filmNormal_ = -1;          // <film_normal>: 0, 1, 2 for x, y, z; -1 none
+  double filmArea_ = 0;          // the grid's plan area across it
   bool historyStarted_ = false;  // history.csv exists with its header
 };
 

@@ -62,6 +62,7 @@ HistoryDigest digestHistory(const std::string& path, size_t bins, double ratioTh
     throw std::runtime_error(path + ": no step, time or dt column");
   d.low.assign(n, {});
   d.high.assign(n, {});
+  d.binLast.assign(n, {});
   d.last.assign(n, kNaN);
   d.minimum.assign(n, kNaN);
   d.maximum.assign(n, kNaN);
@@ -84,12 +85,17 @@ HistoryDigest digestHistory(const std::string& path, size_t bins, double ratioTh
     }
     if (inBin == 0) {
       d.binTime.push_back(values[time]);
-      for (size_t c = 0; c < n; ++c) d.low[c].push_back(values[c]), d.high[c].push_back(values[c]);
+      for (size_t c = 0; c < n; ++c) {
+        d.low[c].push_back(values[c]);
+        d.high[c].push_back(values[c]);
+        d.binLast[c].push_back(values[c]);
+      }
     }
     d.binTime.back() = values[time];
     for (size_t c = 0; c < n; ++c) {
       d.low[c].back() = smaller(d.low[c].back(), values[c]);
       d.high[c].back() = larger(d.high[c].back(), values[c]);
+      d.binLast[c].back() = values[c];
       d.last[c] = values[c];
       d.minimum[c] = smaller(d.minimum[c], values[c]);
       d.maximum[c] = larger(d.maximum[c], values[c]);
@@ -103,10 +109,12 @@ HistoryDigest digestHistory(const std::string& path, size_t bins, double ratioTh
       for (size_t c = 0; c < n; ++c) {
         d.low[c][b] = smaller(d.low[c][2 * b], d.low[c][2 * b + 1]);
         d.high[c][b] = larger(d.high[c][2 * b], d.high[c][2 * b + 1]);
+        d.binLast[c][b] = d.binLast[c][2 * b + 1];
       }
     }
     d.binTime.resize(half);
-    for (size_t c = 0; c < n; ++c) d.low[c].resize(half), d.high[c].resize(half);
+    for (size_t c = 0; c < n; ++c)
+      d.low[c].resize(half), d.high[c].resize(half), d.binLast[c].resize(half);
     stride *= 2;
   }
   return d;

@@ -20,6 +20,9 @@ struct HistoryDigest {
   // column's smallest and largest value in it: low[column][bin], high[column][bin].
   std::vector<double> binTime;
   std::vector<std::vector<double>> low, high;
+  // Each column's value in each bin's last row (binLast[column][bin]): for plotting one column
+  // against another (stress against the state of charge).
+  std::vector<std::vector<double>> binLast;
   // Per column over every row: the last row's value, the smallest and largest (NaN ignored).
   std::vector<double> last, minimum, maximum;
   double smallestStepDt = 0;                 // of the steps after step 0 (whose dt is 0)

@@ -112,6 +112,49 @@ PlotSpec timePlot(const std::string& id, const std::string& title, const std::st
   return p;
 }
 
+// One column's bin-last values against another's (a curve that may turn back: a cycle).
+void addCurve(PlotSpec& plot, const HistoryDigest& d, const std::string& x, const std::string& y,
+              const std::string& label, const std::string& colour, double xScale = 1) {
+  const int cx = d.column(x), cy = d.column(y);
+  if (cx < 0 || cy < 0) return;
+  PlotSeries series{label, colour, d.binLast[cx], d.binLast[cy]};
+  for (double& v : series.x) v *= xScale;
+  plot.series.push_back(std::move(series));
+}
+
+// Per material with stress columns: its mean pressure and von Mises stress and its plastic work
+// against time, and against the state of charge its stress x thickness (with <film_normal>) or
+// its mean pressure.
+void addStressPlots(std::vector<PlotSpec>& out, const HistoryDigest& d) {
+  const std::string prefix = "mean_pressure_";
+  for (const std::string& column : d.columns) {
+    if (column.rfind(prefix, 0) != 0) continue;
+    const std::string name = column.substr(prefix.size());
+    PlotSpec stress = timePlot("stress_" + name, "Mean stress of " + name + " (volume means)",
+                               "stress (the input's unit)");
+    addEnvelope(stress, d, column, "pressure -tr(sigma)/3", "#1f77b4");
+    addEnvelope(stress, d, "mean_von_mises_" + name, "von Mises", "#d62728");
+    out.push_back(std::move(stress));
+    if (d.column("plastic_work_" + name) >= 0) {
+      PlotSpec work =
+          timePlot("plastic_work_" + name, "Plastic work of " + name, "sum V sigma_e dep (energy)");
+      addEnvelope(work, d, "plastic_work_" + name, "plastic work", "#9467bd");
+      out.push_back(std::move(work));
+    }
+    if (d.column("state_of_charge") < 0) continue;
+    const bool film = d.column("stress_thickness_" + name) >= 0;
+    PlotSpec against;
+    against.id = "stress_soc_" + name;
+    against.title = film ? "Stress x thickness of " + name + " against the state of charge"
+                         : "Mean pressure of " + name + " against the state of charge";
+    against.xLabel = "state of charge (%)";
+    against.yLabel = film ? "in-plane stress x thickness" : "pressure";
+    addCurve(against, d, "state_of_charge", film ? "stress_thickness_" + name : column,
+             film ? "stress x thickness" : "pressure", "#2ca02c", 100);
+    out.push_back(std::move(against));
+  }
+}
+
 std::vector<PlotSpec> plots(const HistoryDigest& d) {
   std::vector<PlotSpec> out;
   if (d.column("total_lithium") >= 0) {
@@ -122,6 +165,13 @@ std::vector<PlotSpec> plots(const HistoryDigest& d) {
     addEnvelope(soc, d, "state_of_charge", "state of charge", "#2ca02c", 100);
     out.push_back(std::move(soc));
   }
+  if (d.column("lithium_rate") >= 0) {
+    PlotSpec current =
+        timePlot("current", "Current: the rate of change of the lithium", "sum m c per time unit");
+    addEnvelope(current, d, "lithium_rate", "d(sum m c)/dt", "#1f77b4");
+    out.push_back(std::move(current));
+  }
+  addStressPlots(out, d);
   PlotSpec dt = timePlot("dt", "Time step", "dt", true);
   addEnvelope(dt, d, "dt", "dt", "#333333");
   out.push_back(std::move(dt));

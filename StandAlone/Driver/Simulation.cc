@@ -72,7 +72,7 @@ void Simulation::readInput() {
         .warn(
             "<clamp_time_to_output>true clamps no step: the outputs come every "
             "<outputTimestepInterval> steps, not at times (<outputInterval>)");
-  archiver_.setMaterialColumns(mpm_.materials());
+  archiver_.setMaterialColumns(mpm_.materials(), mpm_.grid());
   checkpoints_ = RunCheckpoints(CheckpointSchedule::fromInput(root.requireChild("DataArchiver")),
                                 time_.initTime);
   scenes_ = SceneOutput::fromInput(root, time_, mpm_);
@@ -324,7 +324,7 @@ size_t Simulation::recordHistoryRow(Collective every, double stepDt, int dtRule)
        s.maxConcentration, lithiumRate, stateOfCharge_},
       stepRecord(s, dtRule, integrator_->lastStepCounts(), trapezoidal,
                  dtController_->controlsError() ? &dtController_->errorControl() : nullptr),
-      s.perMaterial);
+      s.perMaterial, s.stress);
   return s.particles;
 }
 

@@ -610,6 +610,13 @@ bool InputMutator::apply(int op, std::string& t, std::string* what) {
         t.replace(at + key.size(), end - at - key.size(), v);
         return true;
       }
+      if (pick(8) == 0) {  // ours in <DataArchiver>: the film's normal
+        static const std::vector<std::string> normals = {"z", "x", "w", "", "[0,0,1]", "zz"};
+        const std::string& v = pickFrom(normals);
+        if (!editTag(t, "DataArchiver", "film_normal", TagEdit::Set, v)) return false;
+        say("<film_normal> set to '" + v + "'");
+        return true;
+      }
       const std::string& tag = pickFrom(implicitTags());
       const size_t choice = pick(4);
       if (choice == 1 && editTag(t, "MPM", tag, TagEdit::Remove)) {

@@ -3,7 +3,10 @@
 // ConcreteModels.h and dispatched once per material (std::visit), never per particle.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <memory>
+#include <vector>
 
 #include "Components/MPM/ParticleSet.h"
 #include "Core/ProblemSpec/ProblemSpec.h"
@@ -39,6 +42,14 @@ class ConstitutiveModel {
     // s:s = sigma:sigma - 3 p^2 (no deviator built).
     return p * p / (2.0 * K) + (sigma.squaredNorm() - 3.0 * p * p) / (4.0 * G);
   }
+  // The von Mises equivalent stress sqrt(3/2 s:s) of the Cauchy stress sigma, s its deviator.
+  static double vonMises(const Mat3& sigma) {
+    const double p = sigma.trace() / 3.0;
+    return std::sqrt(std::max(0.0, 1.5 * (sigma.squaredNorm() - 3.0 * p * p)));
+  }
+  // The equivalent plastic strain rate of each particle over its last step (p.plasticStrainRate),
+  // null for a model that does not yield.
+  virtual const std::vector<double>* plasticStrainRate(const ParticleSet&) const { return nullptr; }
   // This model as its own type, for the particle update (dispatched once per material).
   virtual ConcreteModel concrete() const = 0;
 };

@@ -68,6 +68,9 @@ class RFElasticPlastic : public ConstitutiveModel {
   double bulkModulus() const override { return K_; }
   double shearModulus() const override { return G_; }
   ConcreteModel concrete() const override;
+  const std::vector<double>* plasticStrainRate(const ParticleSet& p) const override {
+    return flow_ ? &p.modelArray<double>(1) : nullptr;
+  }
 
   // Returns the new lab-frame stress; state.rotation is R of the old F on entry and R of Fnew on
   // return; dc is the concentration change of the step. Each lane of a pack gets the bits of the

@@ -1,0 +1,134 @@
+// Pins the film study (inputs/Films/SiliconFilm.ups), read from history.csv and report.html
+// alone: its first turn at 1C (charge, discharge, the next charge begun) on the quasi-static path
+// at the real density. The cutoffs end each half-cycle in its direction and the next segment
+// resumes the current; the load's reversal does not stop the run; the stress columns hold the
+// closed form of the elastic start (biaxial modulus times the swelling strain) and the traction-
+// free normal; stress x thickness is the in-plane mean times volume over plan area; the plastic
+// work is 0 while elastic and grows once the film yields, in both directions; report.html plots
+// the stress x thickness against the state of charge.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "RunSus.h"
+#include "TestFiles.h"
+
+namespace fs = std::filesystem;
+
+namespace anode {
+namespace {
+
+using testing::readFile;
+using testing::runSus;
+
+// history.csv as columns by name.
+struct History {
+  std::vector<std::string> names;
+  std::vector<std::vector<double>> rows;
+  const std::vector<double> column(const std::string& name) const {
+    std::vector<double> c;
+    const auto at = std::find(names.begin(), names.end(), name);
+    if (at == names.end()) return c;
+    for (const std::vector<double>& row : rows) c.push_back(row[at - names.begin()]);
+    return c;
+  }
+};
+
+History readHistory(const fs::path& file) {
+  History h;
+  std::istringstream in(readFile(file));
+  std::string line;
+  std::getline(in, line);
+  std::istringstream header(line);
+  for (std::string name; std::getline(header, name, ',');) h.names.push_back(name);
+  while (std::getline(in, line)) {
+    std::vector<double> row;
+    std::istringstream fields(line);
+    for (std::string field; std::getline(fields, field, ',');) row.push_back(std::stod(field));
+    h.rows.push_back(row);
+  }
+  return h;
+}
+
+TEST(FilmStudy, FirstTurnFromTheHistoryAlone) {
+  const fs::path dir = fs::temp_directory_path() / ("anode_film_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  // The input's first turn and the start of the next charge: 2.1 of its 6 hours.
+  std::string text = readFile(std::string(ANODE_SOURCE_DIR) + "/inputs/Films/SiliconFilm.ups");
+  text =
+      std::regex_replace(text, std::regex("<maxTime>[^<]*</maxTime>"), "<maxTime>7.56e9</maxTime>");
+  const fs::path input = dir / "film.ups";
+  std::ofstream(input) << text;
+  const auto run = runSus({"--threads", "1", "-o", (dir / "out").string(), input.string()});
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+
+  // The notes of the cutoffs and resumptions, in order.
+  size_t at = 0;
+  for (const char* note : {"(the surface is nearly full), until its load curve's next segment",
+                           "its current resumes at t = 3.601e+09 (discharging",
+                           "(the surface is nearly empty), until its load curve's next segment",
+                           "its current resumes at t = 7.201e+09 (charging"}) {
+    at = run.output.find(note, at);
+    ASSERT_NE(at, std::string::npos) << "no \"" << note << "\" in order in:\n" << run.output;
+  }
+
+  const History h = readHistory(dir / "out" / "history.csv");
+  const std::vector<double> soc = h.column("state_of_charge"), sxx = h.column("mean_sxx_silicon"),
+                            syy = h.column("mean_syy_silicon"), szz = h.column("mean_szz_silicon"),
+                            volume = h.column("volume_silicon"),
+                            thickness = h.column("stress_thickness_silicon"),
+                            work = h.column("plastic_work_silicon"),
+                            workRate = h.column("plastic_work_rate_silicon");
+  ASSERT_GT(soc.size(), 20u);
+  ASSERT_EQ(thickness.size(), soc.size());
+  ASSERT_EQ(work.size(), soc.size());
+  // The elastic start: sigma_xx = -E / (1 - nu) eta c (in-plane strain held at 0, the swelling
+  // rate eta dc/dt on each normal), E / (1 - nu) = 9 K G / (3 K + G) / (1 - nu) from the input's
+  // K = 67 GPa and G = 31 GPa, eta = 0.56; c its mean, the state of charge (c_max = 1).
+  const double K = 6.7e7, G = 3.1e7, eta = 0.56;
+  const double E = 9 * K * G / (3 * K + G), nu = (3 * K - 2 * G) / (2 * (3 * K + G));
+  ASSERT_GT(soc[1], 0);
+  ASSERT_LT(-sxx[1], 1.4e6) << "the first step already yields: no elastic start to check";
+  EXPECT_NEAR(sxx[1] / (-E / (1 - nu) * eta * soc[1]), 1.0, 0.01);
+  EXPECT_EQ(work[1], 0.0);
+  const double plan = 0.02 * 0.02;  // the grid's plan, um^2
+  double largestStress = 0, largestNormal = 0;
+  for (size_t r = 1; r < soc.size(); ++r) {
+    largestStress = std::max(largestStress, std::abs(sxx[r]));
+    largestNormal = std::max(largestNormal, std::abs(szz[r]));
+    EXPECT_NEAR(thickness[r], 0.5 * (sxx[r] + syy[r]) * volume[r] / plan,
+                1e-9 * std::abs(thickness[r]))
+        << "row " << r;
+    EXPECT_GE(work[r], work[r - 1]) << "row " << r;  // sigma_e dep >= 0
+    EXPECT_GE(workRate[r], 0.0) << "row " << r;
+  }
+  // The film's normal stress is the free surface's, 0, against GPa in plane.
+  EXPECT_GT(largestStress, 1.4e6);
+  EXPECT_LT(largestNormal, 1e-3 * largestStress);
+  // It yields in compression on charge and in tension on discharge: the work grows in both.
+  size_t turn = 0;
+  while (turn + 1 < soc.size() && soc[turn + 1] >= soc[turn]) ++turn;
+  ASSERT_LT(turn + 1, soc.size()) << "the charge did not turn";
+  EXPECT_GT(work[turn], 0.0);
+  EXPECT_GT(*std::max_element(sxx.begin(), sxx.end()), 1.4e6);  // tensile flow
+  EXPECT_GT(work.back(), work[turn]);
+
+  // report.html plots the stress x thickness against the state of charge.
+  const std::string report = readFile(dir / "out" / "report.html");
+  EXPECT_NE(report.find("id=\"stress_soc_silicon\""), std::string::npos);
+  EXPECT_NE(report.find("id=\"plastic_work_silicon\""), std::string::npos);
+  EXPECT_NE(report.find("id=\"current\""), std::string::npos);
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace anode
