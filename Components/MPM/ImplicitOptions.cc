@@ -72,6 +72,13 @@ ImplicitOptions ImplicitOptions::fromInput(const PSNode& mpm, bool diffusion) {
     // the Jacobian drops the round-off couplings (docs/quasi-static.md, "Steps by error
     // estimate"); the residual keeps them, so the equilibrium is the same.
     if (!mpm.child("jacobian_coupling_share")) o.jacobianCouplingShare = kErrorControlCouplingShare;
+    // The diffusion passes' stages follow the diffusivity, not a fixed share of the explicit
+    // limit: where the input leaves the integrator out, RKL2 (docs/quasi-static.md, "Steps by
+    // error estimate").
+    if (!mpm.child("diffusion_integrator")) {
+      o.diffusionIntegrator = DiffusionIntegrator::Rkl2;
+      o.rkl2ByDefault = true;
+    }
   }
   if (const std::optional<double> change = mpm.find<double>("max_concentration_change")) {
     o.maxConcentrationChange = *change;

@@ -66,8 +66,11 @@ struct ImplicitOptions {
   // Runge-Kutta-Legendre step (ReactiveFlow/RungeKuttaLegendre.h) of as many stages as the same
   // limit needs, each stage's rate with the gradient of its own c and the load curves at the
   // pass's midpoint (docs/quasi-static.md).
+  // Under <error_tolerance> without the tag it is RKL2, unless the run has what RKL2 does not
+  // support (DiffusionPass::checkIntegrator then takes Euler): rkl2ByDefault.
   enum class DiffusionIntegrator { Euler, Rkl2 };
   DiffusionIntegrator diffusionIntegrator = DiffusionIntegrator::Euler;
+  bool rkl2ByDefault = false;
   // <subcell_concentration_relaxation> (ours): each step's diffusion first draws the particles
   // towards the grid's c at their places, so differences the grid does not see fade
   // (ReactiveFlow/SubcellRelaxation.h); off, Eq. 8 carries them unchanged.

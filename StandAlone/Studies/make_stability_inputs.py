@@ -539,8 +539,9 @@ for name, maxTime, notes, outcome in [
             "run at the step that passes it; the last good state is rebuilt by replaying the",
             "quasi-static steps.",
         ],
-        "stops at step 6 (exit 3, t = 36 us): concentration 1.06 above 1 (the range"
-        " diagnostic); the last good state (step 5) has c = 1.",
+        "stops at step 6 (exit 3, t = 36 us): concentration 1.02 above 1 at t = 33 us, the"
+        " middle of the step's RKL2 pass (the range diagnostic); the last good state (step 5)"
+        " has c = 1.",
     ),
 ]:
     case(

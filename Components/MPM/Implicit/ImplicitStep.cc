@@ -87,6 +87,8 @@ ImplicitStep::ImplicitStep(const PSNode& root, MPM& mpm, const TimestepControlle
       dt_(dt),
       transfer_(std::make_unique<Transfer>(mpm)) {
   checkSetup(root);
+  options_.diffusionIntegrator =
+      DiffusionPass::checkIntegrator(root, mpm.problem().flags, options_, mpm.diffusion());
   // Materials in single_velocity contact share one field of unknowns; others have their own.
   const Contact& contact = mpm.problem().contact;
   fieldOf_.assign(mpm.materials().size(), -1);
@@ -123,7 +125,6 @@ void ImplicitStep::checkSetup(const PSNode& root) const {
         .warn(
             "<concentration_coupling>trapezoidal without <do_scalar_diffusion>true: there is "
             "no diffusion to couple, the steps are the staggered ones");
-  DiffusionPass::checkIntegrator(root, mpm_.problem().flags, options_, diffusion);
   if (!diffusion && options_.subcellConcentrationRelaxation)
     root.requireChild("MPM")
         .requireChild("subcell_concentration_relaxation")

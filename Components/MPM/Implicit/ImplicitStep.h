@@ -81,6 +81,8 @@ class ImplicitStep : public Integrator {
     // The totals over `steps` steps, for the end summary.
     std::string summary(long steps) const;
   };
+  // The options the run uses (the input's, with the diffusion integrator checkIntegrator chose).
+  const ImplicitOptions& options() const { return options_; }
   const NewtonCounts& newtonCounts() const { return newton_; }
 
  private:
@@ -136,7 +138,8 @@ class ImplicitStep : public Integrator {
   static void reportRetake(double t, double smaller, const NewtonReport& report);
 
   MPM& mpm_;
-  const ImplicitOptions& options_;
+  // The input's options, with the diffusion integrator the run uses (checkIntegrator).
+  ImplicitOptions options_;
   const TimestepController& dt_;
   EquilibriumSolver equilibrium_;
   std::optional<DiffusionPass> diffusion_;  // with <do_scalar_diffusion>true

@@ -21,19 +21,27 @@ DiffusionPass::DiffusionPass(ReactiveFlow& diffusion, const Grid& grid,
       diffusionStateTask_(timers.task("updateDiffusionState")),
       particleUpdateTask_(timers.task("interpolateToParticlesAndUpdate")) {}
 
-void DiffusionPass::checkIntegrator(const PSNode& root, const MPMFlags& flags,
-                                    const ImplicitOptions& options, const ReactiveFlow* diffusion) {
-  if (options.diffusionIntegrator != ImplicitOptions::DiffusionIntegrator::Rkl2) return;
-  const PSNode tag = root.requireChild("MPM").requireChild("diffusion_integrator");
+ImplicitOptions::DiffusionIntegrator DiffusionPass::checkIntegrator(const PSNode& root,
+                                                                    const MPMFlags& flags,
+                                                                    const ImplicitOptions& options,
+                                                                    const ReactiveFlow* diffusion) {
+  using Integrator = ImplicitOptions::DiffusionIntegrator;
+  if (options.diffusionIntegrator != Integrator::Rkl2) return options.diffusionIntegrator;
   // A stage needs the particles' rate of c; a Dirichlet node sets c instead, and the
-  // auto-cycle's turn is a decision on the state of a step's end, not of a stage.
-  if (diffusion && diffusion->hasConcentrationBCs())
+  // auto-cycle's turn is a decision on the state of a step's end, not of a stage. The default
+  // under error control then falls back to Euler; the tag asked for is an error.
+  const bool concentrationBCs = diffusion && diffusion->hasConcentrationBCs();
+  if (options.rkl2ByDefault)
+    return concentrationBCs || flags.autoCycle ? Integrator::Euler : Integrator::Rkl2;
+  const PSNode tag = root.requireChild("MPM").requireChild("diffusion_integrator");
+  if (concentrationBCs)
     tag.unsupported("<diffusion_integrator>rkl2 with SD-Type concentration boundary conditions");
   if (flags.autoCycle) tag.unsupported("<diffusion_integrator>rkl2 with <do_auto_cycle_bc>");
   if (!diffusion)
     tag.warn(
         "<diffusion_integrator> without <do_scalar_diffusion>true: there is no diffusion to "
         "integrate");
+  return Integrator::Rkl2;
 }
 
 double DiffusionPass::substepLimit(Collective every,

@@ -20,10 +20,14 @@ namespace anode {
 
 class DiffusionPass {
  public:
-  // <diffusion_integrator>rkl2's conditions on the run (`diffusion` null without diffusion):
-  // errors for what a stage cannot do, a warning where there is nothing to integrate.
-  static void checkIntegrator(const PSNode& root, const MPMFlags& flags,
-                              const ImplicitOptions& options, const ReactiveFlow* diffusion);
+  // The integrator the run's passes use: RKL2's conditions on the run (`diffusion` null without
+  // diffusion) checked, errors for what a stage cannot do when the input asked for it, a warning
+  // where there is nothing to integrate; RKL2 by default (ImplicitOptions::rkl2ByDefault) gives
+  // way to Euler there instead.
+  static ImplicitOptions::DiffusionIntegrator checkIntegrator(const PSNode& root,
+                                                              const MPMFlags& flags,
+                                                              const ImplicitOptions& options,
+                                                              const ReactiveFlow* diffusion);
   // substepMultiplier: a sub-step's share of the explicit limits (<timestep_multiplier>).
   // `grid`: MPM's (its cell edges).
   DiffusionPass(ReactiveFlow& diffusion, const Grid& grid, const ImplicitOptions& options,
