@@ -175,8 +175,10 @@ std::vector<double> ExternalScalarFlux::fluxes(Collective every,
     if (bc.mode != ScalarFluxBC::Mode::Galvanostatic) continue;
     // The flagged surface's mean restriction (weighted as the flux shares the rate).
     const double meanRestriction = sums[n + b] > 0 ? sums[b] / sums[n + b] : 0.0;
+    // In a later segment the current resumes once the surface is above the cutoff for the
+    // direction it now runs in (at a ramp's start it may still run the finished way).
     const long segment = 2 * static_cast<long>(bc.load.segmentAt(t)) + (sign_ < 0 ? 1 : 0);
-    const bool resumes = endedIn_[b] >= 0 && endedIn_[b] != segment;
+    const bool resumes = endedIn_[b] >= 0 && endedIn_[b] != segment && meanRestriction > bc.cutoff;
     if (resumes) endedIn_[b] = -1;
     const bool charging = J[b] >= 0;
     std::ostringstream s;

@@ -94,7 +94,8 @@ class ExternalScalarFlux {
   std::vector<ScalarFluxBC> bcs_;
   // Per BC: -1 while a galvanostatic BC's current runs; once its flagged surface reached its
   // cutoff, the load curve's segment (LoadCurve::segmentAt) at that time, times 2, plus 1 if the
-  // auto-cycle sign was negative. The current resumes in the next segment (or sign).
+  // auto-cycle sign was negative. The current resumes in a later segment (or sign) once the
+  // surface's mean restriction for the direction it then runs in is above the cutoff.
   std::vector<long> endedIn_;
   std::vector<double> capacities_;  // per BC (setCapacities)
   std::vector<std::string> notes_;
