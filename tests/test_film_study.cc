@@ -130,5 +130,26 @@ TEST(FilmStudy, FirstTurnFromTheHistoryAlone) {
   fs::remove_all(dir);
 }
 
+// <film_normal> names an axis: anything else is an input error naming the file and line.
+TEST(FilmStudy, FilmNormalOtherThanAnAxisIsAnInputError) {
+  const fs::path dir = fs::temp_directory_path() / ("anode_film_bad_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::string text = readFile(std::string(ANODE_SOURCE_DIR) + "/inputs/Films/SiliconFilm.ups");
+  for (const char* bad : {"w", "", "[0,0,1]"}) {
+    const std::string edited =
+        std::regex_replace(text, std::regex("<film_normal>z</film_normal>"),
+                           std::string("<film_normal>") + bad + "</film_normal>");
+    const fs::path input = dir / "film.ups";
+    std::ofstream(input) << edited;
+    const auto run = runSus({"-o", (dir / "out").string(), input.string()});
+    EXPECT_EQ(run.exitCode, 2) << bad << ": " << run.output;
+    EXPECT_TRUE(std::regex_search(run.output, std::regex("film\\.ups:[0-9]+: <film_normal> must be "
+                                                         "x, y or z")))
+        << bad << ": " << run.output;
+  }
+  fs::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace anode

@@ -60,6 +60,28 @@ double surfaceConductance(const ScalarFluxBC& bc, double area, double volume, do
   return bc.surfaceRate * D / (D + bc.surfaceRate * delta);
 }
 
+// The note of galvanostatic BC b's current ending at its cutoff (`ends`) or resuming at t, the
+// load charging or not, R the flagged surface's mean restriction.
+std::string currentNote(size_t b, const ScalarFluxBC& bc, double t, bool ends, bool charging,
+                        double R) {
+  std::ostringstream s;
+  s << "<scalar_flux> " << b + 1 << " (line " << bc.line << ", galvanostatic): its current ";
+  if (!ends) {
+    s << "resumes at t = " << t << " (" << (charging ? "charging" : "discharging")
+      << ", the flagged surface's mean restriction R " << R << ")";
+    return s.str();
+  }
+  s << "ends at t = " << t << ": the flagged surface's mean restriction R is " << R
+    << ", at or below <cutoff> " << bc.cutoff << " (the surface is nearly "
+    << (charging ? "full" : "empty") << ")";
+  const double next = bc.load.nextTimeAfter(t);
+  if (std::isfinite(next))
+    s << ", until its load curve's next segment at t = " << next;
+  else
+    s << ", for the rest of the run";
+  return s.str();
+}
+
 }  // namespace
 
 std::vector<ExternalScalarFlux::Flagged> ExternalScalarFlux::assignToParticles(
@@ -180,25 +202,9 @@ std::vector<double> ExternalScalarFlux::fluxes(Collective every,
     const long segment = 2 * static_cast<long>(bc.load.segmentAt(t)) + (sign_ < 0 ? 1 : 0);
     const bool resumes = endedIn_[b] >= 0 && endedIn_[b] != segment && meanRestriction > bc.cutoff;
     if (resumes) endedIn_[b] = -1;
-    const bool charging = J[b] >= 0;
-    std::ostringstream s;
-    s << "<scalar_flux> " << b + 1 << " (line " << bc.line << ", galvanostatic): its current ";
-    if (endedIn_[b] < 0 && meanRestriction <= bc.cutoff) {
-      endedIn_[b] = segment;
-      const double next = bc.load.nextTimeAfter(t);
-      s << "ends at t = " << t << ": the flagged surface's mean restriction R is "
-        << meanRestriction << ", at or below <cutoff> " << bc.cutoff << " (the surface is nearly "
-        << (charging ? "full" : "empty") << ")";
-      if (std::isfinite(next))
-        s << ", until its load curve's next segment at t = " << next;
-      else
-        s << ", for the rest of the run";
-      notes_.push_back(s.str());
-    } else if (resumes) {
-      s << "resumes at t = " << t << " (" << (charging ? "charging" : "discharging")
-        << ", the flagged surface's mean restriction R " << meanRestriction << ")";
-      notes_.push_back(s.str());
-    }
+    const bool ends = endedIn_[b] < 0 && meanRestriction <= bc.cutoff;
+    if (ends) endedIn_[b] = segment;
+    if (ends || resumes) notes_.push_back(currentNote(b, bc, t, ends, J[b] >= 0, meanRestriction));
     const double lithiumRate = bc.hour > 0 ? J[b] * capacities_[b] / bc.hour : J[b];
     J[b] = endedIn_[b] >= 0 ? 0.0 : lithiumRate / sums[b];
   }
