@@ -1,5 +1,6 @@
 // Pins <MPM>/<PhysicalConstants> reading (Components/MPM/MPMFlags.h) where Uintah has a fallback:
-// gravity from <MPM> without <PhysicalConstants>, and the splitting criterion without matl=.
+// gravity from <MPM> without <PhysicalConstants>, and the splitting criterion without matl=; and
+// <swelling_strain> on each path.
 #include <gtest/gtest.h>
 
 #include <memory>
@@ -49,6 +50,34 @@ TEST(MPMFlags, FluxSourceRulesDefaultToOursAndNameABadValue) {
               std::string::npos)
         << e.what();
   }
+}
+
+// The implicit path takes either swelling; the explicit one its own (particle) only; anything else
+// is an error naming the tag's line.
+TEST(MPMFlags, SwellingStrainIsParticleByDefaultAndCellMeanOnlyImplicit) {
+  using S = ImplicitOptions::SwellingStrain;
+  const std::string implicit =
+      "<time_integrator>implicit</time_integrator><dynamic>false</dynamic>";
+  EXPECT_EQ(read("<MPM>" + implicit + "</MPM>").flags.implicit->swellingStrain, S::Particle);
+  EXPECT_EQ(read("<MPM>" + implicit + "<swelling_strain>cell_mean</swelling_strain></MPM>")
+                .flags.implicit->swellingStrain,
+            S::CellMean);
+  EXPECT_FALSE(read("<MPM><swelling_strain>particle</swelling_strain></MPM>").flags.implicit);
+  const auto message = [&](const std::string& mpm) -> std::string {
+    try {
+      read("<MPM>" + mpm + "</MPM>");
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "accepted";
+  };
+  EXPECT_NE(message("<swelling_strain>cell_mean</swelling_strain>")
+                .find("flags.ups:1: <swelling_strain>cell_mean with <time_integrator>explicit"),
+            std::string::npos);
+  EXPECT_NE(
+      message(implicit + "<swelling_strain>cells</swelling_strain>")
+          .find("flags.ups:1: <swelling_strain> must be cell_mean or particle, found \"cells\""),
+      std::string::npos);
 }
 
 TEST(MPMFlags, SplittingWithoutMatlIsMaterialZeroWithAWarning) {

@@ -111,6 +111,13 @@ ImplicitOptions ImplicitOptions::fromInput(const PSNode& mpm, bool diffusion) {
   }
   o.subcellConcentrationRelaxation =
       mpm.get<bool>("subcell_concentration_relaxation", o.subcellConcentrationRelaxation);
+  if (const PSNode swelling = mpm.child("swelling_strain")) {
+    const std::string name = swelling.value<std::string>();
+    if (name == "cell_mean")
+      o.swellingStrain = SwellingStrain::CellMean;
+    else if (name != "particle")
+      swelling.fail("<swelling_strain> must be cell_mean or particle, found \"" + name + "\"");
+  }
   if (const PSNode solver = mpm.child("solver")) {
     const std::string name = solver.value<std::string>();
     if (name == "simple")

@@ -75,6 +75,15 @@ struct ImplicitOptions {
   // towards the grid's c at their places, so differences the grid does not see fade
   // (ReactiveFlow/SubcellRelaxation.h); off, Eq. 8 carries them unchanged.
   bool subcellConcentrationRelaxation = false;
+  // <swelling_strain> (ours): the concentration change a particle's swelling takes in the
+  // equilibrium of a step with diffusion. Particle (the default): its own dc, as the explicit step
+  // takes it. Cell mean: the volume-weighted mean of dc over the cells its domain overlaps
+  // (Implicit/CellMeanSwelling.h), which a displacement varying along one axis can meet: on a
+  // film whose c varies with depth it removes the stress normal to the film that alternates from
+  // one layer of particles to the next; on a lithiated sphere it gains nothing (docs/
+  // quasi-static.md, "Swelling on cells").
+  enum class SwellingStrain { Particle, CellMean };
+  SwellingStrain swellingStrain = SwellingStrain::Particle;
 
   // Reads the ImpMPM tags of <MPM> (only with <time_integrator>implicit); `diffusion`: whether
   // the run diffuses lithium (<do_scalar_diffusion>), which sets <error_tolerance>'s default.

@@ -89,6 +89,9 @@ void MPM::problemSetup(const PSNode& root, double initTime, double maxTime, bool
       materials_[m].particles.enable(Physics::Hourglass);
     if (diffusion_ && problem_.flags.implicit && problem_.flags.implicit->errorTolerance > 0)
       materials_[m].particles.enable(Physics::CouplingHistory);
+    if (diffusion_ && problem_.flags.implicit &&
+        problem_.flags.implicit->swellingStrain == ImplicitOptions::SwellingStrain::CellMean)
+      materials_[m].particles.enable(Physics::CellSwelling);
   }
   checkProblemSize(gridNode, grid(), problem_.flags, materials_.size(), countParticles(materials_),
                    omp_get_max_threads());

@@ -107,7 +107,14 @@ MPMFlags MPMFlags::fromInput(const PSNode& root) {
   const std::string integrator = mpm.get<std::string>("time_integrator", "explicit");
   if (integrator == "implicit") {
     f.implicit = ImplicitOptions::fromInput(mpm, f.doScalarDiffusion);
-  } else if (integrator != "explicit") {
+  } else if (integrator == "explicit") {
+    // The explicit step's stress update takes each particle's own dc (ParticleLoops.h).
+    if (const PSNode swelling = mpm.child("swelling_strain"))
+      if (const std::string name = swelling.value<std::string>(); name != "particle")
+        swelling.unsupported("<swelling_strain>" + name +
+                             " with <time_integrator>explicit (its stress update takes each "
+                             "particle's own dc)");
+  } else {
     mpm.requireChild("time_integrator")
         .fail("time_integrator \"" + integrator +
               "\" is not supported; accepted: explicit, implicit");

@@ -17,6 +17,8 @@ enum class Physics : uint8_t {
   Hourglass,        // implicit steps with <hourglass_stabilization> above 0: its memory
   CouplingHistory,  // quasi-static steps with diffusion under <error_tolerance>: the last step's
                     // coupling rate, the error estimate's history
+  CellSwelling,     // implicit steps with diffusion and <swelling_strain>cell_mean: the
+                    // concentration each particle's swelling has reached
 };
 
 // What splitting a particle in four (ParticleSplitting.cc) does to an array: the children copy

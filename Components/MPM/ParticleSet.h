@@ -10,6 +10,7 @@
 
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <type_traits>
 #include <variant>
 #include <vector>
@@ -50,6 +51,10 @@ struct ParticleSet {
   // (dc_2 - dc_1) / dt^2 of its two diffusion passes, and the sum of the particle's signed local
   // error estimates of c / c_max over the steps (Implicit/TrapezoidalCoupling.cc).
   std::vector<double> couplingRate, concentrationErrorEstimate;
+  // Implicit steps with diffusion and <swelling_strain>cell_mean only: the cell-mean
+  // concentration the particle's swelling has reached (NaN before its first step;
+  // Implicit/CellMeanSwelling.h).
+  std::vector<double> swellingConcentration;
 
   size_t count() const { return x.size(); }
 
@@ -149,8 +154,8 @@ struct ParticleSet {
     }
     return static_cast<decltype(&a.arrays[0])>(nullptr);
   }
-  static uint8_t bit(Physics physics) {
-    return static_cast<uint8_t>(1u << static_cast<int>(physics));
+  static uint16_t bit(Physics physics) {
+    return static_cast<uint16_t>(1u << static_cast<int>(physics));
   }
 
   template <class Self, class F>
@@ -175,9 +180,12 @@ struct ParticleSet {
     f(s.couplingRate, ParticleField<double>{nullptr, P::CouplingHistory, 0.0, S::Copy});
     f(s.concentrationErrorEstimate,
       ParticleField<double>{nullptr, P::CouplingHistory, 0.0, S::Copy});
+    f(s.swellingConcentration,
+      ParticleField<double>{nullptr, P::CellSwelling, std::numeric_limits<double>::quiet_NaN(),
+                            S::Copy});
   }
 
-  uint8_t physics_ = bit(Physics::Mechanics);
+  uint16_t physics_ = bit(Physics::Mechanics);
 };
 
 }  // namespace anode

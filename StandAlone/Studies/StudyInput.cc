@@ -113,4 +113,13 @@ std::string upsGrid(const std::string& faces, double length, double width, int c
   return s;
 }
 
+std::string upsSphereOctantGrid(double radius, int cells, const std::string& interpolator) {
+  const int gridCells = cells + 2;
+  const double side = gridCells * radius / cells;
+  std::string faces;
+  for (const char* face : {"x-", "y-", "z-"}) faces += upsSymmetricFace(face);
+  return upsGrid(faces, side, side, gridCells, gridCells,
+                 interpolator == "linear" ? "[0,0,0]" : "[1,1,1]");
+}
+
 }  // namespace anode

@@ -41,4 +41,9 @@ std::string upsSymmetricFace(const std::string& side);
 std::string upsGrid(const std::string& faces, double length, double width, int cellsAlong,
                     int cellsAcross, const std::string& extraCells);
 
+// <Grid> for the octant of a sphere of `radius` centred at the origin, `cells` cells per radius:
+// Symmetric faces x-, y-, z- through the centre, a box of cells + 2 cells per axis (room beyond
+// the surface for the supports of the outermost particles), extra cells but for `linear`.
+std::string upsSphereOctantGrid(double radius, int cells, const std::string& interpolator);
+
 }  // namespace anode

@@ -38,9 +38,6 @@ std::string swellingSphereInput(const SwellingSphereCase& c) {
     throw std::invalid_argument("swelling sphere: integrator must be implicit or explicit");
   if (!implicit && !(c.endTime > 0))
     throw std::invalid_argument("swelling sphere: an explicit run needs an end time");
-  // Two cells beyond the surface: room for the supports of the outermost particles.
-  const int gridCells = c.cells + 2;
-  const double h = c.radius / c.cells, side = gridCells * h;
   const std::string res = std::to_string(c.particlesPerCell);
 
   std::string material;
@@ -55,8 +52,6 @@ std::string swellingSphereInput(const SwellingSphereCase& c) {
   material += "          <temperature>0</temperature>\n";
   material += "        </geom_object>\n";
   material += "      </material>\n";
-  std::string faces;
-  for (const char* side : {"x-", "y-", "z-"}) faces += upsSymmetricFace(side);
 
   std::string s;
   s += upsOpening(
@@ -81,8 +76,7 @@ std::string swellingSphereInput(const SwellingSphereCase& c) {
     s += "    <artificial_damping_coeff>" + upsNumber(c.damping) + "</artificial_damping_coeff>\n";
   s += "  </MPM>\n";
   s += upsMaterialProperties(material, "");
-  s += upsGrid(faces, side, side, gridCells, gridCells,
-               c.interpolator == "linear" ? "[0,0,0]" : "[1,1,1]");
+  s += upsSphereOctantGrid(c.radius, c.cells, c.interpolator);
   s += "</Uintah_specification>\n";
   return s;
 }

@@ -223,10 +223,10 @@ const std::vector<std::string> kAttributeValues = {"",
                                                    "implicit"};
 // Values of the ImpMPM tags: negative, zero, huge, not a number, text, empty, and valid ones.
 const std::vector<std::string> kImplicitValues = {
-    "-1",         "0",           "-0",        "1e300",      "1e400", "nan",  "inf",
-    "2147483648", "-2147483649", "1e-300",    "abc",        "",      "true", "false",
-    "implicit",   "explicit",    "petsc",     "simple",     "0.5",   "1",    "12",
-    "25",         "[1,2,3]",     "staggered", "trapezoidal"};
+    "-1",         "0",           "-0",        "1e300",       "1e400",     "nan",     "inf",
+    "2147483648", "-2147483649", "1e-300",    "abc",         "",          "true",    "false",
+    "implicit",   "explicit",    "petsc",     "simple",      "0.5",       "1",       "12",
+    "25",         "[1,2,3]",     "staggered", "trapezoidal", "cell_mean", "particle"};
 const std::vector<std::string> kComponents = {"impm", "mpm", "amrmpm", "implicit", "", "IMPM"};
 const std::vector<std::string> kHugeVectors = {"[100000,100000,100000]",
                                                "[2147483647,1,1]",
@@ -350,7 +350,8 @@ const std::vector<std::string>& implicitTags() {
                                                 "error_tolerance",
                                                 "concentration_coupling",
                                                 "diffusion_integrator",
-                                                "subcell_concentration_relaxation"};
+                                                "subcell_concentration_relaxation",
+                                                "swelling_strain"};
   return tags;
 }
 

@@ -40,7 +40,8 @@ const std::vector<std::pair<std::string, std::vector<std::string>>>& implicitVal
       {"error_tolerance", {"0", "1e-6", "1e-3", "0.01", "0.5"}},
       {"concentration_coupling", {"staggered", "trapezoidal"}},
       {"diffusion_integrator", {"euler", "rkl2"}},
-      {"subcell_concentration_relaxation", {"true", "false"}}};
+      {"subcell_concentration_relaxation", {"true", "false"}},
+      {"swelling_strain", {"cell_mean", "particle"}}};
   return values;
 }
 

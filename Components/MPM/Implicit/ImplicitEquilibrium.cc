@@ -6,10 +6,12 @@
 #include <sstream>
 #include <variant>
 
+#include "Components/MPM/Implicit/CellMeanSwelling.h"
 #include "Components/MPM/Implicit/HourglassStabilization.h"
 #include "Components/MPM/Implicit/ImplicitStep.h"
 #include "Components/MPM/Implicit/ParticleEquilibrium.h"
 #include "Components/MPM/Materials/ConstitutiveModels/ConcreteModels.h"
+#include "Components/MPM/ReactiveFlow/DiffusionParticles.h"
 #include "Core/Util/Errors.h"
 
 namespace anode {
@@ -42,10 +44,8 @@ EquilibriumProblem ImplicitStep::equilibriumProblem(Collective every, double dt)
     for (int k = 0; k < nodes; ++k)
       problem.owned[k] = mpm_.layout().boxes().ownerOfCell(grid.nodeOf(k)) == me;
   }
-  for (size_t m = 0; m < materials.size(); ++m)
-    problem.concentrationChange.push_back(mpm_.diffusion() && materials[m].model->swells()
-                                              ? concentrationChange_[m].data()
-                                              : nullptr);
+  computeSwelling(every);
+  problem.concentrationChange = swelling_;
   problem.mass.assign(fields_, std::vector<double>(nodes, 0.0));
   const double free = std::numeric_limits<double>::quiet_NaN();
   problem.prescribed.assign(fields_, std::vector<Vec3>(nodes, Vec3::Constant(free)));
@@ -121,6 +121,41 @@ void ImplicitStep::addStartOfStepMotion(Collective every, EquilibriumProblem& pr
     }
 }
 
+void ImplicitStep::computeSwelling(Collective every) {
+  std::vector<MPMMaterial>& materials = mpm_.materials();
+  swelling_.assign(materials.size(), nullptr);
+  swellingIncrement_.resize(materials.size());
+  swellingReached_.resize(materials.size());
+  for (size_t m = 0; m < materials.size(); ++m) {
+    if (!mpm_.diffusion() || !materials[m].model->swells()) continue;
+    if (options_.swellingStrain == ImplicitOptions::SwellingStrain::Particle) {
+      swelling_[m] = concentrationChange_[m].data();
+      continue;
+    }
+    // The cell means of what the particle's swelling lacks at the step's end: its c less the
+    // concentration its swelling has reached (CellMeanSwelling.h); before its first step, its
+    // c at the step's start.
+    ScopedTimer s(mpm_.timers(), tasks_.swelling);
+    const ParticleSet& p = materials[m].particles;
+    const std::vector<double>& c = diffusionParticles(p).concentration;
+    const std::vector<double>& dc = concentrationChange_[m];
+    std::vector<double> lacking(c.size());
+    for (size_t i = 0; i < c.size(); ++i) {
+      const double reached = p.swellingConcentration[i];
+      lacking[i] = std::isnan(reached) ? dc[i] : c[i] - reached;
+    }
+    std::vector<double>& increment = swellingIncrement_[m];
+    cellMeanOf(every, mpm_.grid(), mpm_.layout().ghosts(), p, lacking, increment);
+    std::vector<double>& reached = swellingReached_[m];
+    reached.resize(c.size());
+    for (size_t i = 0; i < c.size(); ++i) {
+      const double before = p.swellingConcentration[i];
+      reached[i] = (std::isnan(before) ? c[i] - dc[i] : before) + increment[i];
+    }
+    swelling_[m] = increment.data();
+  }
+}
+
 void ImplicitStep::updateParticlesFromEquilibrium(double dt) {
   std::vector<MPMMaterial>& materials = mpm_.materials();
   for (size_t m = 0; m < materials.size(); ++m) {
@@ -133,10 +168,12 @@ void ImplicitStep::updateParticlesFromEquilibrium(double dt) {
         [&](const auto* model) {
           firstInverted = updateParticlesFromDisplacement(
               mat.particles, mpm_.stepGrid().weights[m], *model, mat.density, u,
-              options_.dynamic ? &equilibrium_.acceleration(fieldOf_[m]) : nullptr,
-              mpm_.diffusion() && model->swells() ? concentrationChange_[m].data() : nullptr, dt);
+              options_.dynamic ? &equilibrium_.acceleration(fieldOf_[m]) : nullptr, swelling_[m],
+              dt);
         },
         mat.model->concrete().model);
+    if (mat.particles.has(Physics::CellSwelling) && swelling_[m])
+      mat.particles.swellingConcentration = swellingReached_[m];
     if (firstInverted < static_cast<long>(mat.particles.count())) {
       std::ostringstream s;
       s << describeParticle(mat, m, firstInverted)

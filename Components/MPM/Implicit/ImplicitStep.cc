@@ -103,9 +103,13 @@ ImplicitStep::ImplicitStep(const PSNode& root, MPM& mpm, const TimestepControlle
   if (mpm.diffusion())
     diffusion_.emplace(*mpm.diffusion(), mpm.grid(), options_, dt.substepMultiplier(), timers);
   tasks_ = {timers.task("computeInterpolationWeights"),
-            timers.task("interpolateToParticlesAndUpdate"), timers.task("splitParticles"),
+            timers.task("interpolateToParticlesAndUpdate"),
+            timers.task("splitParticles"),
             timers.task("updateDiffusionState"),
-            mpm.layout().distributed() ? timers.task("communication") : -1};
+            mpm.layout().distributed() ? timers.task("communication") : -1,
+            mpm.diffusion() && options_.swellingStrain == ImplicitOptions::SwellingStrain::CellMean
+                ? timers.task("cellMeanSwelling")
+                : -1};
 }
 
 ImplicitStep::~ImplicitStep() = default;

@@ -90,7 +90,8 @@ class ImplicitStep : public Integrator {
 
   void checkSetup(const PSNode& root) const;
   // The equilibrium problem of the step: fields, nodal masses, the displacement increments the
-  // Velocity and Symmetric faces prescribe over dt.
+  // Velocity and Symmetric faces prescribe over dt, and the swelling of concentrationChange_
+  // (swelling_, which the particles' update after it takes too).
   EquilibriumProblem equilibriumProblem(Collective, double dt);
   // Implicit dynamics: the problem's nodal velocities and accelerations of the step's start, from
   // the particles (momentum from the P2G of the step, sum m a S here; Newmark.h).
@@ -126,6 +127,8 @@ class ImplicitStep : public Integrator {
   void returnToStepStart(Collective, double t, const std::vector<ParticleSet>& start);
   // The largest |dc| of a particle over the diffusion of the step.
   double largestConcentrationChange() const;
+  // swelling_ from concentrationChange_ (<swelling_strain>).
+  void computeSwelling(Collective);
   // The particles after the converged step (positions, F, stress, the models' state).
   void updateParticlesFromEquilibrium(double dt);
   // The weights and P2G of the particles as they are now (timed).
@@ -147,13 +150,18 @@ class ImplicitStep : public Integrator {
   std::vector<int> fieldOf_;  // material -> its velocity field (single_velocity members share one)
   int fields_ = 0;
   std::vector<std::vector<double>> concentrationChange_;  // per material: dc of the step
+  // Per material, of the last equilibrium problem (<swelling_strain>): the dc its swelling takes,
+  // which the problem and the particles' update read (null: no swelling); with cell_mean, the
+  // increments and the cell-mean c the swelling reaches (CellMeanSwelling.h).
+  std::vector<const double*> swelling_;
+  std::vector<std::vector<double>> swellingIncrement_, swellingReached_;
   double lastDt_ = 0;
   double ruleDt_ = 0;  // what ImpMPM's rule scales: the last step's dt, or its ruleDt
   // The largest |dc| of a particle in the last step (with diffusion).
   double maxConcentrationChange_ = 0;
   NewtonCounts newton_;
   struct Tasks {  // timer indices
-    int interpolationWeights, particleUpdate, splitting, diffusionState, communication;
+    int interpolationWeights, particleUpdate, splitting, diffusionState, communication, swelling;
   } tasks_;
 };
 
