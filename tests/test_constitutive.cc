@@ -10,6 +10,7 @@
 #include "Core/Math/PolarDecomposition.h"
 #include "Core/ProblemSpec/ProblemSpec.h"
 #include "Core/Util/Errors.h"
+#include "tests/UniaxialStrain.h"
 
 namespace anode {
 namespace {
@@ -18,20 +19,10 @@ struct UniaxialResult {
   double sxx, syy, ep;
 };
 
-// Drives uniaxial strain to logarithmic strain e in n increments; D dt sums exactly to e.
+// Drives uniaxial strain to logarithmic strain e in n increments of 1e-3.
 UniaxialResult uniaxialStrain(const RFElasticPlastic& model, double e, int n) {
-  Mat3 stress = Mat3::Zero(), F = Mat3::Identity();
-  RFElasticPlastic::State<double> state{Mat3::Identity(), 0, 0};
-  const double dt = 1e-3;
-  for (int i = 0; i < n; ++i) {
-    Mat3 Fnew = F;
-    Fnew(0, 0) = std::exp(e * (i + 1) / n);
-    Mat3 L = Mat3::Zero();
-    L(0, 0) = std::log(Fnew(0, 0) / F(0, 0)) / dt;
-    stress = model.updateStress(stress, Fnew, L, 0.0, dt, state);
-    F = Fnew;
-  }
-  return {stress(0, 0), stress(1, 1), state.ep};
+  const UniaxialStrainEnd end = driveUniaxialStrain(model, e, n, 1e-3);
+  return {end.stress(0, 0), end.stress(1, 1), end.state.ep};
 }
 
 const double K = 67e3, G = 31e3, sigmaY = 1.4e3, H = 1.15e3;  // the paper's values, MPa
@@ -144,7 +135,7 @@ TEST(Objectivity, RigidRotationRotatesTheStressAndKeepsItsInvariants) {
   const Vec3 axis = Vec3(1, 1, 0.3).normalized();
   const double omega = 2.0, dt = 1e-3;
   const Mat3 start = stress;
-  RFElasticPlastic::State<double> state{Mat3::Identity(), 0, 0};
+  RFElasticPlastic::State<double> state{Mat3::Identity(), 0, 0, 0};
   for (int i = 1; i <= 500; ++i) {
     const Mat3 Fnew = Eigen::AngleAxisd(omega * dt * i, axis).toRotationMatrix();
     const Mat3 W = Fnew * F.inverse();              // incremental rotation

@@ -164,7 +164,7 @@ TEST(Swelling, RigidRotationKeepsTheStressInvariants) {
   const RFElasticPlastic model(K, G, flow, eta);
   const double dt = 1e-3, dc = 2e-4;
   Mat3 sA = Mat3::Zero(), sB = Mat3::Zero(), FA = Mat3::Identity(), FB = Mat3::Identity();
-  RFElasticPlastic::State<double> A{Mat3::Identity(), 0, 0}, B{Mat3::Identity(), 0, 0};
+  RFElasticPlastic::State<double> A{Mat3::Identity(), 0, 0, 0}, B{Mat3::Identity(), 0, 0, 0};
   const Vec3 axis = Vec3(0.3, -1, 0.5).normalized();
   for (int n = 1; n <= 400; ++n) {
     const Mat3 U = Vec3(std::exp(0.05 * n * dt), std::exp(-0.02 * n * dt), 1.0).asDiagonal();

@@ -366,12 +366,20 @@ StepSummary MPM::summarize(Collective every) const {
   for (const MPMMaterial& mat : materials_) {
     const ParticleSet& p = mat.particles;
     const double K = mat.model->bulkModulus(), G = mat.model->shearModulus();
+    // The moduli at each particle's c where the laws depend on lithium.
+    const std::vector<double>* c = concentrationOf(p);
+    const bool lithiumDependent = c && mat.model->lithiumDependent();
     StepSummary::MaterialStress& stress = s.stress.emplace_back();
     const std::vector<double>* plasticRate = mat.model->plasticStrainRate(p);
     stress.yields = plasticRate != nullptr;
     for (size_t i = 0; i < p.count(); ++i) {
       s.kineticEnergy += 0.5 * p.mass[i] * p.velocity[i].squaredNorm();
-      s.elasticEnergy += p.volume[i] * ConstitutiveModel::elasticEnergyDensity(p.stress[i], K, G);
+      s.elasticEnergy +=
+          p.volume[i] * (lithiumDependent
+                             ? ConstitutiveModel::elasticEnergyDensity(
+                                   p.stress[i], mat.model->bulkModulusAt((*c)[i]),
+                                   mat.model->shearModulusAt((*c)[i]))
+                             : ConstitutiveModel::elasticEnergyDensity(p.stress[i], K, G));
       const double J = p.volume[i] * mat.density / p.mass[i];
       s.minJ = std::min(s.minJ, J);
       s.maxJ = std::max(s.maxJ, J);

@@ -618,6 +618,21 @@ bool InputMutator::apply(int op, std::string& t, std::string* what) {
         say("<film_normal> set to '" + v + "'");
         return true;
       }
+      if (pick(8) ==
+          0) {  // ours in <constitutive_model>: lithium-dependent laws, rate-dependent flow
+        static const std::vector<std::string> tags = {
+            "bulk_modulus_lithiated", "shear_modulus_lithiated", "sigma_Y_lithiated",
+            "reference_strain_rate", "rate_exponent"};
+        static const std::vector<std::string> values = {"1e6", "0",   "-1",     "nan",  "inf",
+                                                        "",    "abc", "1e-300", "1e300"};
+        const std::string& tag = pickFrom(tags);
+        const std::string& v = pickFrom(values);
+        const bool flowTag = tag.find("modulus") == std::string::npos;
+        if (!editTag(t, flowTag ? "flow_model" : "constitutive_model", tag, TagEdit::Set, v))
+          return false;
+        say("<" + tag + "> set to '" + v + "'");
+        return true;
+      }
       const std::string& tag = pickFrom(implicitTags());
       const size_t choice = pick(4);
       if (choice == 1 && editTag(t, "MPM", tag, TagEdit::Remove)) {

@@ -55,8 +55,9 @@ class InputMutator {
     VectorLength,
     SwapValues,
     EmptyValue,
-    ImplicitOption,  // an ImpMPM tag of <MPM> (or <DataArchiver><film_normal>) set to a bad value,
-                     // removed or duplicated, or the <SimulationComponent> type changed
+    ImplicitOption,  // an ImpMPM tag of <MPM> (or ours: <DataArchiver><film_normal>, the
+                     // lithium-dependent laws' tags) set to a bad value, removed or duplicated,
+                     // or the <SimulationComponent> type changed
     kOperatorCount
   };
   static const char* operatorName(int op);

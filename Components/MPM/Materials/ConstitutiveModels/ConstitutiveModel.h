@@ -26,9 +26,18 @@ class ConstitutiveModel {
   // eta: the swelling rate of deformation is eta dc/dt I (0 without swelling), so free swelling
   // from c = 0 to 1 stretches each axis by exp(eta).
   virtual double swellingCoefficient() const = 0;
-  // K and G, the <bulk_modulus> and <shear_modulus> the model read.
+  // K and G, the <bulk_modulus> and <shear_modulus> the model read; with lithium-dependent laws
+  // the largest over c in [0, c_max] (the stable time step's).
   virtual double bulkModulus() const = 0;
   virtual double shearModulus() const = 0;
+  // Whether K, G or the flow stress depend on the concentration (the lithium-dependent laws).
+  virtual bool lithiumDependent() const { return false; }
+  // K and G at concentration c (the same at every c unless the laws depend on lithium).
+  virtual double bulkModulusAt(double) const { return bulkModulus(); }
+  virtual double shearModulusAt(double) const { return shearModulus(); }
+  // The <max_concentration> of the material's diffusion model: the c at which lithium-dependent
+  // laws take their lithiated values.
+  virtual void setMaxConcentration(double) {}
   // K + 4G/3: the modulus of the dilatational wave speed (paper Eq. 41).
   double dilatationalModulus() const { return bulkModulus() + 4.0 * shearModulus() / 3.0; }
   // The elastic energy per unit current volume that the Cauchy stress sigma stores in isotropic

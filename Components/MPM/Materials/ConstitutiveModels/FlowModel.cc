@@ -1,6 +1,7 @@
 #include "Components/MPM/Materials/ConstitutiveModels/FlowModel.h"
 
 #include <cmath>
+#include <optional>
 #include <string>
 
 namespace anode {
@@ -58,6 +59,20 @@ FlowModel FlowModel::fromInput(const PSNode& flow) {
     f.sigmaY = flow.require<double>("sigma_Y");
     if (!(f.sigmaY > 0)) flow.requireChild("sigma_Y").fail("<sigma_Y> must be positive");
     f.K = nonNegative(flow, "K");
+    if (const PSNode rate = flow.child("reference_strain_rate")) {
+      f.referenceRate = rate.value<double>();
+      if (!(f.referenceRate > 0)) rate.fail("<reference_strain_rate> must be positive");
+      f.rateExponent = flow.require<double>("rate_exponent");
+      if (!(f.rateExponent > 0))
+        flow.requireChild("rate_exponent").fail("<rate_exponent> must be positive");
+    } else if (const PSNode exponent = flow.child("rate_exponent")) {
+      exponent.fail("<rate_exponent> needs <reference_strain_rate>");
+    }
+    if (const std::optional<double> lithiated = flow.find<double>("sigma_Y_lithiated")) {
+      f.sigmaYLithiated = *lithiated;
+      if (!(f.sigmaYLithiated > 0))
+        flow.requireChild("sigma_Y_lithiated").fail("<sigma_Y_lithiated> must be positive");
+    }
   } else {
     flow.fail("unknown flow_model type=\"" + type +
               "\"; accepted: johnson_cook, isotropic_hardening");

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cmath>
+#include <limits>
 
 #include "Core/Math/Simd.h"
 #include "Core/ProblemSpec/ProblemSpec.h"
@@ -15,6 +16,9 @@ struct FlowModel {
   double A = 0, B = 0, n = 0;
   // isotropic_hardening: sigma_y = sigma_Y + K*eps_p (paper Eq. 35 with K the hardening modulus).
   double sigmaY = 0, K = 0;
+  // isotropic_hardening's <sigma_Y_lithiated> (ours): sigma_Y at c = c_max, linear in c between
+  // (the lithium-dependent laws, docs/input-reference.md); NaN: sigma_Y at every c.
+  double sigmaYLithiated = std::numeric_limits<double>::quiet_NaN();
 
   static FlowModel fromInput(const PSNode& flowNode);
 
@@ -26,6 +30,18 @@ struct FlowModel {
     if (perfectlyPlastic()) return S(A + B);
     return S(A) + S(B) * powOf(ep, n);
   }
+  // isotropic_hardening's rate-dependent flow (ours, Bower, Guduru & Sethuraman 2011): with
+  // <reference_strain_rate> e0 > 0 and <rate_exponent> m, the plastic strain rate above the flow
+  // stress is e0 (sigma_e / sigma_y - 1)^m (0 below it); e0 = 0: rate-independent.
+  double referenceRate = 0, rateExponent = 1;
+  bool rateDependent() const { return referenceRate > 0; }
+  // What sigma_y gains at c / c_max = `c` over its value at c = 0 (<sigma_Y_lithiated>).
+  template <class S>
+  S lithiumShift(const S& c) const {
+    if (!lithiumDependent()) return S(0.0);
+    return S(sigmaYLithiated - sigmaY) * c;
+  }
+  bool lithiumDependent() const { return !std::isnan(sigmaYLithiated); }
   // d sigma_y / d eps_p.
   template <class S>
   S hardeningModulus(const S& ep) const {

@@ -1,8 +1,10 @@
 #include "Components/MPM/Materials/ConstitutiveModels/RFElasticPlastic.h"
 
 #include <cmath>
+#include <string>
 
 #include "Components/MPM/Materials/ConstitutiveModels/ConcreteModels.h"
+#include "Components/MPM/ReactiveFlow/DiffusionParticles.h"
 #include "Core/Math/PolarDecomposition.h"
 
 namespace anode {
@@ -53,7 +55,24 @@ std::unique_ptr<RFElasticPlastic> RFElasticPlastic::fromInput(const PSNode& node
     if (!flowNode) yield.fail("<yield_condition> requires a <flow_model>");
     yield.markSubtreeUsed();
   }
-  return std::make_unique<RFElasticPlastic>(elastic.K, elastic.G, flow, elastic.eta);
+  // The lithium-dependent laws (ours): K and G at c = c_max.
+  std::optional<LithiatedModuli> lithiated;
+  const std::optional<double> K1 = node.find<double>("bulk_modulus_lithiated");
+  const std::optional<double> G1 = node.find<double>("shear_modulus_lithiated");
+  for (const char* tag : {"bulk_modulus_lithiated", "shear_modulus_lithiated"})
+    if (const PSNode given = node.child(tag)) {
+      if (!diffusion)
+        given.fail("<" + std::string(tag) +
+                   "> needs <do_scalar_diffusion>true: without lithium it has no c to act at");
+      if (!(given.value<double>() > 0)) given.fail("<" + std::string(tag) + "> must be positive");
+    }
+  if (K1 || G1) lithiated = LithiatedModuli{K1.value_or(elastic.K), G1.value_or(elastic.G)};
+  if (flow && flow->lithiumDependent() && !diffusion)
+    flowNode.requireChild("sigma_Y_lithiated")
+        .fail(
+            "<sigma_Y_lithiated> needs <do_scalar_diffusion>true: without lithium it has no c "
+            "to act at");
+  return std::make_unique<RFElasticPlastic>(elastic.K, elastic.G, flow, elastic.eta, lithiated);
 }
 
 void RFElasticPlastic::initializeState(ParticleSet& p) const {
@@ -64,8 +83,12 @@ void RFElasticPlastic::initializeState(ParticleSet& p) const {
   for (size_t i = 0; i < p.count(); ++i) rotation[i] = rotationOf(p.F[i]);
 }
 
-RFElasticPlastic::StateArrays::StateArrays(ParticleSet& p, bool yields)
+RFElasticPlastic::StateArrays::StateArrays(ParticleSet& p, bool yields, double maxConcentration)
     : rotation_(p.modelArray<Mat3>(0).data()) {
+  if (maxConcentration > 0) {
+    concentration_ = diffusionParticles(static_cast<const ParticleSet&>(p)).concentration.data();
+    perMax_ = 1 / maxConcentration;
+  }
   if (!yields) return;
   ep_ = p.modelArray<double>(0).data();
   epdot_ = p.modelArray<double>(1).data();
