@@ -12,6 +12,8 @@
 #include <cmath>
 #include <sstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "Components/MPM/Materials/ConstitutiveModels/RFElasticPlastic.h"
 #include "Core/ProblemSpec/ProblemSpec.h"
@@ -240,6 +242,31 @@ TEST(LithiumDependentLaws, BadValuesAndTagsWithoutLithiumAreInputErrors) {
                    "<sigma_Y_lithiated>0</sigma_Y_lithiated></flow_model>"
                    "<yield_condition type=\"vonMises\"/>");
   EXPECT_NE(message(text).find("<sigma_Y_lithiated> must be positive"), std::string::npos)
+      << message(text);
+  // The flow model's tags, each bad value naming its line.
+  const auto flowWith = [](const std::string& tags) {
+    return "<flow_model type=\"isotropic_hardening\"><sigma_Y>2e4</sigma_Y><K>0</K>" + tags +
+           "</flow_model><yield_condition type=\"vonMises\"/>";
+  };
+  for (const auto& [tags, expected] : std::vector<std::pair<std::string, std::string>>{
+           {"<reference_strain_rate>0</reference_strain_rate><rate_exponent>2</rate_exponent>",
+            "film.ups:1: <reference_strain_rate> must be positive"},
+           {"<reference_strain_rate>1</reference_strain_rate>",
+            "film.ups:1: <flow_model> requires a <rate_exponent>"},
+           {"<reference_strain_rate>1</reference_strain_rate><rate_exponent>-2</rate_exponent>",
+            "film.ups:1: <rate_exponent> must be positive"},
+           {"<rate_exponent>2</rate_exponent>",
+            "film.ups:1: <rate_exponent> needs <reference_strain_rate>"}}) {
+    text = filmInput("implicit", "", flowWith(tags));
+    EXPECT_NE(message(text).find(expected), std::string::npos) << tags << ": " << message(text);
+  }
+  // sigma_Y_lithiated without diffusion.
+  text = filmInput("implicit", "", flowWith("<sigma_Y_lithiated>5e3</sigma_Y_lithiated>"));
+  const size_t diffusion = text.find("<do_scalar_diffusion>true");
+  text.replace(diffusion, std::string("<do_scalar_diffusion>true").size(),
+               "<do_scalar_diffusion>false");
+  EXPECT_NE(message(text).find("film.ups:1: <sigma_Y_lithiated> needs <do_scalar_diffusion>true"),
+            std::string::npos)
       << message(text);
 }
 

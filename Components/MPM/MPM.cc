@@ -61,6 +61,9 @@ void MPM::problemSetup(const PSNode& root, double initTime, double maxTime, bool
                                  [&](const BCType& bc) { concentrationBCs.push_back(bc); });
   diffusion_ = ReactiveFlow::fromInput(root, problem_.flags, materials_, maxTime, physical,
                                        concentrationBCs);
+  if (diffusion_)
+    for (size_t m = 0; m < materials_.size(); ++m)
+      materials_[m].model->setMaxConcentration(diffusion_->model(m).maxConcentration);
   for (size_t m = 0; m < materials_.size(); ++m)
     seeds_[m].checkPiecesInsideGrid(grid(), problem_.gridBCs.symmetryPlanes(static_cast<int>(m)));
   problem_.swellingNotes =
@@ -374,12 +377,9 @@ StepSummary MPM::summarize(Collective every) const {
     stress.yields = plasticRate != nullptr;
     for (size_t i = 0; i < p.count(); ++i) {
       s.kineticEnergy += 0.5 * p.mass[i] * p.velocity[i].squaredNorm();
-      s.elasticEnergy +=
-          p.volume[i] * (lithiumDependent
-                             ? ConstitutiveModel::elasticEnergyDensity(
-                                   p.stress[i], mat.model->bulkModulusAt((*c)[i]),
-                                   mat.model->shearModulusAt((*c)[i]))
-                             : ConstitutiveModel::elasticEnergyDensity(p.stress[i], K, G));
+      const double Ki = lithiumDependent ? mat.model->bulkModulusAt((*c)[i]) : K;
+      const double Gi = lithiumDependent ? mat.model->shearModulusAt((*c)[i]) : G;
+      s.elasticEnergy += p.volume[i] * ConstitutiveModel::elasticEnergyDensity(p.stress[i], Ki, Gi);
       const double J = p.volume[i] * mat.density / p.mass[i];
       s.minJ = std::min(s.minJ, J);
       s.maxJ = std::max(s.maxJ, J);

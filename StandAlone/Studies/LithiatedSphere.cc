@@ -156,10 +156,13 @@ LithiatedSphereResult runLithiatedSphere(const LithiatedSphereCase& c) {
   const std::vector<Vec3> X = p.x;
   while (run.beforeEndTime()) sim.advance();
 
-  const LithiatedSphereSolution exact(c);
+  const LithiatedSphereSolution solution(c);
+  std::vector<LithiatedSphereExact> exact;
   double largestHoop = 0;
-  for (const Vec3& x : X)
-    largestHoop = std::max(largestHoop, std::abs(exact.at(x.norm()).hoopStress));
+  for (const Vec3& x : X) {
+    exact.push_back(solution.at(x.norm()));
+    largestHoop = std::max(largestHoop, std::abs(exact.back().hoopStress));
+  }
   LithiatedSphereResult r;
   r.interpolator = c.interpolator;
   r.swellingStrain = c.swellingStrain;
@@ -173,7 +176,7 @@ LithiatedSphereResult runLithiatedSphere(const LithiatedSphereCase& c) {
     const double radius = X[i].norm();
     const Vec3 n = X[i] / radius;
     const double srr = n.dot(p.stress[i] * n), stt = 0.5 * (p.stress[i].trace() - srr);
-    const LithiatedSphereExact x = exact.at(radius);
+    const LithiatedSphereExact& x = exact[i];
     const double q[3] = {concentration[i], srr, stt};
     const double qExact[3] = {x.concentration, x.radialStress, x.hoopStress};
     for (int k = 0; k < 3; ++k) {

@@ -139,19 +139,18 @@ void ImplicitStep::computeSwelling(Collective every) {
     const ParticleSet& p = materials[m].particles;
     const std::vector<double>& c = diffusionParticles(p).concentration;
     const std::vector<double>& dc = concentrationChange_[m];
-    std::vector<double> lacking(c.size());
-    for (size_t i = 0; i < c.size(); ++i) {
-      const double reached = p.swellingConcentration[i];
-      lacking[i] = std::isnan(reached) ? dc[i] : c[i] - reached;
-    }
-    std::vector<double>& increment = swellingIncrement_[m];
-    cellMeanOf(every, mpm_.grid(), mpm_.layout().ghosts(), p, lacking, increment);
     std::vector<double>& reached = swellingReached_[m];
+    std::vector<double> lacking(c.size());
     reached.resize(c.size());
     for (size_t i = 0; i < c.size(); ++i) {
       const double before = p.swellingConcentration[i];
-      reached[i] = (std::isnan(before) ? c[i] - dc[i] : before) + increment[i];
+      const bool first = std::isnan(before);
+      reached[i] = first ? c[i] - dc[i] : before;
+      lacking[i] = first ? dc[i] : c[i] - before;
     }
+    std::vector<double>& increment = swellingIncrement_[m];
+    cellMeanOf(every, mpm_.grid(), mpm_.layout().ghosts(), p, lacking, increment);
+    for (size_t i = 0; i < c.size(); ++i) reached[i] += increment[i];
     swelling_[m] = increment.data();
   }
 }

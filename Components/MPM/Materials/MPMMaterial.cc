@@ -194,9 +194,6 @@ MPMMaterial MPMMaterial::fromInput(const PSNode& node, const Grid& grid, const M
     if (rigid.value<bool>()) rigid.unsupported("rigid materials <is_rigid>");
   m.model =
       createConstitutiveModel(node.requireChild("constitutive_model"), flags.doScalarDiffusion);
-  if (flags.doScalarDiffusion)
-    if (const PSNode diffusion = node.child("diffusion_model"))
-      m.model->setMaxConcentration(diffusion.get<double>("max_concentration", 1.0));
 
   const auto geoms = node.children("geom_object");
   if (geoms.empty()) node.fail("<material> needs at least one <geom_object>");

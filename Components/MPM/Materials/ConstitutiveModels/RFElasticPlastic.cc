@@ -56,17 +56,20 @@ std::unique_ptr<RFElasticPlastic> RFElasticPlastic::fromInput(const PSNode& node
     yield.markSubtreeUsed();
   }
   // The lithium-dependent laws (ours): K and G at c = c_max.
-  std::optional<LithiatedModuli> lithiated;
-  const std::optional<double> K1 = node.find<double>("bulk_modulus_lithiated");
-  const std::optional<double> G1 = node.find<double>("shear_modulus_lithiated");
-  for (const char* tag : {"bulk_modulus_lithiated", "shear_modulus_lithiated"})
-    if (const PSNode given = node.child(tag)) {
+  bool lithiumDependent = false;
+  const char* tags[] = {"bulk_modulus_lithiated", "shear_modulus_lithiated"};
+  double moduli[] = {elastic.K, elastic.G};
+  for (int k = 0; k < 2; ++k)
+    if (const PSNode given = node.child(tags[k])) {
       if (!diffusion)
-        given.fail("<" + std::string(tag) +
+        given.fail("<" + std::string(tags[k]) +
                    "> needs <do_scalar_diffusion>true: without lithium it has no c to act at");
-      if (!(given.value<double>() > 0)) given.fail("<" + std::string(tag) + "> must be positive");
+      moduli[k] = given.value<double>();
+      if (!(moduli[k] > 0)) given.fail("<" + std::string(tags[k]) + "> must be positive");
+      lithiumDependent = true;
     }
-  if (K1 || G1) lithiated = LithiatedModuli{K1.value_or(elastic.K), G1.value_or(elastic.G)};
+  std::optional<LithiatedModuli> lithiated;
+  if (lithiumDependent) lithiated = LithiatedModuli{moduli[0], moduli[1]};
   if (flow && flow->lithiumDependent() && !diffusion)
     flowNode.requireChild("sigma_Y_lithiated")
         .fail(

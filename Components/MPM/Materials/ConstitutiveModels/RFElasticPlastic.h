@@ -104,6 +104,12 @@ class RFElasticPlastic : public ConstitutiveModel {
     return flow_ ? &p.modelArray<double>(1) : nullptr;
   }
 
+  // The radial return's multiplier dgamma of s = s_trial (1 - 2 G dgamma / |s_trial|) in the
+  // lanes that yield: the root of |s_trial| - sqrt(2/3) sigma_y(ep + sqrt(2/3) dgamma) - 2 G dgamma
+  // by Newton's iteration, each lane's stopping where it converges.
+  template <class S>
+  S rateIndependentReturn(const S& sNorm, const S& G, const S& ep, const S& yieldShift,
+                          const decltype(S(0.0) > S(0.0))& yields) const;
   // The rate-dependent return (ours): the multiplier dgamma of s = s_trial (1 - 2 G dgamma /
   // |s_trial|) whose plastic strain increment sqrt(2/3) dgamma over dt is e0 dt (sigma_e /
   // sigma_y - 1)^m, sigma_e = sqrt(3/2) (|s_trial| - 2 G dgamma) and sigma_y at the new plastic
@@ -160,31 +166,15 @@ Mat3Of<S> RFElasticPlastic::updateStress(const Mat3Of<S>& stress, const Mat3Of<S
   M s = sigmaBar - mean * I + S(2.0 * dt) * G * Ddev;
 
   if (flow_) {
-    // Radial return to the von Mises surface (Eqs. 34-35), in the lanes that yield; each lane's
-    // Newton iteration stops where it converges.
+    // Radial return to the von Mises surface (Eqs. 34-35), in the lanes that yield.
     const S sNorm = frobeniusNorm(s);
     const double sqrt23 = std::sqrt(2.0 / 3.0);
     const auto yields = S(std::sqrt(1.5)) * sNorm > flow_->flowStress(ep) + yieldShift;
     epdot = S(0.0);
-    if (anyOf(yields) && flow_->rateDependent()) {
-      const S dgamma = viscoplasticReturn(sNorm, G, ep, yieldShift, dt, yields);
-      const S scale = S(1.0) - S(2.0) * G * dgamma / sNorm;
-      for (int k = 0; k < 9; ++k) s(k) = select(yields, s(k) * scale, s(k));
-      ep = select(yields, ep + S(sqrt23) * dgamma, ep);
-      epdot = select(yields, S(sqrt23) * dgamma / S(dt), S(0.0));
-    } else if (anyOf(yields)) {
-      S dgamma(0.0);
-      auto iterating = yields;
-      for (int iter = 0; iter < 50; ++iter) {
-        const S e = ep + S(sqrt23) * dgamma;
-        const S g = sNorm - S(sqrt23) * (flow_->flowStress(e) + yieldShift) - S(2.0) * G * dgamma;
-        const S dg = S(-2.0 / 3.0) * flow_->hardeningModulus(e) - S(2.0) * G;
-        const S step = g / dg;
-        dgamma = select(iterating, dgamma - step, dgamma);
-        iterating = iterating && !(absOf(step) <= S(1e-15) * sNorm / G);
-        if (!anyOf(iterating)) break;
-      }
-      dgamma = maxOf(dgamma, S(0.0));
+    if (anyOf(yields)) {
+      const S dgamma = flow_->rateDependent()
+                           ? viscoplasticReturn(sNorm, G, ep, yieldShift, dt, yields)
+                           : rateIndependentReturn(sNorm, G, ep, yieldShift, yields);
       const S scale = S(1.0) - S(2.0) * G * dgamma / sNorm;
       for (int k = 0; k < 9; ++k) s(k) = select(yields, s(k) * scale, s(k));
       ep = select(yields, ep + S(sqrt23) * dgamma, ep);
@@ -196,6 +186,25 @@ Mat3Of<S> RFElasticPlastic::updateStress(const Mat3Of<S>& stress, const Mat3Of<S
   // Rotate back with R of the new F (Eq. 39).
   state.rotation = rotationOf(Fnew);
   return state.rotation * sigmaBarNew * state.rotation.transpose();
+}
+
+template <class S>
+S RFElasticPlastic::rateIndependentReturn(const S& sNorm, const S& G, const S& ep,
+                                          const S& yieldShift,
+                                          const decltype(S(0.0) > S(0.0))& yields) const {
+  const double sqrt23 = std::sqrt(2.0 / 3.0);
+  S dgamma(0.0);
+  auto iterating = yields;
+  for (int iter = 0; iter < 50; ++iter) {
+    const S e = ep + S(sqrt23) * dgamma;
+    const S g = sNorm - S(sqrt23) * (flow_->flowStress(e) + yieldShift) - S(2.0) * G * dgamma;
+    const S dg = S(-2.0 / 3.0) * flow_->hardeningModulus(e) - S(2.0) * G;
+    const S step = g / dg;
+    dgamma = select(iterating, dgamma - step, dgamma);
+    iterating = iterating && !(absOf(step) <= S(1e-15) * sNorm / G);
+    if (!anyOf(iterating)) break;
+  }
+  return maxOf(dgamma, S(0.0));
 }
 
 template <class S>
