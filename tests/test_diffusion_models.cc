@@ -103,10 +103,12 @@ TEST(FluxRestriction, StepToTheRootFollowsTheConcentration) {
 struct ModelFromText {
   std::unique_ptr<ProblemSpec> spec;
   std::unique_ptr<ScalarDiffusionModel> model;
-  explicit ModelFromText(const std::string& model, double maxTime = 1.0) {
+  explicit ModelFromText(const std::string& model, double maxTime = 1.0,
+                         double swellingCoefficient = 0, bool implicit = false) {
     spec = ProblemSpec::fromText("<Uintah_specification>\n" + model + "\n</Uintah_specification>\n",
                                  "diffusion.ups");
-    this->model = createDiffusionModel(spec->root().requireChild("diffusion_model"), maxTime);
+    this->model = createDiffusionModel(spec->root().requireChild("diffusion_model"),
+                                       {maxTime, swellingCoefficient, 3.0, 2.0, implicit});
   }
 };
 
@@ -336,12 +338,47 @@ TEST(DiffusionModel, BaseTags) {
   EXPECT_EQ(m.model->minConcentration, 0.5);
 }
 
+std::string chemicalPotentialModel(const std::string& more) {
+  return "<diffusion_model type=\"chemical_potential\"><diffusivity>3</diffusivity>"
+         "<max_concentration>1</max_concentration><cmax_RT>2</cmax_RT>" +
+         more + "</diffusion_model>";
+}
+
+// k = Omega c_max / (c_max R T): 3 eta / <cmax_RT> unless <stress_coupling> gives Omega c_max,
+// which is warned of when it differs; s = k eta 12 K G / (3K + 4G) (K = 3, G = 2 here), and the
+// pass's diffusivity D0 (1 + s c (1 - c)), whatever the stress.
+TEST(DiffusionModel, ChemicalPotentialTakesItsStressTermFromTheSwelling) {
+  ModelFromText fromSwelling(chemicalPotentialModel(""), 1.0, 0.2, true);
+  const double k = 0.6 / 2, s = k * 0.2 * 12 * 3 * 2 / (9 + 8);
+  EXPECT_DOUBLE_EQ(fromSwelling.model->stressPotentialPerStress(), k);
+  EXPECT_DOUBLE_EQ(fromSwelling.model->stressPotentialStabilization(), s);
+  EXPECT_TRUE(fromSwelling.spec->warnings().empty());
+  ParticleSet p = particles(kConcentrations, -2e6 * Mat3::Identity());
+  EXPECT_DOUBLE_EQ(fromSwelling.model->computeDiffusivity(p, 0.0), 3.0 * (1 + s / 4));
+  for (size_t i = 0; i < p.count(); ++i)
+    EXPECT_DOUBLE_EQ(diffusionParticles(p).diffusivity[i],
+                     3.0 * (1 + s * kConcentrations[i] * (1 - kConcentrations[i])));
+
+  ModelFromText given(chemicalPotentialModel("<stress_coupling>0.5</stress_coupling>"), 1.0, 0.2,
+                      true);
+  EXPECT_DOUBLE_EQ(given.model->stressPotentialPerStress(), 0.25);
+  ASSERT_EQ(given.spec->warnings().size(), 1u);
+  EXPECT_NE(given.spec->warnings()[0].find("stress_coupling"), std::string::npos);
+  // The swelling's own value: no warning; 0: a Fickian flux.
+  ModelFromText same(chemicalPotentialModel("<stress_coupling>0.6</stress_coupling>"), 1.0, 0.2,
+                     true);
+  EXPECT_TRUE(same.spec->warnings().empty());
+  ModelFromText fick(chemicalPotentialModel(""), 1.0, 0.0, true);
+  EXPECT_EQ(fick.model->stressPotentialPerStress(), 0.0);
+  EXPECT_EQ(fick.model->stressPotentialStabilization(), 0.0);
+}
+
 // The model text below starts on line 2 of the document; `line` is the line of the offending
 // element within the whole text.
 void expectInputError(const std::string& model, int line, const std::string& fragment,
-                      double maxTime = 1.0) {
+                      double maxTime = 1.0, bool implicit = false) {
   try {
-    ModelFromText m(model, maxTime);
+    ModelFromText m(model, maxTime, 0.1, implicit);
     ADD_FAILURE() << "no InputError for:\n" << model;
   } catch (const InputError& e) {
     const std::string what = e.what();
@@ -366,6 +403,23 @@ TEST(DiffusionModelFactory, UnknownAndUnsupportedTypes) {
       "<max_concentration>1</max_concentration></diffusion_model>",
       2, "not supported");
   expectInputError("<diffusion_model><diffusivity>1</diffusivity></diffusion_model>", 2, "type");
+}
+
+TEST(DiffusionModelFactory, ChemicalPotentialBadValues) {
+  expectInputError(chemicalPotentialModel(""), 2, "explicit path");
+  expectInputError(
+      "<diffusion_model type=\"chemical_potential\"><diffusivity>3</diffusivity>"
+      "<max_concentration>1</max_concentration></diffusion_model>",
+      2, "cmax_RT", 1.0, true);
+  expectInputError(
+      "<diffusion_model type=\"chemical_potential\"><diffusivity>3</diffusivity>\n"
+      "<max_concentration>1</max_concentration>\n<cmax_RT>0</cmax_RT></diffusion_model>",
+      4, "<cmax_RT> must be positive", 1.0, true);
+  expectInputError(
+      "<diffusion_model type=\"chemical_potential\"><diffusivity>3</diffusivity>\n"
+      "<max_concentration>1</max_concentration><cmax_RT>1</cmax_RT>\n"
+      "<stress_coupling>-1</stress_coupling></diffusion_model>",
+      4, "<stress_coupling> must be >= 0", 1.0, true);
 }
 
 TEST(DiffusionModelFactory, MissingRequiredTags) {

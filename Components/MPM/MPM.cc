@@ -64,6 +64,13 @@ void MPM::problemSetup(const PSNode& root, double initTime, double maxTime, bool
   if (diffusion_)
     for (size_t m = 0; m < materials_.size(); ++m)
       materials_[m].model->setMaxConcentration(diffusion_->model(m).maxConcentration);
+  // A stress-driven flux's steps keep c's change to the range its linearized local response holds
+  // (ReactiveFlow::stressDrivenConcentrationChange), or <max_concentration_change> where tighter.
+  if (diffusion_ && problem_.flags.implicit) {
+    double& cap = problem_.flags.implicit->maxConcentrationChange;
+    const double bound = diffusion_->stressDrivenConcentrationChange();
+    if (bound < (cap > 0 ? cap : std::numeric_limits<double>::infinity())) cap = bound;
+  }
   for (size_t m = 0; m < materials_.size(); ++m)
     seeds_[m].checkPiecesInsideGrid(grid(), problem_.gridBCs.symmetryPlanes(static_cast<int>(m)));
   problem_.swellingNotes =

@@ -19,6 +19,8 @@ enum class Physics : uint8_t {
                     // coupling rate, the error estimate's history
   CellSwelling,     // implicit steps with diffusion and <swelling_strain>cell_mean: the
                     // concentration each particle's swelling has reached
+  StressDrivenDiffusion,  // a <diffusion_model type="chemical_potential">: grad of the stress's
+                          // part of the chemical potential
 };
 
 // What splitting a particle in four (ParticleSplitting.cc) does to an array: the children copy

@@ -172,7 +172,7 @@ constexpr char kCheckpointMagic[] = "anode-mpm checkpoint";
 // A distributed run's checkpoint: the manifest under the checkpoint's name, one part per rank.
 constexpr char kDistributedCheckpointMagic[] = "anode-mpm distributed checkpoint";
 constexpr char kCheckpointPartMagic[] = "anode-mpm checkpoint part";
-constexpr uint32_t kCheckpointVersion = 13;
+constexpr uint32_t kCheckpointVersion = 14;
 
 // This rank's part of a distributed checkpoint; returns its hash.
 uint64_t writePart(const std::string& checkpoint, const MPM& mpm) {

@@ -16,6 +16,7 @@ namespace {
 
 constexpr int kSeriesTerms = 200;  // a_200 ~ 630: exp(-a^2 D t / b^2) is nothing at t = 0.01
 constexpr int kIntegralPoints = 20000;
+constexpr int kShells = 400;  // of the stress-driven sphere's finite volumes
 
 // The root of a cos a - sin a (a cot a = 1) in ((k + 1/2) pi, (k + 3/2) pi), by bisection.
 double rootOfFluxSeries(int k) {
@@ -39,8 +40,43 @@ double LithiatedSphereCase::poissonsRatio() const {
   return (3 * bulkModulus - 2 * shearModulus) / (2 * (3 * bulkModulus + shearModulus));
 }
 
+double LithiatedSphereCase::stabilization() const {
+  return 3 * expansion / cmaxRT * 2 * expansion * youngsModulus() / (3 * (1 - poissonsRatio()));
+}
+
+namespace {
+
+// c of kShells shells of [0, b] at the end time: dc/dt = (1 / r^2) d/dr (r^2 D_eff(c) dc/dr),
+// D_eff = D (1 + s c (1 - c)) at each face's mean c, the flux J in through r = b; explicit steps
+// at 0.4 of the limit of the largest D_eff of the step's start.
+std::vector<double> stressDrivenSphereShells(const LithiatedSphereCase& c) {
+  const double b = c.radius, h = b / kShells, s = c.stabilization();
+  std::vector<double> shell(kShells, 0.0), flux(kShells + 1, 0.0), volume(kShells);
+  for (int i = 0; i < kShells; ++i)
+    volume[i] = (std::pow(i + 1, 3) - std::pow(i, 3)) * h * h * h / 3;
+  flux[kShells] = -c.flux * b * b;  // outward r^2 flux through the surface
+  for (double t = 0; t < c.endTime;) {
+    double largest = 0;
+    for (int i = 1; i < kShells; ++i) {
+      const double face = 0.5 * (shell[i - 1] + shell[i]), r = i * h;
+      const double diffusivity = c.diffusivity * (1 + s * face * (1 - face));
+      largest = std::max(largest, diffusivity);
+      flux[i] = -diffusivity * (shell[i] - shell[i - 1]) / h * r * r;
+    }
+    const double dt = std::min(0.4 * h * h / (2 * largest), c.endTime - t);
+    for (int i = 0; i < kShells; ++i) shell[i] -= dt * (flux[i + 1] - flux[i]) / volume[i];
+    t += dt;
+  }
+  return shell;
+}
+
+}  // namespace
+
 LithiatedSphereSolution::LithiatedSphereSolution(const LithiatedSphereCase& c) : case_(c) {
-  for (int k = 0; k < kSeriesTerms; ++k) roots_.push_back(rootOfFluxSeries(k));
+  if (c.cmaxRT > 0)
+    shells_ = stressDrivenSphereShells(c);
+  else
+    for (int k = 0; k < kSeriesTerms; ++k) roots_.push_back(rootOfFluxSeries(k));
   // I(r) = int_0^r c s^2 ds by the trapezoidal rule.
   const double b = c.radius;
   radius_.push_back(0);
@@ -56,6 +92,12 @@ LithiatedSphereSolution::LithiatedSphereSolution(const LithiatedSphereCase& c) :
 
 double LithiatedSphereSolution::concentration(double r) const {
   const LithiatedSphereCase& c = case_;
+  if (!shells_.empty()) {  // linear between the shells' mid-radii
+    const double u = std::clamp(r / c.radius * kShells - 0.5, 0.0, kShells - 1.0);
+    const int i = std::min(static_cast<int>(u), kShells - 2);
+    const double w = u - i;
+    return (1 - w) * shells_[i] + w * shells_[i + 1];
+  }
   const double b = c.radius, tau = c.diffusivity * c.endTime / (b * b), x = r / b;
   double series = 0;
   for (double a : roots_) {
@@ -101,9 +143,11 @@ std::string lithiatedSphereInput(const LithiatedSphereCase& c) {
       "          <volume_expansion_coeff>" + upsNumber(c.expansion) + "</volume_expansion_coeff>\n";
   material += "          <equation_of_state type=\"default_hypo\"/>\n";
   material += "        </constitutive_model>\n";
-  material += "        <diffusion_model type=\"jg\">\n";
+  material += std::string("        <diffusion_model type=\"") +
+              (c.cmaxRT > 0 ? "chemical_potential" : "jg") + "\">\n";
   material += "          <diffusivity>" + upsNumber(c.diffusivity) + "</diffusivity>\n";
   material += "          <max_concentration>1</max_concentration>\n";
+  if (c.cmaxRT > 0) material += "          <cmax_RT>" + upsNumber(c.cmaxRT) + "</cmax_RT>\n";
   material += "        </diffusion_model>\n";
   material += "        <geom_object>\n";
   material += "          " + sphere + "\n";
@@ -150,7 +194,7 @@ LithiatedSphereResult runLithiatedSphere(const LithiatedSphereCase& c) {
   const ThreadScope threads(c.threads);
   VerificationRun run("lithiated sphere", lithiatedSphereInput(c),
                       "lithiated_sphere_" + c.interpolator + "_" + std::to_string(c.cells) + "_" +
-                          c.swellingStrain + ".ups");
+                          c.swellingStrain + (c.cmaxRT > 0 ? "_chemical_potential" : "") + ".ups");
   Simulation& sim = run.simulation();
   ParticleSet& p = run.particles();
   const std::vector<Vec3> X = p.x;
@@ -166,6 +210,7 @@ LithiatedSphereResult runLithiatedSphere(const LithiatedSphereCase& c) {
   LithiatedSphereResult r;
   r.interpolator = c.interpolator;
   r.swellingStrain = c.swellingStrain;
+  r.cmaxRT = c.cmaxRT;
   r.cells = c.cells;
   r.h = c.radius / c.cells;
   r.particles = p.count();

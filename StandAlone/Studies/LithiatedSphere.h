@@ -13,6 +13,12 @@
 //   sigma_tt = eta E / (1 - nu) [2 I(b) / b^3 + I(r) / r^3 - c(r)].
 // The surface's flux restriction R(c) = 1 + ln(1 - c)/4 (c below 0.006 here) takes less than
 // 0.15% off J. Each <swelling_strain> can be run (docs/quasi-static.md, "Swelling on cells").
+// With stress-driven diffusion (`cmaxRT` > 0: <diffusion_model type="chemical_potential">, k =
+// 3 eta / cmax_RT), the sphere's mean stress sigma_h = 2 eta E / (3 (1 - nu)) (c_mean - c) (the
+// stresses above) makes the flux -D (1 + s c (1 - c)) dc/dr, s = k 2 eta E / (3 (1 - nu)), to
+// first order in the strain: c(r, t) is then that nonlinear radial diffusion's, solved by finite
+// volumes (400 shells, explicit steps at 0.4 of their limit), and the stresses follow from it as
+// above. (The pass's implicit local part, ChemicalPotential.h, is then the whole stress term.)
 #pragma once
 
 #include <string>
@@ -33,12 +39,17 @@ struct LithiatedSphereCase {
   double radius = 1000, bulkModulus = 67, shearModulus = 31, expansion = 0.1;
   double diffusivity = 1e6, flux = 4;
   double endTime = 0.4;  // in b^2 / D: the profile's transient has decayed to 3e-4
+  // > 0: chemical_potential with this <cmax_RT> (5e-3: s = 460, so D (1 + s c (1 - c)) reaches
+  // 3.6 D at the surface); 0: jg.
+  double cmaxRT = 0;
   // <error_tolerance>: c stays below 0.006 of c_max = 1, so well below the default 0.01.
   double errorTolerance = 1e-5;
   int threads = 0;  // OpenMP threads for the run (0: the OpenMP default)
 
   double youngsModulus() const;
   double poissonsRatio() const;
+  // s = k 2 eta E / (3 (1 - nu)), k = 3 eta / cmaxRT (cmaxRT > 0).
+  double stabilization() const;
 };
 
 // The closed forms at radius r <= b at the case's end time.
@@ -54,11 +65,13 @@ class LithiatedSphereSolution {
  private:
   LithiatedSphereCase case_;
   std::vector<double> roots_;              // a_n
+  std::vector<double> shells_;             // c of the finite-volume shells (cmaxRT > 0)
   std::vector<double> radius_, integral_;  // I(r) on a fine grid of [0, b]
 };
 
 struct LithiatedSphereResult : RunSummary {
   std::string swellingStrain;
+  double cmaxRT = 0;
   double h = 0;
   // Volume-weighted relative L2 errors over the particles against the closed forms at each
   // particle's initial radius: sqrt(sum V (q_p - q(r_p))^2 / sum V q(r_p)^2).

@@ -1,6 +1,8 @@
-// lithiated_sphere_study [--quick] [--csv FILE] [--interpolator I] [--threads N]: the quasi-static
-// path's diffusion and swelling on the lithiated sphere (StandAlone/Studies/LithiatedSphere.h,
-// Crank's constant-flux sphere and Timoshenko & Goodier's stresses) with each <swelling_strain>:
+// lithiated_sphere_study [--quick] [--csv FILE] [--interpolator I] [--cmax-rt X] [--threads N]:
+// the quasi-static path's diffusion and swelling on the lithiated sphere
+// (StandAlone/Studies/LithiatedSphere.h, Crank's constant-flux sphere and Timoshenko & Goodier's
+// stresses; with --cmax-rt, stress-driven diffusion against its radial solution) with each
+// <swelling_strain>:
 // per resolution the particles, h, the L2 errors of c, sigma_rr and sigma_tt with their orders,
 // the largest particle stress error, the steps, Newton's iterations and the wall time. Writes a
 // CSV (default verification/lithiated_sphere.csv).
@@ -19,11 +21,13 @@ namespace {
 void usage(FILE* out) {
   std::fprintf(out,
                "usage: lithiated_sphere_study [--quick] [--csv FILE] [--interpolator I] "
-               "[--threads N]\n"
+               "[--cmax-rt X] [--threads N]\n"
                "  --quick            the test's resolutions (4 and 8 cells per radius) only\n"
                "  --csv FILE         where to write the results (default "
                "verification/lithiated_sphere.csv)\n"
                "  --interpolator I   linear, gimp or cpdi (default)\n"
+               "  --cmax-rt X        stress-driven diffusion (chemical_potential) with this "
+               "<cmax_RT>\n"
                "  --threads N        OpenMP threads per run (default 1; 0: OpenMP's default)\n");
 }
 
@@ -38,6 +42,10 @@ int main(int argc, char** argv) {
   args.flag("--quick", [&] { quick = true; });
   args.option("--csv", [&](const char* path) { csvPath = path; });
   args.option("--interpolator", [&](const char* name) { base.interpolator = name; });
+  args.option("--cmax-rt", [&](const char* x) {
+    base.cmaxRT = std::atof(x);
+    if (!(base.cmaxRT > 0)) args.fail("--cmax-rt needs a number > 0");
+  });
   args.option("--threads", [&](const char* n) {
     base.threads = std::atoi(n);
     if (base.threads < 0) args.fail("--threads needs a number >= 0");
@@ -51,12 +59,15 @@ int main(int argc, char** argv) {
         "eta = %g, K = %g, G = %g, %s, %d particles per cell and axis, error_tolerance %g\n",
         base.radius, base.diffusivity, base.flux, base.endTime, base.expansion, base.bulkModulus,
         base.shearModulus, base.interpolator.c_str(), base.particlesPerCell, base.errorTolerance);
+    if (base.cmaxRT > 0)
+      std::printf("stress-driven diffusion: cmax_RT = %g, s = %g (against the radial solution)\n",
+                  base.cmaxRT, base.stabilization());
     std::printf("%-9s %5s %8s | %9s %5s | %9s %5s | %9s %5s | %8s | %5s %6s %8s\n", "swelling",
                 "cells", "parts", "L2 c", "order", "L2 s_rr", "order", "L2 s_tt", "order", "max s",
                 "steps", "Newton", "wall [s]");
     std::ofstream csv = anode::createOutputFile(csvPath);
-    csv << "swelling_strain,interpolator,cells,h,particles,steps,newton,wall_seconds,c_error,"
-           "srr_error,stt_error,largest_stress_error\n";
+    csv << "swelling_strain,interpolator,cmax_rt,cells,h,particles,steps,newton,wall_seconds,"
+           "c_error,srr_error,stt_error,largest_stress_error\n";
     using R = anode::LithiatedSphereResult;
     for (const char* swelling : {"particle", "cell_mean"}) {
       R coarser;
@@ -75,10 +86,10 @@ int main(int argc, char** argv) {
             r.steps, r.newtonIterations, r.wallSeconds);
         std::fflush(stdout);
         char line[512];
-        std::snprintf(line, sizeof line, "%s,%s,%d,%.6g,%zu,%ld,%ld,%.4f,%.6e,%.6e,%.6e,%.6e\n",
-                      swelling, r.interpolator.c_str(), r.cells, r.h, r.particles, r.steps,
-                      r.newtonIterations, r.wallSeconds, r.concentrationError, r.radialStressError,
-                      r.hoopStressError, r.largestStressError);
+        std::snprintf(line, sizeof line, "%s,%s,%g,%d,%.6g,%zu,%ld,%ld,%.4f,%.6e,%.6e,%.6e,%.6e\n",
+                      swelling, r.interpolator.c_str(), r.cmaxRT, r.cells, r.h, r.particles,
+                      r.steps, r.newtonIterations, r.wallSeconds, r.concentrationError,
+                      r.radialStressError, r.hoopStressError, r.largestStressError);
         csv << line;
         coarser = r;
       }

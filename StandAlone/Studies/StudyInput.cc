@@ -22,13 +22,14 @@ std::string upsOpening(const std::string& comment, const std::string& title,
 }
 
 std::string upsTimeAndArchiver(double endTime, double maxDt, double multiplier,
-                               const std::string& filebase) {
+                               const std::string& filebase, double firstDt) {
   std::string s;
   s += "  <Time>\n";
   s += "    <initTime>0</initTime>\n";
   s += "    <maxTime>" + upsNumber(endTime) + "</maxTime>\n";
   s += "    <delt_min>0</delt_min>\n";
   s += "    <delt_max>" + upsNumber(maxDt) + "</delt_max>\n";
+  if (firstDt > 0) s += "    <delt_init>" + upsNumber(firstDt) + "</delt_init>\n";
   s += "    <timestep_multiplier>" + upsNumber(multiplier) + "</timestep_multiplier>\n";
   s += "    <end_at_max_time_exactly>true</end_at_max_time_exactly>\n";
   s += "  </Time>\n";
@@ -50,11 +51,12 @@ std::string upsMPM(const std::string& interpolator, const std::string& options,
   return s;
 }
 
-std::string upsMaterialProperties(const std::string& material, const std::string& more) {
-  const std::string opening =
-      "  <PhysicalConstants><gravity>[0,0,0]</gravity></PhysicalConstants>\n"
-      "  <MaterialProperties>\n"
-      "    <MPM>\n";
+std::string upsMaterialProperties(const std::string& material, const std::string& more,
+                                  const std::string& gravity) {
+  const std::string opening = "  <PhysicalConstants><gravity>" + gravity +
+                              "</gravity></PhysicalConstants>\n"
+                              "  <MaterialProperties>\n"
+                              "    <MPM>\n";
   const std::string closing =
       "    </MPM>\n"
       "  </MaterialProperties>\n";

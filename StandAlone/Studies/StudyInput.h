@@ -17,17 +17,18 @@ void requireInterpolator(const std::string& problem, const std::string& interpol
 // title and the <SimulationComponent> ("mpm" or "amrmpm").
 std::string upsOpening(const std::string& comment, const std::string& title,
                        const std::string& component);
-// <Time> from 0, its last step landing on endTime, dt at most maxDt, and a <DataArchiver>
-// writing to `filebase` at a step interval no study reaches.
+// <Time> from 0, its last step landing on endTime, dt at most maxDt (the first step firstDt when
+// above 0), and a <DataArchiver> writing to `filebase` at a step interval no study reaches.
 std::string upsTimeAndArchiver(double endTime, double maxDt, double multiplier,
-                               const std::string& filebase);
+                               const std::string& filebase, double firstDt = 0);
 // <MPM>: `integrator` ("explicit" or "implicit") with `interpolator`, then `options` (whole
 // lines).
 std::string upsMPM(const std::string& interpolator, const std::string& options,
                    const std::string& integrator = "explicit");
-// No gravity, then <MaterialProperties> with `material` (whole lines), null contact and `more`
-// (whole lines).
-std::string upsMaterialProperties(const std::string& material, const std::string& more);
+// <PhysicalConstants> with `gravity` ("[gx,gy,gz]"), then <MaterialProperties> with `material`
+// (whole lines), null contact and `more` (whole lines).
+std::string upsMaterialProperties(const std::string& material, const std::string& more,
+                                  const std::string& gravity = "[0,0,0]");
 // A hypoelastic rf_elastic_plastic <constitutive_model>; with `diffuses`, swelling switched off.
 std::string upsElasticModel(double bulkModulus, double shearModulus, bool diffuses);
 // The <geom_object>: a box from the origin to [length, width, width], res [2,1,1], at rest at

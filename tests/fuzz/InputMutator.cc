@@ -633,6 +633,23 @@ bool InputMutator::apply(int op, std::string& t, std::string* what) {
         say("<" + tag + "> set to '" + v + "'");
         return true;
       }
+      if (pick(8) ==
+          0) {  // ours: stress-driven diffusion, <diffusion_model type=chemical_potential>
+        const std::string key = "<diffusion_model type=\"";
+        const size_t at = t.find(key);
+        if (at == std::string::npos) return false;
+        const size_t end = t.find('"', at + key.size());
+        if (end == std::string::npos) return false;
+        t.replace(at + key.size(), end - at - key.size(), "chemical_potential");
+        static const std::vector<std::string> values = {"7.7e5", "1", "0",   "-1",    "nan",
+                                                        "inf",   "",  "abc", "1e-300"};
+        const std::string& v = pickFrom(values);
+        const std::string tag = pick(3) == 0 ? "stress_coupling" : "cmax_RT";
+        if (tag == "stress_coupling") editTag(t, "diffusion_model", "cmax_RT", TagEdit::Set, "1e6");
+        if (!editTag(t, "diffusion_model", tag, TagEdit::Set, v)) return false;
+        say("<diffusion_model> type to 'chemical_potential', <" + tag + "> set to '" + v + "'");
+        return true;
+      }
       const std::string& tag = pickFrom(implicitTags());
       const size_t choice = pick(4);
       if (choice == 1 && editTag(t, "MPM", tag, TagEdit::Remove)) {

@@ -56,8 +56,8 @@ class InputMutator {
     SwapValues,
     EmptyValue,
     ImplicitOption,  // an ImpMPM tag of <MPM> (or ours: <DataArchiver><film_normal>, the
-                     // lithium-dependent laws' tags) set to a bad value, removed or duplicated,
-                     // or the <SimulationComponent> type changed
+                     // lithium-dependent laws' tags, chemical_potential's) set to a bad value,
+                     // removed or duplicated, or the <SimulationComponent> type changed
     kOperatorCount
   };
   static const char* operatorName(int op);

@@ -178,9 +178,10 @@ void ImplicitStep::computeWeights(Collective every) {
   mpm_.interpolateParticlesToGrid(every);
 }
 
-double ImplicitStep::diffuseOverStep(Collective every, double t, double dt) {
-  const DiffusionPass::Pass pass =
-      diffusion_->diffuse(every, *transfer_, mpm_.materials(), t, dt, concentrationChange_);
+double ImplicitStep::diffuseOverStep(Collective every, double t, double dt,
+                                     const std::vector<std::vector<double>>* c0Change) {
+  const DiffusionPass::Pass pass = diffusion_->diffuse(every, *transfer_, mpm_.materials(), t, dt,
+                                                       concentrationChange_, c0Change);
   newton_.diffusionSubsteps += pass.evaluations;
   return pass.covered;
 }

@@ -99,9 +99,10 @@ class ImplicitStep : public Integrator {
   // A quasi-static step's predicted increments: the start-of-step nodal velocity times dt.
   void addPredictedIncrement(EquilibriumProblem& problem, double dt);
   // The diffusion over the step on its start-of-step configuration (after the step's full P2G);
-  // concentrationChange_ receives each particle's change. Returns the time the pass covered: dt,
-  // or less where DiffusionPass's cap stopped it.
-  double diffuseOverStep(Collective, double t, double dt);
+  // concentrationChange_ receives each particle's change; `c0Change` as DiffusionPass::diffuse's.
+  // Returns the time the pass covered: dt, or less where DiffusionPass's cap stopped it.
+  double diffuseOverStep(Collective, double t, double dt,
+                         const std::vector<std::vector<double>>* c0Change = nullptr);
   // The failure of an attempt whose pass covered `covered` of dt.
   std::string passCapFailure(double dt, double covered);
   // <concentration_coupling>trapezoidal: after diffuseOverStep on the step's start (`start`, the

@@ -71,7 +71,8 @@ NewtonReport ImplicitStep::averageConcentrationChangeOverStep(
     computeWeights(every);
     // The predicted end's limits may hold the pass past its cap: on every rank alike (the
     // limits are over all ranks), the step is retaken as for a failed prediction.
-    const double covered = diffuseOverStep(every, t, dt);
+    // (The predicted end's stress holds the first pass's c: a stress-driven flux's reference.)
+    const double covered = diffuseOverStep(every, t, dt, &firstPassChange);
     if (covered < dt) throw SimulationError(passCapFailure(dt, covered));
     // The start's particles with the means of the two passes (trapezoidal in the geometry, the
     // stress and J), the lithium by which the mean differs from either pass, and under

@@ -44,23 +44,31 @@ class ConcentrationScatter {
 
   // `reached` marks the nodes a source reaches (bit 1 inflow, bit 2 outflow; flux only), cmax is
   // the material's max_concentration; `restricted`: receivers weighted by m R(c), else by m
-  // (<flux_source_receivers>, docs/diffusion.md step 5).
+  // (<flux_source_receivers>, docs/diffusion.md step 5); `driftDiffusivity` D0 of a flux with a
+  // stress part (0: none).
   ConcentrationScatter(const ParticleSet& p, const InterpolationWeights& W,
                        const unsigned char* reached, double cmax, ConcentrationScatterFields& grid,
-                       bool restricted = true)
+                       bool restricted = true, double driftDiffusivity = 0)
       : p_(p),
         d_(p),
         W_(W),
         reached_(reached),
         cmax_(cmax),
         restricted_(restricted),
+        driftDiffusivity_(p.has(Physics::StressDrivenDiffusion) ? driftDiffusivity : 0.0),
         grid_(&grid) {}
 
-  // Particle i's terms: m c, m q (q = D grad c) and, with flux, m rate and m R(c) where a
-  // source can reach.
+  // Particle i's terms: m c, m q (q = D grad c, less D0 c (1 - c / c_max) (grad phi_0 + s_p grad
+  // c_0) where the chemical potential has a stress part: ChemicalPotential.h) and, with flux, m
+  // rate and m R(c) where a source can reach.
   void addScatterTerms(long i, ScatterTerms<2>& t) const {
     const double mp = p_.mass[i];
-    const Vec3 mq = mp * d_.diffusivity[i] * d_.concentrationGradient[i];
+    Vec3 q = d_.diffusivity[i] * d_.concentrationGradient[i];
+    if (driftDiffusivity_ > 0) {
+      const double c = d_.concentration[i];
+      q -= driftDiffusivity_ * c * (1 - c / cmax_) * d_.stressPotentialGradient[i];
+    }
+    const Vec3 mq = mp * q;
     for (int d = 0; d < 3; ++d) t.byGradient[d][ConcentrationLane::diffusionRate] = mq[d];
     double* terms = t.byWeight[1];
     terms[ConcentrationLane::massConcentration] = mp * d_.concentration[i];
@@ -100,6 +108,7 @@ class ConcentrationScatter {
   const unsigned char* reached_;
   double cmax_;
   bool restricted_;
+  double driftDiffusivity_;  // D0 where p.stressPotentialGradient is there, else 0
   ConcentrationScatterFields* grid_;
 };
 

@@ -28,6 +28,8 @@ struct DiffusionFields {
                                                        Vec3i::Zero(), OnSplit::Own};
   static inline const ParticleField<Vec3> area{"p.area", Physics::FluxBC, Vec3::Zero(),
                                                OnSplit::Own};
+  static inline const ParticleField<Vec3> stressPotentialGradient{
+      "p.stressPotentialGradient", Physics::StressDrivenDiffusion, Vec3::Zero(), OnSplit::Copy};
 
   // Calls f(field) for each field above.
   template <class F>
@@ -38,6 +40,7 @@ struct DiffusionFields {
     f(externalScalarFlux);
     f(loadCurveID);
     f(area);
+    f(stressPotentialGradient);
   }
 };
 
@@ -59,7 +62,8 @@ struct DiffusionArrays {
         diffusivity(of(p, DiffusionFields::diffusivity)),
         externalScalarFlux(of(p, DiffusionFields::externalScalarFlux)),
         loadCurveID(of(p, DiffusionFields::loadCurveID)),
-        area(of(p, DiffusionFields::area)) {}
+        area(of(p, DiffusionFields::area)),
+        stressPotentialGradient(of(p, DiffusionFields::stressPotentialGradient)) {}
 
   Array<double>& concentration;        // p.concentration, normalised
   Array<Vec3>& concentrationGradient;  // p.concentrationGradient, from the previous step
@@ -67,6 +71,9 @@ struct DiffusionArrays {
   Array<double>& externalScalarFlux;   // p.externalScalarFlux: dc/dt from the flux BCs (Eq. 16)
   Array<Vec3i>& loadCurveID;           // p.loadCurveID: up to 3 load curves (0: none)
   Array<Vec3>& area;                   // p.area: face area of each of those curves
+  // p.stressPotentialGradient: grad phi_0 + s_p grad c_0, phi = Omega tau_h / RT
+  // (ChemicalPotential.h), of the diffusion pass's particles (chemical_potential only)
+  Array<Vec3>& stressPotentialGradient;
 
  private:
   template <class T>

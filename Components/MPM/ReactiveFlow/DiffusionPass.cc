@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "Components/MPM/ReactiveFlow/ChemicalPotential.h"
 #include "Components/MPM/ReactiveFlow/RungeKuttaLegendre.h"
 #include "Components/MPM/ReactiveFlow/SubcellRelaxation.h"
 #include "Core/Parallel/StopTogether.h"
@@ -73,14 +74,15 @@ double DiffusionPass::coveredBy(double limit) const {
 
 DiffusionPass::Pass DiffusionPass::diffuse(Collective every, ConcentrationTransfer& grid,
                                            std::vector<MPMMaterial>& materials, double t, double dt,
-                                           std::vector<std::vector<double>>& change) {
+                                           std::vector<std::vector<double>>& change,
+                                           const std::vector<std::vector<double>>* c0Change) {
   change.resize(materials.size());
   for (size_t m = 0; m < materials.size(); ++m)
     change[m].assign(materials[m].particles.count(), 0.0);
-  if (relaxation_) {
-    relaxSubcellConcentration(every, grid, materials, dt, change);
-    grid.scatterConcentration(every);  // the sums of the relaxed c
-  }
+  const bool stressDriven = computeStressPotentialGradients(every, grid, materials, c0Change);
+  if (relaxation_) relaxSubcellConcentration(every, grid, materials, dt, change);
+  // The sums of the relaxed c, and of the flux with the pass's grad phi.
+  if (relaxation_ || stressDriven) grid.scatterConcentration(every);
   if (integrator_ == ImplicitOptions::DiffusionIntegrator::Rkl2)
     return diffuseInLegendreStages(every, grid, materials, t, dt, change);
   return diffuseInSubsteps(every, grid, materials, t, dt, change);
@@ -190,6 +192,30 @@ DiffusionPass::Pass DiffusionPass::diffuseInLegendreStages(
   gradientOfNodalConcentration();
   updateDiffusionState(every, materials, t + dt);
   return {stages, dt};
+}
+
+bool DiffusionPass::computeStressPotentialGradients(
+    Collective every, ConcentrationTransfer& grid, std::vector<MPMMaterial>& materials,
+    const std::vector<std::vector<double>>* c0Change) {
+  bool any = false;
+  for (size_t m = 0; m < materials.size(); ++m) {
+    if (!diffusion_.stressDriven(m)) continue;
+    ScopedTimer s(timers_, particleUpdateTask_);
+    ParticleSet& p = materials[m].particles;
+    const std::vector<double>& nodeMass = grid.nodalMass(m);
+    const ScalarDiffusionModel& model = diffusion_.model(m);
+    scatterStressPotential(model.stressPotentialPerStress(), model.maxConcentration, p.mass,
+                           p.stress, p.F, diffusionParticles(p).concentration,
+                           c0Change ? &(*c0Change)[m] : nullptr, grid.weights(m), nodeMass.size(),
+                           nodeMassStressPotential_, nodeMassStressConcentration_);
+    grid.sumOverRanks(every, nodeMassStressPotential_);
+    grid.sumOverRanks(every, nodeMassStressConcentration_);
+    gatherStressPotentialGradient(
+        grid.weights(m), nodeMassStressPotential_, nodeMassStressConcentration_, nodeMass,
+        model.stressPotentialStabilization(), p.F, diffusionParticles(p).stressPotentialGradient);
+    any = true;
+  }
+  return any;
 }
 
 void DiffusionPass::relaxSubcellConcentration(Collective every, ConcentrationTransfer& grid,

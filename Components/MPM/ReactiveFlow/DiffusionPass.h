@@ -52,8 +52,11 @@ class DiffusionPass {
   // would need more than kMaxRateEvaluations (the limit fell during the sub-steps, or the step
   // started elsewhere than the state its dt was bounded from) stops there with `covered` < dt:
   // the caller retakes the step.
+  // `c0Change` (per material and particle): what the c the particles' stress holds differs from
+  // their c (the first pass's change, for a pass on the predicted end); null: nothing.
   Pass diffuse(Collective, ConcentrationTransfer& grid, std::vector<MPMMaterial>& materials,
-               double t, double dt, std::vector<std::vector<double>>& change);
+               double t, double dt, std::vector<std::vector<double>>& change,
+               const std::vector<std::vector<double>>* c0Change = nullptr);
   // Keeps the diffusion state of the step's start (ReactiveFlow::StepState), which
   // returnToStepStart takes up again with the diffusion state of the particles at time t (the
   // step's start, or its predicted end: the start's particles are the caller's).
@@ -83,6 +86,12 @@ class DiffusionPass {
                                  std::vector<MPMMaterial>& materials, double dt,
                                  std::vector<std::vector<double>>& change);
   void updateDiffusionState(Collective, std::vector<MPMMaterial>& materials, double t);
+  // p.stressPotentialGradient, grad phi_0 + s_p grad c_0, of the stress-driven materials' particles
+  // (ChemicalPotential.h) from their stress, F and c (and c0Change, as diffuse's); false when no
+  // material's flux has a stress part.
+  bool computeStressPotentialGradients(Collective, ConcentrationTransfer& grid,
+                                       std::vector<MPMMaterial>& materials,
+                                       const std::vector<std::vector<double>>* c0Change);
 
   ReactiveFlow& diffusion_;
   const Grid& grid_;
@@ -91,8 +100,10 @@ class DiffusionPass {
   double substepMultiplier_;
   TaskTimers& timers_;
   int diffusionStateTask_, particleUpdateTask_;
-  std::vector<double> nodeMassDiffusivity_;       // the relaxation's sum S m D
-  std::optional<ReactiveFlow::StepState> start_;  // keepStepStart's
+  std::vector<double> nodeMassDiffusivity_;          // the relaxation's sum S m D
+  std::vector<double> nodeMassStressPotential_;      // sum S m phi
+  std::vector<double> nodeMassStressConcentration_;  // sum S m c_0
+  std::optional<ReactiveFlow::StepState> start_;     // keepStepStart's
 };
 
 }  // namespace anode

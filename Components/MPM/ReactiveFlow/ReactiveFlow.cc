@@ -71,7 +71,11 @@ ReactiveFlow::ReactiveFlow(const PSNode& root, const MPMFlags& flags,
   for (size_t m = 0; m < materials.size(); ++m) {
     DiffusionMaterial& mat = materials_.emplace_back();
     mat.reducesConcentration = nodes[m].get<bool>("do_conc_reduction", false);
-    mat.model = createDiffusionModel(nodes[m].requireChild("diffusion_model"), maxTime);
+    const ConstitutiveModel& mechanics = *materials[m].model;
+    const DiffusionModelContext context{maxTime, mechanics.swellingCoefficient(),
+                                        mechanics.bulkModulus(), mechanics.shearModulus(),
+                                        flags.implicit.has_value()};
+    mat.model = createDiffusionModel(nodes[m].requireChild("diffusion_model"), context);
   }
   for (const BCType& bc : concentrationBCs)
     concentrationBCs_.push_back(ConcentrationBC::fromInput(bc));
@@ -146,8 +150,11 @@ void ReactiveFlow::initialize(const PSNode& root, const Grid& grid,
                               std::vector<MPMMaterial>& materials,
                               const std::vector<MaterialSeeds>& seeds, const CellBox& box,
                               const CellBox& region, double initTime) {
-  for (size_t m = 0; m < materials.size(); ++m)
+  for (size_t m = 0; m < materials.size(); ++m) {
     setInitialState(model(m), seeds[m], materials[m].particles);
+    if (model(m).stressPotentialPerStress() > 0)
+      materials[m].particles.enable(Physics::StressDrivenDiffusion);
+  }
   checkSurfaceBCs(root, materials, seeds);
   inputFile_ = root.file();
   flagged_ = flux_.assignToParticles(materials, materials_, seeds, grid, box, region);
@@ -260,9 +267,31 @@ std::vector<std::string> ReactiveFlow::completeSetup(Collective every,
                       "concentration stays as given" +
                       (everyMaterial_ ? "; its nodal concentration is computed for the output"
                                       : " and is not computed"));
+  for (size_t m = 0; m < materials.size(); ++m)
+    if (stressDriven(m)) {
+      std::ostringstream s;
+      s.precision(4);
+      s << describeMaterial(materials[m], m)
+        << ": a stress-driven flux (chemical_potential), phi = "
+        << model(m).stressPotentialPerStress() << " tau_h";
+      const double s0 = model(m).stressPotentialStabilization();
+      if (s0 > 0)
+        s << ", its local response s = " << s0 << " per unit c taken implicitly in each pass; "
+          << "steps keep c's change below " << model(m).maxConcentration / s0 << " (1/s)";
+      lines.push_back(s.str());
+    }
   flux_.setCapacities(std::move(capacities));
   flux_.computeFluxRates(every, materials, materials_, initTime, overRanks);
   return lines;
+}
+
+double ReactiveFlow::stressDrivenConcentrationChange() const {
+  double bound = std::numeric_limits<double>::infinity();
+  for (size_t m = 0; m < materials_.size(); ++m) {
+    const double s = model(m).stressPotentialStabilization();
+    if (s > 0) bound = std::min(bound, model(m).maxConcentration / s);  // (set up before changes_)
+  }
+  return bound;
 }
 
 std::vector<ConcentrationGridFields>& ReactiveFlow::layOutGrid(const Grid& grid,

@@ -141,6 +141,15 @@ class ReactiveFlow {
   // "Materials that take up no lithium"). Its P2G and G2P run without concentration, its
   // diffusivity stays 0 and it has no nodal concentration fields, unless the output saves them.
   bool computesConcentration(size_t m) const { return changes_[m] || everyMaterial_; }
+  // Material m's flux has a stress part (chemical_potential with k > 0): its particles carry
+  // p.stressPotentialGradient, which DiffusionPass sets at each pass's start.
+  bool stressDriven(size_t m) const {
+    return changes_[m] && model(m).stressPotentialPerStress() > 0;
+  }
+  // The largest change of c a quasi-static step may make where a stress-driven flux takes the
+  // stress's local response linearized (ChemicalPotential.h): c_max / s, the step over which that
+  // response moves phi by 1; infinity without one.
+  double stressDrivenConcentrationChange() const;
   // The grid fields layOutGrid returned (DiffusionPass's sub-cell relaxation); outside the
   // folder the step's grid holds them (StepGrid::concentration).
   const std::vector<ConcentrationGridFields>& gridFields() const { return fields_; }
@@ -231,9 +240,9 @@ void ReactiveFlow::withScatter(Collective every, size_t m, const ParticleSet& p,
     markSourceNodes(p, W, g.sourceReached, cleared);
     if (ghosts_) ghosts_->unionOverRanks(every, g.sourceReached);
     f(ConcentrationScatter<true>(p, W, g.sourceReached.data(), cmax_[m], g,
-                                 flags_.restrictedFluxReceivers));
+                                 flags_.restrictedFluxReceivers, model(m).D0));
   } else {
-    f(ConcentrationScatter<false>(p, W, nullptr, cmax_[m], g));
+    f(ConcentrationScatter<false>(p, W, nullptr, cmax_[m], g, true, model(m).D0));
   }
 }
 

@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "Components/MPM/ReactiveFlow/ChemicalPotential.h"
+
 namespace anode {
 
 double nonLinear1Diffusivity(double D0, double alpha, double beta, double c,
@@ -24,6 +26,20 @@ double maxOf(const std::vector<double>& v) {
   double m = 0;
   for (double x : v) m = std::max(m, x);
   return m;
+}
+
+// p.diffusivity[i] = diffusivityOf(i, c_i / cmax) for every particle; returns the largest.
+template <class F>
+double setDiffusivity(ParticleSet& p, double cmax, F&& diffusivityOf) {
+  const DiffusionParticles d(p);
+  const long n = static_cast<long>(p.count());
+  double dmax = 0;
+#pragma omp parallel for schedule(static) reduction(max : dmax)
+  for (long i = 0; i < n; ++i) {
+    d.diffusivity[i] = diffusivityOf(i, d.concentration[i] / cmax);
+    dmax = std::max(dmax, d.diffusivity[i]);
+  }
+  return dmax;
 }
 
 // jg: constant D (Fick).
@@ -79,15 +95,9 @@ class NonLinear1 : public ScalarDiffusionModel {
     const DiffusionParticles d(p);
     // Frozen: each particle keeps its diffusivity (D0 from the start, as in Uintah).
     if (curve && curve->frozenAt(t)) return maxOf(d.diffusivity);
-    const long n = static_cast<long>(p.count());
-    double dmax = 0;
-#pragma omp parallel for schedule(static) reduction(max : dmax)
-    for (long i = 0; i < n; ++i) {
-      d.diffusivity[i] = nonLinear1Diffusivity(
-          D0, alpha, beta, d.concentration[i] / maxConcentration, scaledPressure(p.stress[i]));
-      dmax = std::max(dmax, d.diffusivity[i]);
-    }
-    return dmax;
+    return setDiffusivity(p, maxConcentration, [&](long i, double c) {
+      return nonLinear1Diffusivity(D0, alpha, beta, c, scaledPressure(p.stress[i]));
+    });
   }
 
   // The diff_curve's current interval: it advances at most once per step, so neither a restart
@@ -108,20 +118,55 @@ class Cubic : public ScalarDiffusionModel {
  public:
   double Dmax = 0;
   double computeDiffusivity(ParticleSet& p, double) override {
-    const DiffusionParticles d(p);
-    const long n = static_cast<long>(p.count());
-    double dmax = 0;
-#pragma omp parallel for schedule(static) reduction(max : dmax)
-    for (long i = 0; i < n; ++i) {
-      d.diffusivity[i] = cubicDiffusivity(D0, Dmax, d.concentration[i] / maxConcentration);
-      dmax = std::max(dmax, d.diffusivity[i]);
-    }
-    return dmax;
+    return setDiffusivity(p, maxConcentration,
+                          [&](long, double c) { return cubicDiffusivity(D0, Dmax, c); });
   }
-  bool diffuses() const override {
-    return D0 > 0 || Dmax > 0;
-  }
+  bool diffuses() const override { return D0 > 0 || Dmax > 0; }
 };
+
+// chemical_potential (ours; DESIGN.md §9, ChemicalPotential.h): J = -(D c (1 - c) / RT) grad mu,
+// mu = RT ln(c / (1 - c)) - Omega tau_h, with a constant D. p.diffusivity holds the pass's
+// diffusivity of grad c, D (1 + s J c (1 - c)) (effectiveDiffusivity).
+class ChemicalPotentialDiffusion : public ScalarDiffusionModel {
+ public:
+  double perStress = 0;      // k = (Omega c_max) / (c_max R T)
+  double stabilization = 0;  // s
+  double computeDiffusivity(ParticleSet& p, double) override {
+    return setDiffusivity(p, maxConcentration, [&](long i, double c) {
+      return effectiveDiffusivity(D0, stabilization, p.F[i].determinant(), c);
+    });
+  }
+  double stressPotentialPerStress() const override { return perStress; }
+  double stressPotentialStabilization() const override { return stabilization; }
+};
+
+// <cmax_RT> and <stress_coupling> of chemical_potential: Omega c_max is 3 eta unless given (the
+// swelling's own partial molar volume; another value is warned of).
+std::unique_ptr<ScalarDiffusionModel> readChemicalPotential(const PSNode& node,
+                                                            const DiffusionModelContext& context) {
+  if (!context.implicit)
+    node.unsupported(
+        "diffusion_model type=\"chemical_potential\" on the explicit path (it needs "
+        "<time_integrator>implicit)");
+  auto m = std::make_unique<ChemicalPotentialDiffusion>();
+  const double cmaxRT = node.require<double>("cmax_RT");
+  if (!(cmaxRT > 0)) node.requireChild("cmax_RT").fail("<cmax_RT> must be positive");
+  const double swelling = 3 * context.swellingCoefficient;
+  double coupling = swelling;
+  if (const PSNode given = node.child("stress_coupling")) {
+    coupling = given.value<double>();
+    if (!(coupling >= 0)) given.fail("<stress_coupling> must be >= 0");
+    if (std::abs(coupling - swelling) > 1e-9 * std::max(coupling, swelling))
+      given.warn("<stress_coupling> differs from 3 x <volume_expansion_coeff> = " +
+                 std::to_string(swelling) +
+                 ": the chemical potential's stress term and the swelling are not one free energy");
+  }
+  m->perStress = coupling / cmaxRT;
+  m->stabilization =
+      m->perStress *
+      localSwellingPressure(context.swellingCoefficient, context.bulkModulus, context.shearModulus);
+  return m;
+}
 
 std::unique_ptr<DiffusivityCurve> readCurve(const PSNode& node, double maxTime) {
   auto curve = std::make_unique<DiffusivityCurve>();
@@ -152,7 +197,8 @@ double positiveOrZero(const PSNode& node, const char* tag) {
 
 }  // namespace
 
-std::unique_ptr<ScalarDiffusionModel> createDiffusionModel(const PSNode& node, double maxTime) {
+std::unique_ptr<ScalarDiffusionModel> createDiffusionModel(const PSNode& node,
+                                                           const DiffusionModelContext& context) {
   const std::string type = node.requireAttribute("type");
   std::unique_ptr<ScalarDiffusionModel> model;
   if (type == "jg") {
@@ -175,18 +221,22 @@ std::unique_ptr<ScalarDiffusionModel> createDiffusionModel(const PSNode& node, d
     } else {
       for (const char* inert : {"tuning3", "tuning4", "tuning5"}) node.acceptInert(inert);
     }
-    if (const PSNode curve = node.child("diff_curve")) m->curve = readCurve(curve, maxTime);
+    if (const PSNode curve = node.child("diff_curve")) m->curve = readCurve(curve, context.maxTime);
     model = std::move(m);
   } else if (type == "cubic") {
     auto m = std::make_unique<Cubic>();
     m->Dmax = positiveOrZero(node, "max_diffusivity");
     model = std::move(m);
+  } else if (type == "chemical_potential") {
+    model = readChemicalPotential(node, context);
   } else if (type == "rf1" || type == "non_linear2") {
     node.fail("diffusion_model type=\"" + type +
-              "\" is not supported; accepted: jg, constant_rate, non_linear1, cubic");
+              "\" is not supported; accepted: jg, constant_rate, non_linear1, cubic, "
+              "chemical_potential");
   } else {
     node.fail("unknown diffusion_model type=\"" + type +
-              "\"; accepted: jg, constant_rate, non_linear1, cubic");
+              "\"; accepted: jg, constant_rate, non_linear1, cubic, "
+              "chemical_potential");
   }
   model->type = type;
   model->D0 = positiveOrZero(node, "diffusivity");

@@ -25,6 +25,12 @@ class ScalarDiffusionModel {
   virtual double constantRate() const { return 0.0; }
   // The scaled pressure entering D (Eq. 23), for output as Uintah's removed p.pressure_t1.
   virtual double scaledPressure(const Mat3&) const { return 0.0; }
+  // k of phi = k tau_h, the stress's part of the chemical potential over RT (ChemicalPotential.h),
+  // in 1 / the input's stress unit: 0 for a flux by grad c alone (all but chemical_potential).
+  virtual double stressPotentialPerStress() const { return 0.0; }
+  // s: the change of phi with the particle's own c (normalised) that a pass takes implicitly, at
+  // J = 1: phi(c) = phi_0 - s J (c - c_0) (ChemicalPotential.h); 0 without a stress part.
+  virtual double stressPotentialStabilization() const { return 0.0; }
   // False when the model has no flux at all (constant_rate, or a zero diffusivity everywhere).
   virtual bool diffuses() const { return D0 > 0; }
   // What the model carries from step to step besides the particle arrays (empty when it has
@@ -58,8 +64,17 @@ struct DiffusionMaterial {
   bool reducesConcentration = false;
 };
 
-// Factory keyed by type=: jg, constant_rate, non_linear1, cubic. `maxTime` bounds diff_curve.
-std::unique_ptr<ScalarDiffusionModel> createDiffusionModel(const PSNode& node, double maxTime);
+// What a diffusivity model reads of its material and run besides its <diffusion_model>.
+struct DiffusionModelContext {
+  double maxTime = 0;                        // bounds diff_curve
+  double swellingCoefficient = 0;            // the material's eta (<volume_expansion_coeff>)
+  double bulkModulus = 0, shearModulus = 0;  // the material's K and G (the largest over c)
+  bool implicit = false;  // <time_integrator>implicit (chemical_potential needs it)
+};
+
+// Factory keyed by type=: jg, constant_rate, non_linear1, cubic, chemical_potential.
+std::unique_ptr<ScalarDiffusionModel> createDiffusionModel(const PSNode& node,
+                                                           const DiffusionModelContext& context);
 
 // Eq. 23: D0 exp(alpha c) exp(-beta clamp(scale p, floor, p_max)), p = -tr(sigma)/3.
 double nonLinear1Diffusivity(double D0, double alpha, double beta, double c, double scaledPressure);
