@@ -177,6 +177,13 @@ INSTANTIATE_TEST_SUITE_P(
                     "",
                     6,
                     {}},
+        // A surface reaction's potential (the cutoff at step 63 ended its current): the
+        // potentials are in the checkpoint, and the current resumes at step 104 as uninterrupted.
+        RestartCase{"surface_reaction",
+                    kSource + "/inputs/Verification/SurfaceReactionBar.ups",
+                    "<checkpoint cycle=\"2\" timestepInterval=\"10\"/>",
+                    70,
+                    {"--max-timesteps", "110"}},
         // Implicit dynamics: the particles' accelerations (Newmark's state) are in the
         // checkpoint; blocks colliding at step 10.
         RestartCase{"implicit_dynamic",

@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "HistoryFile.h"
 #include "RunSus.h"
 #include "StandAlone/Driver/Simulation.h"
 #include "TestFiles.h"
@@ -29,37 +30,10 @@ namespace fs = std::filesystem;
 namespace anode {
 namespace {
 
+using testing::History;
 using testing::readFile;
+using testing::readHistory;
 using testing::runSus;
-
-// history.csv as columns by name.
-struct History {
-  std::vector<std::string> names;
-  std::vector<std::vector<double>> rows;
-  const std::vector<double> column(const std::string& name) const {
-    std::vector<double> c;
-    const auto at = std::find(names.begin(), names.end(), name);
-    if (at == names.end()) return c;
-    for (const std::vector<double>& row : rows) c.push_back(row[at - names.begin()]);
-    return c;
-  }
-};
-
-History readHistory(const fs::path& file) {
-  History h;
-  std::istringstream in(readFile(file));
-  std::string line;
-  std::getline(in, line);
-  std::istringstream header(line);
-  for (std::string name; std::getline(header, name, ',');) h.names.push_back(name);
-  while (std::getline(in, line)) {
-    std::vector<double> row;
-    std::istringstream fields(line);
-    for (std::string field; std::getline(fields, field, ',');) row.push_back(std::stod(field));
-    h.rows.push_back(row);
-  }
-  return h;
-}
 
 TEST(FilmStudy, FirstTurnFromTheHistoryAlone) {
   const fs::path dir = fs::temp_directory_path() / ("anode_film_" + std::to_string(::getpid()));

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstddef>
+#include <utility>
 #include <vector>
 
 namespace anode {
@@ -37,6 +38,9 @@ struct StepSummary {
     double plasticWorkRate = 0;
   };
   std::vector<MaterialStress> stress;
+  // Per <scalar_flux> with a <surface_reaction>, in file order: its number (1-based) and the
+  // electrode's potential (V) at the state's flux rates.
+  std::vector<std::pair<int, double>> electrodePotentials;
 };
 
 }  // namespace anode

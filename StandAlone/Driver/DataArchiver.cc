@@ -131,6 +131,7 @@ bool DataArchiver::savesConcentrationFields() const {
 StepRecord stepRecord(const StepSummary& s, int dtRule, const StepCounts& counts, bool trapezoidal,
                       const TimestepController::ErrorControl* error) {
   StepRecord record{s.elasticEnergy, dtRule, counts.newtonIterations, counts.krylovIterations};
+  record.electrodePotentials = s.electrodePotentials;
   if (trapezoidal && s.diffusion && s.lithiumCapacity > 0)
     record.couplingCorrection = std::max(0.0, counts.couplingCorrection) / s.lithiumCapacity;
   if (error && s.diffusion) {
@@ -335,6 +336,8 @@ void DataArchiver::writeHistory() {
     s << "step,time,dt,particles,kinetic_energy,min_J,max_J,";
     if (unwritten_.front().row.diffusion) {
       s << "total_lithium,min_c,max_c,lithium_rate,state_of_charge,capacity_mAh_g,";
+      for (const auto& [bc, phi] : unwritten_.front().record.electrodePotentials)
+        s << "potential_" << bc << ',';
       for (const StepSummary::MaterialLithium& m : unwritten_.front().perMaterial) {
         const std::string& name = materialColumns_[m.material];
         s << "lithium_" << name << ",min_c_" << name << ",max_c_" << name << ',';
@@ -366,6 +369,7 @@ void DataArchiver::writeHistory() {
       s << r.totalLithium << ',' << r.minConcentration << ',' << r.maxConcentration << ','
         << r.lithiumRate << ',' << r.stateOfCharge << ','
         << r.stateOfCharge * kSiliconCapacityAtFull << ',';
+      for (const auto& [bc, phi] : record.electrodePotentials) s << phi << ',';
       for (const StepSummary::MaterialLithium& m : perMaterial)
         s << m.lithium << ',' << m.minConcentration << ',' << m.maxConcentration << ',';
     }

@@ -43,6 +43,9 @@ struct StepRecord {
   // accumulated estimate up to it, and the attempts rejected before it was taken; -1: no columns.
   double errorEstimate = -1, accumulatedErrorEstimate = -1;
   int rejectedAttempts = -1;
+  // Per <scalar_flux> with a <surface_reaction>: its number and the electrode's potential (V),
+  // history.csv's potential_N.
+  std::vector<std::pair<int, double>> electrodePotentials;
 };
 
 // The record of a step from its summary and its integrator's counts: with diffusion, the coupling

@@ -155,6 +155,27 @@ void addStressPlots(std::vector<PlotSpec>& out, const HistoryDigest& d) {
   }
 }
 
+// Per <scalar_flux> with a <surface_reaction> (potential_N): the electrode's potential against
+// time and against the state of charge.
+void addPotentialPlots(std::vector<PlotSpec>& out, const HistoryDigest& d) {
+  const std::string prefix = "potential_";
+  for (const std::string& column : d.columns) {
+    if (column.rfind(prefix, 0) != 0) continue;
+    const std::string bc = column.substr(prefix.size());
+    PlotSpec potential =
+        timePlot(column, "Electrode potential of <scalar_flux> " + bc, "potential (V)");
+    addEnvelope(potential, d, column, "potential", "#1f77b4");
+    out.push_back(std::move(potential));
+    PlotSpec against;
+    against.id = column + "_soc";
+    against.title = "Electrode potential of <scalar_flux> " + bc + " against the state of charge";
+    against.xLabel = "state of charge (%)";
+    against.yLabel = "potential (V)";
+    addCurve(against, d, "state_of_charge", column, "potential", "#1f77b4", 100);
+    out.push_back(std::move(against));
+  }
+}
+
 std::vector<PlotSpec> plots(const HistoryDigest& d) {
   std::vector<PlotSpec> out;
   if (d.column("total_lithium") >= 0) {
@@ -171,6 +192,7 @@ std::vector<PlotSpec> plots(const HistoryDigest& d) {
     addEnvelope(current, d, "lithium_rate", "d(sum m c)/dt", "#1f77b4");
     out.push_back(std::move(current));
   }
+  addPotentialPlots(out, d);
   addStressPlots(out, d);
   PlotSpec dt = timePlot("dt", "Time step", "dt", true);
   addEnvelope(dt, d, "dt", "dt", "#333333");

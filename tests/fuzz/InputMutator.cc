@@ -355,6 +355,13 @@ const std::vector<std::string>& implicitTags() {
   return tags;
 }
 
+const std::vector<std::string>& surfaceReactionTags() {
+  static const std::vector<std::string> tags = {
+      "temperature",          "open_circuit_potential", "exchange_flux",
+      "transfer_coefficient", "lower_cutoff_potential", "upper_cutoff_potential"};
+  return tags;
+}
+
 bool editTag(std::string& t, const std::string& parent, const std::string& tag, TagEdit edit,
              const std::string& value) {
   const std::vector<ElementSpan> elements = scanElements(t);
@@ -630,6 +637,15 @@ bool InputMutator::apply(int op, std::string& t, std::string* what) {
         const bool flowTag = tag.find("modulus") == std::string::npos;
         if (!editTag(t, flowTag ? "flow_model" : "constitutive_model", tag, TagEdit::Set, v))
           return false;
+        say("<" + tag + "> set to '" + v + "'");
+        return true;
+      }
+      if (pick(8) == 0) {  // ours: a galvanostatic <scalar_flux>'s <surface_reaction>
+        const std::string& tag = pickFrom(surfaceReactionTags());
+        static const std::vector<std::string> values = {"0.4", "0",   "-1", "nan",  "inf",
+                                                        "",    "abc", "1",  "1e300"};
+        const std::string& v = pickFrom(values);
+        if (!editTag(t, "surface_reaction", tag, TagEdit::Set, v)) return false;
         say("<" + tag + "> set to '" + v + "'");
         return true;
       }

@@ -26,6 +26,8 @@ std::vector<ElementSpan> scanElements(const std::string& text);
 
 // The ImpMPM tags of <MPM> (docs/quasi-static.md) the implicit-option operator edits.
 const std::vector<std::string>& implicitTags();
+// The tags of a galvanostatic <scalar_flux>'s <surface_reaction> (ours).
+const std::vector<std::string>& surfaceReactionTags();
 
 enum class TagEdit { Set, Remove, Duplicate };
 // Edits <tag> in the first <parent> element (not self-closing) of `text`: Set gives it `value`
@@ -56,7 +58,8 @@ class InputMutator {
     SwapValues,
     EmptyValue,
     ImplicitOption,  // an ImpMPM tag of <MPM> (or ours: <DataArchiver><film_normal>, the
-                     // lithium-dependent laws' tags, chemical_potential's) set to a bad value,
+                     // lithium-dependent laws' tags, chemical_potential's, <surface_reaction>'s)
+                     // set to a bad value,
                      // removed or duplicated, or the <SimulationComponent> type changed
     kOperatorCount
   };

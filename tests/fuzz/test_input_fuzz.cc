@@ -151,6 +151,28 @@ TEST(ImplicitOptions, EveryEditOfAnImpMPMTagEndsInSuccessOrAFileLineInputError) 
   }
 }
 
+TEST(SurfaceReaction, EveryEditOfItsTagsEndsInSuccessOrAFileLineInputError) {
+  const std::string seed =
+      readFile(std::string(ANODE_SOURCE_DIR) + "/inputs/Verification/SurfaceReactionBar.ups");
+  bool accepted = false;
+  ASSERT_EQ(checkSetup(seed, "bar.ups", &accepted), "");
+  ASSERT_TRUE(accepted);
+  const std::vector<std::string> values = {"-1",  "0",   "1",   "0.45", "1e300", "1e400",
+                                           "nan", "inf", "abc", "",     "0.5"};
+  const std::vector<std::string> refused = {"1e400", "nan", "inf", "abc", ""};
+  for (const std::string& tag : surfaceReactionTags())
+    for (const std::string& v : values) {
+      std::string text = seed;
+      ASSERT_TRUE(editTag(text, "surface_reaction", tag, TagEdit::Set, v));
+      EXPECT_EQ(checkSetup(text, "bar.ups", &accepted), "") << "<" << tag << ">" << v;
+      if (std::find(refused.begin(), refused.end(), v) != refused.end()) {
+        EXPECT_FALSE(accepted) << "<" << tag << ">" << v << " was accepted";
+      }
+      ASSERT_TRUE(editTag(text, "surface_reaction", tag, TagEdit::Duplicate));
+      EXPECT_EQ(checkSetup(text, "bar.ups", &accepted), "") << "<" << tag << "> twice";
+    }
+}
+
 TEST(InputFuzz, QuickRunOnTheImplicitInputsReachesTheImpMPMTags) {
   const std::vector<std::string> corpus = implicitCorpus();
   ASSERT_GE(corpus.size(), 5u);

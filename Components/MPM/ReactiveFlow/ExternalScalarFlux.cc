@@ -5,9 +5,12 @@
 #include <limits>
 #include <sstream>
 
+#include "Components/MPM/ReactiveFlow/ChemicalPotential.h"
 #include "Components/MPM/ReactiveFlow/FluxRestriction.h"
 #include "Components/MPM/ReactiveFlow/FluxSurfaceArea.h"
 #include "Core/Parallel/Communicator.h"
+#include "Core/Parallel/StopTogether.h"
+#include "Core/Util/Errors.h"
 
 namespace anode {
 
@@ -80,6 +83,45 @@ std::string currentNote(size_t b, const ScalarFluxBC& bc, double t, bool ends, b
   else
     s << ", for the rest of the run";
   return s.str();
+}
+
+// The note of a surface reaction's current ending at a potential cutoff or resuming at t, the
+// load charging or not, phi the electrode's potential.
+std::string potentialNote(size_t b, const ScalarFluxBC& bc, double t, bool ends, bool charging,
+                          double phi) {
+  std::ostringstream s;
+  s << "<scalar_flux> " << b + 1 << " (line " << bc.line << ", galvanostatic): its current ";
+  if (!ends) {
+    s << "resumes at t = " << t << " (" << (charging ? "charging" : "discharging")
+      << ", at the electrode's potential " << phi << " V)";
+    return s.str();
+  }
+  s << "ends at t = " << t << ": the electrode's potential " << phi << " V is at or "
+    << (charging ? "below <lower_cutoff_potential> " : "above <upper_cutoff_potential> ")
+    << (charging ? bc.reaction->lowerCutoff : bc.reaction->upperCutoff) << " V";
+  const double next = bc.load.nextTimeAfter(t);
+  if (std::isfinite(next))
+    s << ", until its load curve's next segment at t = " << next;
+  else
+    s << ", for the rest of the run";
+  return s.str();
+}
+
+// The open-circuit potential of particle i of a material whose stress part of mu / RT is
+// `perStress` k (SurfaceReaction.h): a SimulationError where c / cmax is outside (0, 1), where
+// it has none.
+double openCircuitOf(const SurfaceReaction& r, size_t b, const ScalarFluxBC& bc,
+                     const ParticleSet& p, const ConstDiffusionParticles& d, long i, double cmax,
+                     double perStress, double t) {
+  const double c = d.concentration[i] / cmax;
+  if (!(c > 0 && c < 1)) {
+    std::ostringstream s;
+    s << "particle " << p.id[i] << " at [" << p.x[i].transpose() << "] has c / c_max = " << c
+      << " at t = " << t << ": the surface reaction of <scalar_flux> " << b + 1 << " (line "
+      << bc.line << ") has no open-circuit potential outside (0, 1)";
+    throw SimulationError(s.str());
+  }
+  return r.openCircuit(c, stressPotential(perStress, p.stress[i], p.F[i]));
 }
 
 }  // namespace
@@ -184,7 +226,7 @@ std::vector<double> ExternalScalarFlux::fluxes(Collective every,
     for (size_t i = 0; i < p.count(); ++i)
       for (int s = 0; s < 3 && d.loadCurveID[i][s] > 0; ++s) {
         const size_t b = d.loadCurveID[i][s] - 1;
-        if (bcs_[b].mode != ScalarFluxBC::Mode::Galvanostatic) continue;
+        if (bcs_[b].mode != ScalarFluxBC::Mode::Galvanostatic || bcs_[b].reaction) continue;
         const double area = fluxArea(bcs_[b], p, d, i, s);
         const double unrestricted = p.mass[i] * area / p.volume[i] * cmax;
         sums[b] += unrestricted * fluxRestriction(d.concentration[i] / cmax, J[b] >= 0);
@@ -192,9 +234,17 @@ std::vector<double> ExternalScalarFlux::fluxes(Collective every,
       }
   }
   if (overRanks) collective::sum(every, sums.data(), static_cast<int>(sums.size()));
+  potentials_.resize(n, std::numeric_limits<double>::quiet_NaN());
   for (size_t b = 0; b < n; ++b) {
     const ScalarFluxBC& bc = bcs_[b];
     if (bc.mode != ScalarFluxBC::Mode::Galvanostatic) continue;
+    if (bc.reaction) {
+      const double lithiumRate = bc.hour > 0 ? J[b] * capacities_[b] / bc.hour : J[b];
+      potentials_[b] =
+          electrodePotential(every, materials, diffusion, b, lithiumRate, t, overRanks);
+      J[b] = 0;  // each particle's flux follows from the potential (computeFluxRates)
+      continue;
+    }
     // The flagged surface's mean restriction (weighted as the flux shares the rate).
     const double meanRestriction = sums[n + b] > 0 ? sums[b] / sums[n + b] : 0.0;
     // In a later segment the current resumes once the surface is above the cutoff for the
@@ -209,6 +259,82 @@ std::vector<double> ExternalScalarFlux::fluxes(Collective every,
     J[b] = endedIn_[b] >= 0 ? 0.0 : lithiumRate / sums[b];
   }
   return J;
+}
+
+double ExternalScalarFlux::electrodePotential(Collective every,
+                                              const std::vector<MPMMaterial>& materials,
+                                              const std::vector<DiffusionMaterial>& diffusion,
+                                              size_t b, double lithiumRate, double t,
+                                              bool overRanks) {
+  const ScalarFluxBC& bc = bcs_[b];
+  const SurfaceReaction& r = *bc.reaction;
+  // The flagged particles' weights m A / V c_max (the lithium rate per unit flux) and their
+  // open-circuit potentials, in particle order.
+  std::vector<double> weight, openCircuit;
+  const auto collect = [&] {
+    for (size_t m = 0; m < materials.size(); ++m) {
+      const ParticleSet& p = materials[m].particles;
+      const ConstDiffusionParticles d(p);
+      if (d.loadCurveID.empty()) continue;
+      const double cmax = diffusion[m].model->maxConcentration;
+      const double perStress = diffusion[m].model->stressPotentialPerStress();
+      for (size_t i = 0; i < p.count(); ++i)
+        for (int s = 0; s < 3 && d.loadCurveID[i][s] > 0; ++s) {
+          if (static_cast<size_t>(d.loadCurveID[i][s] - 1) != b) continue;
+          weight.push_back(p.mass[i] * fluxArea(bc, p, d, i, s) / p.volume[i] * cmax);
+          openCircuit.push_back(
+              openCircuitOf(r, b, bc, p, d, static_cast<long>(i), cmax, perStress, t));
+        }
+    }
+  };
+  if (overRanks)
+    collective::stopTogether(every, collect);
+  else
+    collect();
+  // The BC's current at phi, over every rank: it falls as phi rises.
+  const auto current = [&](double phi) {
+    double sum = 0;
+    for (size_t k = 0; k < weight.size(); ++k) sum += weight[k] * r.flux(phi, openCircuit[k]);
+    return overRanks ? collective::sum(every, sum) : sum;
+  };
+  const auto carries = [&](double rate) {
+    // Between the extreme open-circuit potentials, widened by doubling steps of RT / F until
+    // the current is bracketed, then bisected to round-off: the same phi from any start.
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    for (double U : openCircuit) lo = std::min(lo, U), hi = std::max(hi, U);
+    if (overRanks) lo = collective::minimum(every, lo), hi = collective::maximum(every, hi);
+    for (double step = r.thermalVoltage(); current(lo) < rate; step *= 2) lo -= step;
+    for (double step = r.thermalVoltage(); current(hi) > rate; step *= 2) hi += step;
+    for (int k = 0; k < 200 && hi - lo > 1e-14 * (1 + std::abs(lo) + std::abs(hi)); ++k) {
+      const double mid = 0.5 * (lo + hi);
+      (current(mid) > rate ? lo : hi) = mid;
+    }
+    return 0.5 * (lo + hi);
+  };
+  // The cutoffs: a charge ends where phi falls to the lower, a discharge where it rises to the
+  // upper, until a later segment of the load curve in which the current, resumed, keeps phi
+  // inside them; it resumes once the load runs the way the segment ends (past a ramp's turn).
+  const bool charging = lithiumRate >= 0;
+  const auto beyondCutoff = [&](double phi) {
+    return charging ? phi <= r.lowerCutoff : phi >= r.upperCutoff;
+  };
+  const long segment = 2 * static_cast<long>(bc.load.segmentAt(t)) + (sign_ < 0 ? 1 : 0);
+  const double next = bc.load.nextTimeAfter(t);
+  const double ahead = sign_ * bc.load.at(std::isfinite(next) ? next : t);
+  if (endedIn_[b] >= 0 && endedIn_[b] != segment && lithiumRate != 0 &&
+      (lithiumRate > 0) == (ahead > 0)) {
+    const double phi = carries(lithiumRate);
+    if (!beyondCutoff(phi)) {
+      endedIn_[b] = -1;
+      notes_.push_back(potentialNote(b, bc, t, false, charging, phi));
+    }
+  }
+  if (endedIn_[b] >= 0) return carries(0.0);
+  const double phi = carries(lithiumRate);
+  if (lithiumRate == 0 || !beyondCutoff(phi)) return phi;
+  endedIn_[b] = segment;
+  notes_.push_back(potentialNote(b, bc, t, true, charging, phi));
+  return carries(0.0);
 }
 
 std::vector<std::string> ExternalScalarFlux::takeNotes() {
@@ -266,6 +392,7 @@ void ExternalScalarFlux::computeFluxRates(Collective every, std::vector<MPMMater
     const DiffusionParticles d(p);
     if (d.loadCurveID.empty()) continue;
     const double cmax = diffusion[m].model->maxConcentration;
+    const double perStress = diffusion[m].model->stressPotentialPerStress();
     const long n = static_cast<long>(p.count());
     double inflow = 0, outflow = 0;
 #pragma omp parallel for schedule(static) reduction(max : inflow, outflow)
@@ -276,16 +403,22 @@ void ExternalScalarFlux::computeFluxRates(Collective every, std::vector<MPMMater
         const int b = d.loadCurveID[i][s] - 1;
         const double area = fluxArea(bcs_[b], p, d, i, s);
         const bool potentiostatic = bcs_[b].mode == ScalarFluxBC::Mode::Potentiostatic;
-        // A potentiostatic BC's J = k_eff (c_s - c) / c_max, its load being c_s.
-        const double j = potentiostatic
-                             ? surfaceConductance(bcs_[b], area, p.volume[i], d.diffusivity[i]) *
-                                   (J[b] / cmax - c)
-                             : J[b];
-        (potentiostatic ? held : rate) += j * area;
+        const SurfaceReaction* reaction = bcs_[b].reaction.get();
+        // A potentiostatic BC's J = k_eff (c_s - c) / c_max, its load being c_s; a surface
+        // reaction's Butler-Volmer flux at the electrode's potential.
+        double j = J[b];
+        if (potentiostatic)
+          j = surfaceConductance(bcs_[b], area, p.volume[i], d.diffusivity[i]) * (J[b] / cmax - c);
+        else if (reaction)
+          j = reaction->flux(
+              potentials_[b],
+              reaction->openCircuit(c, stressPotential(perStress, p.stress[i], p.F[i])));
+        (potentiostatic || reaction ? held : rate) += j * area;
         (j > 0 ? in : out) += std::abs(j) * area;
       }
       // Eq. 17 restricts inflow as c -> 1; outflow is restricted the same way as c -> 0. A
-      // potentiostatic BC's flux needs no restriction: it vanishes at c_s.
+      // potentiostatic BC's flux needs no restriction: it vanishes at c_s; nor a surface
+      // reaction's, whose open-circuit potential diverges at c = 0 and 1.
       d.externalScalarFlux[i] = rate / p.volume[i] * fluxRestriction(c, rate >= 0) * cmax;
       if (held != 0) d.externalScalarFlux[i] += held / p.volume[i] * cmax;
       inflow = std::max(inflow, in / p.volume[i]);
@@ -305,8 +438,9 @@ double ExternalScalarFlux::stableTimestep(Collective every,
   // outflow: the emptiest above e^-4) bounds them all.
   // A potentiostatic BC's particle relaxes to c_s at the rate sum k A / V: a step of at most
   // its inverse takes it at most to c_s (no overshoot, no oscillation).
+  // A surface reaction's particle relaxes at sum A / V |dj/dc| (SurfaceReaction::fluxSlope).
   const bool potentiostatic = std::any_of(bcs_.begin(), bcs_.end(), [](const ScalarFluxBC& bc) {
-    return bc.mode == ScalarFluxBC::Mode::Potentiostatic;
+    return bc.mode == ScalarFluxBC::Mode::Potentiostatic || bc.reaction;
   });
   double fullest = 0, emptiest = 1, relaxation = 0;
   for (size_t m = 0; m < materials.size(); ++m) {
@@ -314,6 +448,7 @@ double ExternalScalarFlux::stableTimestep(Collective every,
     const ConstDiffusionParticles d(p);
     if (d.loadCurveID.empty()) continue;
     const double cmax = diffusion[m].model->maxConcentration;
+    const double perStress = diffusion[m].model->stressPotentialPerStress();
     const long n = static_cast<long>(p.count());
 #pragma omp parallel for schedule(static) reduction(max                                  \
                                                     : fullest, relaxation) reduction(min \
@@ -325,10 +460,17 @@ double ExternalScalarFlux::stableTimestep(Collective every,
       if (!potentiostatic) continue;
       double k = 0;
       for (int s = 0; s < 3 && d.loadCurveID[i][s] > 0; ++s) {
-        const ScalarFluxBC& bc = bcs_[d.loadCurveID[i][s] - 1];
-        if (bc.mode != ScalarFluxBC::Mode::Potentiostatic) continue;
+        const int b = d.loadCurveID[i][s] - 1;
+        const ScalarFluxBC& bc = bcs_[b];
         const double area = fluxArea(bc, p, d, i, s);
-        k += surfaceConductance(bc, area, p.volume[i], d.diffusivity[i]) * area;
+        if (bc.mode == ScalarFluxBC::Mode::Potentiostatic)
+          k += surfaceConductance(bc, area, p.volume[i], d.diffusivity[i]) * area;
+        else if (bc.reaction && c > 0 && c < 1)
+          k +=
+              bc.reaction->fluxSlope(
+                  potentials_[b],
+                  bc.reaction->openCircuit(c, stressPotential(perStress, p.stress[i], p.F[i])), c) *
+              area;
       }
       relaxation = std::max(relaxation, k / p.volume[i]);
     }
@@ -387,6 +529,8 @@ void ExternalScalarFlux::saveState(BinaryWriter& out) const {
   out.value(maxOutflowRate_);
   out.value<uint64_t>(endedIn_.size());
   for (long e : endedIn_) out.value(e);
+  out.value<uint64_t>(potentials_.size());
+  for (double phi : potentials_) out.value(phi);
 }
 
 void ExternalScalarFlux::loadState(BinaryReader& in, bool merge) {
@@ -396,6 +540,8 @@ void ExternalScalarFlux::loadState(BinaryReader& in, bool merge) {
   maxOutflowRate_ = merge ? std::max(maxOutflowRate_, outflow) : outflow;
   endedIn_.resize(in.value<uint64_t>());
   for (long& e : endedIn_) e = in.value<long>();
+  potentials_.resize(in.value<uint64_t>());
+  for (double& phi : potentials_) phi = in.value<double>();
 }
 
 void markSourceNodes(const ParticleSet& p, const InterpolationWeights& W,

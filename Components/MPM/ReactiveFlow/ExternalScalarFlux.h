@@ -58,6 +58,9 @@ class ExternalScalarFlux {
   void setCapacities(std::vector<double> capacities) { capacities_ = std::move(capacities); }
   // The notes of galvanostatic BCs whose current ended since the last call (rank 0 prints them).
   std::vector<std::string> takeNotes();
+  // Per BC, the electrode's potential (V) of a <surface_reaction> at the last flux rates; NaN
+  // for the other BCs.
+  const std::vector<double>& potentials() const { return potentials_; }
   // The flux limit (docs/diffusion.md, "Time step"): the longest step in which no particle of a
   // material the fluxes reach passes the restriction's root, taken at the fullest particle below
   // the root (the emptiest above the mirrored root for an outflow), as every particle's source
@@ -91,7 +94,15 @@ class ExternalScalarFlux {
                              const std::vector<DiffusionMaterial>& diffusion, double t,
                              bool overRanks);
 
+  // The potential at which surface-reaction BC b's particles take up `lithiumRate` (sum m c per
+  // time) at time t, its cutoffs applied (the current ends, or resumes, as a restriction cutoff
+  // does); over every rank when `overRanks`.
+  double electrodePotential(Collective, const std::vector<MPMMaterial>& materials,
+                            const std::vector<DiffusionMaterial>& diffusion, size_t b,
+                            double lithiumRate, double t, bool overRanks);
+
   std::vector<ScalarFluxBC> bcs_;
+  std::vector<double> potentials_;  // per BC: electrodePotential's, NaN for the others
   // Per BC: -1 while a galvanostatic BC's current runs; once its flagged surface reached its
   // cutoff, the load curve's segment (LoadCurve::segmentAt) at that time, times 2, plus 1 if the
   // auto-cycle sign was negative. The current resumes in a later segment (or sign) once the

@@ -230,6 +230,22 @@ std::vector<std::string> ReactiveFlow::completeSetup(Collective every,
                                  describeMaterial(materials[f.material], f.material));
       capacities[f.bc] += materialMass[f.material] * model(f.material).maxConcentration;
     }
+    // A surface reaction's particles need an open-circuit potential: c inside (0, c_max).
+    for (size_t m = 0; m < materials.size(); ++m) {
+      const ConstDiffusionParticles d(materials[m].particles);
+      for (size_t i = 0; i < d.loadCurveID.size(); ++i)
+        for (int s = 0; s < 3 && d.loadCurveID[i][s] > 0; ++s) {
+          const ScalarFluxBC& bc = flux_.bcs()[d.loadCurveID[i][s] - 1];
+          const double c = d.concentration[i] / model(m).maxConcentration;
+          if (bc.reaction && !(c > 0 && c < 1))
+            throw InputError(
+                inputFile_, bc.line,
+                "this <scalar_flux>'s <surface_reaction> needs its particles' c inside (0, "
+                "max_concentration), where the open-circuit potential U(c) exists; " +
+                    describeMaterial(materials[m], m) + " starts at c / c_max = " +
+                    std::to_string(c) + " (its <geom_object><concentration>)");
+        }
+    }
   });
   std::vector<std::string> lines;
   for (const ExternalScalarFlux::Flagged& f : flagged) {
@@ -413,6 +429,12 @@ double ReactiveFlow::diffusionTimestep(const Grid& grid) const {
 
 void ReactiveFlow::summarize(const std::vector<MPMMaterial>& materials, StepSummary& s) const {
   s.diffusion = true;
+  for (size_t b = 0; b < flux_.bcs().size(); ++b)
+    if (flux_.bcs()[b].reaction)
+      s.electrodePotentials.emplace_back(static_cast<int>(b) + 1,
+                                         b < flux_.potentials().size()
+                                             ? flux_.potentials()[b]
+                                             : std::numeric_limits<double>::quiet_NaN());
   // The range is of the materials whose concentration can change (a substrate's fixed c would
   // pin it), of every material when none can; history.csv gives each of them columns of its own
   // when there are two or more.

@@ -84,6 +84,42 @@ bool onSurface(const GeometryPiece& piece, const Vec3& x, const Vec3& dxp, int n
   return false;
 }
 
+namespace {
+
+// <surface_reaction> (SurfaceReaction.h): every value checked, each error on its line.
+std::shared_ptr<const SurfaceReaction> readSurfaceReaction(const PSNode& node) {
+  auto r = std::make_shared<SurfaceReaction>();
+  const auto positive = [&](const char* tag) {
+    const double v = node.require<double>(tag);
+    if (!(v > 0 && std::isfinite(v)))
+      node.requireChild(tag).fail("<" + std::string(tag) + "> must be above 0");
+    return v;
+  };
+  r->temperature = positive("temperature");
+  r->exchangeFlux = positive("exchange_flux");
+  r->openCircuitPotential = node.require<double>("open_circuit_potential");
+  if (!std::isfinite(r->openCircuitPotential))
+    node.requireChild("open_circuit_potential").fail("<open_circuit_potential> must be finite");
+  if (const PSNode alpha = node.child("transfer_coefficient")) {
+    r->transferCoefficient = alpha.value<double>();
+    if (!(r->transferCoefficient > 0 && r->transferCoefficient < 1))
+      alpha.fail("<transfer_coefficient> must lie in (0, 1)");
+  }
+  for (auto [tag, value] : {std::pair{"lower_cutoff_potential", &r->lowerCutoff},
+                            std::pair{"upper_cutoff_potential", &r->upperCutoff}})
+    if (const PSNode cutoff = node.child(tag)) {
+      *value = cutoff.value<double>();
+      if (!std::isfinite(*value)) cutoff.fail("<" + std::string(tag) + "> must be finite");
+    }
+  if (!(r->lowerCutoff < r->upperCutoff))
+    node.requireChild("upper_cutoff_potential")
+        .fail("<upper_cutoff_potential> must lie above <lower_cutoff_potential>");
+  node.requireEverythingRead();
+  return r;
+}
+
+}  // namespace
+
 std::vector<ScalarFluxBC> ScalarFluxBC::fromInput(const std::vector<PSNode>& blocks) {
   std::vector<ScalarFluxBC> out;
   for (const PSNode& block : blocks) {
@@ -159,6 +195,15 @@ std::vector<ScalarFluxBC> ScalarFluxBC::fromInput(const std::vector<PSNode>& blo
     if (bc.hour == 0)
       if (const PSNode hour = block.child("hour"))
         hour.fail("<hour> belongs to <rate_unit>C</rate_unit>");
+    if (const PSNode reaction = block.child("surface_reaction")) {
+      if (bc.mode != Mode::Galvanostatic)
+        reaction.fail("<surface_reaction> belongs to <mode>galvanostatic</mode>");
+      if (const PSNode cutoff = block.child("cutoff"))
+        cutoff.fail(
+            "<cutoff> (the surface's mean restriction) does not go with <surface_reaction>, "
+            "whose cutoffs are potentials: <lower_cutoff_potential>, <upper_cutoff_potential>");
+      bc.reaction = readSurfaceReaction(reaction);
+    }
     block.acceptInert("outward_normal");
     block.acceptInert("auto_cycle");
     block.acceptInert("numberOfParticlesOnLoadSurface");

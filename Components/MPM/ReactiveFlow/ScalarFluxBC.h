@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "Components/MPM/ReactiveFlow/SurfaceReaction.h"
 #include "Core/Geometry/GeometryPiece.h"
 #include "Core/Grid/Grid.h"
 #include "Core/Util/LoadCurve.h"
@@ -35,7 +36,11 @@ struct ScalarFluxBC {
   // of rate constant k (`surfaceRate`, <surface_rate>, length per time): J = k (c_s - c_p) / c_max
   // at each flagged particle (a Robin condition; kL/D >> 1 holds c_s), not restricted by R.
   enum class Mode { Flux, Galvanostatic, Potentiostatic } mode = Mode::Flux;
-  double cutoff = 0.25;    // <cutoff>, galvanostatic only
+  double cutoff = 0.25;  // <cutoff>, galvanostatic only
+  // <surface_reaction> (ours, galvanostatic only): the flux into each flagged particle follows
+  // Butler-Volmer at the one potential that carries the BC's current (SurfaceReaction.h), and
+  // the cutoffs are potentials; null: the flux is shared as a uniform J restricted by R(c).
+  std::shared_ptr<const SurfaceReaction> reaction;
   double surfaceRate = 0;  // <surface_rate>, potentiostatic only
   // <rate_unit>C</rate_unit> (galvanostatic only): the load is a C-rate, n C filling the
   // materials the BC flags (every particle, to max_concentration) in 1/n of an hour, `hour`
