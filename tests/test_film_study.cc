@@ -7,7 +7,8 @@
 // work is 0 while elastic and grows once the film yields, in both directions; report.html plots
 // the stress x thickness against the state of charge. <swelling_strain>cell_mean takes the
 // layer-to-layer alternation out of the normal stress, to 0 at first order in the cell size; each
-// particle's own dc leaves it at the order of the yield stress.
+// particle's own dc leaves it at the order of the yield stress. The film with the chemical
+// potential and a surface reaction runs three turns between potential cutoffs.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -104,6 +105,37 @@ TEST(FilmStudy, FirstTurnFromTheHistoryAlone) {
   EXPECT_NE(report.find("id=\"stress_soc_silicon\""), std::string::npos);
   EXPECT_NE(report.find("id=\"plastic_work_silicon\""), std::string::npos);
   EXPECT_NE(report.find("id=\"current\""), std::string::npos);
+  fs::remove_all(dir);
+}
+
+// inputs/Films/SiliconFilmPotential.ups: the film with the chemical potential in its flux and a
+// Butler-Volmer surface, three turns each ended by a potential cutoff (charge at 0.25 V,
+// discharge at 0.55 V), the potential in history.csv and plotted against the state of charge.
+TEST(FilmStudy, ThreeTurnsBetweenPotentialCutoffs) {
+  const fs::path dir = fs::temp_directory_path() / ("anode_film_phi_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  const auto run =
+      runSus({"--one-process", "--threads", "1", "-o", (dir / "out").string(),
+              std::string(ANODE_SOURCE_DIR) + "/inputs/Films/SiliconFilmPotential.ups"});
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  size_t at = 0;
+  for (int turn = 0; turn < 3; ++turn)
+    for (const char* cutoff :
+         {"or below <lower_cutoff_potential> 0.25 V", "or above <upper_cutoff_potential> 0.55 V"}) {
+      at = run.output.find(cutoff, at);
+      ASSERT_NE(at, std::string::npos)
+          << "turn " << turn + 1 << ": no \"" << cutoff << "\" in order in:\n"
+          << run.output;
+    }
+  const History h = readHistory(dir / "out" / "history.csv");
+  const std::vector<double> phi = h.column("potential_1"), soc = h.column("state_of_charge");
+  ASSERT_EQ(phi.size(), soc.size());
+  // Between the cutoffs, overshooting by at most a step's change.
+  EXPECT_GT(*std::min_element(phi.begin() + 1, phi.end()), 0.24);
+  EXPECT_LT(*std::max_element(phi.begin() + 1, phi.end()), 0.57);
+  const std::string report = readFile(dir / "out" / "report.html");
+  EXPECT_NE(report.find("id=\"potential_1_soc\""), std::string::npos);
+  EXPECT_NE(report.find("id=\"stress_soc_silicon\""), std::string::npos);
   fs::remove_all(dir);
 }
 

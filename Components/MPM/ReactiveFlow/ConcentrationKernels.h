@@ -63,12 +63,11 @@ class ConcentrationScatter {
   // rate and m R(c) where a source can reach.
   void addScatterTerms(long i, ScatterTerms<2>& t) const {
     const double mp = p_.mass[i];
-    Vec3 q = d_.diffusivity[i] * d_.concentrationGradient[i];
+    Vec3 mq = mp * d_.diffusivity[i] * d_.concentrationGradient[i];
     if (driftDiffusivity_ > 0) {
       const double c = d_.concentration[i];
-      q -= driftDiffusivity_ * c * (1 - c / cmax_) * d_.stressPotentialGradient[i];
+      mq -= mp * driftDiffusivity_ * c * (1 - c / cmax_) * d_.stressPotentialGradient[i];
     }
-    const Vec3 mq = mp * q;
     for (int d = 0; d < 3; ++d) t.byGradient[d][ConcentrationLane::diffusionRate] = mq[d];
     double* terms = t.byWeight[1];
     terms[ConcentrationLane::massConcentration] = mp * d_.concentration[i];

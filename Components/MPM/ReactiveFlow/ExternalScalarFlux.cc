@@ -63,12 +63,26 @@ double surfaceConductance(const ScalarFluxBC& bc, double area, double volume, do
   return bc.surfaceRate * D / (D + bc.surfaceRate * delta);
 }
 
+// The start of a note of galvanostatic BC b's current ("... its current "), and the end of one
+// whose current ended at t: until when.
+std::string noteStart(size_t b, const ScalarFluxBC& bc) {
+  return "<scalar_flux> " + std::to_string(b + 1) + " (line " + std::to_string(bc.line) +
+         ", galvanostatic): its current ";
+}
+void addUntilNextSegment(std::ostringstream& s, const ScalarFluxBC& bc, double t) {
+  const double next = bc.load.nextTimeAfter(t);
+  if (std::isfinite(next))
+    s << ", until its load curve's next segment at t = " << next;
+  else
+    s << ", for the rest of the run";
+}
+
 // The note of galvanostatic BC b's current ending at its cutoff (`ends`) or resuming at t, the
 // load charging or not, R the flagged surface's mean restriction.
 std::string currentNote(size_t b, const ScalarFluxBC& bc, double t, bool ends, bool charging,
                         double R) {
   std::ostringstream s;
-  s << "<scalar_flux> " << b + 1 << " (line " << bc.line << ", galvanostatic): its current ";
+  s << noteStart(b, bc);
   if (!ends) {
     s << "resumes at t = " << t << " (" << (charging ? "charging" : "discharging")
       << ", the flagged surface's mean restriction R " << R << ")";
@@ -77,11 +91,7 @@ std::string currentNote(size_t b, const ScalarFluxBC& bc, double t, bool ends, b
   s << "ends at t = " << t << ": the flagged surface's mean restriction R is " << R
     << ", at or below <cutoff> " << bc.cutoff << " (the surface is nearly "
     << (charging ? "full" : "empty") << ")";
-  const double next = bc.load.nextTimeAfter(t);
-  if (std::isfinite(next))
-    s << ", until its load curve's next segment at t = " << next;
-  else
-    s << ", for the rest of the run";
+  addUntilNextSegment(s, bc, t);
   return s.str();
 }
 
@@ -90,7 +100,7 @@ std::string currentNote(size_t b, const ScalarFluxBC& bc, double t, bool ends, b
 std::string potentialNote(size_t b, const ScalarFluxBC& bc, double t, bool ends, bool charging,
                           double phi) {
   std::ostringstream s;
-  s << "<scalar_flux> " << b + 1 << " (line " << bc.line << ", galvanostatic): its current ";
+  s << noteStart(b, bc);
   if (!ends) {
     s << "resumes at t = " << t << " (" << (charging ? "charging" : "discharging")
       << ", at the electrode's potential " << phi << " V)";
@@ -99,11 +109,7 @@ std::string potentialNote(size_t b, const ScalarFluxBC& bc, double t, bool ends,
   s << "ends at t = " << t << ": the electrode's potential " << phi << " V is at or "
     << (charging ? "below <lower_cutoff_potential> " : "above <upper_cutoff_potential> ")
     << (charging ? bc.reaction->lowerCutoff : bc.reaction->upperCutoff) << " V";
-  const double next = bc.load.nextTimeAfter(t);
-  if (std::isfinite(next))
-    s << ", until its load curve's next segment at t = " << next;
-  else
-    s << ", for the rest of the run";
+  addUntilNextSegment(s, bc, t);
   return s.str();
 }
 
@@ -291,25 +297,42 @@ double ExternalScalarFlux::electrodePotential(Collective every,
     collective::stopTogether(every, collect);
   else
     collect();
-  // The BC's current at phi, over every rank: it falls as phi rises.
-  const auto current = [&](double phi) {
-    double sum = 0;
-    for (size_t k = 0; k < weight.size(); ++k) sum += weight[k] * r.flux(phi, openCircuit[k]);
-    return overRanks ? collective::sum(every, sum) : sum;
+  // The BC's current less `rate` at phi, and its slope, over every rank (one reduction): it
+  // falls as phi rises.
+  const auto excess = [&](double phi, double rate, double& slope) {
+    double sums[2] = {0, 0};
+    for (size_t k = 0; k < weight.size(); ++k) {
+      sums[0] += weight[k] * r.flux(phi, openCircuit[k]);
+      sums[1] += weight[k] * r.fluxDerivative(phi, openCircuit[k]);
+    }
+    if (overRanks) collective::sum(every, sums, 2);
+    slope = sums[1];
+    return sums[0] - rate;
   };
   const auto carries = [&](double rate) {
-    // Between the extreme open-circuit potentials, widened by doubling steps of RT / F until
-    // the current is bracketed, then bisected to round-off: the same phi from any start.
-    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-    for (double U : openCircuit) lo = std::min(lo, U), hi = std::max(hi, U);
-    if (overRanks) lo = collective::minimum(every, lo), hi = collective::maximum(every, hi);
-    for (double step = r.thermalVoltage(); current(lo) < rate; step *= 2) lo -= step;
-    for (double step = r.thermalVoltage(); current(hi) > rate; step *= 2) hi += step;
-    for (int k = 0; k < 200 && hi - lo > 1e-14 * (1 + std::abs(lo) + std::abs(hi)); ++k) {
-      const double mid = 0.5 * (lo + hi);
-      (current(mid) > rate ? lo : hi) = mid;
+    // A bracket from the extreme open-circuit potentials, widened by doubling steps of RT / F
+    // until it holds the root; then Newton's steps from its middle, a bisection where a step
+    // would leave it, to round-off: the same phi from the same state, whatever came before.
+    double bounds[2] = {std::numeric_limits<double>::infinity(),
+                        std::numeric_limits<double>::infinity()};  // min U, -max U
+    for (double U : openCircuit)
+      bounds[0] = std::min(bounds[0], U), bounds[1] = std::min(bounds[1], -U);
+    if (overRanks) collective::minimum(every, bounds, 2);
+    double lo = bounds[0], hi = -bounds[1], slope = 0;
+    for (double step = r.thermalVoltage(); excess(lo, rate, slope) < 0; step *= 2) lo -= step;
+    for (double step = r.thermalVoltage(); excess(hi, rate, slope) > 0; step *= 2) hi += step;
+    double phi = 0.5 * (lo + hi);
+    for (int k = 0; k < 200; ++k) {
+      const double value = excess(phi, rate, slope);
+      if (value == 0) break;
+      (value > 0 ? lo : hi) = phi;
+      double next = phi - value / slope;
+      if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+      const bool converged = std::abs(next - phi) <= 1e-15 * (1 + std::abs(phi));
+      phi = next;
+      if (converged || hi - lo <= 1e-15 * (1 + std::abs(phi))) break;
     }
-    return 0.5 * (lo + hi);
+    return phi;
   };
   // The cutoffs: a charge ends where phi falls to the lower, a discharge where it rises to the
   // upper, until a later segment of the load curve in which the current, resumed, keeps phi

@@ -9,7 +9,8 @@
 //   U(c) = U0 - (1 / f) ln(c / (1 - c)) + (1 / f) phi_s,   phi_s = k tau_h,
 // c normalised, phi_s 0 unless the material's flux has a stress part (so a tensile surface
 // raises U: lithium enters it more readily). The BC's current fixes phi, one potential for its
-// whole surface: sum_p w_p j(phi - U_p) = Q, w_p = m_p A_p / V_p c_max, solved by bisection.
+// whole surface: sum_p w_p j(phi - U_p) = Q, w_p = m_p A_p / V_p c_max, solved by Newton's
+// method kept inside a bracket.
 #pragma once
 
 #include <cmath>
@@ -40,14 +41,18 @@ struct SurfaceReaction {
     return exchangeFlux *
            (std::exp(-transferCoefficient * x) - std::exp((1 - transferCoefficient) * x));
   }
-  // |dj/dc| through U at normalised c: J0 |G'(x)| / (c (1 - c)), G(x) = exp(-alpha x) -
-  // exp((1 - alpha) x), x = f (phi - U): how fast a particle's flux answers its own c.
-  double fluxSlope(double phi, double U, double c) const {
+  // dj/dphi (< 0): -(J0 / (RT/F)) [alpha exp(-alpha x) + (1 - alpha) exp((1 - alpha) x)],
+  // x = (phi - U) / (RT/F).
+  double fluxDerivative(double phi, double U) const {
     const double x = (phi - U) / thermalVoltage();
-    return exchangeFlux *
+    return -exchangeFlux / thermalVoltage() *
            (transferCoefficient * std::exp(-transferCoefficient * x) +
-            (1 - transferCoefficient) * std::exp((1 - transferCoefficient) * x)) /
-           (c * (1 - c));
+            (1 - transferCoefficient) * std::exp((1 - transferCoefficient) * x));
+  }
+  // |dj/dc| through U at normalised c, |dj/dphi| (RT/F) / (c (1 - c)): how fast a particle's
+  // flux answers its own c.
+  double fluxSlope(double phi, double U, double c) const {
+    return -fluxDerivative(phi, U) * thermalVoltage() / (c * (1 - c));
   }
 };
 
