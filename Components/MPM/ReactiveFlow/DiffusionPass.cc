@@ -81,10 +81,11 @@ DiffusionPass::Pass DiffusionPass::diffuse(Collective every, ConcentrationTransf
     change[m].assign(materials[m].particles.count(), 0.0);
   const bool stressDriven = computeStressPotentialGradients(every, grid, materials, c0Change);
   if (relaxation_) relaxSubcellConcentration(every, grid, materials, dt, change);
-  // The sums of the relaxed c, and of the flux with the pass's grad phi.
-  if (relaxation_ || stressDriven) grid.scatterConcentration(every);
-  if (integrator_ == ImplicitOptions::DiffusionIntegrator::Rkl2)
-    return diffuseInLegendreStages(every, grid, materials, t, dt, change);
+  // The sums of the relaxed c, and for the first Euler sub-step those of the flux with the
+  // pass's grad phi (each RKL2 stage takes its own).
+  const bool rkl2 = integrator_ == ImplicitOptions::DiffusionIntegrator::Rkl2;
+  if (relaxation_ || (stressDriven && !rkl2)) grid.scatterConcentration(every);
+  if (rkl2) return diffuseInLegendreStages(every, grid, materials, t, dt, change);
   return diffuseInSubsteps(every, grid, materials, t, dt, change);
 }
 

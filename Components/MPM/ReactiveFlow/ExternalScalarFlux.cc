@@ -63,53 +63,46 @@ double surfaceConductance(const ScalarFluxBC& bc, double area, double volume, do
   return bc.surfaceRate * D / (D + bc.surfaceRate * delta);
 }
 
-// The start of a note of galvanostatic BC b's current ("... its current "), and the end of one
-// whose current ended at t: until when.
-std::string noteStart(size_t b, const ScalarFluxBC& bc) {
-  return "<scalar_flux> " + std::to_string(b + 1) + " (line " + std::to_string(bc.line) +
-         ", galvanostatic): its current ";
-}
-void addUntilNextSegment(std::ostringstream& s, const ScalarFluxBC& bc, double t) {
+// The note of galvanostatic BC b's current resuming at t (`ends` false), the load charging or
+// not, `how` saying at what state, or ending at its cutoff, `how` saying which and why; an
+// ended current's note says until when.
+std::string currentNote(size_t b, const ScalarFluxBC& bc, double t, bool ends, bool charging,
+                        const std::string& how) {
+  std::ostringstream s;
+  s << "<scalar_flux> " << b + 1 << " (line " << bc.line << ", galvanostatic): its current ";
+  if (!ends) {
+    s << "resumes at t = " << t << " (" << (charging ? "charging" : "discharging") << ", " << how
+      << ")";
+    return s.str();
+  }
+  s << "ends at t = " << t << ": " << how;
   const double next = bc.load.nextTimeAfter(t);
   if (std::isfinite(next))
     s << ", until its load curve's next segment at t = " << next;
   else
     s << ", for the rest of the run";
-}
-
-// The note of galvanostatic BC b's current ending at its cutoff (`ends`) or resuming at t, the
-// load charging or not, R the flagged surface's mean restriction.
-std::string currentNote(size_t b, const ScalarFluxBC& bc, double t, bool ends, bool charging,
-                        double R) {
-  std::ostringstream s;
-  s << noteStart(b, bc);
-  if (!ends) {
-    s << "resumes at t = " << t << " (" << (charging ? "charging" : "discharging")
-      << ", the flagged surface's mean restriction R " << R << ")";
-    return s.str();
-  }
-  s << "ends at t = " << t << ": the flagged surface's mean restriction R is " << R
-    << ", at or below <cutoff> " << bc.cutoff << " (the surface is nearly "
-    << (charging ? "full" : "empty") << ")";
-  addUntilNextSegment(s, bc, t);
   return s.str();
 }
 
-// The note of a surface reaction's current ending at a potential cutoff or resuming at t, the
-// load charging or not, phi the electrode's potential.
-std::string potentialNote(size_t b, const ScalarFluxBC& bc, double t, bool ends, bool charging,
-                          double phi) {
+// A note's `how` for a restriction cutoff (R the flagged surface's mean restriction) and for a
+// surface reaction's potential cutoff (phi the electrode's potential).
+std::string restrictionState(const ScalarFluxBC& bc, bool ends, bool charging, double R) {
   std::ostringstream s;
-  s << noteStart(b, bc);
+  s << "the flagged surface's mean restriction R " << (ends ? "is " : "") << R;
+  if (ends)
+    s << ", at or below <cutoff> " << bc.cutoff << " (the surface is nearly "
+      << (charging ? "full" : "empty") << ")";
+  return s.str();
+}
+std::string potentialState(const ScalarFluxBC& bc, bool ends, bool charging, double phi) {
+  std::ostringstream s;
   if (!ends) {
-    s << "resumes at t = " << t << " (" << (charging ? "charging" : "discharging")
-      << ", at the electrode's potential " << phi << " V)";
+    s << "at the electrode's potential " << phi << " V";
     return s.str();
   }
-  s << "ends at t = " << t << ": the electrode's potential " << phi << " V is at or "
+  s << "the electrode's potential " << phi << " V is at or "
     << (charging ? "below <lower_cutoff_potential> " : "above <upper_cutoff_potential> ")
     << (charging ? bc.reaction->lowerCutoff : bc.reaction->upperCutoff) << " V";
-  addUntilNextSegment(s, bc, t);
   return s.str();
 }
 
@@ -260,7 +253,9 @@ std::vector<double> ExternalScalarFlux::fluxes(Collective every,
     if (resumes) endedIn_[b] = -1;
     const bool ends = endedIn_[b] < 0 && meanRestriction <= bc.cutoff;
     if (ends) endedIn_[b] = segment;
-    if (ends || resumes) notes_.push_back(currentNote(b, bc, t, ends, J[b] >= 0, meanRestriction));
+    if (ends || resumes)
+      notes_.push_back(currentNote(b, bc, t, ends, J[b] >= 0,
+                                   restrictionState(bc, ends, J[b] >= 0, meanRestriction)));
     const double lithiumRate = bc.hour > 0 ? J[b] * capacities_[b] / bc.hour : J[b];
     J[b] = endedIn_[b] >= 0 ? 0.0 : lithiumRate / sums[b];
   }
@@ -297,42 +292,8 @@ double ExternalScalarFlux::electrodePotential(Collective every,
     collective::stopTogether(every, collect);
   else
     collect();
-  // The BC's current less `rate` at phi, and its slope, over every rank (one reduction): it
-  // falls as phi rises.
-  const auto excess = [&](double phi, double rate, double& slope) {
-    double sums[2] = {0, 0};
-    for (size_t k = 0; k < weight.size(); ++k) {
-      sums[0] += weight[k] * r.flux(phi, openCircuit[k]);
-      sums[1] += weight[k] * r.fluxDerivative(phi, openCircuit[k]);
-    }
-    if (overRanks) collective::sum(every, sums, 2);
-    slope = sums[1];
-    return sums[0] - rate;
-  };
   const auto carries = [&](double rate) {
-    // A bracket from the extreme open-circuit potentials, widened by doubling steps of RT / F
-    // until it holds the root; then Newton's steps from its middle, a bisection where a step
-    // would leave it, to round-off: the same phi from the same state, whatever came before.
-    double bounds[2] = {std::numeric_limits<double>::infinity(),
-                        std::numeric_limits<double>::infinity()};  // min U, -max U
-    for (double U : openCircuit)
-      bounds[0] = std::min(bounds[0], U), bounds[1] = std::min(bounds[1], -U);
-    if (overRanks) collective::minimum(every, bounds, 2);
-    double lo = bounds[0], hi = -bounds[1], slope = 0;
-    for (double step = r.thermalVoltage(); excess(lo, rate, slope) < 0; step *= 2) lo -= step;
-    for (double step = r.thermalVoltage(); excess(hi, rate, slope) > 0; step *= 2) hi += step;
-    double phi = 0.5 * (lo + hi);
-    for (int k = 0; k < 200; ++k) {
-      const double value = excess(phi, rate, slope);
-      if (value == 0) break;
-      (value > 0 ? lo : hi) = phi;
-      double next = phi - value / slope;
-      if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
-      const bool converged = std::abs(next - phi) <= 1e-15 * (1 + std::abs(phi));
-      phi = next;
-      if (converged || hi - lo <= 1e-15 * (1 + std::abs(phi))) break;
-    }
-    return phi;
+    return potentialCarrying(every, r, weight, openCircuit, rate, overRanks);
   };
   // The cutoffs: a charge ends where phi falls to the lower, a discharge where it rises to the
   // upper, until a later segment of the load curve in which the current, resumed, keeps phi
@@ -349,14 +310,16 @@ double ExternalScalarFlux::electrodePotential(Collective every,
     const double phi = carries(lithiumRate);
     if (!beyondCutoff(phi)) {
       endedIn_[b] = -1;
-      notes_.push_back(potentialNote(b, bc, t, false, charging, phi));
+      notes_.push_back(
+          currentNote(b, bc, t, false, charging, potentialState(bc, false, charging, phi)));
+      return phi;
     }
   }
   if (endedIn_[b] >= 0) return carries(0.0);
   const double phi = carries(lithiumRate);
   if (lithiumRate == 0 || !beyondCutoff(phi)) return phi;
   endedIn_[b] = segment;
-  notes_.push_back(potentialNote(b, bc, t, true, charging, phi));
+  notes_.push_back(currentNote(b, bc, t, true, charging, potentialState(bc, true, charging, phi)));
   return carries(0.0);
 }
 

@@ -302,10 +302,11 @@ std::vector<std::string> ReactiveFlow::completeSetup(Collective every,
 }
 
 double ReactiveFlow::stressDrivenConcentrationChange() const {
+  // From the models alone: MPM asks at setup, before initialize() knows which materials change.
   double bound = std::numeric_limits<double>::infinity();
   for (size_t m = 0; m < materials_.size(); ++m) {
     const double s = model(m).stressPotentialStabilization();
-    if (s > 0) bound = std::min(bound, model(m).maxConcentration / s);  // (set up before changes_)
+    if (s > 0) bound = std::min(bound, model(m).maxConcentration / s);
   }
   return bound;
 }

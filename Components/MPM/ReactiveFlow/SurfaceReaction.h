@@ -15,6 +15,9 @@
 
 #include <cmath>
 #include <limits>
+#include <vector>
+
+#include "Core/Parallel/Communicator.h"
 
 namespace anode {
 
@@ -55,5 +58,13 @@ struct SurfaceReaction {
     return -fluxDerivative(phi, U) * thermalVoltage() / (c * (1 - c));
   }
 };
+
+// The potential at which sites of weights w_k (m A / V c_max) and open-circuit potentials U_k
+// take up `rate` (sum w j = rate), over every rank when `overRanks` (their sites are theirs):
+// bracketed between the extreme U_k, widened by doubling steps of RT / F, then Newton's steps
+// from the bracket's middle, a bisection where a step would leave it, to round-off: the same
+// phi from the same state, whatever came before. One reduction per iteration.
+double potentialCarrying(Collective, const SurfaceReaction& r, const std::vector<double>& weight,
+                         const std::vector<double>& openCircuit, double rate, bool overRanks);
 
 }  // namespace anode
