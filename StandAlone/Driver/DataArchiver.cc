@@ -130,7 +130,11 @@ bool DataArchiver::savesConcentrationFields() const {
 
 StepRecord stepRecord(const StepSummary& s, int dtRule, const StepCounts& counts, bool trapezoidal,
                       const TimestepController::ErrorControl* error) {
-  StepRecord record{s.elasticEnergy, dtRule, counts.newtonIterations, counts.krylovIterations};
+  StepRecord record;
+  record.elasticEnergy = s.elasticEnergy;
+  record.dtRule = dtRule;
+  record.newtonIterations = counts.newtonIterations;
+  record.krylovIterations = counts.krylovIterations;
   record.electrodePotentials = s.electrodePotentials;
   if (trapezoidal && s.diffusion && s.lithiumCapacity > 0)
     record.couplingCorrection = std::max(0.0, counts.couplingCorrection) / s.lithiumCapacity;

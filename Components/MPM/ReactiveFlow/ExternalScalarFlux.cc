@@ -246,17 +246,15 @@ std::vector<double> ExternalScalarFlux::fluxes(Collective every,
     }
     // The flagged surface's mean restriction (weighted as the flux shares the rate).
     const double meanRestriction = sums[n + b] > 0 ? sums[b] / sums[n + b] : 0.0;
-    // In a later segment the current resumes once the surface is above the cutoff for the
-    // direction it now runs in (at a ramp's start it may still run the finished way).
-    const long segment = 2 * static_cast<long>(bc.load.segmentAt(t)) + (sign_ < 0 ? 1 : 0);
-    const bool resumes = endedIn_[b] >= 0 && endedIn_[b] != segment && meanRestriction > bc.cutoff;
+    // The current resumes once the surface is above the cutoff for the direction it now runs in.
+    const double lithiumRate = bc.hour > 0 ? J[b] * capacities_[b] / bc.hour : J[b];
+    const bool resumes = mayResume(b, lithiumRate, t) && meanRestriction > bc.cutoff;
     if (resumes) endedIn_[b] = -1;
     const bool ends = endedIn_[b] < 0 && meanRestriction <= bc.cutoff;
-    if (ends) endedIn_[b] = segment;
+    if (ends) endedIn_[b] = segmentOf(b, t);
     if (ends || resumes)
       notes_.push_back(currentNote(b, bc, t, ends, J[b] >= 0,
                                    restrictionState(bc, ends, J[b] >= 0, meanRestriction)));
-    const double lithiumRate = bc.hour > 0 ? J[b] * capacities_[b] / bc.hour : J[b];
     J[b] = endedIn_[b] >= 0 ? 0.0 : lithiumRate / sums[b];
   }
   return J;
@@ -302,11 +300,7 @@ double ExternalScalarFlux::electrodePotential(Collective every,
   const auto beyondCutoff = [&](double phi) {
     return charging ? phi <= r.lowerCutoff : phi >= r.upperCutoff;
   };
-  const long segment = 2 * static_cast<long>(bc.load.segmentAt(t)) + (sign_ < 0 ? 1 : 0);
-  const double next = bc.load.nextTimeAfter(t);
-  const double ahead = sign_ * bc.load.at(std::isfinite(next) ? next : t);
-  if (endedIn_[b] >= 0 && endedIn_[b] != segment && lithiumRate != 0 &&
-      (lithiumRate > 0) == (ahead > 0)) {
+  if (mayResume(b, lithiumRate, t)) {
     const double phi = carries(lithiumRate);
     if (!beyondCutoff(phi)) {
       endedIn_[b] = -1;
@@ -318,9 +312,21 @@ double ExternalScalarFlux::electrodePotential(Collective every,
   if (endedIn_[b] >= 0) return carries(0.0);
   const double phi = carries(lithiumRate);
   if (lithiumRate == 0 || !beyondCutoff(phi)) return phi;
-  endedIn_[b] = segment;
+  endedIn_[b] = segmentOf(b, t);
   notes_.push_back(currentNote(b, bc, t, true, charging, potentialState(bc, true, charging, phi)));
   return carries(0.0);
+}
+
+long ExternalScalarFlux::segmentOf(size_t b, double t) const {
+  return 2 * static_cast<long>(bcs_[b].load.segmentAt(t)) + (sign_ < 0 ? 1 : 0);
+}
+
+bool ExternalScalarFlux::mayResume(size_t b, double lithiumRate, double t) const {
+  const LoadCurve& load = bcs_[b].load;
+  const double next = load.nextTimeAfter(t);
+  const double ahead = sign_ * load.at(std::isfinite(next) ? next : t);
+  return endedIn_[b] >= 0 && endedIn_[b] != segmentOf(b, t) && lithiumRate != 0 &&
+         (lithiumRate > 0) == (ahead > 0);
 }
 
 std::vector<std::string> ExternalScalarFlux::takeNotes() {

@@ -101,12 +101,20 @@ class ExternalScalarFlux {
                             const std::vector<DiffusionMaterial>& diffusion, size_t b,
                             double lithiumRate, double t, bool overRanks);
 
+  // Whether galvanostatic BC b, its current ended by a cutoff, may resume at t with the load's
+  // `lithiumRate`: in a later segment (or auto-cycle sign), once the load runs the way the
+  // segment ends (past a ramp's turn: a ramp's start may still run the finished way).
+  bool mayResume(size_t b, double lithiumRate, double t) const;
+  // endedIn_'s value for BC b at t: its load curve's segment times 2, plus 1 if the auto-cycle
+  // sign is negative.
+  long segmentOf(size_t b, double t) const;
+
   std::vector<ScalarFluxBC> bcs_;
   std::vector<double> potentials_;  // per BC: electrodePotential's, NaN for the others
   // Per BC: -1 while a galvanostatic BC's current runs; once its flagged surface reached its
   // cutoff, the load curve's segment (LoadCurve::segmentAt) at that time, times 2, plus 1 if the
-  // auto-cycle sign was negative. The current resumes in a later segment (or sign) once the
-  // surface's mean restriction for the direction it then runs in is above the cutoff.
+  // auto-cycle sign was negative. The current resumes as mayResume allows once the surface's
+  // mean restriction for the direction it then runs in is above the cutoff.
   std::vector<long> endedIn_;
   std::vector<double> capacities_;  // per BC (setCapacities)
   std::vector<std::string> notes_;
