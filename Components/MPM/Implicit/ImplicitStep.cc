@@ -179,9 +179,10 @@ void ImplicitStep::computeWeights(Collective every) {
 }
 
 double ImplicitStep::diffuseOverStep(Collective every, double t, double dt,
-                                     const std::vector<std::vector<double>>* c0Change) {
+                                     const std::vector<std::vector<double>>* c0Change,
+                                     std::vector<std::vector<double>>* passError) {
   const DiffusionPass::Pass pass = diffusion_->diffuse(every, *transfer_, mpm_.materials(), t, dt,
-                                                       concentrationChange_, c0Change);
+                                                       concentrationChange_, c0Change, passError);
   newton_.diffusionSubsteps += pass.evaluations;
   return pass.covered;
 }
@@ -254,7 +255,8 @@ void ImplicitStep::takeEquilibriumStep(Collective every, double t, double& dt, d
     double rejectedEstimate = 0;  // the error estimate that failed it
     double covered = dt;          // by the diffusion pass: less where its cap stopped it
     if (diffusion) {
-      covered = diffuseOverStep(every, t, dt);
+      // Under error control the first pass also estimates its own error (passError_).
+      covered = diffuseOverStep(every, t, dt, nullptr, dt_.controlsError() ? &passError_ : nullptr);
       maxConcentrationChange_ = collective::maximum(every, largestConcentrationChange());
       if (covered < dt) {
         report.failure = passCapFailure(dt, covered);

@@ -101,8 +101,10 @@ class ImplicitStep : public Integrator {
   // The diffusion over the step on its start-of-step configuration (after the step's full P2G);
   // concentrationChange_ receives each particle's change; `c0Change` as DiffusionPass::diffuse's.
   // Returns the time the pass covered: dt, or less where DiffusionPass's cap stopped it.
+  // `passError` as DiffusionPass::diffuse's.
   double diffuseOverStep(Collective, double t, double dt,
-                         const std::vector<std::vector<double>>* c0Change = nullptr);
+                         const std::vector<std::vector<double>>* c0Change = nullptr,
+                         std::vector<std::vector<double>>* passError = nullptr);
   // The failure of an attempt whose pass covered `covered` of dt.
   std::string passCapFailure(double dt, double covered);
   // <concentration_coupling>trapezoidal: after diffuseOverStep on the step's start (`start`, the
@@ -151,6 +153,9 @@ class ImplicitStep : public Integrator {
   std::vector<int> fieldOf_;  // material -> its velocity field (single_velocity members share one)
   int fields_ = 0;
   std::vector<std::vector<double>> concentrationChange_;  // per material: dc of the step
+  // Per material: the first pass's estimate of its own error (DiffusionPass::diffuse's
+  // passError; empty where its integrator makes none).
+  std::vector<std::vector<double>> passError_;
   // Per material, of the last equilibrium problem (<swelling_strain>): the dc its swelling takes,
   // which the problem and the particles' update read (null: no swelling); with cell_mean, the
   // increments and the cell-mean c the swelling reaches (CellMeanSwelling.h).

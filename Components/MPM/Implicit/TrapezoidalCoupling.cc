@@ -97,8 +97,10 @@ NewtonReport ImplicitStep::averageConcentrationChangeOverStep(
         correction += mass[i] * 0.5 * std::abs(difference);
         if (!couplingRate.empty()) {
           const double rate = difference / (dt * dt);
-          const double local =
-              localCouplingError(rate, couplingRate[i], dt, lastDt) / maxConcentration;
+          // The coupling's error and the first pass's own (each pass makes about as much).
+          const double passError = passError_.empty() ? 0 : passError_[m][i];
+          const double local = (localCouplingError(rate, couplingRate[i], dt, lastDt) + passError) /
+                               maxConcentration;
           estimate = std::max(estimate, std::abs(local));
           errorSum[i] += local;
           accumulated = std::max(accumulated, std::abs(errorSum[i]));

@@ -17,6 +17,7 @@ DiffusionPass::DiffusionPass(ReactiveFlow& diffusion, const Grid& grid,
       grid_(grid),
       integrator_(options.diffusionIntegrator),
       relaxation_(options.subcellConcentrationRelaxation),
+      halves_(options.errorTolerance > 0),
       substepMultiplier_(substepMultiplier),
       timers_(timers),
       diffusionStateTask_(timers.task("updateDiffusionState")),
@@ -75,8 +76,10 @@ double DiffusionPass::coveredBy(double limit) const {
 DiffusionPass::Pass DiffusionPass::diffuse(Collective every, ConcentrationTransfer& grid,
                                            std::vector<MPMMaterial>& materials, double t, double dt,
                                            std::vector<std::vector<double>>& change,
-                                           const std::vector<std::vector<double>>* c0Change) {
+                                           const std::vector<std::vector<double>>* c0Change,
+                                           std::vector<std::vector<double>>* passError) {
   change.resize(materials.size());
+  if (passError) passError->clear();
   for (size_t m = 0; m < materials.size(); ++m)
     change[m].assign(materials[m].particles.count(), 0.0);
   const bool stressDriven = computeStressPotentialGradients(every, grid, materials, c0Change);
@@ -85,7 +88,7 @@ DiffusionPass::Pass DiffusionPass::diffuse(Collective every, ConcentrationTransf
   // pass's grad phi (each RKL2 stage takes its own).
   const bool rkl2 = integrator_ == ImplicitOptions::DiffusionIntegrator::Rkl2;
   if (relaxation_ || (stressDriven && !rkl2)) grid.scatterConcentration(every);
-  if (rkl2) return diffuseInLegendreStages(every, grid, materials, t, dt, change);
+  if (rkl2) return diffuseInLegendreStages(every, grid, materials, t, dt, change, passError);
   return diffuseInSubsteps(every, grid, materials, t, dt, change);
 }
 
@@ -121,7 +124,8 @@ DiffusionPass::Pass DiffusionPass::diffuseInSubsteps(Collective every, Concentra
 
 DiffusionPass::Pass DiffusionPass::diffuseInLegendreStages(
     Collective every, ConcentrationTransfer& grid, std::vector<MPMMaterial>& materials, double t,
-    double dt, std::vector<std::vector<double>>& change) {
+    double dt, std::vector<std::vector<double>>& change,
+    std::vector<std::vector<double>>* passError) {
   // As many stages as the sub-steps' limit at the pass's start needs: more than the cap, and
   // the pass does not start.
   const double limit = substepLimit(every, materials);
@@ -154,7 +158,7 @@ DiffusionPass::Pass DiffusionPass::diffuseInLegendreStages(
     grid.computeNodalConcentration(false);
     for (size_t m : changing) grid.gatherConcentrationGradient(m);
   };
-  const double middle = t + dt / 2;
+  double middle = t + dt / 2;  // the load curves' time of a step's stages
   long stages = 0;
   // dc/dt of every particle at c = y: the diffusion state (D, flux rates) of y with the load
   // curves at the pass's midpoint, P2G of m c, grad c at the particles from the nodal c, P2G of
@@ -180,13 +184,39 @@ DiffusionPass::Pass DiffusionPass::diffuseInLegendreStages(
     ++stages;
   };
   const std::vector<double> start = concentrations();
+  // Under error control the pass is two RKL2 steps of dt/2; `passError` asks for the one step of
+  // dt first, from the same start and diffusion state, which the halves then take up again as
+  // if it had not been (step doubling).
+  std::vector<double> whole;
+  if (passError) {
+    const ReactiveFlow::StepState state = diffusion_.stepState();
+    whole = start;
+    stepRkl2(whole, dt, s, rate);
+    diffusion_.restoreStepState(state);
+  }
   std::vector<double> y = start;
-  stepRkl2(y, dt, s, rate);
+  if (halves_) {
+    const int h = rkl2Stages(dt / 2 / limit);
+    middle = t + dt / 4;
+    stepRkl2(y, dt / 2, h, rate);
+    middle = t + 3 * dt / 4;
+    stepRkl2(y, dt / 2, h, rate);
+  } else {
+    stepRkl2(y, dt, s, rate);
+  }
   setConcentrations(y);
+  if (passError)  // zero for the materials whose c does not change
+    for (const MPMMaterial& mat : materials) passError->emplace_back(mat.particles.count(), 0.0);
   size_t first = 0;
   for (size_t m : changing) {
     std::vector<double>& dc = change[m];
     for (size_t i = 0; i < dc.size(); ++i) dc[i] += y[first + i] - start[first + i];
+    // A second-order step's local error C dt^3 against C dt^3 / 4 for the two halves: the
+    // halves' error is a third of their difference from the one step.
+    if (passError) {
+      std::vector<double>& e = (*passError)[m];
+      for (size_t i = 0; i < dc.size(); ++i) e[i] = (whole[first + i] - y[first + i]) / 3;
+    }
     first += dc.size();
   }
   // grad c of the end (as a sub-step leaves it for the next one) and its diffusion state.

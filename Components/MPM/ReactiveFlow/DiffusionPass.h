@@ -33,7 +33,9 @@ class DiffusionPass {
   DiffusionPass(ReactiveFlow& diffusion, const Grid& grid, const ImplicitOptions& options,
                 double substepMultiplier, TaskTimers& timers);
   // The most sub-steps (euler) or stages (rkl2) of one pass: a pass's cost stays bounded however
-  // small the sub-steps' limit is against dt (docs/quasi-static.md, "Failure and dt").
+  // small the sub-steps' limit is against dt (docs/quasi-static.md, "Failure and dt"). Under
+  // error control the halves of an RKL2 pass take at most 142 stages each, since the reach of
+  // 142 is above half of 200's, and the step of dt beside them for the estimate at most 200.
   static constexpr long kMaxRateEvaluations = 200;
   // A sub-step's length, the multiplier times the smaller of Eq. 44 and the flux
   // limit over all ranks.
@@ -54,9 +56,14 @@ class DiffusionPass {
   // the caller retakes the step.
   // `c0Change` (per material and particle): what the c the particles' stress holds differs from
   // their c (the first pass's change, for a pass on the predicted end); null: nothing.
+  // `passError` (rkl2 under error control only; null: none): each particle's estimate of the
+  // pass's own local error in c (signed, the pass's c less the exact one), by step doubling: the
+  // pass is two RKL2 steps of dt/2, and the one step of dt taken beside them differs from them
+  // by three times their error (a second-order step's C dt^3 against 2 C (dt/2)^3).
   Pass diffuse(Collective, ConcentrationTransfer& grid, std::vector<MPMMaterial>& materials,
                double t, double dt, std::vector<std::vector<double>>& change,
-               const std::vector<std::vector<double>>* c0Change = nullptr);
+               const std::vector<std::vector<double>>* c0Change = nullptr,
+               std::vector<std::vector<double>>* passError = nullptr);
   // Keeps the diffusion state of the step's start (ReactiveFlow::StepState), which
   // returnToStepStart takes up again with the diffusion state of the particles at time t (the
   // step's start, or its predicted end: the start's particles are the caller's).
@@ -77,10 +84,12 @@ class DiffusionPass {
   Pass diffuseInSubsteps(Collective, ConcentrationTransfer& grid,
                          std::vector<MPMMaterial>& materials, double t, double dt,
                          std::vector<std::vector<double>>& change);
-  // One RKL2 step over dt, its stages as many as the sub-steps' limit at the start needs.
+  // One RKL2 step over dt, or under error control two of dt/2, their stages as many as the
+  // sub-steps' limit at the start needs; `passError` as diffuse's.
   Pass diffuseInLegendreStages(Collective, ConcentrationTransfer& grid,
                                std::vector<MPMMaterial>& materials, double t, double dt,
-                               std::vector<std::vector<double>>& change);
+                               std::vector<std::vector<double>>& change,
+                               std::vector<std::vector<double>>* passError);
   // The particles drawn towards the grid's c of their P2G over dt, their change added.
   void relaxSubcellConcentration(Collective, ConcentrationTransfer& grid,
                                  std::vector<MPMMaterial>& materials, double dt,
@@ -97,6 +106,7 @@ class DiffusionPass {
   const Grid& grid_;
   ImplicitOptions::DiffusionIntegrator integrator_;
   bool relaxation_;
+  bool halves_;  // an RKL2 pass in two steps of dt/2 (under error control)
   double substepMultiplier_;
   TaskTimers& timers_;
   int diffusionStateTask_, particleUpdateTask_;
