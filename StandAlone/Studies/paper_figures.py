@@ -24,9 +24,20 @@ CONCENTRATION = dict(
 )
 # The code's stress is in kPa (um, us, pg): drawn in GPa.
 VON_MISES = dict(
-    field="p.stress:von_mises", scale="1e-6", range="data", colormap="blue_red", units="GPa"
+    field="p.stress:von_mises",
+    scale="1e-6",
+    range="data",
+    colormap="blue_red",
+    units="GPa",
+    field_name="von Mises stress",
 )
-PLASTIC_STRAIN = dict(field="p.plasticStrain", range="data", colormap="blue_red", units=None)
+PLASTIC_STRAIN = dict(
+    field="p.plasticStrain",
+    range="data",
+    colormap="blue_red",
+    units=None,
+    field_name="plastic strain",
+)
 
 
 def full_cycle_figure(name, run, title):
@@ -35,7 +46,7 @@ def full_cycle_figure(name, run, title):
         name=name,
         measure="cycle",
         view=LARGE_VIEW,
-        columns=5,
+        columns=2,
         time_scale=1e-6,
         time_unit="s",
         colour=dict(materials="[0]"),
@@ -240,7 +251,7 @@ FIGURES = [
         name="fig10_partial",
         measure="cycle",
         view=LARGE_VIEW,
-        columns=5,
+        columns=2,
         time_scale=1e-6,
         time_unit="s",
         title="Fig. 10 in part: in for 40 s, out to 80 s, explicit at 2.33e24 kg/m^3",
