@@ -178,8 +178,11 @@ ROWS = [
     ),
     (
         "tests",
-        "the README's test command, `bash tests/run_all.sh`, on a fresh clone with the packages installed and a warm compiler cache",
-        "git clone -q . {out} && cd {out} && CMAKE_CXX_COMPILER_LAUNCHER=ccache bash tests/run_all.sh > ../$(basename {out}).log",
+        "the README's test command through `.ci/run` on a fresh clone beside the repository (where"
+        " CI puts it: `../shared` holds Uintah's inputs some tests run), the packages installed,"
+        " a warm compiler cache",
+        "rm -rf ../anode-mpm-ci && git clone -q . ../anode-mpm-ci && cd ../anode-mpm-ci"
+        " && CMAKE_CXX_COMPILER_LAUNCHER=ccache CI=true bash .ci/run > ../anode-mpm-ci.log",
         True,
     ),
 ]
