@@ -180,7 +180,7 @@ ROWS = [
         "tests",
         "the README's test command through `.ci/run` on a fresh clone beside the repository (where"
         " CI puts it: `../shared` holds Uintah's inputs some tests run), the packages installed,"
-        " a warm compiler cache",
+        " through a compiler cache (how warm it is sets the builds' time)",
         "rm -rf ../anode-mpm-ci && git clone -q . ../anode-mpm-ci && cd ../anode-mpm-ci"
         " && CMAKE_CXX_COMPILER_LAUNCHER=ccache CI=true bash .ci/run > ../anode-mpm-ci.log",
         True,
