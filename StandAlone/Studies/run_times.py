@@ -7,7 +7,7 @@ statements of them kept equal to that table.
   run_times.py --fill                       write every marked run time in README.md and docs/
                                             from the table
   run_times.py --check                      fail on a marked run time that is not the table's,
-                                            on a name the table lacks, and on a run time stated
+                                            on a name the table lacks or has not timed, and on a run time stated
                                             without a marker (but in NOT_YET_MARKED's pages)
 
 A page states a run time as <!--t:NAME-->VALUE<!--/t--> (VALUE as the table's "wall time" cell;
@@ -235,7 +235,8 @@ def read_table():
     cells = {}
     if os.path.exists(TABLE):
         for line in open(TABLE, encoding="utf-8"):
-            parts = [p.strip() for p in line.strip().strip("|").split("|")]
+            # cells split at the bars write_table does not escape (a command may hold "\|")
+            parts = [p.strip() for p in re.split(r"(?<!\\)\|", line.strip().strip("|"))]
             if len(parts) == 5 and parts[0].startswith("`") and parts[0].endswith("`"):
                 cells[parts[0].strip("`")] = (parts[3], parts[4])
     return cells
@@ -321,6 +322,11 @@ def check(cells):
                 if m.group(1) not in cells:
                     problems.append(
                         "%s: %s is not a row of docs/run-times.md" % (where, m.group(1))
+                    )
+                elif cells[m.group(1)][0] == "not timed":
+                    problems.append(
+                        "%s: %s is not timed yet (run_times.py --only %s)"
+                        % (where, m.group(1), m.group(1))
                     )
                 elif m.group(2) != cells[m.group(1)][0]:
                     problems.append(
