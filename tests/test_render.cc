@@ -182,6 +182,47 @@ TEST(Render, PositionedCameraHoldsItsFrameWhereAPresetReframes) {
   EXPECT_NEAR(covered(preset, 0.02) / covered(preset, 0.01), 1.0, 0.05);
 }
 
+// The scale bar: the pixels a length takes at the focal point's depth, as the perspective camera
+// gives them (the viewport's height spans 2 d tan(view angle / 2) there, d the focal distance),
+// and a bar of a round length of about a fifth of the width, labelled above.
+TEST(Render, ScaleBarIsARoundLengthAtTheFocalDepth) {
+  Scene scene = frontScene();
+  scene.camera.preset = CameraPreset::Custom;
+  scene.camera.position = Vec3(0, -0.6, 0);
+  scene.camera.focalPoint = Vec3::Zero();
+  scene.scaleBar = "um";
+  const ParticleData data = block(10, 0.01);
+  for (const Overlay overlay : {Overlay::TitleAndColourBar, Overlay::None}) {
+    SceneRenderer renderer;
+    const RenderedScene r = renderer.render(scene, makeSprites(scene, data), 0.0, overlay);
+    const double expected = r.viewport[3] / (2 * 0.6 * std::tan(15 * M_PI / 180));
+    EXPECT_NEAR(r.pixelsPerUnit / expected, 1.0, 1e-9);
+    // A fifth of the width is 0.076 (um) with the overlay and 0.086 without: bars of 0.05 um.
+    const int length = static_cast<int>(std::lround(0.05 * r.pixelsPerUnit));
+    const int size =
+        overlay == Overlay::None ? panelLabelSize(scene.height) : std::max(10, scene.height / 44);
+    const int x1 = r.viewport[0] + r.viewport[2] - size, y = r.viewport[1] + size;
+    int dark = 0;
+    for (int x = r.viewport[0]; x < r.viewport[0] + r.viewport[2]; ++x)
+      dark += !isBackground(r.canvas, x, y, scene.background);
+    EXPECT_EQ(dark, length);
+    EXPECT_FALSE(isBackground(r.canvas, x1 - 1, y, scene.background));
+    EXPECT_TRUE(isBackground(r.canvas, x1, y, scene.background));
+    // Its label, "50 nm", above it.
+    int text = 0;
+    for (int yy = y + size / 2; yy < y + 2 * size; ++yy)
+      for (int x = x1 - length; x < x1; ++x)
+        text += !isBackground(r.canvas, x, yy, scene.background);
+    EXPECT_GT(text, 20);
+  }
+  scene.scaleBar.clear();
+  SceneRenderer renderer;
+  const RenderedScene none = renderer.render(scene, makeSprites(scene, data), 0.0, Overlay::None);
+  const int y = none.viewport[1] + panelLabelSize(scene.height);
+  for (int x = none.viewport[0]; x < none.viewport[0] + none.viewport[2]; ++x)
+    ASSERT_TRUE(isBackground(none.canvas, x, y, scene.background)) << x;
+}
+
 TEST(Render, ColourAtParticlesMatchesTheColourMap) {
   const int n = 10;
   const double h = 0.01;

@@ -181,6 +181,7 @@ TEST(SceneSpec, ErrorsNameFileAndLine) {
   expect("<scale>0</scale>", "<scale> multiplies the field's values: a finite number, not 0");
   expect("<time_scale>-1</time_scale>", "<time_scale> multiplies the simulation time");
   expect("<colour>grey</colour>", "unknown tag <colour> in <scene>");
+  expect("<scale_bar>furlong</scale_bar>", "<scale_bar> names the positions' length unit");
   expect("<clip/>", "<clip> needs <point> and <normal>");
   expect("<clip><point>[0,0,0]</point><normal>[0,0,1]</normal><thickness>0</thickness></clip>",
          "<thickness> is the section's width about the plane");

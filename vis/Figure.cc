@@ -63,7 +63,7 @@ Canvas composeFigure(const Figure& figure, const std::vector<Canvas>& panels,
   const int W = scene.width, H = scene.height;
   const int columns = std::min<int>(figure.columns, static_cast<int>(panels.size()));
   const int rows = static_cast<int>((panels.size() + columns - 1) / columns);
-  const int labelSize = std::max(12, H / 22);
+  const int labelSize = panelLabelSize(H);
   const int barWidth = std::max(12, W / 20);
   // Room for the colour bar with its values, and for the field's name and units above it.
   const int barArea =

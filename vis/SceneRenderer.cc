@@ -389,6 +389,29 @@ void drawColourBar(Canvas& canvas, const std::array<int, 4>& bar, std::pair<doub
   canvas.text(name, std::min(x0, canvas.width() - 4 - nameWidth), labelY, labelSize, ink);
 }
 
+void drawScaleBar(Canvas& canvas, const std::array<int, 4>& area, double pixelsPerUnit,
+                  const std::string& unit, int labelSize, const RGB& ink) {
+  const double metresPerUnit = metresPerLengthUnit(unit);
+  if (!(pixelsPerUnit > 0) || !std::isfinite(pixelsPerUnit) || metresPerUnit == 0)
+    throw std::invalid_argument("a scale bar needs a view and a length unit (m, mm, um, nm)");
+  const double wanted = area[2] / 5.0 / pixelsPerUnit * metresPerUnit;  // metres
+  const double decade = std::pow(10.0, std::floor(std::log10(wanted)));
+  const double mantissa = wanted / decade;
+  const double metres = (mantissa >= 5 ? 5 : mantissa >= 2 ? 2 : 1) * decade;
+  const int pixels = static_cast<int>(std::lround(metres / metresPerUnit * pixelsPerUnit));
+  std::string shown;
+  for (const char* prefix : {"m", "mm", "um", "nm"})
+    if (shown.empty() &&
+        (metres >= metresPerLengthUnit(prefix) * (1 - 1e-9) || std::string(prefix) == "nm"))
+      shown = formatNumber(metres / metresPerLengthUnit(prefix)) + " " + prefix;
+  const int thickness = std::max(3, labelSize / 5);
+  const int x1 = area[0] + area[2] - labelSize, x0 = x1 - pixels;
+  const int y0 = area[1] + labelSize;
+  canvas.fillRect(x0, y0, x1, y0 + thickness, ink);
+  canvas.text(shown, (x0 + x1) / 2, y0 + thickness + labelSize / 4, labelSize, ink,
+              Canvas::Align::Centre, Canvas::Align::Start);
+}
+
 RenderedScene SceneRenderer::render(const Scene& scene, const SpriteSet& sprites, double time,
                                     Overlay overlay) {
   const SpriteExtent extent = SpriteExtent::of(sprites);
@@ -525,6 +548,16 @@ RenderedScene SceneRenderer::finish(const Scene& scene, const PixelLayer& layer,
   for (size_t p = 0; p < layer.size(); ++p)
     for (int c = 0; c < 3; ++c)
       dst[3 * p + c] = static_cast<unsigned char>(layer[p] >> (16 - 8 * c));
+  // The camera's right, one length unit long, at the focal point.
+  const Vec3 focal =
+      scene.camera.preset == CameraPreset::Custom ? *scene.camera.focalPoint : view.origin;
+  const Vec3 right = view.view.block<1, 3>(0, 0).transpose();
+  const auto [ax, ay] = out.project(focal);
+  const auto [bx, by] = out.project(focal + right);
+  out.pixelsPerUnit = std::hypot(bx - ax, by - ay);
+  if (!scene.scaleBar.empty())
+    drawScaleBar(out.canvas, out.viewport, out.pixelsPerUnit, scene.scaleBar,
+                 overlay == Overlay::None ? panelLabelSize(H) : labelSize, ink);
 
   if (overlay != Overlay::TitleAndColourBar) return out;
 

@@ -4,6 +4,7 @@
 // thread only.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <limits>
@@ -27,6 +28,7 @@ struct RenderedScene {
   std::array<int, 4> viewport{};          // x, y, width, height of the particle area
   std::array<int, 4> colourBar{};         // x0, y0, x1, y1 (exclusive) of the bar's colours
   std::pair<double, double> range{0, 1};  // of the colour bar
+  double pixelsPerUnit = 0;  // a length across the view at the focal point's depth, per unit
 
   // Pixel (x from the left, y from the bottom) where a world point is drawn.
   std::array<double, 2> project(const Vec3& x) const;
@@ -107,6 +109,17 @@ RGB inkOn(const Vec3& background);
 
 // A number as the overlay writes it (4 significant digits).
 std::string formatNumber(double v);
+
+// The size of the labels of a figure's panels of this height.
+inline int panelLabelSize(int height) {
+  return std::max(12, height / 22);
+}
+
+// A scale bar in the particle area `area` (x, y, width, height): a round length (1, 2 or 5 times
+// a power of ten of a metre) of about a fifth of the area's width at `pixelsPerUnit` pixels per
+// length unit `unit` (m, mm, um or nm), drawn at the area's bottom right with its length above it.
+void drawScaleBar(Canvas& canvas, const std::array<int, 4>& area, double pixelsPerUnit,
+                  const std::string& unit, int labelSize, const RGB& ink);
 
 // A vertical colour bar filling `bar` (x0, y0, x1, y1, exclusive), framed, with ticks and values
 // to its right and the units and field name above it.

@@ -95,6 +95,14 @@ double FieldSpec::evaluate(const double* v) const {
   return 0;
 }
 
+double metresPerLengthUnit(const std::string& unit) {
+  if (unit == "m") return 1;
+  if (unit == "mm") return 1e-3;
+  if (unit == "um") return 1e-6;
+  if (unit == "nm") return 1e-9;
+  return 0;
+}
+
 bool Scene::drawsMaterial(int material) const {
   return materials.empty() ||
          std::find(materials.begin(), materials.end(), material) != materials.end();
@@ -144,6 +152,7 @@ const std::vector<std::string>& sceneTags() {
                                                 "title",
                                                 "units",
                                                 "field_name",
+                                                "scale_bar",
                                                 "time_unit",
                                                 "time_scale"};
   return tags;
@@ -244,6 +253,10 @@ void setSceneValue(Scene& s, const std::string& tag, const std::string& raw) {
     s.units = v;
   } else if (tag == "field_name") {
     s.fieldName = v;
+  } else if (tag == "scale_bar") {
+    if (metresPerLengthUnit(v) == 0)
+      throw std::invalid_argument("<scale_bar> names the positions' length unit: m, mm, um or nm");
+    s.scaleBar = v;
   } else if (tag == "time_unit") {
     s.timeUnit = v;
   } else if (tag == "time_scale") {

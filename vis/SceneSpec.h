@@ -65,6 +65,7 @@ struct Scene {
   std::string title;      // empty: the scene name
   std::string units;      // shown with the field name on the colour bar
   std::string fieldName;  // the field's name on the colour bar; empty: the field as written
+  std::string scaleBar;   // the positions' length unit (m, mm, um, nm) for a scale bar; empty: none
   std::string timeUnit;   // shown after the time in the title
   double timeScale = 1;   // the title's time is the simulation time times this (1e-6: us in s)
 
@@ -116,5 +117,8 @@ void readSceneTags(const PSNode& node, Scene& scene);
 std::vector<Scene> readScenes(const PSNode& visualization, const SceneContext& context);
 
 FieldSpec parseField(const std::string& text);
+
+// Metres in one of the length units a scale bar knows (m, mm, um, nm); 0 for any other name.
+double metresPerLengthUnit(const std::string& unit);
 
 }  // namespace anode

@@ -20,7 +20,12 @@ MID, FULL = ("lithium", 0.5), ("end",)
 
 # What colours the particles: scene tags (docs/input-reference.md); a figure's "colour" replaces some.
 CONCENTRATION = dict(
-    field="p.concentration", scale=None, range="[0, 1]", colormap=None, units="c / c_max"
+    field="p.concentration",
+    scale=None,
+    range="[0, 1]",
+    colormap=None,
+    units="c / c_max",
+    field_name="lithium concentration",
 )
 # The code's stress is in kPa (um, us, pg): drawn in GPa.
 VON_MISES = dict(
@@ -96,69 +101,73 @@ FIGURES = [
         name="fig5",
         measure="shape",
         view=SMALL_VIEW,
-        columns=3,
+        columns=2,
         time_scale=1e-6,
         time_unit="s",
-        title="Fig. 5 (4.3): half (a-c) and full lithiation (d-f); elastic, perfectly plastic, linear hardening",
+        title="Fig. 5 (4.3): half (a, c, e) and full lithiation (b, d, f); elastic (a, b), "
+        "perfectly plastic (c, d), linear hardening (e, f)",
         panels=[
             (run, when, label)
-            for when in (MID, FULL)
             for run, label in (
                 ("Constitutive_elastic", "elastic"),
                 ("Constitutive_perfect", "perfect plasticity"),
                 ("Constitutive_hardening", "linear hardening"),
             )
+            for when in (MID, FULL)
         ],
     ),
     dict(
         name="fig5_plastic_strain",
         measure=None,
         view=SMALL_VIEW,
-        columns=3,
+        columns=2,
         time_scale=1e-6,
         time_unit="s",
         colour=PLASTIC_STRAIN,
-        title="Fig. 5 as plastic strain: where each model yields at half (a-c) and full lithiation (d-f)",
+        title="Fig. 5 as plastic strain: where each model yields at half (a, c, e) and full "
+        "lithiation (b, d, f)",
         panels=[
             (run, when, label)
-            for when in (MID, FULL)
             for run, label in (
                 ("Constitutive_elastic", "elastic"),
                 ("Constitutive_perfect", "perfect plasticity"),
                 ("Constitutive_hardening", "linear hardening"),
             )
+            for when in (MID, FULL)
         ],
     ),
     dict(
         name="fig6",
         measure="front",
         view=SMALL_VIEW,
-        columns=4,
+        columns=2,
         time_scale=1e-6,
         time_unit="s",
-        title="Fig. 6 (4.4): lithiation under a flux of 1e-9 m/s (a-d) and 1e-8 m/s (e-h)",
+        title="Fig. 6 (4.4): lithiation under a flux of 1e-9 m/s (a, c, e, g) and 1e-8 m/s "
+        "(b, d, f, h) at 15, 30, 45 and 60% of the capacity",
         panels=[
             (run, ("lithium", f), label)
-            for run, label in (("Flux_1e-9", "1e-9 m/s"), ("Flux_1e-8", "1e-8 m/s"))
             for f in (0.15, 0.3, 0.45, 0.6)
+            for run, label in (("Flux_1e-9", "1e-9 m/s"), ("Flux_1e-8", "1e-8 m/s"))
         ],
     ),
     dict(
         name="fig6_D0",
         measure="front",
         view=SMALL_VIEW,
-        columns=3,
+        columns=2,
         time_scale=1e-6,
         time_unit="s",
-        title="Ours, not the paper's: flux 1e-9 m/s with D0 = 1e-17, 5e-18 and 2e-18 m^2/s at 15% and 30% lithium",
+        title="Ours, not the paper's: flux 1e-9 m/s with D0 = 1e-17 (a, b), 5e-18 (c, d) and "
+        "2e-18 m^2/s (e, f) at 15% (a, c, e) and 30% lithium (b, d, f)",
         panels=[
             (run, ("lithium", f), label)
-            for f in (0.15, 0.3)
             for run, label in (
                 ("Flux_1e-9", "D0 = 1e-17"),
                 ("Front_D0_5e-18", "D0 = 5e-18"),
                 ("Front_D0_2e-18", "D0 = 2e-18"),
             )
+            for f in (0.15, 0.3)
         ],
     ),
     dict(
@@ -230,7 +239,7 @@ FIGURES = [
         name="fig10_plastic_strain",
         measure=None,
         view=LARGE_VIEW,
-        columns=3,
+        columns=2,
         time_scale=1e-6,
         time_unit="s",
         colour=PLASTIC_STRAIN,
@@ -291,6 +300,7 @@ def figure_xml(figure, runs):
         "    <camera><position>%s</position><focal_point>%s</focal_point></camera>"
         % (v["position"], v["focal_point"]),
         "    <size>%s</size>" % v["size"],
+        "    <scale_bar>um</scale_bar>",
         "  </scene>",
     ]
     for run, when, label in figure["panels"]:

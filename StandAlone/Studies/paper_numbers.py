@@ -354,7 +354,8 @@ def shape(run_dir, time):
 CYCLE_SLAB = (
     0.005  # um: two particle layers of the large pillar (dz = 2.5 nm), as the small pillar's rings
 )
-PAPER_CYCLE = "27,472 steps, 48.57 h on 9 cores (Intel Xeon E5-2667, 2.9 GHz)"
+# The paper's time as docs/run-times.md's row uintah_paper_cycle states it (checked there).
+PAPER_CYCLE = "27,472 steps, <!--t:uintah_paper_cycle-->48.57 h<!--/t--> on 9 cores (Intel Xeon E5-2667, 2.9 GHz)"
 
 
 def percent(v):
@@ -382,7 +383,6 @@ def runs_table(runs, finished):
                 s["particles"],
                 s["steps"],
                 "%.4g" % s["time"],
-                "%.0f" % s["wall_seconds"],
                 s["threads"]
                 if s.get("ranks", 1) == 1
                 else "%d x %d ranks" % (s["threads"], s["ranks"]),
@@ -395,7 +395,6 @@ def runs_table(runs, finished):
             "particles",
             "steps",
             "simulated time (us)",
-            "wall (s)",
             "threads",
             "ended at",
         ],
@@ -655,7 +654,7 @@ def write_numbers(path, runs, finished, figures, time_of):
         "# Numbers of the paper's figures, measured from the runs",
         "",
         "Written by `StandAlone/Studies/reproduce_paper.py`; definitions in `paper_numbers.py` and "
-        "`docs/paper/README.md`.",
+        "`docs/paper/README.md`; the runs' wall times in `docs/run-times.md` (`paper_NAME`).",
         "",
         "## Runs",
         "",

@@ -8,12 +8,14 @@ statements of them kept equal to that table.
                                             from the table
   run_times.py --check                      fail on a marked run time that is not the table's,
                                             on a name the table lacks or has not timed, and on a run time stated
-                                            without a marker (but in NOT_YET_MARKED's pages)
+                                            without a marker
 
 A page states a run time as <!--t:NAME-->VALUE<!--/t--> (VALUE as the table's "wall time" cell;
 the markers do not show in rendered Markdown). Each row's command runs from the repository root,
 in a fresh folder out/run_times/NAME, and its time is the command's elapsed wall time; the
-machine column says where it ran (cores, processor, from /proc/cpuinfo).
+machine column says where it ran (cores, processor, from /proc/cpuinfo). A row without a command
+is a time quoted from elsewhere (the paper's); a seeded row keeps a time measured before, its
+conditions in the machine column, until it is timed again.
 """
 
 import argparse
@@ -23,6 +25,9 @@ import shutil
 import subprocess
 import sys
 import time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from reproduce_paper import SCENARIOS  # noqa: E402
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 TABLE = os.path.join(ROOT, "docs", "run-times.md")
@@ -118,7 +123,55 @@ ROWS = [
     (
         "flux_slab_study",
         "`flux_slab_study`",
-        "./build/StandAlone/flux_slab_study > {out}.log",
+        "./build/StandAlone/flux_slab_study --profile {out}.csv > {out}.log",
+        False,
+    ),
+    (
+        "flux_slab_potentiostatic",
+        "`flux_slab_study --potentiostatic 10` (Bi = 10)",
+        "./build/StandAlone/flux_slab_study --potentiostatic 10 --csv {out}.csv > {out}.log",
+        False,
+    ),
+    (
+        "flux_slab_surface_held",
+        "`flux_slab_study --potentiostatic 1e6` (a surface held)",
+        "./build/StandAlone/flux_slab_study --potentiostatic 1e6 --csv {out}.csv > {out}.log",
+        True,
+    ),
+    (
+        "vibrating_bar_implicit",
+        "`vibrating_bar_study --quick --implicit 200` (implicit dynamics)",
+        "./build/StandAlone/vibrating_bar_study --quick --implicit 200 > {out}.log",
+        False,
+    ),
+    (
+        "swelling_cube_flux",
+        "the freely swelling cube of the evolving flux area (`SwellingCubeFlux.ups`)",
+        SUS + " -o {out} inputs/Verification/SwellingCubeFlux.ups",
+        False,
+    ),
+    (
+        "neo_hookean_swelling_tests",
+        "the neo-Hookean swelling tests, `test_swelling --gtest_filter='*NeoHookean*'`",
+        "./build/tests/test_swelling --gtest_filter='*NeoHookean*' > {out}.log",
+        False,
+    ),
+    (
+        "lithiated_sphere_study",
+        "`lithiated_sphere_study`",
+        "./build/StandAlone/lithiated_sphere_study > {out}.log",
+        False,
+    ),
+    (
+        "lithiated_sphere_study_cmax_rt",
+        "`lithiated_sphere_study --cmax-rt 5e-3`",
+        "./build/StandAlone/lithiated_sphere_study --cmax-rt 5e-3 > {out}.log",
+        False,
+    ),
+    (
+        "stress_driven_bar_study",
+        "`stress_driven_bar_study`",
+        "./build/StandAlone/stress_driven_bar_study > {out}.log",
         False,
     ),
     (
@@ -177,6 +230,33 @@ ROWS = [
         True,
     ),
     (
+        "quasi_static_flux_1e-8",
+        "`Flux_1e-8` at the real density in quasi-static steps to 30 s (`docs/quasi-static.md`)",
+        "mpirun -np 2 " + SUS + " --threads 1 -o {out} inputs/Paper/QuasiStatic_Flux_1e-8.ups",
+        True,
+    ),
+    (
+        "quasi_static_flux_1e-9",
+        "`Flux_1e-9` at the real density in quasi-static steps to 100 s (`docs/quasi-static.md`)",
+        "mpirun -np 2 " + SUS + " --threads 1 -o {out} inputs/Paper/QuasiStatic_Flux_1e-9.ups",
+        True,
+    ),
+    (
+        "time_to_solution",
+        "Uintah's timing case (`../shared/inputs/benchmarks/Pillar3D_CPDI_diffusion.ups`) to its"
+        ' maxTime, its step cap raised, 2 threads (`docs/performance.md`, "Time to solution")',
+        "sed 's#<max_Timesteps>[^<]*</max_Timesteps>#<max_Timesteps>100000</max_Timesteps>#'"
+        " ../shared/inputs/benchmarks/Pillar3D_CPDI_diffusion.ups > {out}.ups"
+        " && OMP_WAIT_POLICY=passive " + SUS + " --threads 2 -o {out} {out}.ups",
+        False,
+    ),
+    (
+        "decompose_large_pillar",
+        "the dry run of the §4.7 pillar's decomposition for 1024 ranks (`sus --decompose`)",
+        SUS + " --decompose 1024 inputs/Paper/Cycle_LargePillar.ups > {out}.log",
+        False,
+    ),
+    (
         "tests",
         "the README's test command through `.ci/run` on a fresh clone beside the repository (where"
         " CI puts it: `../shared` holds Uintah's inputs some tests run), the packages installed,"
@@ -187,16 +267,55 @@ ROWS = [
     ),
 ]
 
+# The paper's scenarios one at a time through the pipeline, one thread each (long).
+ROWS += [
+    (
+        "paper_" + name,
+        "the paper's scenario %s through the pipeline (`docs/paper/README.md`)" % name,
+        "/usr/bin/python3 StandAlone/Studies/reproduce_paper.py --only %s --threads 1 --out {out}"
+        % name,
+        True,
+    )
+    for name in SCENARIOS
+]
+ROWS += [
+    (
+        "front_study",
+        "the front study's nine runs one after another, one thread each, and its table"
+        ' (`docs/paper/README.md`, "The sharp front at 1e-9 m/s")',
+        "for n in Front_cause_ours Front_cause_area_particle_face Front_cause_receivers_weights"
+        " Front_cause_cstar_without_source Front_cause_uintah_flux_rules Front_cause_beta_0"
+        " Front_cause_beta_2.07 Front_D0_5e-18 Front_D0_2e-18; do "
+        + SUS
+        + " --threads 1 -o {out}/$n"
+        " inputs/Paper/$n.ups > /dev/null || exit 1; done"
+        " && /usr/bin/python3 StandAlone/Studies/front_causes.py --runs {out} > {out}.log",
+        True,
+    )
+]
+# Times quoted, not ours to run: no command.
+ROWS += [
+    (
+        "uintah_paper_cycle",
+        "the paper's own run of §4.7's cycle, 27,472 steps (Uintah; quoted from the paper)",
+        None,
+        True,
+    ),
+]
+
 HEAD = """# Run times
 
 How long each command the docs give takes: the elapsed wall time of the whole command, run from
-the repository's root with nothing else running, on the machine of the last column. The other
-pages state these times only through a marker that `python3 StandAlone/Studies/run_times.py
---fill` writes from this table, and the test `docs_run_times` fails on a marked time that differs
-from the table or on a run time stated without its marker (in every page but those listed in
-`NOT_YET_MARKED` in that script, whose older measurements are not yet moved here). This table is
-written by `python3 StandAlone/Studies/run_times.py` (the rows but the long ones; `--only NAME`
-for one row, `--long` for the long ones too, `--list` for the commands).
+the repository's root, on the machine and under the load of the last column (nothing else running
+unless it says so). The other pages state these times only through a marker that `python3
+StandAlone/Studies/run_times.py --fill` writes from this table, and the test `docs_run_times`
+fails on a marked time that differs from the table and on a run time stated without its marker.
+This table is written by `python3 StandAlone/Studies/run_times.py` (the rows but the long ones;
+`--only NAME` for one row, `--long` for the long ones too, `--list` for the commands). The rows
+`paper_NAME` are the paper's scenarios (`docs/paper/README.md`, "Run times"): the wall time of
+each run's stretches summed, as the pipeline records it. A row without a command quotes a time
+from elsewhere. Side-by-side comparisons (medians of interleaved runs, per-task timers) are not
+run times of a command: each is stated once, on the page that makes it.
 """
 
 MARKER = re.compile(r"<!--t:([\w.-]+)-->(.*?)<!--/t-->")
@@ -208,6 +327,7 @@ UNMARKED = [
     ),
     re.compile(r"steps?(?:,| in| \()\s*\d[\d.,]*\s*(?:s|h)\b"),
     re.compile(r"\d[\d.,]*\s*(?:s|h) (?:of wall|on \d+ (?:cores|ranks|threads?)|on one core)"),
+    re.compile(r"\d+:\d\d(?::\d\d)? elapsed"),
 ]
 
 
@@ -246,9 +366,13 @@ def write_table(cells):
     lines = [HEAD, "| name | what | command | wall time | machine |", "|---|---|---|---|---|"]
     for name, what, command, long_row in ROWS:
         wall, where = cells.get(name, ("not timed", ""))
-        shown = command.format(out=os.path.join(OUT, name)).replace("|", "\\|")
+        shown = (
+            "`%s`" % command.format(out=os.path.join(OUT, name)).replace("|", "\\|")
+            if command
+            else "none: quoted"
+        )
         lines.append(
-            "| `%s` | %s%s | `%s` | %s | %s |"
+            "| `%s` | %s%s | %s | %s | %s |"
             % (name, what, " (long)" if long_row else "", shown, wall, where)
         )
     with open(TABLE + ".tmp", "w", encoding="utf-8") as f:
@@ -298,24 +422,10 @@ def fill(cells):
             print("filled", os.path.relpath(page, ROOT))
 
 
-# Pages whose run times are not yet all in the table: the check of unmarked run times skips them
-# (their markers are still checked).
-NOT_YET_MARKED = {
-    os.path.join("docs", "performance.md"),
-    os.path.join("docs", "quasi-static.md"),
-    os.path.join("docs", "verification.md"),
-    os.path.join("docs", "parallel.md"),
-    os.path.join("docs", "rendering.md"),
-    os.path.join("docs", "paper", "README.md"),
-    os.path.join("docs", "paper", "numbers.md"),
-}
-
-
 def check(cells):
     problems = []
     for page in pages():
         text = open(page, encoding="utf-8").read()
-        strict = os.path.relpath(page, ROOT) not in NOT_YET_MARKED
         for number, line in enumerate(text.splitlines(), 1):
             where = "%s:%d" % (os.path.relpath(page, ROOT), number)
             for m in MARKER.finditer(line):
@@ -333,13 +443,10 @@ def check(cells):
                         "%s: %s says %s, the table %s"
                         % (where, m.group(1), m.group(2), cells[m.group(1)][0])
                     )
-            if strict:
-                bare = MARKER.sub("", line)
-                for pattern in UNMARKED:
-                    for m in pattern.finditer(bare):
-                        problems.append(
-                            "%s: a run time without its marker: '%s'" % (where, m.group(0))
-                        )
+            bare = MARKER.sub("", line)
+            for pattern in UNMARKED:
+                for m in pattern.finditer(bare):
+                    problems.append("%s: a run time without its marker: '%s'" % (where, m.group(0)))
     return problems
 
 
@@ -347,7 +454,7 @@ def main():
     parser = argparse.ArgumentParser(
         description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
     )
-    parser.add_argument("--only", nargs="+", choices=[r[0] for r in ROWS])
+    parser.add_argument("--only", nargs="+", choices=[r[0] for r in ROWS if r[2]])
     parser.add_argument("--long", action="store_true")
     parser.add_argument("--list", action="store_true")
     parser.add_argument("--fill", action="store_true")
@@ -368,7 +475,11 @@ def main():
         print("%d pages checked, %d problems" % (len(pages()), len(problems)))
         sys.exit(1 if problems else 0)
     for name, what, command, long_row in ROWS:
-        if (args.only and name not in args.only) or (not args.only and long_row and not args.long):
+        if (
+            not command
+            or (args.only and name not in args.only)
+            or (not args.only and long_row and not args.long)
+        ):
             continue
         seconds = time_row(name, command)
         cells[name] = (wall_text(seconds), machine())
