@@ -399,11 +399,14 @@ void drawScaleBar(Canvas& canvas, const std::array<int, 4>& area, double pixelsP
   const double mantissa = wanted / decade;
   const double metres = (mantissa >= 5 ? 5 : mantissa >= 2 ? 2 : 1) * decade;
   const int pixels = static_cast<int>(std::lround(metres / metresPerUnit * pixelsPerUnit));
-  std::string shown;
-  for (const char* prefix : {"m", "mm", "um", "nm"})
-    if (shown.empty() &&
-        (metres >= metresPerLengthUnit(prefix) * (1 - 1e-9) || std::string(prefix) == "nm"))
-      shown = formatNumber(metres / metresPerLengthUnit(prefix)) + " " + prefix;
+  // Labelled in the largest unit that gives at least 1 (else the smallest).
+  auto label = lengthUnits().back();
+  for (const auto& u : lengthUnits())
+    if (metres >= u.second * (1 - 1e-9)) {
+      label = u;
+      break;
+    }
+  const std::string shown = formatNumber(metres / label.second) + " " + label.first;
   const int thickness = std::max(3, labelSize / 5);
   const int x1 = area[0] + area[2] - labelSize, x0 = x1 - pixels;
   const int y0 = area[1] + labelSize;

@@ -95,11 +95,15 @@ double FieldSpec::evaluate(const double* v) const {
   return 0;
 }
 
+const std::vector<std::pair<std::string, double>>& lengthUnits() {
+  static const std::vector<std::pair<std::string, double>> units = {
+      {"m", 1}, {"mm", 1e-3}, {"um", 1e-6}, {"nm", 1e-9}};
+  return units;
+}
+
 double metresPerLengthUnit(const std::string& unit) {
-  if (unit == "m") return 1;
-  if (unit == "mm") return 1e-3;
-  if (unit == "um") return 1e-6;
-  if (unit == "nm") return 1e-9;
+  for (const auto& [name, metres] : lengthUnits())
+    if (name == unit) return metres;
   return 0;
 }
 

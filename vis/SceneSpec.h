@@ -118,7 +118,9 @@ std::vector<Scene> readScenes(const PSNode& visualization, const SceneContext& c
 
 FieldSpec parseField(const std::string& text);
 
-// Metres in one of the length units a scale bar knows (m, mm, um, nm); 0 for any other name.
+// The length units a scale bar knows, largest first: (name, metres).
+const std::vector<std::pair<std::string, double>>& lengthUnits();
+// Metres in one of lengthUnits(); 0 for any other name.
 double metresPerLengthUnit(const std::string& unit);
 
 }  // namespace anode
