@@ -31,7 +31,6 @@ panels show into DIR/figures/NAME; a figure whose runs this machine lacks is the
 
 --quick STEPS runs each scenario afresh for STEPS steps only (a quasi-static one for one step;
 into DIR, which must not hold full runs) and makes every figure from what that gives: the pipeline's test (tests/CMakeLists.txt).
-It leaves out the scenarios of NOT_QUICK (no figure draws them; they say why).
 Needs /usr/bin/python3 with numpy (python3-numpy) and, for the numbers, VTK (python3-vtk9, which
 libvtk9-dev installs).
 """
@@ -81,15 +80,6 @@ SCENARIOS = [
     "Density_2.33e3",
     "Density_2.33e18",
 ]
-
-
-# Left out of --quick, with the reason: no figure draws it, and its first step alone is most of
-# the test's time (a 2 s Newton solve of 342,940 particles: 20 iterations and 22 for the step's
-# predicted end, 170 s on one thread); its quarter, which Figure 10 draws, runs the same path.
-NOT_QUICK = {
-    "QuasiStatic_FullCycle_LargePillar": "its first step alone, a Newton solve of the whole"
-    " pillar, would take most of the quick test's time; its quarter runs the same path"
-}
 
 
 def has_checkpoint(run_dir):
@@ -404,10 +394,6 @@ def main():
     runs = os.path.join(args.out, "runs")
     os.makedirs(runs, exist_ok=True)
     names = args.only or SCENARIOS
-    if args.quick:
-        for name in sorted(set(names) & set(NOT_QUICK)):
-            print("%-22s not run with --quick: %s" % (name, NOT_QUICK[name]), flush=True)
-        names = [n for n in names if n not in NOT_QUICK]
     if args.pack:
         pack_runs(names, args, runs)
         return

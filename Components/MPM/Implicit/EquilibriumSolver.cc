@@ -11,6 +11,7 @@
 #include <string>
 #include <utility>
 
+#include "Components/MPM/Implicit/LineSearch.h"
 #include "Components/MPM/Implicit/Newmark.h"
 #include "Core/Parallel/StopTogether.h"
 #include "Core/Util/Errors.h"
@@ -32,12 +33,6 @@ constexpr double kLinearToleranceMost = 1e-1, kLinearToleranceLeast = 1e-9;
 // 20 with 0.1. Not from the last step's motion, an extrapolation: Figure 4's pillar with 3e-3
 // there took 171 Newton and 1,717 Krylov iterations against 167 and 1,521.
 constexpr double kLinearToleranceFromSolvedPrediction = 3e-3;
-
-// Newton's line search: the fractions 1, 1/2, ... of the correction tried (this many) until the
-// residual's norm falls below the last iterate's. When none lowers it, the fraction with the
-// lowest residual is taken (near convergence, where round-off hides the descent, any of them
-// is within Newton's tolerance of the others).
-constexpr int kLineSearchTrials = 5;
 
 // <jacobian_reuse>: Newton keeps the Jacobian of its last iteration (K and the linear solver's
 // matrix as they are) for the next correction when the last correction was small and came fast: its
@@ -83,20 +78,27 @@ void EquilibriumSolver::addToDisplacement(const std::vector<double>& du, double 
 
 bool EquilibriumSolver::takeStep(Collective every, const EquilibriumProblem& problem, double dt,
                                  double stabilization, const std::vector<double>& du,
-                                 double residualNorm) {
+                                 double residualNorm, double energy) {
   std::optional<ScopedTimer> s;
   if (timers_) s.emplace(*timers_, assemblyTask_);
-  double lowest = std::numeric_limits<double>::infinity(), best = 1.0;
-  for (int halvings = 0; halvings < kLineSearchTrials; ++halvings) {
-    const double step = std::ldexp(1.0, -halvings);
-    addToDisplacement(du, step);
+  double at = 0, norm = 0;
+  const auto slopeAt = [&](double fraction) {
+    addToDisplacement(du, fraction - at);
+    at = fraction;
     assemble(every, problem, dt, stabilization, false);
-    const double norm = ownedDot(every, residual_, residual_);
-    if (norm < residualNorm) return true;  // false for NaN
-    if (norm < lowest) lowest = norm, best = step;
-    addToDisplacement(du, -step);
-  }
-  addToDisplacement(du, best);
+    norm = ownedDot(every, residual_, residual_);
+    return std::isfinite(norm) ? ownedDot(every, du, residual_)
+                               : std::numeric_limits<double>::quiet_NaN();
+  };
+  const double wholeSlope = slopeAt(1.0);
+  // The whole correction lowers the residual's norm (false for NaN), or round-off hides the
+  // energy's slope (du.r(u) <= 0 within the linear solve's error) and its residual is a number:
+  // it is taken. Otherwise the search along it (LineSearch.h).
+  if (norm < residualNorm || (!(energy > 0) && std::isfinite(norm))) return true;
+  const LineSearchChoice choice = searchAlongCorrection(
+      std::max(energy, std::numeric_limits<double>::min()), wholeSlope, slopeAt);
+  if (choice.lastTried) return true;
+  addToDisplacement(du, choice.fraction - at);
   return false;
 }
 
@@ -264,7 +266,7 @@ NewtonReport EquilibriumSolver::solve(Collective every, const EquilibriumProblem
       return report;
     }
     residualCurrent =
-        takeStep(every, problem, dt, options.hourglassStabilization, du, residualNorm);
+        takeStep(every, problem, dt, options.hourglassStabilization, du, residualNorm, qNorm);
   }
 }
 

@@ -151,11 +151,10 @@ class EquilibriumSolver {
   void startFromPrescribed(const EquilibriumProblem& problem);
   // u += scale du (du by block row).
   void addToDisplacement(const std::vector<double>& du, double scale);
-  // Newton's update u += step du with the line search's step; `residualNorm` is |r|^2 at u.
-  // Whether residual_ is that of the new u (a trial lowered the norm; otherwise u takes the trial
-  // with the lowest norm, and residual_ is another trial's).
+  // Newton's update u += s du with the line search's fraction s (EquilibriumSolver.cc);
+  // `residualNorm` is |r|^2 at u, `energy` du.r there. Whether residual_ is that of the new u.
   bool takeStep(Collective, const EquilibriumProblem& problem, double dt, double stabilization,
-                const std::vector<double>& du, double residualNorm);
+                const std::vector<double>& du, double residualNorm, double energy);
   // After the first assembly (at the start-of-step u): u moves to the predicted increments of
   // the unknowns when their residual is lower (the first solve then uses the tangent of the
   // start, or the one kept from the prediction's solve), and the references of the convergence
