@@ -82,21 +82,26 @@ bool EquilibriumSolver::takeStep(Collective every, const EquilibriumProblem& pro
   std::optional<ScopedTimer> s;
   if (timers_) s.emplace(*timers_, assemblyTask_);
   double at = 0, norm = 0;
-  const auto slopeAt = [&](double fraction) {
+  const auto moveTo = [&](double fraction) {
     addToDisplacement(du, fraction - at);
     at = fraction;
     assemble(every, problem, dt, stabilization, false);
     norm = ownedDot(every, residual_, residual_);
+  };
+  const auto slope = [&] {
     return std::isfinite(norm) ? ownedDot(every, du, residual_)
                                : std::numeric_limits<double>::quiet_NaN();
   };
-  const double wholeSlope = slopeAt(1.0);
+  moveTo(1.0);
   // The whole correction lowers the residual's norm (false for NaN), or round-off hides the
   // energy's slope (du.r(u) <= 0 within the linear solve's error) and its residual is a number:
   // it is taken. Otherwise the search along it (LineSearch.h).
   if (norm < residualNorm || (!(energy > 0) && std::isfinite(norm))) return true;
   const LineSearchChoice choice = searchAlongCorrection(
-      std::max(energy, std::numeric_limits<double>::min()), wholeSlope, slopeAt);
+      std::max(energy, std::numeric_limits<double>::min()), slope(), [&](double fraction) {
+        moveTo(fraction);
+        return slope();
+      });
   if (choice.lastTried) return true;
   addToDisplacement(du, choice.fraction - at);
   return false;

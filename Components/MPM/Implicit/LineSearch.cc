@@ -14,10 +14,8 @@ LineSearchChoice searchAlongCorrection(double energy, double wholeSlope,
   double best = 1.0, bestSlope = std::abs(wholeSlope);  // NaN: any finite trial is better
   int kept = 0;                                         // -1: hi kept by the last trial, +1: lo
   for (int trial = 1; trial < kLineSearchTrials; ++trial) {
-    const double next =
-        std::clamp(std::isfinite(gHi) ? lo + (hi - lo) * gLo / (gLo - gHi) : 0.5 * (lo + hi),
-                   lo + kLineSearchMargin * (hi - lo), hi - kLineSearchMargin * (hi - lo));
-    at = next;
+    at = std::clamp(std::isfinite(gHi) ? lo + (hi - lo) * gLo / (gLo - gHi) : 0.5 * (lo + hi),
+                    lo + kLineSearchMargin * (hi - lo), hi - kLineSearchMargin * (hi - lo));
     const double g = slopeAt(at);
     if (std::abs(g) < bestSlope || std::isnan(bestSlope)) best = at, bestSlope = std::abs(g);
     if (std::abs(g) <= kEnergyReduction * energy) return {at, true};
