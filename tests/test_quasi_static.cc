@@ -18,6 +18,7 @@
 #include "Components/MPM/ReactiveFlow/DiffusionParticles.h"
 #include "Core/Util/Errors.h"
 #include "StandAlone/Driver/HistoryDigest.h"
+#include "StandAlone/Driver/OutputLabels.h"
 #include "StandAlone/Driver/Simulation.h"
 
 namespace anode {
@@ -653,7 +654,9 @@ std::string withFineSubsteps(std::string text) {
                       "<timestep_multiplier>0.02</timestep_multiplier>");
 }
 struct ErrorControlledBar {
-  double largestEstimate = 0, accumulated = 0;
+  // The steps' largest estimate, the accumulated one of the last step and the largest |value| of
+  // the particle array saved as p.concentrationErrorEstimate at the end.
+  double largestEstimate = 0, accumulated = 0, saved = 0;
   int steps = 0, rejected = 0;
   std::vector<double> concentration;  // the particles' c at t = 1
 };
@@ -678,6 +681,8 @@ ErrorControlledBar runErrorControlledBar(double dt, const std::string& extra, bo
   }
   EXPECT_DOUBLE_EQ(sim.time(), 1);
   r.concentration = diffusionParticles(sim.mpm().materials()[0].particles).concentration;
+  for (double v : gatherParticles(sim.mpm(), {"p.concentrationErrorEstimate"}).arrays.back().real)
+    r.saved = std::max(r.saved, std::abs(v));
   return r;
 }
 
@@ -723,6 +728,8 @@ TEST(QuasiStatic, ErrorEstimateTakesInTheLegendrePassesOwnError) {
     EXPECT_LT(r.accumulated, 3 * error) << "tolerance " << tolerance;
     EXPECT_LE(r.largestEstimate, std::stod(tolerance));
     EXPECT_EQ(r.rejected, 0);
+    // Each particle's sum is what p.concentrationErrorEstimate writes.
+    EXPECT_EQ(r.saved, r.accumulated) << "tolerance " << tolerance;
   }
 }
 

@@ -49,7 +49,8 @@ struct ParticleSet {
   std::vector<HourglassMemory> hourglassMemory;
   // Quasi-static steps with diffusion under <error_tolerance> only: the last step's coupling rate
   // (dc_2 - dc_1) / dt^2 of its two diffusion passes, and the sum of the particle's signed local
-  // error estimates of c / c_max over the steps (Implicit/TrapezoidalCoupling.cc).
+  // error estimates of c / c_max over the steps (Implicit/TrapezoidalCoupling.cc; saved as
+  // p.concentrationErrorEstimate).
   std::vector<double> couplingRate, concentrationErrorEstimate;
   // Implicit steps with diffusion and <swelling_strain>cell_mean only: the cell-mean
   // concentration the particle's swelling has reached (NaN before its first step;
@@ -179,7 +180,7 @@ struct ParticleSet {
     f(s.hourglassMemory, ParticleField<HourglassMemory>{nullptr, P::Hourglass, {}, S::Copy});
     f(s.couplingRate, ParticleField<double>{nullptr, P::CouplingHistory, 0.0, S::Copy});
     f(s.concentrationErrorEstimate,
-      ParticleField<double>{nullptr, P::CouplingHistory, 0.0, S::Copy});
+      ParticleField<double>{"p.concentrationErrorEstimate", P::CouplingHistory, 0.0, S::Copy});
     f(s.swellingConcentration,
       ParticleField<double>{nullptr, P::CellSwelling, std::numeric_limits<double>::quiet_NaN(),
                             S::Copy});

@@ -175,12 +175,14 @@ const std::vector<std::string>& gridLabelNames() {
 }
 
 // Labels of the diffusion subcomponent, written only when it is on: its particle arrays (from
-// the one list of them), the aliases computed from them and its grid fields.
+// the one list of them, with the error estimate of quasi-static steps with diffusion), the
+// aliases computed from them and its grid fields.
 bool isDiffusionLabel(const std::string& label) {
   bool diffusion = false;
   forEachParticleField([&](const auto& field) {
     if (field.label && label == field.label)
-      diffusion = field.physics == Physics::Diffusion || field.physics == Physics::FluxBC;
+      diffusion = field.physics == Physics::Diffusion || field.physics == Physics::FluxBC ||
+                  field.physics == Physics::CouplingHistory;
   });
   static const std::vector<std::string> others = {
       "p.externalscalarflux", "p.concentrationInterp", "p.pressure_t1",      "g.concentration",
